@@ -1,1 +1,43 @@
-fn main() {}
+//! `rtfpga`: render scenes in software or through the accelerator, compare images, list
+//! number formats, generate and measure the hardware. The CLI contract is in
+//! `docs/architecture.md`; each subcommand lives in its own module.
+
+mod engine;
+mod cmd_compare;
+mod cmd_formats;
+mod cmd_render;
+
+use clap::{Parser, Subcommand};
+
+#[derive(Parser)]
+#[command(name = "rtfpga", version, about = "FPGA ray-triangle intersection accelerator toolkit")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a scene (thesis scene directory, .toml scene, or built-in name) to PNG.
+    Render(cmd_render::Args),
+    /// Compare two images: PSNR (last line `psnr_db=...`) and an optional error heat-map.
+    Compare(cmd_compare::Args),
+    /// List the number-format catalogue.
+    Formats(cmd_formats::Args),
+}
+
+fn main() -> std::process::ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Render(a) => cmd_render::run(a),
+        Command::Compare(a) => cmd_compare::run(a),
+        Command::Formats(a) => cmd_formats::run(a),
+    };
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}

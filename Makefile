@@ -1,0 +1,40 @@
+# Entry points. `make demo` and `make test` work on a fresh Debian machine with Rust:
+# both install the system tools first (scripts/setup.sh, apt-get).
+
+CARGO ?= cargo
+RTFPGA := target/release/rtfpga
+DEMO_SCENE ?= simple_plane
+DEMO_SIZE ?= --width 320 --height 180
+OUT ?= out
+
+.PHONY: setup build demo test golden verilog bench sweep clean
+
+setup:
+	@./scripts/setup.sh
+
+build: setup
+	$(CARGO) build --release
+
+$(RTFPGA): build
+
+# Render an embedded scene in software and through the accelerator, print the PSNR.
+demo: build
+	@mkdir -p $(OUT)
+	$(RTFPGA) render --scene $(DEMO_SCENE) $(DEMO_SIZE) --engine f32 --out $(OUT)/demo_sw.png
+	$(RTFPGA) render --scene $(DEMO_SCENE) $(DEMO_SIZE) --engine model --format fp32 --out $(OUT)/demo_model.png
+	$(RTFPGA) compare $(OUT)/demo_sw.png $(OUT)/demo_model.png --diff $(OUT)/demo_diff.png
+
+# Every test of the workspace (what CI runs).
+test: setup
+	$(CARGO) test --workspace --release
+
+# Regenerate the golden images of scenes/ (a test checks they are current).
+golden: build
+	$(RTFPGA) golden --out golden
+
+bench: build
+	$(CARGO) bench -p sw-renderer
+
+clean:
+	$(CARGO) clean
+	rm -rf $(OUT)

@@ -1,0 +1,53 @@
+//! `rtfpga render`: one scene, one engine, one PNG.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use clap::Args as ClapArgs;
+use sw_renderer::render::{render, save_png, RenderOptions};
+use sw_renderer::scene::Scene;
+
+use crate::engine::{self, EngineKind, HwConfig};
+
+#[derive(ClapArgs)]
+pub struct Args {
+    /// Scene directory with objects.txt, a .toml scene, or a built-in scene name.
+    #[arg(long)]
+    scene: String,
+    /// Override the scene's width.
+    #[arg(long)]
+    width: Option<u32>,
+    /// Override the scene's height.
+    #[arg(long)]
+    height: Option<u32>,
+    #[arg(long, value_enum, default_value_t = EngineKind::F32)]
+    engine: EngineKind,
+    #[command(flatten)]
+    hw: HwConfig,
+    /// Output PNG.
+    #[arg(long)]
+    out: PathBuf,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+pub fn run(a: Args) -> Result<()> {
+    let scene = Scene::load(&a.scene)?;
+    let isect = engine::make(a.engine, &a.hw)?;
+    let opts = RenderOptions { width: a.width, height: a.height, progress: !a.quiet, ..Default::default() };
+    let out = render(&scene, isect.as_ref(), &opts);
+    save_png(&out.image, &a.out).with_context(|| format!("writing {}", a.out.display()))?;
+    let s = &out.stats;
+    println!(
+        "scene={} engine={} size={}x{} triangles={} mt_queries={} time_s={:.3}",
+        scene.name,
+        isect.name(),
+        out.image.width(),
+        out.image.height(),
+        scene.triangle_count(),
+        s.mt_queries,
+        s.wall_time.as_secs_f64()
+    );
+    Ok(())
+}
