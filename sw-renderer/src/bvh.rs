@@ -1,0 +1,300 @@
+//! A binned-SAH bounding volume hierarchy that gathers candidate triangles per ray.
+//!
+//! It never decides a hit itself: it lists every triangle of every leaf whose box the ray
+//! enters within [0, bound], and the intersector's results are reduced afterwards
+//! (`hit.rs`). For the render to equal the reference's brute-force loop bit for bit, the
+//! gathering must be conservative: a triangle the Möller-Trumbore test would report as a
+//! counting hit must always be listed. Rounding in that test can place a "hit" slightly off
+//! the exact geometry, so boxes are padded by a relative margin (of their own coordinates and
+//! of the ray origin's) and the bound is loosened likewise. `tests/bvh_props.rs` checks the
+//! result against brute force.
+
+use crate::math::V3;
+use crate::world::WorldTriangle;
+
+/// Triangles per leaf the SAH may keep without trying to split.
+const MAX_LEAF: usize = 4;
+const BINS: usize = 16;
+/// Relative padding of boxes and bounds (≈ 840 ulps: far above Möller-Trumbore's rounding).
+const PAD: f32 = 1e-4;
+/// The build never nests deeper, so a fixed traversal stack suffices.
+const MAX_DEPTH: usize = 96;
+
+#[derive(Clone, Copy, Debug)]
+struct Aabb {
+    min: [f32; 3],
+    max: [f32; 3],
+}
+
+impl Aabb {
+    const EMPTY: Aabb = Aabb { min: [f32::INFINITY; 3], max: [f32::NEG_INFINITY; 3] };
+
+    fn grow_point(&mut self, p: [f32; 3]) {
+        for a in 0..3 {
+            self.min[a] = self.min[a].min(p[a]);
+            self.max[a] = self.max[a].max(p[a]);
+        }
+    }
+
+    fn grow(&mut self, b: &Aabb) {
+        self.grow_point(b.min);
+        self.grow_point(b.max);
+    }
+
+    fn area(&self) -> f32 {
+        let d = [self.max[0] - self.min[0], self.max[1] - self.min[1], self.max[2] - self.min[2]];
+        if d.iter().any(|x| !(*x >= 0.0)) {
+            return 0.0;
+        }
+        2.0 * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0])
+    }
+
+    /// Grown by `PAD` times its largest coordinate magnitude.
+    fn padded(&self) -> Aabb {
+        let magnitude = self.min.iter().chain(&self.max).fold(0.0f32, |m, x| m.max(x.abs()));
+        let pad = PAD * magnitude + f32::MIN_POSITIVE;
+        Aabb {
+            min: self.min.map(|x| x - pad),
+            max: self.max.map(|x| x + pad),
+        }
+    }
+}
+
+/// A flattened node: a leaf lists `order[first..first + count]`; an inner node (`count == 0`)
+/// has its children at `first` and `first + 1`.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    bounds: Aabb,
+    first: u32,
+    count: u32,
+}
+
+#[derive(Clone, Debug)]
+pub struct Bvh {
+    nodes: Vec<Node>,
+    /// Global triangle indices, grouped by leaf.
+    order: Vec<u32>,
+}
+
+/// A ray prepared for box tests.
+#[derive(Clone, Copy, Debug)]
+pub struct BoxRay {
+    orig: [f32; 3],
+    inv_dir: [f32; 3],
+    /// Extra padding from the origin's magnitude (rounding in s = o − v0).
+    pad: f32,
+    t_hi: f32,
+}
+
+impl BoxRay {
+    /// `bound` is the hit bound of the ray (`hit::NO_BOUND` or a light distance).
+    pub fn new(orig: V3, dir: V3, bound: f32) -> BoxRay {
+        let o = orig.to_array();
+        let magnitude = o.iter().fold(0.0f32, |m, x| m.max(x.abs()));
+        let pad = PAD * magnitude;
+        BoxRay {
+            orig: o,
+            inv_dir: dir.to_array().map(|d| 1.0 / d),
+            pad,
+            t_hi: bound + bound.abs() * PAD + pad,
+        }
+    }
+
+    /// Slab test against [0, t_hi]; NaNs (0·∞ on a slab boundary) constrain nothing, which
+    /// keeps the test conservative.
+    #[inline]
+    fn enters(&self, b: &Aabb) -> bool {
+        let mut near = 0.0f32;
+        let mut far = self.t_hi;
+        for a in 0..3 {
+            let t0 = (b.min[a] - self.pad - self.orig[a]) * self.inv_dir[a];
+            let t1 = (b.max[a] + self.pad - self.orig[a]) * self.inv_dir[a];
+            near = near.max(t0.min(t1));
+            far = far.min(t0.max(t1));
+        }
+        near <= far
+    }
+}
+
+impl Bvh {
+    pub fn build(triangles: &[WorldTriangle]) -> Bvh {
+        let boxes: Vec<Aabb> = triangles
+            .iter()
+            .map(|t| {
+                let mut b = Aabb::EMPTY;
+                t.verts.iter().for_each(|v| b.grow_point(v.to_array()));
+                b
+            })
+            .collect();
+        let centroids: Vec<[f32; 3]> =
+            boxes.iter().map(|b| [0, 1, 2].map(|a| 0.5 * b.min[a] + 0.5 * b.max[a])).collect();
+        let mut order: Vec<u32> = (0..triangles.len() as u32).collect();
+        let mut nodes = vec![Node { bounds: Aabb::EMPTY, first: 0, count: 0 }];
+        let mut work = vec![(0usize, 0usize, order.len(), 0usize)];
+
+        while let Some((node, start, end, depth)) = work.pop() {
+            let mut bounds = Aabb::EMPTY;
+            let mut centre_bounds = Aabb::EMPTY;
+            for &t in &order[start..end] {
+                bounds.grow(&boxes[t as usize]);
+                centre_bounds.grow_point(centroids[t as usize]);
+            }
+            let leaf = Node { bounds: bounds.padded(), first: start as u32, count: (end - start) as u32 };
+            let split = if end - start <= 2 || depth >= MAX_DEPTH {
+                None
+            } else {
+                best_split(&order[start..end], &boxes, &centroids, &centre_bounds, bounds.area())
+            };
+            match split {
+                Some((axis, bin)) => {
+                    let slice = &mut order[start..end];
+                    let (lo, extent) = (centre_bounds.min[axis], centre_bounds.max[axis] - centre_bounds.min[axis]);
+                    let mid = start + partition(slice, |t| bin_of(centroids[t as usize][axis], lo, extent) < bin);
+                    let left = nodes.len();
+                    nodes.push(Node { bounds: Aabb::EMPTY, first: 0, count: 0 });
+                    nodes.push(Node { bounds: Aabb::EMPTY, first: 0, count: 0 });
+                    nodes[node] = Node { bounds: bounds.padded(), first: left as u32, count: 0 };
+                    work.push((left, start, mid, depth + 1));
+                    work.push((left + 1, mid, end, depth + 1));
+                }
+                None => nodes[node] = leaf,
+            }
+        }
+        Bvh { nodes, order }
+    }
+
+    /// Appends to `out` every triangle of every leaf the ray enters, for which `keep` holds.
+    pub fn candidates(&self, ray: &BoxRay, keep: impl Fn(u32) -> bool, out: &mut Vec<u32>) {
+        if self.order.is_empty() {
+            return;
+        }
+        let mut stack = [0u32; MAX_DEPTH + 2];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let node = &self.nodes[stack[top] as usize];
+            if !ray.enters(&node.bounds) {
+                continue;
+            }
+            if node.count > 0 {
+                let leaf = &self.order[node.first as usize..(node.first + node.count) as usize];
+                out.extend(leaf.iter().copied().filter(|&t| keep(t)));
+            } else {
+                stack[top] = node.first;
+                stack[top + 1] = node.first + 1;
+                top += 2;
+            }
+        }
+    }
+
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+}
+
+fn bin_of(c: f32, lo: f32, extent: f32) -> usize {
+    (((c - lo) / extent * BINS as f32) as usize).min(BINS - 1)
+}
+
+/// The SAH-best (axis, first right bin), or `None` if a leaf is cheaper (or nothing splits).
+fn best_split(
+    tris: &[u32],
+    boxes: &[Aabb],
+    centroids: &[[f32; 3]],
+    centre_bounds: &Aabb,
+    parent_area: f32,
+) -> Option<(usize, usize)> {
+    let mut best: Option<(f32, usize, usize)> = None;
+    for axis in 0..3 {
+        let lo = centre_bounds.min[axis];
+        let extent = centre_bounds.max[axis] - lo;
+        if !(extent > 0.0) || !extent.is_finite() {
+            continue;
+        }
+        let mut bins = [(Aabb::EMPTY, 0usize); BINS];
+        for &t in tris {
+            let b = &mut bins[bin_of(centroids[t as usize][axis], lo, extent)];
+            b.0.grow(&boxes[t as usize]);
+            b.1 += 1;
+        }
+        // Sweep from the right to get the right-side costs, then from the left.
+        let mut right_cost = [0.0f32; BINS];
+        let (mut acc, mut n) = (Aabb::EMPTY, 0usize);
+        for i in (1..BINS).rev() {
+            acc.grow(&bins[i].0);
+            n += bins[i].1;
+            right_cost[i] = if n == 0 { f32::INFINITY } else { acc.area() * n as f32 };
+        }
+        let (mut acc, mut n) = (Aabb::EMPTY, 0usize);
+        for i in 1..BINS {
+            acc.grow(&bins[i - 1].0);
+            n += bins[i - 1].1;
+            if n == 0 || n == tris.len() {
+                continue;
+            }
+            let cost = acc.area() * n as f32 + right_cost[i];
+            if best.map_or(true, |(c, _, _)| cost < c) {
+                best = Some((cost, axis, i));
+            }
+        }
+    }
+    let (cost, axis, bin) = best?;
+    // Traversal costs about one triangle test; a leaf costs one test per triangle.
+    let split_cost = 1.0 + cost / parent_area.max(f32::MIN_POSITIVE);
+    let leaf_cost = tris.len() as f32;
+    if tris.len() <= MAX_LEAF && split_cost >= leaf_cost {
+        None
+    } else {
+        Some((axis, bin))
+    }
+}
+
+/// Moves the elements for which `left` holds to the front; returns how many there are.
+fn partition(slice: &mut [u32], left: impl Fn(u32) -> bool) -> usize {
+    let mut mid = 0;
+    for i in 0..slice.len() {
+        if left(slice[i]) {
+            slice.swap(i, mid);
+            mid += 1;
+        }
+    }
+    mid
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tri(x: f32) -> WorldTriangle {
+        WorldTriangle {
+            verts: [V3::new(x, 0.0, 0.0), V3::new(x + 0.5, 0.0, 0.0), V3::new(x, 0.5, 0.0)],
+            normals: [V3::new(0.0, 0.0, 1.0); 3],
+            object: 0,
+        }
+    }
+
+    #[test]
+    fn splits_a_row_of_triangles_and_gathers_only_nearby_leaves() {
+        let tris: Vec<_> = (0..64).map(|i| tri(i as f32)).collect();
+        let bvh = Bvh::build(&tris);
+        assert!(bvh.node_count() > 15);
+        let mut out = Vec::new();
+        let ray = BoxRay::new(V3::new(10.1, 0.1, 1.0), V3::new(0.0, 0.0, -1.0), f32::MAX);
+        bvh.candidates(&ray, |_| true, &mut out);
+        assert!(out.contains(&10));
+        assert!(out.len() <= 8, "gathered {out:?}");
+        out.clear();
+        bvh.candidates(&ray, |t| t != 10, &mut out);
+        assert!(!out.contains(&10));
+    }
+
+    #[test]
+    fn bound_excludes_far_leaves() {
+        let tris: Vec<_> = (0..64).map(|i| tri(i as f32)).collect();
+        let bvh = Bvh::build(&tris);
+        let mut out = Vec::new();
+        let ray = BoxRay::new(V3::new(-1.0, 0.1, 0.0), V3::new(1.0, 0.0, 0.0), 5.0);
+        bvh.candidates(&ray, |_| true, &mut out);
+        assert!(out.contains(&3) && !out.contains(&40), "gathered {out:?}");
+    }
+}

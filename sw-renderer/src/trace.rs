@@ -1,0 +1,294 @@
+//! Wavefront Whitted tracing of a group of primary rays.
+//!
+//! The reference recursed ray by ray (castRay → trace → castRay …). Here the same recursion
+//! is unrolled into a ray tree built breadth first: level 0 holds the primary rays; every hit
+//! of a level adds its shadow rays (one per light) and its secondary rays (reflection, Fresnel
+//! reflection and refraction) to the next level. Each level goes through the BVH to candidate
+//! Möller-Trumbore queries and through the intersector in ONE batch, then is reduced to the
+//! reference's hits. Colours are finally evaluated bottom-up with the reference's arithmetic,
+//! so every pixel gets exactly the bits the recursive C++ computed.
+
+use std::ops::{AddAssign, Range};
+
+use crate::bvh::{BoxRay, Bvh};
+use crate::hit::{closest_hit, occluded, NO_BOUND};
+use crate::intersect::{Intersector, MtQuery, MtResult};
+use crate::math::V3;
+use crate::scene::{MaterialKind, Scene};
+use crate::shade::{
+    diffuse_colour, fresnel, fresnel_colour, hit_normal, hit_point, mirror_colour, phong_colour, reflect,
+    refract, LightTerm, PreparedLight,
+};
+use crate::world::{World, WorldError};
+
+/// Everything tracing needs, prepared once per render.
+#[derive(Clone, Debug)]
+pub struct PreparedScene {
+    pub world: World,
+    pub bvh: Bvh,
+    pub lights: Vec<PreparedLight>,
+    /// Per global triangle: whether shadow rays test it.
+    casts_shadow: Vec<bool>,
+    pub background: V3,
+    pub bias: f32,
+    pub max_depth: u32,
+}
+
+impl PreparedScene {
+    pub fn new(scene: &Scene) -> Result<PreparedScene, WorldError> {
+        let world = World::new(scene)?;
+        let bvh = Bvh::build(&world.triangles);
+        let casts_shadow = (0..world.triangles.len() as u32).map(|t| world.casts_shadow(t)).collect();
+        Ok(PreparedScene {
+            bvh,
+            casts_shadow,
+            lights: scene.lights.iter().map(PreparedLight::new).collect(),
+            world,
+            background: V3::from(scene.options.background),
+            bias: scene.options.bias,
+            max_depth: scene.options.max_depth,
+        })
+    }
+}
+
+/// Work counters of a trace.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TraceStats {
+    pub primary_rays: u64,
+    pub reflection_rays: u64,
+    pub refraction_rays: u64,
+    pub shadow_rays: u64,
+    pub mt_queries: u64,
+    /// `intersect_batch` calls.
+    pub batches: u64,
+}
+
+impl TraceStats {
+    pub fn rays(&self) -> u64 {
+        self.primary_rays + self.reflection_rays + self.refraction_rays + self.shadow_rays
+    }
+}
+
+impl AddAssign for TraceStats {
+    fn add_assign(&mut self, o: TraceStats) {
+        self.primary_rays += o.primary_rays;
+        self.reflection_rays += o.reflection_rays;
+        self.refraction_rays += o.refraction_rays;
+        self.shadow_rays += o.shadow_rays;
+        self.mt_queries += o.mt_queries;
+        self.batches += o.batches;
+    }
+}
+
+/// How a castRay node gets its colour once its children are known.
+#[derive(Clone, Debug)]
+enum Shading {
+    /// A miss, a ray deeper than the maximum depth, or (until traced) a pending ray.
+    Background,
+    Diffuse { terms: Range<usize> },
+    Phong { terms: Range<usize>, object: u32 },
+    Mirror { reflection: usize },
+    Glass { kr: f32, refraction: Option<usize>, reflection: usize },
+}
+
+/// One castRay call.
+struct CastNode {
+    orig: V3,
+    dir: V3,
+    depth: u32,
+    shading: Shading,
+}
+
+struct ShadowRay {
+    orig: V3,
+    dir: V3,
+    bound: f32,
+    /// Index into `visible`.
+    slot: usize,
+}
+
+#[derive(Clone, Copy)]
+enum SecondaryKind {
+    Reflection,
+    Refraction,
+}
+
+/// Traces the primary rays `(origin, direction)` and returns one colour per ray.
+pub fn trace_rays(scene: &PreparedScene, isect: &dyn Intersector, primary: &[(V3, V3)]) -> (Vec<V3>, TraceStats) {
+    let mut tree = RayTree { scene, nodes: Vec::new(), terms: Vec::new(), visible: Vec::new(), stats: TraceStats::default() };
+    let mut level: Vec<usize> = Vec::with_capacity(primary.len());
+    for &(orig, dir) in primary {
+        level.push(tree.nodes.len());
+        tree.nodes.push(CastNode { orig, dir, depth: 0, shading: Shading::Background });
+    }
+    tree.stats.primary_rays = primary.len() as u64;
+    let mut shadows: Vec<ShadowRay> = Vec::new();
+    let mut batch = Batch::default();
+
+    while !level.is_empty() || !shadows.is_empty() {
+        batch.clear();
+        for &n in &level {
+            let node = &tree.nodes[n];
+            batch.add_ray(scene, node.orig, node.dir, NO_BOUND, false);
+        }
+        for s in &shadows {
+            batch.add_ray(scene, s.orig, s.dir, s.bound, true);
+        }
+        if !batch.queries.is_empty() {
+            batch.results.resize(batch.queries.len(), MtResult::default());
+            isect.intersect_batch(&batch.queries, &mut batch.results);
+            tree.stats.batches += 1;
+            tree.stats.mt_queries += batch.queries.len() as u64;
+        }
+
+        let mut next_level = Vec::new();
+        let mut next_shadows = Vec::new();
+        for (k, &n) in level.iter().enumerate() {
+            let r = batch.ranges[k].clone();
+            if let Some(hit) = closest_hit(&batch.candidates[r.clone()], &batch.results[r], NO_BOUND) {
+                tree.shade_hit(n, &hit, &mut next_level, &mut next_shadows);
+            }
+        }
+        for (k, s) in shadows.iter().enumerate() {
+            let r = batch.ranges[level.len() + k].clone();
+            tree.visible[s.slot] = !occluded(&batch.results[r], s.bound);
+        }
+        level = next_level;
+        shadows = next_shadows;
+    }
+    (tree.colours(), tree.stats)
+}
+
+/// One level's queries: per ray a range of candidate triangles and their queries.
+#[derive(Default)]
+struct Batch {
+    candidates: Vec<u32>,
+    ranges: Vec<Range<usize>>,
+    queries: Vec<MtQuery>,
+    results: Vec<MtResult>,
+}
+
+impl Batch {
+    fn clear(&mut self) {
+        self.candidates.clear();
+        self.ranges.clear();
+        self.queries.clear();
+        self.results.clear();
+    }
+
+    fn add_ray(&mut self, scene: &PreparedScene, orig: V3, dir: V3, bound: f32, shadow: bool) {
+        let start = self.candidates.len();
+        let ray = BoxRay::new(orig, dir, bound);
+        if shadow {
+            scene.bvh.candidates(&ray, |t| scene.casts_shadow[t as usize], &mut self.candidates);
+        } else {
+            scene.bvh.candidates(&ray, |_| true, &mut self.candidates);
+        }
+        let (o, d) = (orig.to_array(), dir.to_array());
+        self.queries.extend(self.candidates[start..].iter().map(|&t| {
+            let [v0, v1, v2] = scene.world.triangles[t as usize].verts;
+            MtQuery { orig: o, dir: d, v0: v0.to_array(), v1: v1.to_array(), v2: v2.to_array() }
+        }));
+        self.ranges.push(start..self.candidates.len());
+    }
+}
+
+struct RayTree<'a> {
+    scene: &'a PreparedScene,
+    nodes: Vec<CastNode>,
+    /// Light terms of diffuse and Phong hits, with the slot of their shadow ray's answer.
+    terms: Vec<(LightTerm, usize)>,
+    visible: Vec<bool>,
+    stats: TraceStats,
+}
+
+impl RayTree<'_> {
+    /// A secondary castRay; deeper than the maximum depth it is the background, untraced.
+    fn cast(&mut self, orig: V3, dir: V3, depth: u32, kind: SecondaryKind, next: &mut Vec<usize>) -> usize {
+        let index = self.nodes.len();
+        self.nodes.push(CastNode { orig, dir, depth, shading: Shading::Background });
+        if depth <= self.scene.max_depth {
+            next.push(index);
+            match kind {
+                SecondaryKind::Reflection => self.stats.reflection_rays += 1,
+                SecondaryKind::Refraction => self.stats.refraction_rays += 1,
+            }
+        }
+        index
+    }
+
+    fn shade_hit(&mut self, n: usize, hit: &crate::hit::Hit, next: &mut Vec<usize>, shadows: &mut Vec<ShadowRay>) {
+        let scene = self.scene;
+        let (orig, dir, depth) = (self.nodes[n].orig, self.nodes[n].dir, self.nodes[n].depth);
+        let tri = &scene.world.triangles[hit.triangle as usize];
+        let material = &scene.world.materials[tri.object as usize];
+        let p = hit_point(orig, dir, hit);
+        let normal = hit_normal(tri, hit);
+        let shading = match material.kind {
+            MaterialKind::Diffuse | MaterialKind::Phong => {
+                let start = self.terms.len();
+                for light in &scene.lights {
+                    let il = light.illuminate(p);
+                    let term = match material.kind {
+                        MaterialKind::Phong => LightTerm::phong(&il, normal, dir, material.n),
+                        _ => LightTerm::diffuse(&il, normal),
+                    };
+                    let slot = self.visible.len();
+                    self.visible.push(true);
+                    shadows.push(ShadowRay { orig: p + normal * scene.bias, dir: -il.dir, bound: il.distance, slot });
+                    self.terms.push((term, slot));
+                }
+                self.stats.shadow_rays += scene.lights.len() as u64;
+                let terms = start..self.terms.len();
+                if material.kind == MaterialKind::Phong {
+                    Shading::Phong { terms, object: tri.object }
+                } else {
+                    Shading::Diffuse { terms }
+                }
+            }
+            MaterialKind::Reflection => {
+                let r = reflect(dir, normal).normalized();
+                let reflection = self.cast(p + normal * scene.bias, r, depth + 1, SecondaryKind::Reflection, next);
+                Shading::Mirror { reflection }
+            }
+            MaterialKind::ReflectionRefraction => {
+                let kr = fresnel(dir, normal, material.ior);
+                let outside = dir.dot(normal) < 0.0;
+                let bias = normal * scene.bias;
+                let refraction = (kr < 1.0).then(|| {
+                    let d = refract(dir, normal, material.ior).normalized();
+                    let o = if outside { p - bias } else { p + bias };
+                    self.cast(o, d, depth + 1, SecondaryKind::Refraction, next)
+                });
+                let d = reflect(dir, normal).normalized();
+                let o = if outside { p + bias } else { p - bias };
+                let reflection = self.cast(o, d, depth + 1, SecondaryKind::Reflection, next);
+                Shading::Glass { kr, refraction, reflection }
+            }
+        };
+        self.nodes[n].shading = shading;
+    }
+
+    /// Colours bottom-up: children always come after their parent.
+    fn colours(&self) -> Vec<V3> {
+        let mut colour = vec![V3::ZERO; self.nodes.len()];
+        for i in (0..self.nodes.len()).rev() {
+            let lit = |terms: &Range<usize>| self.terms[terms.clone()].iter().map(|&(t, slot)| (t, self.visible[slot]));
+            colour[i] = match &self.nodes[i].shading {
+                Shading::Background => self.scene.background,
+                Shading::Diffuse { terms } => diffuse_colour(lit(terms)),
+                Shading::Phong { terms, object } => {
+                    let m = &self.scene.world.materials[*object as usize];
+                    phong_colour(lit(terms), V3::from(m.albedo), m.kd, m.ks)
+                }
+                Shading::Mirror { reflection } => mirror_colour(colour[*reflection]),
+                Shading::Glass { kr, refraction, reflection } => {
+                    let refracted = refraction.map_or(V3::ZERO, |r| colour[r]);
+                    fresnel_colour(colour[*reflection], refracted, *kr)
+                }
+            };
+        }
+        colour.truncate(self.stats.primary_rays as usize);
+        colour
+    }
+}
