@@ -16,10 +16,28 @@
 //!   0, ±Inf → max/min (saturated whatever the overflow mode). To fp32: round to nearest even.
 //! lt(a, b): a < b as real numbers; false if either is NaN; −0 == +0.
 //!
+//! Refinements where the text above was silent (added by the model, same meaning elsewhere):
+//! - Bits above `width()` in an operand must be 0; results always have them 0.
+//! - Float neg flips the sign bit and nothing else (NaN, Inf and zero patterns included), as
+//!   a wire swap does; fixed neg is the exact −x, then the overflow mode (−min wraps to min or
+//!   saturates to max).
+//! - Float from/to fp32 is one RNE rounding with the same rules as an operation: a subnormal
+//!   fp32 input is ±0, a result below the minimum normal after rounding is ±0, NaN gives the
+//!   target's canonical NaN (fp32: 0x7FC0_0000).
+//! - Fixed from fp32: a subnormal fp32 input is flushed to 0 like every other fp32 input;
+//!   finite values are quantised with the format's mode, then brought into range with its
+//!   overflow mode (only ±Inf always saturates). recip: the exact 1/x quantised, then fitted.
+//! - lt on floats: a subnormal operand is ±0, so it equals zero.
+//!
 //! See `float.rs` / `fixed.rs` for the implementations.
+
+use std::fmt;
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
+
+use crate::fixed::FixedFormat;
+use crate::float::FloatFormat;
 
 /// Quantisation (rounding) mode of a fixed-point format, as ap_fixed's AP_TRN / AP_RND.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -50,4 +68,148 @@ pub enum FormatError {
     Unknown(String),
     #[error("impossible format `{name}`: {why}")]
     Impossible { name: String, why: String },
+}
+
+impl Format {
+    /// Total bits of a value.
+    #[inline]
+    pub fn width(&self) -> u32 {
+        match *self {
+            Format::Float { exp, man } => 1 + exp + man,
+            Format::Fixed { int, frac, .. } => int + frac,
+        }
+    }
+
+    /// Rejects formats no operator can implement.
+    pub fn validate(&self) -> Result<(), FormatError> {
+        let why = match *self {
+            Format::Float { exp, .. } if !(2..=11).contains(&exp) => {
+                format!("{exp} exponent bits; a float needs 2 to 11")
+            }
+            Format::Float { man, .. } if !(1..=52).contains(&man) => {
+                format!("{man} fraction bits; a float needs 1 to 52")
+            }
+            Format::Fixed { int: 0, .. } => "0 integer bits; the sign needs at least 1".to_string(),
+            Format::Fixed { int, frac, .. } if !(2..=64).contains(&(int as u64 + frac as u64)) => {
+                format!("{} bits in total; a fixed-point format needs 2 to 64", int as u64 + frac as u64)
+            }
+            _ => return Ok(()),
+        };
+        Err(FormatError::Impossible { name: self.to_string(), why })
+    }
+
+    #[inline]
+    pub fn from_f32(&self, x: f32) -> u64 {
+        self.from_float(FloatFormat::F32, x.to_bits() as u64)
+    }
+    #[inline]
+    pub fn to_f32(&self, bits: u64) -> f32 {
+        f32::from_bits(self.to_float(FloatFormat::F32, bits) as u32)
+    }
+    /// From f64 (FTZ on input, one rounding): for tests and constants.
+    pub fn from_f64(&self, x: f64) -> u64 {
+        self.from_float(FloatFormat::F64, x.to_bits())
+    }
+    /// To f64: exact for every valid format.
+    pub fn to_f64(&self, bits: u64) -> f64 {
+        f64::from_bits(self.to_float(FloatFormat::F64, bits))
+    }
+
+    #[inline]
+    fn from_float(&self, src: FloatFormat, bits: u64) -> u64 {
+        match self.kind() {
+            Kind::Float(f) => f.convert_from(src, bits),
+            Kind::Fixed(f) => f.from_float(src, bits),
+        }
+    }
+    #[inline]
+    fn to_float(&self, dst: FloatFormat, bits: u64) -> u64 {
+        match self.kind() {
+            Kind::Float(f) => dst.convert_from(f, bits),
+            Kind::Fixed(f) => f.to_float(dst, bits),
+        }
+    }
+
+    #[inline]
+    pub fn add(&self, a: u64, b: u64) -> u64 {
+        match self.kind() {
+            Kind::Float(f) => f.add(a, b),
+            Kind::Fixed(f) => f.add(a, b),
+        }
+    }
+    #[inline]
+    pub fn sub(&self, a: u64, b: u64) -> u64 {
+        match self.kind() {
+            Kind::Float(f) => f.sub(a, b),
+            Kind::Fixed(f) => f.sub(a, b),
+        }
+    }
+    #[inline]
+    pub fn mul(&self, a: u64, b: u64) -> u64 {
+        match self.kind() {
+            Kind::Float(f) => f.mul(a, b),
+            Kind::Fixed(f) => f.mul(a, b),
+        }
+    }
+    #[inline]
+    pub fn recip(&self, a: u64) -> u64 {
+        match self.kind() {
+            Kind::Float(f) => f.recip(a),
+            Kind::Fixed(f) => f.recip(a),
+        }
+    }
+    #[inline]
+    pub fn neg(&self, a: u64) -> u64 {
+        match self.kind() {
+            Kind::Float(f) => f.neg(a),
+            Kind::Fixed(f) => f.neg(a),
+        }
+    }
+    #[inline]
+    pub fn lt(&self, a: u64, b: u64) -> bool {
+        match self.kind() {
+            Kind::Float(f) => f.lt(a, b),
+            Kind::Fixed(f) => f.lt(a, b),
+        }
+    }
+    #[inline]
+    pub fn is_nan(&self, a: u64) -> bool {
+        match self.kind() {
+            Kind::Float(f) => f.is_nan(a),
+            Kind::Fixed(_) => false,
+        }
+    }
+
+    #[inline]
+    fn kind(&self) -> Kind {
+        match *self {
+            Format::Float { exp, man } => Kind::Float(FloatFormat { exp, man }),
+            Format::Fixed { int, frac, quant, overflow } => Kind::Fixed(FixedFormat { int, frac, quant, overflow }),
+        }
+    }
+}
+
+/// The implementation behind a [`Format`].
+enum Kind {
+    Float(FloatFormat),
+    Fixed(FixedFormat),
+}
+
+/// The generic spelling `lookup` accepts: `e8m23`, `fx<16,10>`, `fx<16,10>_rnd_sat`.
+impl fmt::Display for Format {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Format::Float { exp, man } => write!(f, "e{exp}m{man}"),
+            Format::Fixed { int, frac, quant, overflow } => {
+                write!(f, "fx<{},{}>", int as u64 + frac as u64, int)?;
+                if quant == Quant::Rnd {
+                    f.write_str("_rnd")?;
+                }
+                if overflow == Overflow::Sat {
+                    f.write_str("_sat")?;
+                }
+                Ok(())
+            }
+        }
+    }
 }

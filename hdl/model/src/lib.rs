@@ -6,10 +6,11 @@
 //! bit. No rust-hdl in this crate, so the renderer can use it cheaply.
 
 pub mod catalogue;
-pub mod fixed;
-pub mod float;
+mod fixed;
+mod float;
 pub mod format;
 pub mod mt;
 
+pub use catalogue::{catalogue, lookup, NamedFormat};
 pub use format::{Format, FormatError, Overflow, Quant};
 pub use mt::{MtQuery, MtResult};
