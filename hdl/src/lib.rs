@@ -1,1 +1,12 @@
-//! placeholder, filled by its issue
+//! The accelerator in rust-hdl: number-format operators, the Möller-Trumbore pipeline,
+//! Verilog generation.
+
+pub mod float;
+pub mod intmul;
+pub mod operator;
+pub mod pipe;
+
+// AXI4-Lite slave, register map and C generation (issue 4).
+pub mod axil;
+pub mod cgen;
+pub mod regmap;
