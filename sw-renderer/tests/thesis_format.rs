@@ -20,12 +20,24 @@ use sw_renderer::scene::{LightKind, Mat44, MaterialKind, Mesh, Scene, SceneError
 fn assert_syntax(err: SceneError, file: &str, line: usize, token: &str, phrase: &str) {
     let shown = err.to_string();
     match err {
-        SceneError::Syntax { path, line: l, token: t, what } => {
-            assert!(path.ends_with(file), "path {} is not {file}: {shown}", path.display());
+        SceneError::Syntax {
+            path,
+            line: l,
+            token: t,
+            what,
+        } => {
+            assert!(
+                path.ends_with(file),
+                "path {} is not {file}: {shown}",
+                path.display()
+            );
             assert_eq!(l, line, "line: {shown}");
             assert_eq!(t, token, "token: {shown}");
             assert!(what.contains(phrase), "message lacks {phrase:?}: {shown}");
-            assert!(shown.contains(&format!("{file}:{line}:")), "display lacks file:line: {shown}");
+            assert!(
+                shown.contains(&format!("{file}:{line}:")),
+                "display lacks file:line: {shown}"
+            );
         }
         other => panic!("expected a syntax error, got {other:?}"),
     }
@@ -101,7 +113,11 @@ fn sod_fields_land_in_place() {
     assert_eq!(options.fov_deg, 45.5);
     assert_eq!(options.background, Vec3::new(0.1, 0.2, 0.3));
     assert_eq!(options.camera_to_world, m(seq(1.0)));
-    assert_eq!(options.camera_to_world.0[3], [13.0, 14.0, 15.0, 16.0], "row-major: translation row last");
+    assert_eq!(
+        options.camera_to_world.0[3],
+        [13.0, 14.0, 15.0, 16.0],
+        "row-major: translation row last"
+    );
     assert_eq!(options.bias, 0.0025);
     assert_eq!(options.max_depth, 7);
     assert_eq!(lights.len(), 2);
@@ -142,7 +158,11 @@ fn ood_material_types_map_to_kinds() {
     ];
     for (code, kind) in kinds.into_iter().enumerate() {
         let text = GOOD_OOD.replacen("\n2\n", &format!("\n{code}\n"), 1);
-        assert_eq!(parse_ood(&text, Path::new("k.ood")).unwrap().1.kind, kind, "type {code}");
+        assert_eq!(
+            parse_ood(&text, Path::new("k.ood")).unwrap().1.kind,
+            kind,
+            "type {code}"
+        );
     }
 }
 
@@ -152,10 +172,28 @@ fn geo_fields_land_in_place_and_polygons_fan() {
     let v = |x: f32, y: f32, z: f32| Vec3::new(x, y, z);
     assert_eq!(
         mesh.positions,
-        [v(0., 0., 0.), v(1., 0., 0.), v(0., 1., 0.), v(1., 1., 0.), v(0., 2., 0.), v(2., 2., 0.), v(3., 3., 3.)]
+        [
+            v(0., 0., 0.),
+            v(1., 0., 0.),
+            v(0., 1., 0.),
+            v(1., 1., 0.),
+            v(0., 2., 0.),
+            v(2., 2., 0.),
+            v(3., 3., 3.)
+        ]
     );
     // Fans (k0, kj+1, kj+2): triangle 0 1 2; quad 2 1 3 4; pentagon 4 3 5 6 0.
-    assert_eq!(mesh.triangles, [[0, 1, 2], [2, 1, 3], [2, 3, 4], [4, 3, 5], [4, 5, 6], [4, 6, 0]]);
+    assert_eq!(
+        mesh.triangles,
+        [
+            [0, 1, 2],
+            [2, 1, 3],
+            [2, 3, 4],
+            [4, 3, 5],
+            [4, 5, 6],
+            [4, 6, 0]
+        ]
+    );
     let x = |k: f32| v(k, 0., 0.);
     assert_eq!(
         mesh.normals,
@@ -271,7 +309,13 @@ proptest! {
 #[test]
 fn truncated_files_say_what_was_expected_at_end_of_file() {
     let err = parse_sod("640\n480\n45\n", Path::new("cut.sod")).unwrap_err();
-    assert_syntax(err, "cut.sod", 3, "end of file", "component 1 of 3 of the background colour");
+    assert_syntax(
+        err,
+        "cut.sod",
+        3,
+        "end of file",
+        "component 1 of 3 of the background colour",
+    );
 
     let cut = GOOD_OOD.lines().take(3).collect::<Vec<_>>().join("\n");
     let err = parse_ood(&cut, Path::new("cut.ood")).unwrap_err();
@@ -280,7 +324,13 @@ fn truncated_files_say_what_was_expected_at_end_of_file() {
     // One texture coordinate pair short.
     let cut = GOOD_GEO.trim_end().trim_end_matches("9 9").to_string();
     let err = parse_geo(&cut, Path::new("cut.geo")).unwrap_err();
-    assert_syntax(err, "cut.geo", 6, "end of file", "texture coordinate 12 of 12");
+    assert_syntax(
+        err,
+        "cut.geo",
+        6,
+        "end of file",
+        "texture coordinate 12 of 12",
+    );
 
     let err = parse_geo("", Path::new("empty.geo")).unwrap_err();
     assert_syntax(err, "empty.geo", 1, "end of file", "number of faces");
@@ -299,22 +349,54 @@ fn non_numbers_nan_and_infinity_are_rejected() {
     assert_syntax(err, "a.sod", 1, "six40", "image width");
 
     let err = parse_sod(&GOOD_SOD.replacen("45.5", "NaN", 1), Path::new("a.sod")).unwrap_err();
-    assert_syntax(err, "a.sod", 3, "NaN", "the fov in degrees (a finite number");
+    assert_syntax(
+        err,
+        "a.sod",
+        3,
+        "NaN",
+        "the fov in degrees (a finite number",
+    );
 
     let err = parse_sod(&GOOD_SOD.replacen("0.0025", "inf", 1), Path::new("a.sod")).unwrap_err();
     assert_syntax(err, "a.sod", 6, "inf", "shadow bias (a finite number)");
 
     let err = parse_ood(&GOOD_OOD.replacen("0.22", "nan", 1), Path::new("b.ood")).unwrap_err();
-    assert_syntax(err, "b.ood", 4, "nan", "component 2 of 3 of the albedo (a finite number)");
+    assert_syntax(
+        err,
+        "b.ood",
+        4,
+        "nan",
+        "component 2 of 3 of the albedo (a finite number)",
+    );
 
     // Overflows f32 to infinity.
     let err = parse_ood(&GOOD_OOD.replacen("-7", "1e39", 1), Path::new("b.ood")).unwrap_err();
-    assert_syntax(err, "b.ood", 1, "1e39", "element 7 of 16 of the object-to-world matrix");
+    assert_syntax(
+        err,
+        "b.ood",
+        1,
+        "1e39",
+        "element 7 of 16 of the object-to-world matrix",
+    );
 
-    let err = parse_geo(&GOOD_GEO.replacen("3 3 3", "3 -inf 3", 1), Path::new("c.geo")).unwrap_err();
-    assert_syntax(err, "c.geo", 4, "-inf", "component 2 of 3 of the position of vertex 7 of 7");
+    let err = parse_geo(
+        &GOOD_GEO.replacen("3 3 3", "3 -inf 3", 1),
+        Path::new("c.geo"),
+    )
+    .unwrap_err();
+    assert_syntax(
+        err,
+        "c.geo",
+        4,
+        "-inf",
+        "component 2 of 3 of the position of vertex 7 of 7",
+    );
 
-    let err = parse_geo(&GOOD_GEO.replacen("0.3 0.3", "0.3 x", 1), Path::new("c.geo")).unwrap_err();
+    let err = parse_geo(
+        &GOOD_GEO.replacen("0.3 0.3", "0.3 x", 1),
+        Path::new("c.geo"),
+    )
+    .unwrap_err();
     assert_syntax(err, "c.geo", 6, "x", "texture coordinate 3 of 12");
 }
 
@@ -328,7 +410,11 @@ fn counts_and_sizes_must_be_positive_whole_numbers() {
     assert_syntax(err, "s.sod", 1, "640.0", "image width");
     let err = parse_sod(&GOOD_SOD.replacen("\n7\n", "\n+7\n", 1), Path::new("s.sod")).unwrap_err();
     assert_syntax(err, "s.sod", 7, "+7", "max depth");
-    let err = parse_sod(&GOOD_SOD.replacen("\n2\n", "\n2.5\n", 1), Path::new("s.sod")).unwrap_err();
+    let err = parse_sod(
+        &GOOD_SOD.replacen("\n2\n", "\n2.5\n", 1),
+        Path::new("s.sod"),
+    )
+    .unwrap_err();
     assert_syntax(err, "s.sod", 8, "2.5", "number of lights");
     let err = parse_sod(&GOOD_SOD.replacen("45.5", "180", 1), Path::new("s.sod")).unwrap_err();
     assert_syntax(err, "s.sod", 3, "180", "between 0 and 180");
@@ -337,9 +423,23 @@ fn counts_and_sizes_must_be_positive_whole_numbers() {
     assert_syntax(err, "g.geo", 1, "3.0", "number of faces");
     let err = parse_geo(&GOOD_GEO.replacen("3\n", "0\n", 1), Path::new("g.geo")).unwrap_err();
     assert_syntax(err, "g.geo", 1, "0", "number of faces (a whole number ≥ 1)");
-    let err = parse_geo(&GOOD_GEO.replacen("3 4 5", "3 4.0 5", 1), Path::new("g.geo")).unwrap_err();
-    assert_syntax(err, "g.geo", 2, "4.0", "face-vertex count ≥ 3 for face 2 of 3");
-    let err = parse_geo(&GOOD_GEO.replacen("0 1 2 ", "0 -1 2 ", 1), Path::new("g.geo")).unwrap_err();
+    let err = parse_geo(
+        &GOOD_GEO.replacen("3 4 5", "3 4.0 5", 1),
+        Path::new("g.geo"),
+    )
+    .unwrap_err();
+    assert_syntax(
+        err,
+        "g.geo",
+        2,
+        "4.0",
+        "face-vertex count ≥ 3 for face 2 of 3",
+    );
+    let err = parse_geo(
+        &GOOD_GEO.replacen("0 1 2 ", "0 -1 2 ", 1),
+        Path::new("g.geo"),
+    )
+    .unwrap_err();
     assert_syntax(err, "g.geo", 3, "-1", "vertex index 2 of 12");
 }
 
@@ -347,7 +447,13 @@ fn counts_and_sizes_must_be_positive_whole_numbers() {
 fn a_face_with_two_vertices_is_rejected() {
     let text = "2\n3\n2\n0 1 2 0 1\n";
     let err = parse_geo(text, Path::new("two.geo")).unwrap_err();
-    assert_syntax(err, "two.geo", 3, "2", "face-vertex count ≥ 3 for face 2 of 2");
+    assert_syntax(
+        err,
+        "two.geo",
+        3,
+        "2",
+        "face-vertex count ≥ 3 for face 2 of 2",
+    );
 }
 
 #[test]
@@ -355,15 +461,37 @@ fn a_vertex_index_beyond_the_positions_is_out_of_range() {
     // Index 17 on line 3, but only 3 positions (9 numbers) before the 3 normals and 3 uvs.
     let text = "1\n3\n0 1\n17\n0 0 0 1 0 0 0 1 0\n0 0 1 0 0 1 0 0 1\n0 0 1 0 0 1\n";
     let err = parse_geo(text, Path::new("range.geo")).unwrap_err();
-    assert_syntax(err, "range.geo", 4, "17", "vertex index 17 out of range: the file has 3 vertices");
+    assert_syntax(
+        err,
+        "range.geo",
+        4,
+        "17",
+        "vertex index 17 out of range: the file has 3 vertices",
+    );
 }
 
 #[test]
 fn unknown_material_and_light_types_are_rejected() {
     let err = parse_ood(&GOOD_OOD.replacen("\n2\n", "\n4\n", 1), Path::new("t.ood")).unwrap_err();
-    assert_syntax(err, "t.ood", 2, "4", "material type (0 diffuse, 1 reflection");
-    let err = parse_sod(&GOOD_SOD.replacen("\n1\n0.4", "\n2\n0.4", 1), Path::new("t.sod")).unwrap_err();
-    assert_syntax(err, "t.sod", 13, "2", "type of light 2 of 2 (0 distant, 1 point)");
+    assert_syntax(
+        err,
+        "t.ood",
+        2,
+        "4",
+        "material type (0 diffuse, 1 reflection",
+    );
+    let err = parse_sod(
+        &GOOD_SOD.replacen("\n1\n0.4", "\n2\n0.4", 1),
+        Path::new("t.sod"),
+    )
+    .unwrap_err();
+    assert_syntax(
+        err,
+        "t.sod",
+        13,
+        "2",
+        "type of light 2 of 2 (0 distant, 1 point)",
+    );
 }
 
 #[test]
@@ -371,18 +499,35 @@ fn trailing_garbage_is_rejected_but_trailing_comments_are_not() {
     let err = parse_ood(&format!("{GOOD_OOD}\n 7 // extra"), Path::new("x.ood")).unwrap_err();
     assert_syntax(err, "x.ood", 9, "7", "the end of the file after n");
     let err = parse_sod(&format!("{GOOD_SOD}oops"), Path::new("x.sod")).unwrap_err();
-    assert_syntax(err, "x.sod", 17, "oops", "end of the file after the 2 light(s)");
+    assert_syntax(
+        err,
+        "x.sod",
+        17,
+        "oops",
+        "end of the file after the 2 light(s)",
+    );
     let err = parse_geo(&format!("{GOOD_GEO}1"), Path::new("x.geo")).unwrap_err();
-    assert_syntax(err, "x.geo", 7, "1", "end of the file after the texture coordinates");
+    assert_syntax(
+        err,
+        "x.geo",
+        7,
+        "1",
+        "end of the file after the texture coordinates",
+    );
 
-    parse_ood(&format!("{GOOD_OOD}\n  \t\n// the end\n\n"), Path::new("x.ood")).unwrap();
+    parse_ood(
+        &format!("{GOOD_OOD}\n  \t\n// the end\n\n"),
+        Path::new("x.ood"),
+    )
+    .unwrap();
     parse_geo(&format!("{GOOD_GEO}   // done"), Path::new("x.geo")).unwrap();
 }
 
 // ---------------------------------------------------------------------------------------------
 // Scene directories
 
-const PLANE_GEO: &str = "1\n4\n0 1 3 2\n-1 0 1 1 0 1 -1 0 -1 1 0 -1\n0 1 0 0 1 0 0 1 0 0 1 0\n0 0 1 0 0 1 1 1\n";
+const PLANE_GEO: &str =
+    "1\n4\n0 1 3 2\n-1 0 1 1 0 1 -1 0 -1 1 0 -1\n0 1 0 0 1 0 0 1 0 0 1 0\n0 0 1 0 0 1 1 1\n";
 const LIGHTLESS_SOD: &str = "8 6 60 0 0 0 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1 0.001 3 0";
 
 #[test]
@@ -397,17 +542,36 @@ fn a_scene_directory_loads_in_order_and_shares_geometry() {
         ("glass.ood", GOOD_OOD),
     ]);
     let scene = load_dir(dir.path()).unwrap();
-    assert_eq!(scene.name, dir.path().file_name().unwrap().to_string_lossy());
+    assert_eq!(
+        scene.name,
+        dir.path().file_name().unwrap().to_string_lossy()
+    );
     assert_eq!(scene.lights.len(), 2);
     assert_eq!(scene.options.width, 640);
     let names: Vec<&str> = scene.objects.iter().map(|o| o.name.as_str()).collect();
-    assert_eq!(names, ["plane.geo+red.ood", "good.geo+glass.ood", "plane.geo+glass.ood"]);
-    assert!(Arc::ptr_eq(&scene.objects[0].mesh, &scene.objects[2].mesh), "plane.geo parsed once");
+    assert_eq!(
+        names,
+        [
+            "plane.geo+red.ood",
+            "good.geo+glass.ood",
+            "plane.geo+glass.ood"
+        ]
+    );
+    assert!(
+        Arc::ptr_eq(&scene.objects[0].mesh, &scene.objects[2].mesh),
+        "plane.geo parsed once"
+    );
     assert!(!Arc::ptr_eq(&scene.objects[0].mesh, &scene.objects[1].mesh));
-    assert_eq!(*scene.objects[1].mesh, parse_geo(GOOD_GEO, Path::new("good.geo")).unwrap());
+    assert_eq!(
+        *scene.objects[1].mesh,
+        parse_geo(GOOD_GEO, Path::new("good.geo")).unwrap()
+    );
     assert_eq!(scene.objects[0].mesh.triangles, [[0, 1, 3], [0, 3, 2]]);
     assert_eq!(scene.objects[0].material.kind, MaterialKind::Diffuse);
-    assert_eq!(scene.objects[1].material.kind, MaterialKind::ReflectionRefraction);
+    assert_eq!(
+        scene.objects[1].material.kind,
+        MaterialKind::ReflectionRefraction
+    );
     assert_eq!(scene.objects[2].object_to_world, m(seq(1.0).map(|v| -v)));
     assert_eq!(scene.triangle_count(), 2 + 6 + 2);
     // The generic entry point recognises a directory.
@@ -419,7 +583,10 @@ fn assert_io_names(err: SceneError, missing: &Path) {
     let shown = err.to_string();
     match err {
         SceneError::Io { path, .. } => assert_eq!(path, missing, "{shown}"),
-        other => panic!("expected an I/O error naming {}, got {other:?}", missing.display()),
+        other => panic!(
+            "expected an I/O error naming {}, got {other:?}",
+            missing.display()
+        ),
     }
     assert!(shown.contains(&missing.display().to_string()), "{shown}");
 }
@@ -434,17 +601,30 @@ fn missing_files_are_named() {
     assert_io_names(load_dir(dir.path()).unwrap_err(), &dir.path().join("p.ood"));
 
     fs::write(dir.path().join("objects.txt"), "nowhere.geo p.ood\n").unwrap();
-    assert_io_names(load_dir(dir.path()).unwrap_err(), &dir.path().join("nowhere.geo"));
+    assert_io_names(
+        load_dir(dir.path()).unwrap_err(),
+        &dir.path().join("nowhere.geo"),
+    );
 
     fs::remove_file(dir.path().join("objects.txt")).unwrap();
-    assert_io_names(load_dir(dir.path()).unwrap_err(), &dir.path().join("objects.txt"));
+    assert_io_names(
+        load_dir(dir.path()).unwrap_err(),
+        &dir.path().join("objects.txt"),
+    );
 
-    assert_io_names(load_geo(&dir.path().join("none.geo")).unwrap_err(), &dir.path().join("none.geo"));
+    assert_io_names(
+        load_geo(&dir.path().join("none.geo")).unwrap_err(),
+        &dir.path().join("none.geo"),
+    );
 }
 
 #[test]
 fn the_sod_must_be_exactly_one() {
-    let dir = write_dir(&[("objects.txt", "plane.geo p.ood\n"), ("plane.geo", PLANE_GEO), ("p.ood", GOOD_OOD)]);
+    let dir = write_dir(&[
+        ("objects.txt", "plane.geo p.ood\n"),
+        ("plane.geo", PLANE_GEO),
+        ("p.ood", GOOD_OOD),
+    ]);
     let shown = load_dir(dir.path()).unwrap_err().to_string();
     assert!(shown.contains("no .sod"), "{shown}");
 
@@ -454,27 +634,51 @@ fn the_sod_must_be_exactly_one() {
     fs::write(dir.path().join("b.sod"), LIGHTLESS_SOD).unwrap();
     let err = load_dir(dir.path()).unwrap_err();
     let shown = err.to_string();
-    assert!(matches!(err, SceneError::Invalid { ref path, .. } if path == dir.path()), "{shown}");
-    assert!(shown.contains("2 .sod") && shown.contains("a.sod, b.sod"), "{shown}");
+    assert!(
+        matches!(err, SceneError::Invalid { ref path, .. } if path == dir.path()),
+        "{shown}"
+    );
+    assert!(
+        shown.contains("2 .sod") && shown.contains("a.sod, b.sod"),
+        "{shown}"
+    );
 }
 
 #[test]
 fn bad_object_list_lines_are_reported() {
     let dir = write_dir(&[
         ("s.sod", LIGHTLESS_SOD),
-        ("objects.txt", "# objects\nplane.geo p.ood\nplane.geo p.ood extra.ood\n"),
+        (
+            "objects.txt",
+            "# objects\nplane.geo p.ood\nplane.geo p.ood extra.ood\n",
+        ),
         ("plane.geo", PLANE_GEO),
         ("p.ood", GOOD_OOD),
     ]);
     let err = load_dir(dir.path()).unwrap_err();
-    assert_syntax(err, "objects.txt", 3, "plane.geo p.ood extra.ood", "pair (2 file names, found 3)");
+    assert_syntax(
+        err,
+        "objects.txt",
+        3,
+        "plane.geo p.ood extra.ood",
+        "pair (2 file names, found 3)",
+    );
 
     fs::write(dir.path().join("objects.txt"), "plane.geo\n").unwrap();
-    assert_syntax(load_dir(dir.path()).unwrap_err(), "objects.txt", 1, "plane.geo", "found 1");
+    assert_syntax(
+        load_dir(dir.path()).unwrap_err(),
+        "objects.txt",
+        1,
+        "plane.geo",
+        "found 1",
+    );
 
     fs::write(dir.path().join("objects.txt"), "# only comments\n\n").unwrap();
     let shown = load_dir(dir.path()).unwrap_err().to_string();
-    assert!(shown.contains("objects.txt") && shown.contains("lists no objects"), "{shown}");
+    assert!(
+        shown.contains("objects.txt") && shown.contains("lists no objects"),
+        "{shown}"
+    );
 }
 
 #[test]
@@ -494,9 +698,15 @@ fn errors_inside_listed_files_name_those_files() {
 type Parser = fn(&str) -> Result<(), SceneError>;
 
 const PARSERS: [(&str, &str, Parser); 3] = [
-    ("fuzz.sod", GOOD_SOD, |t| parse_sod(t, Path::new("fuzz.sod")).map(drop)),
-    ("fuzz.ood", GOOD_OOD, |t| parse_ood(t, Path::new("fuzz.ood")).map(drop)),
-    ("fuzz.geo", GOOD_GEO, |t| parse_geo(t, Path::new("fuzz.geo")).map(drop)),
+    ("fuzz.sod", GOOD_SOD, |t| {
+        parse_sod(t, Path::new("fuzz.sod")).map(drop)
+    }),
+    ("fuzz.ood", GOOD_OOD, |t| {
+        parse_ood(t, Path::new("fuzz.ood")).map(drop)
+    }),
+    ("fuzz.geo", GOOD_GEO, |t| {
+        parse_geo(t, Path::new("fuzz.geo")).map(drop)
+    }),
 ];
 
 /// Runs every parser on `text`; a panic fails the test, an error must name the file.
@@ -504,7 +714,12 @@ fn parse_all(text: &str) -> Result<(), TestCaseError> {
     for (file, _, parse) in PARSERS {
         if let Err(err) = parse(text) {
             let shown = err.to_string();
-            prop_assert!(shown.starts_with(file), "error does not name {}: {}", file, shown);
+            prop_assert!(
+                shown.starts_with(file),
+                "error does not name {}: {}",
+                file,
+                shown
+            );
         }
     }
     Ok(())
@@ -532,13 +747,21 @@ fn nasty_token() -> impl Strategy<Value = String> {
 
 /// A valid file with random edits: deleted stretches, inserted or replacing tokens.
 fn mutated(base: &'static str) -> impl Strategy<Value = String> {
-    let edit = (any::<prop::sample::Index>(), 0usize..8, prop::option::of(nasty_token()));
+    let edit = (
+        any::<prop::sample::Index>(),
+        0usize..8,
+        prop::option::of(nasty_token()),
+    );
     prop::collection::vec(edit, 1..6).prop_map(move |edits| {
         let mut text: Vec<char> = base.chars().collect();
         for (at, delete, insert) in edits {
             let start = at.index(text.len() + 1);
             let end = (start + delete).min(text.len());
-            let replacement: Vec<char> = insert.map(|s| format!(" {s} ")).unwrap_or_default().chars().collect();
+            let replacement: Vec<char> = insert
+                .map(|s| format!(" {s} "))
+                .unwrap_or_default()
+                .chars()
+                .collect();
             text.splice(start..end, replacement);
         }
         text.into_iter().collect()
@@ -578,7 +801,10 @@ fn thesis_dir() -> Option<PathBuf> {
     if dir.is_dir() {
         Some(dir)
     } else {
-        println!("SKIPPED: {} does not exist (the thesis scenes are not on this machine)", dir.display());
+        println!(
+            "SKIPPED: {} does not exist (the thesis scenes are not on this machine)",
+            dir.display()
+        );
         None
     }
 }
@@ -615,23 +841,55 @@ fn the_thesis_scenes_load() {
             .collect();
         assert_eq!(scene.objects.len(), listed.len(), "{}", scene.name);
         assert_eq!(scene.name, dir.file_name().unwrap().to_string_lossy());
-        assert_eq!((scene.options.width, scene.options.height), (1920, 1080), "{}", scene.name);
+        assert_eq!(
+            (scene.options.width, scene.options.height),
+            (1920, 1080),
+            "{}",
+            scene.name
+        );
         assert!(!scene.lights.is_empty(), "{}", scene.name);
 
-        println!("{}: {} objects, {} triangles, {} lights", scene.name, scene.objects.len(), scene.triangle_count(), scene.lights.len());
+        println!(
+            "{}: {} objects, {} triangles, {} lights",
+            scene.name,
+            scene.objects.len(),
+            scene.triangle_count(),
+            scene.lights.len()
+        );
         for (object, (geo, ood)) in scene.objects.iter().zip(&listed) {
             assert_eq!(object.name, format!("{geo}+{ood}"));
             let mesh: &Mesh = &object.mesh;
-            println!("  {:28} {:6} triangles {:6} vertices", object.name, mesh.triangles.len(), mesh.positions.len());
-            assert_eq!(mesh.triangles.len(), fan_triangles_in(&dir.join(geo)), "{}", object.name);
+            println!(
+                "  {:28} {:6} triangles {:6} vertices",
+                object.name,
+                mesh.triangles.len(),
+                mesh.positions.len()
+            );
+            assert_eq!(
+                mesh.triangles.len(),
+                fan_triangles_in(&dir.join(geo)),
+                "{}",
+                object.name
+            );
             assert!(!mesh.triangles.is_empty());
             assert_eq!(mesh.normals.len(), mesh.triangles.len());
             assert_eq!(mesh.uvs.len(), mesh.triangles.len());
             let vertices = mesh.positions.len() as u32;
-            assert!(mesh.triangles.iter().flatten().all(|&i| i < vertices), "{}", object.name);
-            assert!(mesh.triangles.iter().flatten().any(|&i| i == vertices - 1), "vertex count = max index + 1");
+            assert!(
+                mesh.triangles.iter().flatten().all(|&i| i < vertices),
+                "{}",
+                object.name
+            );
+            assert!(
+                mesh.triangles.iter().flatten().any(|&i| i == vertices - 1),
+                "vertex count = max index + 1"
+            );
             for corner in mesh.normals.iter().flatten() {
-                assert!((corner.length() - 1.0).abs() < 0.05, "{}: normal {corner} not unit", object.name);
+                assert!(
+                    (corner.length() - 1.0).abs() < 0.05,
+                    "{}: normal {corner} not unit",
+                    object.name
+                );
             }
         }
         for (i, a) in listed.iter().enumerate() {
@@ -654,8 +912,18 @@ fn the_simple_plane_scene_has_the_expected_values() {
     assert_eq!(scene.lights[0].color, Vec3::new(0.6, 0.6, 1.0));
     let plane = &scene.objects[0].mesh;
     assert_eq!(plane.triangles, [[0, 1, 3], [0, 3, 2]]);
-    assert_eq!(plane.positions[0], Vec3::new(-10.0, -2.220446049e-15, 10.0));
-    assert_eq!(plane.uvs[1], [Vec2::new(0.0, 0.0), Vec2::new(1.0, 1.0), Vec2::new(0.0, 1.0)]);
+    assert_eq!(
+        plane.positions[0],
+        Vec3::new(-10.0, "-2.220446049e-15".parse().unwrap(), 10.0)
+    );
+    assert_eq!(
+        plane.uvs[1],
+        [
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 1.0),
+            Vec2::new(0.0, 1.0)
+        ]
+    );
 }
 
 /// The templates are annotated documents: each line holds its values, a label and a `//`
@@ -689,9 +957,18 @@ fn the_default_option_templates_parse_once_filled_in() {
 
     let path = templates.join("scene_default.sod");
     let raw = fs::read_to_string(&path).unwrap();
-    assert_syntax(parse_sod(&raw, &path).unwrap_err(), "scene_default.sod", 1, "width", "image height");
+    assert_syntax(
+        parse_sod(&raw, &path).unwrap_err(),
+        "scene_default.sod",
+        1,
+        "width",
+        "image height",
+    );
     let (options, lights) = parse_sod(&fill_in_template(&raw), &path).unwrap();
-    assert_eq!((options.width, options.height, options.fov_deg), (1920, 1080, 90.0));
+    assert_eq!(
+        (options.width, options.height, options.fov_deg),
+        (1920, 1080, 90.0)
+    );
     assert_eq!(options.background, Vec3::new(0.235294, 0.67451, 0.843137));
     assert_eq!(options.camera_to_world, Mat44::IDENTITY);
     assert_eq!((options.bias, options.max_depth), (0.0001, 4));
@@ -701,7 +978,13 @@ fn the_default_option_templates_parse_once_filled_in() {
 
     let path = templates.join("object_default.ood");
     let raw = fs::read_to_string(&path).unwrap();
-    assert_syntax(parse_ood(&raw, &path).unwrap_err(), "object_default.ood", 1, "Object", "element 1 of 16");
+    assert_syntax(
+        parse_ood(&raw, &path).unwrap_err(),
+        "object_default.ood",
+        1,
+        "Object",
+        "element 1 of 16",
+    );
     let (object_to_world, material) = parse_ood(&fill_in_template(&raw), &path).unwrap();
     assert_eq!(object_to_world, Mat44::IDENTITY);
     assert_eq!(material.kind, MaterialKind::Diffuse);
@@ -711,13 +994,29 @@ fn the_default_option_templates_parse_once_filled_in() {
     // The geometry template is prose followed by a cube example.
     let path = templates.join("Geometry_file_template.geo");
     let raw = fs::read_to_string(&path).unwrap();
-    assert_syntax(parse_geo(&raw, &path).unwrap_err(), "Geometry_file_template.geo", 1, "The", "number of faces");
+    assert_syntax(
+        parse_geo(&raw, &path).unwrap_err(),
+        "Geometry_file_template.geo",
+        1,
+        "The",
+        "number of faces",
+    );
     let (_, cube_text) = raw.split_once("Cube example").unwrap();
     let cube = parse_geo(cube_text, &path).unwrap();
     assert_eq!(cube.positions.len(), 8);
     assert_eq!(cube.triangles.len(), 12);
-    assert_eq!(&cube.triangles[..4], [[0, 1, 2], [0, 2, 3], [0, 4, 5], [0, 5, 1]]);
+    assert_eq!(
+        &cube.triangles[..4],
+        [[0, 1, 2], [0, 2, 3], [0, 4, 5], [0, 5, 1]]
+    );
     assert_eq!(cube.normals[0], [Vec3::Z; 3]);
     assert_eq!(cube.normals[2], [Vec3::Y; 3]);
-    assert_eq!(cube.uvs[0], [Vec2::new(0.375, 0.625), Vec2::new(0.625, 0.375), Vec2::new(0.375, 0.625)]);
+    assert_eq!(
+        cube.uvs[0],
+        [
+            Vec2::new(0.375, 0.625),
+            Vec2::new(0.625, 0.375),
+            Vec2::new(0.375, 0.625)
+        ]
+    );
 }

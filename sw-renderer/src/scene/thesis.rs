@@ -9,7 +9,9 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use super::{Light, LightKind, Mat44, Material, MaterialKind, Mesh, Object, Options, Scene, SceneError};
+use super::{
+    Light, LightKind, Mat44, Material, MaterialKind, Mesh, Object, Options, Scene, SceneError,
+};
 use tokens::Tokens;
 
 const OBJECT_LIST: &str = "objects.txt";
@@ -38,9 +40,19 @@ pub fn load_dir(dir: &Path) -> Result<Scene, SceneError> {
         };
         let ood_path = dir.join(ood);
         let (object_to_world, material) = parse_ood(&read_text(&ood_path)?, &ood_path)?;
-        objects.push(Object { name: format!("{geo}+{ood}"), mesh, object_to_world, material });
+        objects.push(Object {
+            name: format!("{geo}+{ood}"),
+            mesh,
+            object_to_world,
+            material,
+        });
     }
-    Ok(Scene { name: scene_name(dir), options, lights, objects })
+    Ok(Scene {
+        name: scene_name(dir),
+        options,
+        lights,
+        objects,
+    })
 }
 
 /// Read and parse one `.geo` file.
@@ -66,18 +78,36 @@ pub fn parse_sod(text: &str, path: &Path) -> Result<(Options, Vec<Light>), Scene
 
     let mut lights = Vec::new();
     for i in 1..=count {
-        let kind = match t.whole(0..=1, format_args!("the type of light {i} of {count} (0 distant, 1 point)"))? {
+        let kind = match t.whole(
+            0..=1,
+            format_args!("the type of light {i} of {count} (0 distant, 1 point)"),
+        )? {
             0 => LightKind::Distant,
             _ => LightKind::Point,
         };
         let color = t.vec3(format_args!("the colour of light {i} of {count}"))?;
         let intensity = t.number(format_args!("the intensity of light {i} of {count}"))?;
-        let light_to_world = t.mat44(format_args!("the light-to-world matrix of light {i} of {count}"))?;
-        lights.push(Light { kind, color, intensity, light_to_world });
+        let light_to_world = t.mat44(format_args!(
+            "the light-to-world matrix of light {i} of {count}"
+        ))?;
+        lights.push(Light {
+            kind,
+            color,
+            intensity,
+            light_to_world,
+        });
     }
     t.finish(format_args!("the {count} light(s) the file announces"))?;
 
-    let options = Options { width, height, fov_deg, background, camera_to_world, bias, max_depth };
+    let options = Options {
+        width,
+        height,
+        fov_deg,
+        background,
+        camera_to_world,
+        bias,
+        max_depth,
+    };
     Ok((options, lights))
 }
 
@@ -100,7 +130,17 @@ pub fn parse_ood(text: &str, path: &Path) -> Result<(Mat44, Material), SceneErro
     let ks = t.number("Ks, the Phong specular weight")?;
     let n = t.number("n, the Phong specular exponent")?;
     t.finish("n, the Phong specular exponent")?;
-    Ok((object_to_world, Material { kind, ior, albedo, kd, ks, n }))
+    Ok((
+        object_to_world,
+        Material {
+            kind,
+            ior,
+            albedo,
+            kd,
+            ks,
+            n,
+        },
+    ))
 }
 
 /// `.geo`: F faces; F face-vertex counts summing to S; S vertex indices (the vertex count is
@@ -112,7 +152,10 @@ pub fn parse_geo(text: &str, path: &Path) -> Result<Mesh, SceneError> {
     let faces = t.whole(1..=U32_MAX, "the number of faces (a whole number ≥ 1)")?;
     let mut face_sizes = Vec::new();
     for f in 1..=faces {
-        let size = t.whole(3..=U32_MAX, format_args!("face-vertex count ≥ 3 for face {f} of {faces}"))?;
+        let size = t.whole(
+            3..=U32_MAX,
+            format_args!("face-vertex count ≥ 3 for face {f} of {faces}"),
+        )?;
         face_sizes.push(size as usize);
     }
     let corners: usize = face_sizes.iter().sum();
@@ -120,9 +163,12 @@ pub fn parse_geo(text: &str, path: &Path) -> Result<Mesh, SceneError> {
     let mut indices = Vec::new();
     let mut largest = None;
     for i in 1..=corners {
-        let index = t.whole(0..=U32_MAX - 1, format_args!("vertex index {i} of {corners} (a whole number below {U32_MAX})"))? as u32;
+        let index = t.whole(
+            0..=U32_MAX - 1,
+            format_args!("vertex index {i} of {corners} (a whole number below {U32_MAX})"),
+        )? as u32;
         indices.push(index);
-        if largest.map_or(true, |(max, _)| index > max) {
+        if largest.is_none_or(|(max, _)| index > max) {
             largest = Some((index, t.previous()));
         }
     }
@@ -136,15 +182,22 @@ pub fn parse_geo(text: &str, path: &Path) -> Result<Mesh, SceneError> {
     }
     let mut corner_normals = Vec::new();
     for c in 1..=corners {
-        corner_normals.push(t.vec3(format_args!("normal {c} of {corners} (one per face-vertex)"))?);
+        corner_normals.push(t.vec3(format_args!(
+            "normal {c} of {corners} (one per face-vertex)"
+        ))?);
     }
     let mut corner_uvs = Vec::new();
     for c in 1..=corners {
-        corner_uvs.push(t.vec2(format_args!("texture coordinate {c} of {corners} (one per face-vertex)"))?);
+        corner_uvs.push(t.vec2(format_args!(
+            "texture coordinate {c} of {corners} (one per face-vertex)"
+        ))?);
     }
     t.finish("the texture coordinates")?;
 
-    let mut mesh = Mesh { positions, ..Mesh::default() };
+    let mut mesh = Mesh {
+        positions,
+        ..Mesh::default()
+    };
     let mut first = 0;
     for size in face_sizes {
         for j in 0..size - 2 {
@@ -168,7 +221,9 @@ fn check_vertex_count(
     corners: usize,
 ) -> Result<(), SceneError> {
     let numbers = t.remaining();
-    let Some(position_numbers) = numbers.checked_sub(5 * corners) else { return Ok(()) };
+    let Some(position_numbers) = numbers.checked_sub(5 * corners) else {
+        return Ok(());
+    };
     let vertices_in_file = position_numbers / 3;
     if position_numbers % 3 != 0 || vertices_in_file > largest_index as usize {
         return Ok(());
@@ -186,7 +241,10 @@ fn check_vertex_count(
 
 /// `objects.txt`: one `geometry-file object-file` pair a line; blank lines and lines starting
 /// with `#` are skipped.
-fn parse_object_list<'a>(text: &'a str, path: &Path) -> Result<Vec<(&'a str, &'a str)>, SceneError> {
+fn parse_object_list<'a>(
+    text: &'a str,
+    path: &Path,
+) -> Result<Vec<(&'a str, &'a str)>, SceneError> {
     let mut entries = Vec::new();
     for (index, line) in text.lines().enumerate() {
         let content = line.trim();
@@ -220,7 +278,10 @@ fn parse_object_list<'a>(text: &'a str, path: &Path) -> Result<Vec<(&'a str, &'a
 
 /// The directory's one `.sod` file.
 fn find_sod(dir: &Path) -> Result<PathBuf, SceneError> {
-    let io_error = |source| SceneError::Io { path: dir.to_path_buf(), source };
+    let io_error = |source| SceneError::Io {
+        path: dir.to_path_buf(),
+        source,
+    };
     let mut sods = Vec::new();
     for entry in std::fs::read_dir(dir).map_err(io_error)? {
         let path = entry.map_err(io_error)?.path();
@@ -233,11 +294,15 @@ fn find_sod(dir: &Path) -> Result<PathBuf, SceneError> {
         1 => Ok(sods.remove(0)),
         0 => Err(SceneError::Invalid {
             path: dir.to_path_buf(),
-            what: "no .sod scene options file (a thesis scene directory holds exactly one)".to_string(),
+            what: "no .sod scene options file (a thesis scene directory holds exactly one)"
+                .to_string(),
         }),
         n => {
-            let names: Vec<String> =
-                sods.iter().filter_map(|p| p.file_name()).map(|n| n.to_string_lossy().into_owned()).collect();
+            let names: Vec<String> = sods
+                .iter()
+                .filter_map(|p| p.file_name())
+                .map(|n| n.to_string_lossy().into_owned())
+                .collect();
             Err(SceneError::Invalid {
                 path: dir.to_path_buf(),
                 what: format!(
@@ -250,12 +315,20 @@ fn find_sod(dir: &Path) -> Result<PathBuf, SceneError> {
 }
 
 fn read_text(path: &Path) -> Result<String, SceneError> {
-    std::fs::read_to_string(path).map_err(|source| SceneError::Io { path: path.to_path_buf(), source })
+    std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// The directory's own name (also for `.` or `..`).
 fn scene_name(dir: &Path) -> String {
     let canonical = dir.canonicalize().ok();
-    let name = dir.file_name().or_else(|| canonical.as_deref().and_then(Path::file_name));
-    name.map_or_else(|| dir.display().to_string(), |n| n.to_string_lossy().into_owned())
+    let name = dir
+        .file_name()
+        .or_else(|| canonical.as_deref().and_then(Path::file_name));
+    name.map_or_else(
+        || dir.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
 }

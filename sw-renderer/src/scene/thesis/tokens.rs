@@ -35,9 +35,17 @@ impl<'a> Tokens<'a> {
         for (index, line) in text.lines().enumerate() {
             last_line = index + 1;
             let code = line.split("//").next().unwrap_or("");
-            tokens.extend(code.split_whitespace().map(|text| Token { text, line: last_line }));
+            tokens.extend(code.split_whitespace().map(|text| Token {
+                text,
+                line: last_line,
+            }));
         }
-        Tokens { path, tokens, next: 0, last_line }
+        Tokens {
+            path,
+            tokens,
+            next: 0,
+            last_line,
+        }
     }
 
     /// How many tokens are left to read.
@@ -72,7 +80,13 @@ impl<'a> Tokens<'a> {
                 self.next += 1;
                 Ok(token)
             }
-            None => Err(self.error_at(Token { text: END_OF_FILE, line: self.last_line }, what)),
+            None => Err(self.error_at(
+                Token {
+                    text: END_OF_FILE,
+                    line: self.last_line,
+                },
+                what,
+            )),
         }
     }
 
@@ -96,7 +110,11 @@ impl<'a> Tokens<'a> {
 
     /// A whole number written with digits only (no sign, point or exponent) inside `range`;
     /// `what` describes it, including the accepted range.
-    pub fn whole(&mut self, range: RangeInclusive<u64>, what: impl Display) -> Result<u64, SceneError> {
+    pub fn whole(
+        &mut self,
+        range: RangeInclusive<u64>,
+        what: impl Display,
+    ) -> Result<u64, SceneError> {
         let token = self.token(&what)?;
         let digits_only = !token.text.is_empty() && token.text.bytes().all(|b| b.is_ascii_digit());
         match token.text.parse::<u64>() {
