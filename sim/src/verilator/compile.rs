@@ -1,0 +1,145 @@
+//! Turning Verilog into a loadable shared object: `verilator --cc`, then the C++ compiler.
+
+use super::cache;
+use super::toolchain::{run, Toolchain};
+use crate::SimError;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+
+/// Verilator's runtime sources, compiled once per toolchain into `libverilated.a`.
+const RUNTIME_SOURCES: &[&str] = &["verilated.cpp", "verilated_vcd_c.cpp", "verilated_threads.cpp"];
+const RUNTIME_LIB: &str = "libverilated.a";
+/// File name of a built model inside its cache entry.
+pub const MODEL_LIB: &str = "model.so";
+
+/// Compiler flags of every translation unit (Verilator's own `verilated.mk` settings).
+fn cxx_flags(tc: &Toolchain, trace: bool) -> Vec<String> {
+    let t = u8::from(trace);
+    let mut flags: Vec<String> = [
+        "-fPIC",
+        "-faligned-new",
+        "-fcf-protection=none",
+        "-Wno-bool-operation",
+        "-Wno-sign-compare",
+        "-Wno-uninitialized",
+        "-Wno-unused-but-set-variable",
+        "-Wno-unused-parameter",
+        "-Wno-unused-variable",
+        "-Wno-shadow",
+        "-DVM_COVERAGE=0",
+        "-DVM_SC=0",
+        "-DVM_TRACE_FST=0",
+    ]
+    .map(String::from)
+    .to_vec();
+    flags.push(format!("-DVM_TRACE={t}"));
+    flags.push(format!("-DVM_TRACE_VCD={t}"));
+    flags.push(format!("-I{}", tc.include.display()));
+    flags.push(format!("-I{}", tc.include.join("vltstd").display()));
+    flags
+}
+
+/// Compiles each `(source, object, opt)` with `flags`, on as many threads as there are cores.
+fn compile_all(tc: &Toolchain, flags: &[String], jobs: &[(PathBuf, PathBuf, &str)], include: &Path) -> Result<(), SimError> {
+    let next = AtomicUsize::new(0);
+    let first_error: Mutex<Option<SimError>> = Mutex::new(None);
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).min(jobs.len().max(1));
+    std::thread::scope(|s| {
+        for _ in 0..threads {
+            s.spawn(|| loop {
+                let i = next.fetch_add(1, Ordering::Relaxed);
+                let Some((src, obj, opt)) = jobs.get(i) else { break };
+                if first_error.lock().unwrap().is_some() {
+                    break;
+                }
+                let mut cmd = Command::new(&tc.cxx);
+                cmd.arg(opt).args(flags).arg(format!("-I{}", include.display())).arg("-c").arg(src).arg("-o").arg(obj);
+                let what = format!("compiling {}", src.file_name().unwrap_or_default().to_string_lossy());
+                if let Err(e) = run(cmd, "c++ compiler", &what) {
+                    first_error.lock().unwrap().get_or_insert(e);
+                }
+            });
+        }
+    });
+    first_error.into_inner().unwrap().map_or(Ok(()), Err)
+}
+
+/// Verilator's runtime as a static library in the cache, built on first use.
+pub fn runtime(tc: &Toolchain, cache_root: &Path) -> Result<PathBuf, SimError> {
+    let flags = cxx_flags(tc, true);
+    let name = format!("runtime-{}", &cache::key(&[tc.versions.as_bytes(), flags.join(" ").as_bytes()])[..16]);
+    let (dir, _) = cache::get_or_build(cache_root, &name, |tmp| {
+        let jobs: Vec<_> = RUNTIME_SOURCES
+            .iter()
+            .map(|src| (tc.include.join(src), tmp.join(src).with_extension("o"), "-O3"))
+            .collect();
+        compile_all(tc, &flags, &jobs, tmp)?;
+        let mut ar = Command::new("ar");
+        ar.arg("rcs").arg(tmp.join(RUNTIME_LIB)).args(jobs.iter().map(|j| &j.1));
+        run(ar, "ar", "archiving the Verilator runtime")?;
+        Ok(())
+    })?;
+    Ok(dir.join(RUNTIME_LIB))
+}
+
+/// What `verilator` is told for a model (besides the output directory and the source file).
+pub fn verilator_args(top: &str, trace: bool, extra: &[String]) -> Vec<String> {
+    let mut args: Vec<String> = ["--cc", "-O3", "--x-assign", "fast", "--x-initial", "fast", "--noassert", "--prefix", "Vmodel"]
+        .map(String::from)
+        .to_vec();
+    // rust-hdl's output has width-mismatched literals (WIDTH) and similar lint findings; they
+    // are reported by the lint step, not a reason to refuse simulation.
+    args.push("-Wno-fatal".into());
+    args.extend(["--top-module".to_string(), top.to_string()]);
+    if trace {
+        args.push("--trace".into());
+    }
+    args.extend(extra.iter().cloned());
+    args
+}
+
+/// Builds `dir/model.so` from `verilog` and the shim source `shim`.
+pub fn model(
+    tc: &Toolchain,
+    runtime_lib: &Path,
+    dir: &Path,
+    verilog: &str,
+    verilator_args: &[String],
+    shim: &str,
+    trace: bool,
+) -> Result<(), SimError> {
+    let v_path = dir.join("top.v");
+    let obj = dir.join("obj");
+    std::fs::write(&v_path, verilog).map_err(|e| SimError::io(&v_path, e))?;
+    let mut cmd = Command::new(&tc.verilator);
+    cmd.args(verilator_args).arg("-Mdir").arg(&obj).arg(&v_path);
+    run(cmd, "verilator", "verilating the design")?;
+
+    let shim_path = obj.join("rtfpga_shim.cpp");
+    std::fs::write(&shim_path, shim).map_err(|e| SimError::io(&shim_path, e))?;
+    let mut jobs = Vec::new();
+    for entry in std::fs::read_dir(&obj).map_err(|e| SimError::io(&obj, e))? {
+        let src = entry.map_err(|e| SimError::io(&obj, e))?.path();
+        if src.extension().is_some_and(|e| e == "cpp") {
+            let name = src.file_name().unwrap_or_default().to_string_lossy();
+            // Construction and initial code run once: don't spend -O3 compile time on them.
+            let opt = if name.contains("__Slow") || name.contains("__Syms") { "-O1" } else { "-O3" };
+            jobs.push((src.clone(), src.with_extension("o"), opt));
+        }
+    }
+    compile_all(tc, &cxx_flags(tc, trace), &jobs, &obj)?;
+
+    let mut link = Command::new(&tc.cxx);
+    link.args(["-shared", "-fPIC", "-o"])
+        .arg(dir.join(MODEL_LIB))
+        .args(jobs.iter().map(|j| &j.1))
+        .arg(runtime_lib)
+        // Keep each model's copy of the runtime private, so models loaded side by side don't mix.
+        .args(["-Wl,--exclude-libs,ALL", "-Wl,-Bsymbolic", "-pthread", "-latomic"]);
+    run(link, "c++ compiler", "linking the model")?;
+    // The intermediate files are large and not needed once the model is linked.
+    std::fs::remove_dir_all(&obj).map_err(|e| SimError::io(&obj, e))?;
+    Ok(())
+}
