@@ -13,4 +13,4 @@ pub mod mt;
 
 pub use catalogue::{catalogue, lookup, NamedFormat};
 pub use format::{Format, FormatError, Overflow, Quant};
-pub use mt::{MtQuery, MtResult};
+pub use mt::{mt_model, MtQuery, MtResult};

@@ -1,5 +1,7 @@
 //! The Möller-Trumbore test in any format, in exactly the hardware's operation order.
 
+use crate::format::Format;
+
 /// One ray-triangle test, IEEE fp32 at the ports as on the accelerator's bus.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -29,4 +31,63 @@ impl MtResult {
             && self.u.to_bits() == other.u.to_bits()
             && self.v.to_bits() == other.v.to_bits()
     }
+}
+
+/// The parallel-ray threshold of the reference renderer, converted into the format.
+pub const DET_EPSILON: f32 = 1e-8;
+
+type V = [u64; 3];
+
+#[inline]
+fn sub(f: &Format, a: &V, b: &V) -> V {
+    [f.sub(a[0], b[0]), f.sub(a[1], b[1]), f.sub(a[2], b[2])]
+}
+
+/// a×b component by component as a.y·b.z − a.z·b.y, a.z·b.x − a.x·b.z, a.x·b.y − a.y·b.x.
+#[inline]
+fn cross(f: &Format, a: &V, b: &V) -> V {
+    [
+        f.sub(f.mul(a[1], b[2]), f.mul(a[2], b[1])),
+        f.sub(f.mul(a[2], b[0]), f.mul(a[0], b[2])),
+        f.sub(f.mul(a[0], b[1]), f.mul(a[1], b[0])),
+    ]
+}
+
+/// (a.x·b.x + a.y·b.y) + a.z·b.z.
+#[inline]
+fn dot(f: &Format, a: &V, b: &V) -> u64 {
+    f.add(f.add(f.mul(a[0], b[0]), f.mul(a[1], b[1])), f.mul(a[2], b[2]))
+}
+
+#[inline]
+fn load(f: &Format, x: &[f32; 3]) -> V {
+    [f.from_f32(x[0]), f.from_f32(x[1]), f.from_f32(x[2])]
+}
+
+/// The test in `format`: fp32 inputs converted in, every operation rounded in the format,
+/// t, u, v converted back to fp32 (also on a miss).
+#[inline]
+pub fn mt_model(format: &Format, q: &MtQuery) -> MtResult {
+    let f = format;
+    let (orig, dir, v0) = (load(f, &q.orig), load(f, &q.dir), load(f, &q.v0));
+    let e1 = sub(f, &load(f, &q.v1), &v0);
+    let e2 = sub(f, &load(f, &q.v2), &v0);
+    let p = cross(f, &dir, &e2);
+    let det = dot(f, &e1, &p);
+    let inv = f.recip(det);
+    let s = sub(f, &orig, &v0);
+    let u = f.mul(dot(f, &s, &p), inv);
+    let qv = cross(f, &s, &e1);
+    let v = f.mul(dot(f, &dir, &qv), inv);
+    let t = f.mul(dot(f, &e2, &qv), inv);
+
+    let (zero, one, eps) = (f.from_f32(0.0), f.from_f32(1.0), f.from_f32(DET_EPSILON));
+    let parallel = f.lt(det, eps) && f.lt(f.neg(eps), det);
+    let hit = !parallel
+        && !f.lt(u, zero)
+        && !f.lt(one, u)
+        && !f.lt(v, zero)
+        && !f.lt(one, f.add(u, v))
+        && f.lt(zero, t);
+    MtResult { hit, t: f.to_f32(t), u: f.to_f32(u), v: f.to_f32(v) }
 }
