@@ -15,9 +15,9 @@
 //!
 //! Block control (`ap_ctrl_hs`, as the Vitis slave implements it):
 //! - writing 1 to ap_start sets it (writing 0 does not clear it); while ap_start is set and
-//!   the core is idle the slave pulses `start` for one cycle, copies the operand registers
-//!   to the `operands` outputs (held there until the next start, so software may write the
-//!   next operands while the core works) and becomes busy;
+//!   the core is idle the slave copies the operand registers to the `operands` outputs (held
+//!   there until the next start, so software may write the next operands while the core
+//!   works), becomes busy and, one cycle later, pulses `start` for one cycle;
 //! - the core's `done` pulse ends the busy period: it latches hit/t/u/v into the result
 //!   registers, sets ap_done and ap_ready (both clear-on-read of the control register; the
 //!   operands are consumed at completion, so ready coincides with done), clears ap_start
@@ -95,6 +95,7 @@ pub struct AxiLiteSlave {
     ap_ready: DFF<Bit>,
     auto_restart: DFF<Bit>,
     busy: DFF<Bit>,
+    start_q: DFF<Bit>,
     gie: DFF<Bit>,
     ier: DFF<Bits<2>>,
     isr: DFF<Bits<2>>,
@@ -113,6 +114,7 @@ pub struct AxiLiteSlave {
     r_word: Signal<Local, Bits<WORD_BITS>>,
     r_mapped: Signal<Local, Bit>,
     r_mux: Signal<Local, Bits<32>>,
+    launch: Signal<Local, Bit>,
     core_done: Signal<Local, Bit>,
     isr_next: Signal<Local, Bits<2>>,
     // Word addresses of the registers, from the register map.
@@ -182,6 +184,7 @@ impl Default for AxiLiteSlave {
             ap_ready: Default::default(),
             auto_restart: Default::default(),
             busy: Default::default(),
+            start_q: Default::default(),
             gie: Default::default(),
             ier: Default::default(),
             isr: Default::default(),
@@ -199,6 +202,7 @@ impl Default for AxiLiteSlave {
             r_word: Default::default(),
             r_mapped: Default::default(),
             r_mux: Default::default(),
+            launch: Default::default(),
             core_done: Default::default(),
             isr_next: Default::default(),
             word_control: word(regmap::CONTROL),
@@ -233,7 +237,7 @@ impl Logic for AxiLiteSlave {
     fn update(&mut self) {
         dff_setup!(
             self, clock, aw_full, aw_word, w_full, w_data, w_strb, b_valid, b_resp, r_valid,
-            r_data, r_resp, ap_start, ap_done, ap_ready, auto_restart, busy, gie, ier, isr,
+            r_data, r_resp, ap_start, ap_done, ap_ready, auto_restart, busy, start_q, gie, ier, isr,
             hit_q, t_q, u_q, v_q
         );
         for i in 0..OPERAND_COUNT {
@@ -252,7 +256,9 @@ impl Logic for AxiLiteSlave {
         self.axi.rdata.next = self.r_data.q.val();
         self.axi.rresp.next = self.r_resp.q.val();
         self.interrupt.next = self.gie.q.val() & (self.isr.q.val() & self.ier.q.val()).any();
-        self.start.next = self.ap_start.q.val() & !self.busy.q.val() & self.reset_n.val();
+        // Launch copies the operands; `start` follows a cycle later, with them in place.
+        self.launch.next = self.ap_start.q.val() & !self.busy.q.val();
+        self.start.next = self.start_q.q.val();
         self.core_done.next = self.done.val() & self.busy.q.val();
 
         // Read channel: decode the address on the handshake, answer the next cycle.
@@ -435,7 +441,8 @@ impl Logic for AxiLiteSlave {
         }
 
         // Core handshake.
-        if self.start.val() {
+        self.start_q.d.next = self.launch.val();
+        if self.launch.val() {
             self.busy.d.next = true;
             for i in 0..OPERAND_COUNT {
                 self.held[i].d.next = self.args[i].q.val();
@@ -463,6 +470,7 @@ impl Logic for AxiLiteSlave {
             self.ap_ready.d.next = false;
             self.auto_restart.d.next = false;
             self.busy.d.next = false;
+            self.start_q.d.next = false;
             self.gie.d.next = false;
             self.ier.d.next = self.no_interrupts.val();
             self.isr.d.next = self.no_interrupts.val();
