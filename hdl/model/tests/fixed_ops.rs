@@ -205,3 +205,24 @@ fn from_f32_quantises_and_fits_in_every_mode() {
         }
     }
 }
+
+/// The soak: 1M random operand pairs per operator and catalogue fixed format (all operators
+/// per pair) and 1M from_f32 conversions each. Run with
+/// `cargo test --release -p hw-model --test fixed_ops -- --ignored soak`.
+#[test]
+#[ignore]
+fn soak_catalogue_fixed_1m_per_op() {
+    let mut r = rng(13);
+    for named in catalogue() {
+        if let Format::Float { .. } = named.format {
+            continue;
+        }
+        let s = Spec::of(&named.format);
+        for _ in 0..1_000_000 {
+            let (a, b) = (s.random(&mut r), s.random(&mut r));
+            check_all(&named.format, &s, a, b);
+            let x = f32::from_bits(r.gen());
+            assert_eq!(named.format.from_f32(x), from_f32_oracle(&s, x), "{} from_f32({x:e})", named.name);
+        }
+    }
+}

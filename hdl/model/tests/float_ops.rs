@@ -137,37 +137,62 @@ fn in_ftz_window(got: u64, want: u64, min_normal_bits: u64, sign_bit: u64, exact
     got & !sign_bit == 0 && want & !sign_bit == min_normal_bits && got == want & sign_bit && exact_below_min
 }
 
+/// fp32 against native f32 with inputs and outputs flushed; true if the pair hit the window.
+fn check_fp32_native(op: Op, a: u64, b: u64) -> bool {
+    let format = Format::Float { exp: 8, man: 23 };
+    let (fa, fb) = (ftz32(f32::from_bits(a as u32)), ftz32(f32::from_bits(b as u32)));
+    let native = ftz32(native_f32(op, fa, fb));
+    let got = model(&format, op, a, b);
+    if native.is_nan() {
+        assert_eq!(got, 0x7fc0_0000, "{op:?}({a:#x}, {b:#x})");
+        return false;
+    }
+    let want = native.to_bits() as u64;
+    if got == want {
+        return false;
+    }
+    let exact = exact(op, fa as f64, fb as f64).abs();
+    assert!(
+        in_ftz_window(got, want, 0x0080_0000, 1 << 31, exact < f32::MIN_POSITIVE as f64),
+        "{op:?}({a:#x}, {b:#x}): got {got:#x}, native {want:#x}"
+    );
+    true
+}
+
 #[test]
 fn fp32_matches_native_f32_with_ftz() {
-    let format = Format::Float { exp: 8, man: 23 };
     let mut r = rng(2);
     let edges = float_edges(8, 23);
     let mut pairs: Vec<(u64, u64)> = edges.iter().flat_map(|&a| edges.iter().map(move |&b| (a, b))).collect();
     pairs.extend((0..100_000).map(|_| operand_pair(&mut r, 8, 23)));
     // Results just below min normal: products of min-normal-ish by just-below-one values.
     pairs.extend((0..2_000).map(|_| (0x0080_0000 | r.gen_range(0..8u64), 0x3f7f_fff0 | r.gen_range(0..16u64))));
-    let mut window = 0;
-    for (a, b) in pairs {
-        for op in OPS {
-            let (fa, fb) = (ftz32(f32::from_bits(a as u32)), ftz32(f32::from_bits(b as u32)));
-            let native = ftz32(native_f32(op, fa, fb));
-            let got = model(&format, op, a, b);
-            if native.is_nan() {
-                assert_eq!(got, 0x7fc0_0000, "{op:?}({a:#x}, {b:#x})");
-                continue;
-            }
-            let want = native.to_bits() as u64;
-            if got != want {
-                let exact = exact(op, fa as f64, fb as f64).abs();
-                assert!(
-                    in_ftz_window(got, want, 0x0080_0000, 1 << 31, exact < f32::MIN_POSITIVE as f64),
-                    "{op:?}({a:#x}, {b:#x}): got {got:#x}, native {want:#x}"
-                );
-                window += 1;
+    let window: usize = pairs.iter().map(|&(a, b)| OPS.iter().filter(|&&op| check_fp32_native(op, a, b)).count()).sum();
+    assert!(window > 0, "the test never reached the FTZ window it means to exercise");
+}
+
+/// The soak: 1M random operand pairs per operator and catalogue float format against exact
+/// rounding, and 1M more for fp32 against native f32. Run with
+/// `cargo test --release -p hw-model --test float_ops -- --ignored soak`.
+#[test]
+#[ignore]
+fn soak_catalogue_floats_1m_per_op() {
+    let mut r = rng(7);
+    for named in hw_model::catalogue() {
+        let Format::Float { exp, man } = named.format else { continue };
+        for _ in 0..1_000_000 {
+            let (a, b) = operand_pair(&mut r, exp, man);
+            for op in OPS {
+                check_against_f64(&named.format, op, a, b);
             }
         }
     }
-    assert!(window > 0, "the test never reached the FTZ window it means to exercise");
+    for _ in 0..1_000_000 {
+        let (a, b) = operand_pair(&mut r, 8, 23);
+        for op in OPS {
+            check_fp32_native(op, a, b);
+        }
+    }
 }
 
 #[test]
