@@ -7,6 +7,7 @@ pub mod compare;
 pub mod hit;
 pub mod intersect;
 pub mod math;
+pub mod model_engine;
 pub mod render;
 pub mod scene;
 pub mod shade;

@@ -1,0 +1,87 @@
+//! The bit-accurate model of the hardware arithmetic as an [`Intersector`]: no HDL, any format.
+
+use hw_model::{catalogue, mt_model, Format};
+
+use crate::intersect::{Intersector, MtQuery, MtResult};
+
+/// Answers every query with [`mt_model`] in `format`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ModelIntersector {
+    pub format: Format,
+}
+
+impl Intersector for ModelIntersector {
+    /// "model fp16" for catalogue formats, else the generic spelling ("model e6m9").
+    fn name(&self) -> String {
+        let label = catalogue().iter().find(|n| n.format == self.format).map(|n| n.name.to_string());
+        format!("model {}", label.unwrap_or_else(|| self.format.to_string()))
+    }
+
+    fn intersect_batch(&self, queries: &[MtQuery], results: &mut [MtResult]) {
+        assert_eq!(queries.len(), results.len(), "one result slot per query");
+        for (q, r) in queries.iter().zip(results.iter_mut()) {
+            *r = mt_model(&self.format, q);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::intersect::F32Intersector;
+    use rand::rngs::StdRng;
+    use rand::{Rng, SeedableRng};
+
+    /// A value on the grid k·2^-bits, |value| ≤ max.
+    fn grid(r: &mut StdRng, max: f32, bits: i32) -> f32 {
+        let steps = (max * 2f32.powi(bits)) as i32;
+        r.gen_range(-steps..=steps) as f32 * 2f32.powi(-bits)
+    }
+
+    /// Rays aimed near random triangles with every coordinate on a dyadic grid, so every
+    /// nonzero intermediate of MT is far above fp32's subnormal range: the model must then
+    /// equal the f32 reference bit for bit (NaN from a zero determinant matches any NaN).
+    fn grid_query(r: &mut StdRng) -> MtQuery {
+        let mut p = || [grid(r, 64.0, 8), grid(r, 64.0, 8), grid(r, 64.0, 8)];
+        let (orig, v0, v1, v2) = (p(), p(), p(), p());
+        let (a, b) = (grid(r, 1.0, 4).abs() - 0.125, grid(r, 1.0, 4).abs() - 0.125);
+        let dir = std::array::from_fn(|k| v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]) - orig[k]);
+        MtQuery { orig, dir, v0, v1, v2 }
+    }
+
+    #[test]
+    fn fp32_model_equals_the_f32_reference() {
+        let mut r = StdRng::seed_from_u64(31);
+        let queries: Vec<MtQuery> = (0..50_000).map(|_| grid_query(&mut r)).collect();
+        let mut want = vec![MtResult::default(); queries.len()];
+        let mut got = want.clone();
+        F32Intersector.intersect_batch(&queries, &mut want);
+        let model = ModelIntersector { format: hw_model::lookup("fp32").unwrap() };
+        model.intersect_batch(&queries, &mut got);
+        let same = |x: f32, y: f32| x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan());
+        for ((q, g), w) in queries.iter().zip(&got).zip(&want) {
+            assert!(
+                g.hit == w.hit && same(g.t, w.t) && same(g.u, w.u) && same(g.v, w.v),
+                "{q:?}: model {g:?}, f32 {w:?}"
+            );
+        }
+        let hits = want.iter().filter(|w| w.hit).count();
+        assert!(hits > 10_000, "only {hits} hits: the generator no longer aims at triangles");
+        assert_eq!(model.name(), "model fp32");
+    }
+
+    #[test]
+    fn narrow_format_changes_results_and_names_itself() {
+        let mut r = StdRng::seed_from_u64(32);
+        let queries: Vec<MtQuery> = (0..1_000).map(|_| grid_query(&mut r)).collect();
+        let mut fp32 = vec![MtResult::default(); queries.len()];
+        let mut bf16 = fp32.clone();
+        ModelIntersector { format: hw_model::lookup("fp32").unwrap() }.intersect_batch(&queries, &mut fp32);
+        let narrow = ModelIntersector { format: hw_model::lookup("bf16").unwrap() };
+        narrow.intersect_batch(&queries, &mut bf16);
+        assert!(fp32.iter().zip(&bf16).filter(|(a, b)| a.t != b.t).count() > 100);
+        assert_eq!(narrow.name(), "model bf16");
+        let custom = ModelIntersector { format: hw_model::lookup("e6m9").unwrap() };
+        assert_eq!(custom.name(), "model e6m9");
+    }
+}
