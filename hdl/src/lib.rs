@@ -2,6 +2,7 @@
 //! Verilog generation.
 
 pub mod float;
+pub mod formats;
 pub mod intmul;
 pub mod operator;
 pub mod pipe;
@@ -10,3 +11,6 @@ pub mod pipe;
 pub mod axil;
 pub mod cgen;
 pub mod regmap;
+
+// yosys resource and logic-depth reports (issue 3).
+pub mod synth;

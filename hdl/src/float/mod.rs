@@ -1,8 +1,10 @@
 //! Float operators over any (exp, man) format: one operator a file, sharing the unpacking and
 //! rounding blocks. Semantics: the SPEC in `hw_model::format` (RNE, FTZ, canonical NaN).
 
+pub mod add;
 pub mod mul;
 pub mod round;
 pub mod unpack;
 
+pub use add::FloatAdd;
 pub use mul::FloatMul;

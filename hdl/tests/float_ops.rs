@@ -1,0 +1,118 @@
+//! The float operators in rust-hdl's simulator, bit for bit against `hw_model`, for every
+//! catalogue float format at 0, a middle and the maximum number of pipeline stages.
+//! More vectors: `cargo test --release -p hdl --test float_ops -- --ignored`.
+
+use hdl::formats::{bf16, fp16, fp24, fp32};
+use hdl::operator::{simulate_operator, Operator};
+use hw_model::Format;
+use rand::{rngs::StdRng, Rng, SeedableRng};
+
+/// Edge-case operands of a float format: zeros, subnormals, min/max normal, Inf, NaN,
+/// one and its neighbours, values whose sums/products land on rounding halfway points.
+fn edge_values(format: Format) -> Vec<u64> {
+    let Format::Float { exp, man } = format else { panic!("float formats only") };
+    let sign = 1u64 << (exp + man);
+    let bias = (1u64 << (exp - 1)) - 1;
+    let inf = ((1u64 << exp) - 1) << man;
+    let one = bias << man;
+    let mags = [
+        0,
+        1,                          // smallest subnormal
+        (1 << man) - 1,             // largest subnormal
+        1 << man,                   // smallest normal
+        (1 << man) | 1,
+        inf - 1,                    // largest finite
+        inf - (1 << man),           // largest binade, fraction 0
+        inf,
+        inf | 1,                    // a NaN that is not canonical
+        inf | (1 << (man - 1)),     // canonical NaN
+        one,
+        one + 1,
+        one - 1,
+        one | (1 << (man - 1)),     // 1.5
+        one + (1 << man),           // 2
+        one | ((1 << man) - 1),     // 2 - ulp
+        (bias + man as u64 + 1) << man, // 2^(M+1): adding 1 is a tie
+        (bias + man as u64 + 2) << man | 1,
+        ((bias / 2) << man) | 3,
+        ((bias + bias / 2) << man) | 5,
+    ];
+    mags.iter().flat_map(|&m| [m, m | sign]).collect()
+}
+
+/// Edge × edge pairs, then random pairs: random bits, close magnitudes (cancellation),
+/// exponents near overflow and underflow, and x with −x.
+fn vectors(format: Format, random: usize, seed: u64) -> Vec<(u64, u64)> {
+    let width = format.width();
+    let mask = (1u64 << width) - 1;
+    let Format::Float { man, .. } = format else { unreachable!() };
+    let edges = edge_values(format);
+    let mut v: Vec<(u64, u64)> = edges.iter().flat_map(|&a| edges.iter().map(move |&b| (a, b))).collect();
+    let mut rng = StdRng::seed_from_u64(seed);
+    for i in 0..random {
+        let a = rng.gen::<u64>() & mask;
+        let b = match i % 5 {
+            0 => rng.gen::<u64>() & mask,
+            1 => (a ^ (rng.gen::<u64>() & ((1 << man) - 1)) ^ (rng.gen_range(0..2) << (width - 1))) & mask,
+            2 => (a ^ (1 << (width - 1))) & mask,
+            3 => (a.wrapping_add(rng.gen_range(0..4u64) << man) ^ (rng.gen_range(0..2) << (width - 1))) & mask,
+            _ => {
+                // Exponent sum close to the bias: products near the overflow and underflow limits.
+                let e = (a >> man) & ((1 << (width - 1 - man)) - 1);
+                let bias = (1u64 << (width - 2 - man)) - 1;
+                let eb = (3 * bias).saturating_sub(e).min(2 * bias) ^ rng.gen_range(0..3);
+                ((eb << man) | (rng.gen::<u64>() & ((1 << man) - 1))) & mask
+            }
+        };
+        v.push((a, b));
+    }
+    v
+}
+
+fn check<T: Operator>(what: &str, vectors: &[(u64, u64)], model: impl Fn(u64, u64) -> u64) {
+    let max = T::max_stages();
+    let mut stage_list = vec![0, max / 2, max];
+    stage_list.dedup();
+    for stages in stage_list {
+        let out = simulate_operator::<T>(stages, vectors);
+        for (&(a, b), &y) in vectors.iter().zip(&out) {
+            let want = model(a, b);
+            assert_eq!(y, want, "{what} stages={stages}: a={a:#x} b={b:#x} gave {y:#x}, model {want:#x}");
+        }
+    }
+}
+
+macro_rules! float_tests {
+    ($($fmt:ident),*) => {
+        fn check_all_formats(random: usize, seed: u64) {
+            $(
+                let f = $fmt::FORMAT;
+                let v = vectors(f, random, seed);
+                check::<$fmt::Mul>(concat!(stringify!($fmt), " mul"), &v, |a, b| f.mul(a, b));
+                check::<$fmt::Add>(concat!(stringify!($fmt), " add"), &v, |a, b| f.add(a, b));
+                check::<$fmt::Sub>(concat!(stringify!($fmt), " sub"), &v, |a, b| f.sub(a, b));
+            )*
+        }
+
+        #[test]
+        fn catalogue_modules_match_the_model_catalogue() {
+            $(
+                assert_eq!(hw_model::catalogue::lookup($fmt::NAME).unwrap(), $fmt::FORMAT);
+                assert_eq!($fmt::WIDTH as u32, $fmt::FORMAT.width());
+            )*
+        }
+    };
+}
+
+float_tests!(fp32, fp24, bf16, fp16);
+
+#[test]
+fn float_operators_match_the_model() {
+    check_all_formats(300, 1);
+}
+
+#[test]
+#[ignore]
+fn float_operators_match_the_model_many_vectors() {
+    check_all_formats(20_000, 2);
+}
