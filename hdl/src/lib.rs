@@ -14,3 +14,6 @@ pub mod regmap;
 
 // yosys resource and logic-depth reports (issue 3).
 pub mod synth;
+
+// yosys resource and logic-depth reports (issue 3).
+pub mod synth;
