@@ -14,6 +14,3 @@ pub mod regmap;
 
 // yosys resource and logic-depth reports (issue 3).
 pub mod synth;
-
-// yosys resource and logic-depth reports (issue 3).
-pub mod synth;
