@@ -43,36 +43,93 @@ pub fn c_header() -> String {
     let mut s = String::new();
     let guard = "XRTFPGA_HW_H";
     writeln!(s, "// Generated from hdl/src/regmap.rs — do not edit.").unwrap();
-    writeln!(s, "// AXI4-Lite register map of the ray/triangle accelerator (s_axi_control).").unwrap();
+    writeln!(
+        s,
+        "// AXI4-Lite register map of the ray/triangle accelerator (s_axi_control)."
+    )
+    .unwrap();
     for r in REGISTERS {
-        writeln!(s, "// 0x{:02x} : {} — {} ({})", r.offset, r.name, r.description, access_text(r.access))
-            .unwrap();
+        writeln!(
+            s,
+            "// 0x{:02x} : {} — {} ({})",
+            r.offset,
+            r.name,
+            r.description,
+            access_text(r.access)
+        )
+        .unwrap();
         for f in r.fields {
-            writeln!(s, "//        bit {} - {} ({}): {}", f.lsb, f.name, access_text(f.access), f.description)
-                .unwrap();
+            writeln!(
+                s,
+                "//        bit {} - {} ({}): {}",
+                f.lsb,
+                f.name,
+                access_text(f.access),
+                f.description
+            )
+            .unwrap();
         }
     }
-    writeln!(s, "// Unmapped offsets and writes to read-only registers answer SLVERR.").unwrap();
+    writeln!(
+        s,
+        "// Unmapped offsets and writes to read-only registers answer SLVERR."
+    )
+    .unwrap();
     writeln!(s, "\n#ifndef {guard}\n#define {guard}\n").unwrap();
     for r in REGISTERS {
         writeln!(s, "#define {:<40} 0x{:02x}", addr_macro(r), r.offset).unwrap();
         if is_data_register(r) {
-            writeln!(s, "#define {:<40} {}", format!("{PREFIX}_BITS_{}_DATA", r.name), r.width).unwrap();
+            writeln!(
+                s,
+                "#define {:<40} {}",
+                format!("{PREFIX}_BITS_{}_DATA", r.name),
+                r.width
+            )
+            .unwrap();
         }
     }
     writeln!(s).unwrap();
     for r in REGISTERS {
         for f in r.fields {
-            writeln!(s, "#define {:<40} 0x{:08x}u", format!("{PREFIX}_{}_{}_MASK", r.name, f.name), f.mask())
-                .unwrap();
+            writeln!(
+                s,
+                "#define {:<40} 0x{:08x}u",
+                format!("{PREFIX}_{}_{}_MASK", r.name, f.name),
+                f.mask()
+            )
+            .unwrap();
         }
     }
     writeln!(s).unwrap();
-    writeln!(s, "#define {:<40} {}", format!("{PREFIX}_OPERAND_COUNT"), regmap::OPERAND_COUNT).unwrap();
-    writeln!(s, "#define {:<40} 0x{:08x}u", format!("{PREFIX}_ID_VALUE"), regmap::ID_VALUE).unwrap();
-    writeln!(s, "#define {PREFIX}_CONFIG_FORMAT(w) ((unsigned)(w) & 0xffu)").unwrap();
-    writeln!(s, "#define {PREFIX}_CONFIG_DEPTH(w)  (((unsigned)(w) >> 8) & 0xffu)").unwrap();
-    writeln!(s, "#define {PREFIX}_CONFIG_LANES(w)  (((unsigned)(w) >> 16) & 0xffu)").unwrap();
+    writeln!(
+        s,
+        "#define {:<40} {}",
+        format!("{PREFIX}_OPERAND_COUNT"),
+        regmap::OPERAND_COUNT
+    )
+    .unwrap();
+    writeln!(
+        s,
+        "#define {:<40} 0x{:08x}u",
+        format!("{PREFIX}_ID_VALUE"),
+        regmap::ID_VALUE
+    )
+    .unwrap();
+    writeln!(
+        s,
+        "#define {PREFIX}_CONFIG_FORMAT(w) ((unsigned)(w) & 0xffu)"
+    )
+    .unwrap();
+    writeln!(
+        s,
+        "#define {PREFIX}_CONFIG_DEPTH(w)  (((unsigned)(w) >> 8) & 0xffu)"
+    )
+    .unwrap();
+    writeln!(
+        s,
+        "#define {PREFIX}_CONFIG_LANES(w)  (((unsigned)(w) >> 16) & 0xffu)"
+    )
+    .unwrap();
     writeln!(s, "\n#endif // {guard}").unwrap();
     s
 }

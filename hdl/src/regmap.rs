@@ -119,11 +119,30 @@ pub struct Register {
 }
 
 const fn field(name: &'static str, lsb: u32, access: Access, description: &'static str) -> Field {
-    Field { name, lsb, width: 1, access, description }
+    Field {
+        name,
+        lsb,
+        width: 1,
+        access,
+        description,
+    }
 }
 
-const fn fp32(name: &'static str, offset: usize, access: Access, description: &'static str) -> Register {
-    Register { name, offset, access, width: 32, reset: 0, description, fields: &[] }
+const fn fp32(
+    name: &'static str,
+    offset: usize,
+    access: Access,
+    description: &'static str,
+) -> Register {
+    Register {
+        name,
+        offset,
+        access,
+        width: 32,
+        reset: 0,
+        description,
+        fields: &[],
+    }
 }
 
 /// The register map, in offset order.
@@ -136,11 +155,31 @@ pub const REGISTERS: &[Register] = &[
         reset: AP_IDLE,
         description: "block-level control (ap_ctrl_hs)",
         fields: &[
-            field("AP_START", 0, Access::Rw, "write 1 to start; cleared when the core is ready unless auto_restart"),
-            field("AP_DONE", 1, Access::Cor, "the core finished; cleared by reading this register"),
+            field(
+                "AP_START",
+                0,
+                Access::Rw,
+                "write 1 to start; cleared when the core is ready unless auto_restart",
+            ),
+            field(
+                "AP_DONE",
+                1,
+                Access::Cor,
+                "the core finished; cleared by reading this register",
+            ),
             field("AP_IDLE", 2, Access::Ro, "the core is not processing"),
-            field("AP_READY", 3, Access::Cor, "the core took the operands; cleared by reading this register"),
-            field("AUTO_RESTART", 7, Access::Rw, "restart automatically after each completion"),
+            field(
+                "AP_READY",
+                3,
+                Access::Cor,
+                "the core took the operands; cleared by reading this register",
+            ),
+            field(
+                "AUTO_RESTART",
+                7,
+                Access::Rw,
+                "restart automatically after each completion",
+            ),
         ],
     },
     Register {
@@ -150,7 +189,12 @@ pub const REGISTERS: &[Register] = &[
         width: 1,
         reset: 0,
         description: "global interrupt enable",
-        fields: &[field("ENABLE", 0, Access::Rw, "enable the interrupt output")],
+        fields: &[field(
+            "ENABLE",
+            0,
+            Access::Rw,
+            "enable the interrupt output",
+        )],
     },
     Register {
         name: "IER",
@@ -246,7 +290,11 @@ impl ConfigWord {
     }
 
     pub fn unpack(word: u32) -> Self {
-        Self { format_code: word as u8, depth: (word >> 8) as u8, lanes: (word >> 16) as u8 }
+        Self {
+            format_code: word as u8,
+            depth: (word >> 8) as u8,
+            lanes: (word >> 16) as u8,
+        }
     }
 }
 
@@ -257,7 +305,12 @@ mod tests {
     #[test]
     fn offsets_are_aligned_unique_sorted_and_fit_the_address() {
         for pair in REGISTERS.windows(2) {
-            assert!(pair[0].offset < pair[1].offset, "{} / {}", pair[0].name, pair[1].name);
+            assert!(
+                pair[0].offset < pair[1].offset,
+                "{} / {}",
+                pair[0].name,
+                pair[1].name
+            );
         }
         for r in REGISTERS {
             assert_eq!(r.offset % 4, 0, "{}", r.name);
@@ -281,8 +334,16 @@ mod tests {
     #[test]
     fn map_matches_the_architecture_table() {
         let expect = [
-            (CONTROL, 0x00), (GIE, 0x04), (IER, 0x08), (ISR, 0x0C), (RESULT, 0x50),
-            (T, 0x54), (U, 0x58), (V, 0x5C), (ID, 0x60), (CONFIG, 0x64),
+            (CONTROL, 0x00),
+            (GIE, 0x04),
+            (IER, 0x08),
+            (ISR, 0x0C),
+            (RESULT, 0x50),
+            (T, 0x54),
+            (U, 0x58),
+            (V, 0x5C),
+            (ID, 0x60),
+            (CONFIG, 0x64),
         ];
         for (c, v) in expect {
             assert_eq!(c, v);
@@ -297,12 +358,19 @@ mod tests {
     fn control_field_masks_match_the_bit_constants() {
         let ctrl = register_at(CONTROL).unwrap();
         let masks: Vec<u32> = ctrl.fields.iter().map(Field::mask).collect();
-        assert_eq!(masks, vec![AP_START, AP_DONE, AP_IDLE, AP_READY, AUTO_RESTART]);
+        assert_eq!(
+            masks,
+            vec![AP_START, AP_DONE, AP_IDLE, AP_READY, AUTO_RESTART]
+        );
     }
 
     #[test]
     fn config_word_round_trips() {
-        let c = ConfigWord { format_code: 7, depth: 3, lanes: 4 };
+        let c = ConfigWord {
+            format_code: 7,
+            depth: 3,
+            lanes: 4,
+        };
         assert_eq!(c.pack(), 0x0004_0307);
         assert_eq!(ConfigWord::unpack(c.pack()), c);
         assert_eq!(ID_VALUE, 0x5246_0100);

@@ -149,7 +149,17 @@ macro_rules! check_eq {
     ($sim:ident, $x:ident, $got:expr, $want:expr) => {
         let (got, want) = ($got, $want);
         if got != want {
-            return fail($sim, $x, format!("line {}: {} = {:?}, expected {:?}", line!(), stringify!($got), got, want));
+            return fail(
+                $sim,
+                $x,
+                format!(
+                    "line {}: {} = {:?}, expected {:?}",
+                    line!(),
+                    stringify!($got),
+                    got,
+                    want
+                ),
+            );
         }
     };
 }
@@ -165,7 +175,13 @@ struct Timing {
     r: u32,
 }
 
-const NO_DELAY: Timing = Timing { aw: 0, w: 0, b: 0, ar: 0, r: 0 };
+const NO_DELAY: Timing = Timing {
+    aw: 0,
+    w: 0,
+    b: 0,
+    ar: 0,
+    r: 0,
+};
 
 /// The AXI4-Lite master BFM. It acts between clock edges: it sets its outputs after a
 /// rising edge, samples handshakes after the falling edge (inputs settled) and lets the next
@@ -189,11 +205,19 @@ const TIMEOUT: u32 = 200;
 
 impl Master {
     fn new(seed: u64, timing: Timing) -> Self {
-        Self { rng: StdRng::seed_from_u64(seed), timing, exact: false, cycles: 0 }
+        Self {
+            rng: StdRng::seed_from_u64(seed),
+            timing,
+            exact: false,
+            cycles: 0,
+        }
     }
 
     fn exact(timing: Timing) -> Self {
-        Self { exact: true, ..Self::new(0, timing) }
+        Self {
+            exact: true,
+            ..Self::new(0, timing)
+        }
     }
 
     fn delay(&mut self, max: u32) -> u32 {
@@ -226,7 +250,12 @@ impl Master {
         let mut prev_b: Option<u32> = None;
         let mut prev_r: Option<(u32, u32)> = None;
         for k in 0..TIMEOUT {
-            if aw_done && w_done && ar_done && (write.is_none() || b_got.is_some()) && (read.is_none() || r_got.is_some()) {
+            if aw_done
+                && w_done
+                && ar_done
+                && (write.is_none() || b_got.is_some())
+                && (read.is_none() || r_got.is_some())
+            {
                 return Ok((x, b_got, r_got));
             }
             {
@@ -252,7 +281,10 @@ impl Master {
             let b_now = a.bvalid.val().then(|| a.bresp.val().index() as u32);
             let b_hs = a.bvalid.val() && a.bready.val();
             let ar_hs = a.arvalid.val() && a.arready.val();
-            let r_now = a.rvalid.val().then(|| (a.rresp.val().index() as u32, a.rdata.val().index() as u32));
+            let r_now = a
+                .rvalid
+                .val()
+                .then(|| (a.rresp.val().index() as u32, a.rdata.val().index() as u32));
             let r_hs = a.rvalid.val() && a.rready.val();
             if write.is_some() && !aw_done && !w_done && b_now.is_some() && prev_b.is_none() {
                 return fail(sim, x, "bvalid before the write was sent".into());
@@ -261,10 +293,18 @@ impl Master {
                 return fail(sim, x, "rvalid before the read address was sent".into());
             }
             if prev_b.is_some() && b_now != prev_b {
-                return fail(sim, x, format!("bvalid/bresp changed before bready: {prev_b:?} -> {b_now:?}"));
+                return fail(
+                    sim,
+                    x,
+                    format!("bvalid/bresp changed before bready: {prev_b:?} -> {b_now:?}"),
+                );
             }
             if prev_r.is_some() && r_now != prev_r {
-                return fail(sim, x, format!("rvalid/rdata changed before rready: {prev_r:?} -> {r_now:?}"));
+                return fail(
+                    sim,
+                    x,
+                    format!("rvalid/rdata changed before rready: {prev_r:?} -> {r_now:?}"),
+                );
             }
             wait_clock_true!(sim, clock, x);
             self.cycles += 1;
@@ -293,19 +333,41 @@ impl Master {
             a.bready.next = false;
             a.rready.next = false;
         }
-        fail(sim, x, format!("transaction timed out after {TIMEOUT} cycles"))
+        fail(
+            sim,
+            x,
+            format!("transaction timed out after {TIMEOUT} cycles"),
+        )
     }
 
-    fn write_strb(&mut self, sim: &mut Sim<Bench>, x: X, addr: usize, data: u32, strb: u32) -> R<(X, u32)> {
+    fn write_strb(
+        &mut self,
+        sim: &mut Sim<Bench>,
+        x: X,
+        addr: usize,
+        data: u32,
+        strb: u32,
+    ) -> R<(X, u32)> {
         let (x, b, _) = self.transact(sim, x, Some(WriteReq { addr, data, strb }), None)?;
         Ok((x, b.expect("write response")))
     }
 
     /// A full-word write that must answer `resp`.
-    fn write_expect(&mut self, sim: &mut Sim<Bench>, x: X, addr: usize, data: u32, resp: u32) -> R<X> {
+    fn write_expect(
+        &mut self,
+        sim: &mut Sim<Bench>,
+        x: X,
+        addr: usize,
+        data: u32,
+        resp: u32,
+    ) -> R<X> {
         let (x, b) = self.write_strb(sim, x, addr, data, 0xF)?;
         if b != resp {
-            return fail(sim, x, format!("write 0x{addr:02x}: bresp {b} expected {resp}"));
+            return fail(
+                sim,
+                x,
+                format!("write 0x{addr:02x}: bresp {b} expected {resp}"),
+            );
         }
         Ok(x)
     }
@@ -331,7 +393,11 @@ impl Master {
     fn expect(&mut self, sim: &mut Sim<Bench>, x: X, addr: usize, want: u32) -> R<X> {
         let (x, got) = self.read(sim, x, addr)?;
         if got != want {
-            return fail(sim, x, format!("read 0x{addr:02x}: got 0x{got:08x} expected 0x{want:08x}"));
+            return fail(
+                sim,
+                x,
+                format!("read 0x{addr:02x}: got 0x{got:08x} expected 0x{want:08x}"),
+            );
         }
         Ok(x)
     }
@@ -399,8 +465,21 @@ fn registers_read_write_and_read_only() {
         x = m.write(sim, x, regmap::IER, 2)?;
         x = m.expect(sim, x, regmap::IER, 2)?;
         // Read-only registers: SLVERR, unchanged.
-        for off in [regmap::RESULT, regmap::T, regmap::U, regmap::V, regmap::ID, regmap::CONFIG] {
-            let before = if off == regmap::ID { ID } else if off == regmap::CONFIG { CONFIG } else { 0 };
+        for off in [
+            regmap::RESULT,
+            regmap::T,
+            regmap::U,
+            regmap::V,
+            regmap::ID,
+            regmap::CONFIG,
+        ] {
+            let before = if off == regmap::ID {
+                ID
+            } else if off == regmap::CONFIG {
+                CONFIG
+            } else {
+                0
+            };
             x = m.write_expect(sim, x, off, 0xDEAD_BEEF, regmap::RESP_SLVERR)?;
             x = m.expect(sim, x, off, before)?;
         }
@@ -428,7 +507,9 @@ fn byte_strobes_select_lanes() {
             let (nx, b) = m.write_strb(sim, x, regmap::DIR_Y, 0x1122_3344, strb)?;
             x = nx;
             check_eq!(sim, x, b, regmap::RESP_OKAY);
-            let mask = (0..4).filter(|l| strb >> l & 1 == 1).fold(0u32, |acc, l| acc | 0xFF << (8 * l));
+            let mask = (0..4)
+                .filter(|l| strb >> l & 1 == 1)
+                .fold(0u32, |acc, l| acc | 0xFF << (8 * l));
             x = m.expect(sim, x, regmap::DIR_Y, (0x1122_3344 & mask) | !mask)?;
         }
         // Control registers take byte lane 0 only.
@@ -441,10 +522,30 @@ fn byte_strobes_select_lanes() {
 #[test]
 fn address_and_data_in_either_order() {
     let cases = [
-        Timing { aw: 0, w: 0, b: 0, ..NO_DELAY },
-        Timing { aw: 0, w: 5, b: 0, ..NO_DELAY },
-        Timing { aw: 5, w: 0, b: 0, ..NO_DELAY },
-        Timing { aw: 3, w: 3, b: 9, ..NO_DELAY },
+        Timing {
+            aw: 0,
+            w: 0,
+            b: 0,
+            ..NO_DELAY
+        },
+        Timing {
+            aw: 0,
+            w: 5,
+            b: 0,
+            ..NO_DELAY
+        },
+        Timing {
+            aw: 5,
+            w: 0,
+            b: 0,
+            ..NO_DELAY
+        },
+        Timing {
+            aw: 3,
+            w: 3,
+            b: 9,
+            ..NO_DELAY
+        },
     ];
     run(3, NO_DELAY, 4, 6_000, move |sim, mut x, m| {
         for (n, timing) in cases.into_iter().enumerate() {
@@ -482,11 +583,102 @@ fn back_to_back_transactions_are_not_throttled() {
         check!(sim, x, writes <= 15 * 3);
         check!(sim, x, reads <= 15 * 2);
         // A write and a read at the same time, to different registers and to the same one.
-        let (nx, b, r) = m.transact(sim, x, Some(WriteReq { addr: regmap::V0_X, data: 5, strb: 0xF }), Some(regmap::V0_Y))?;
+        let (nx, b, r) = m.transact(
+            sim,
+            x,
+            Some(WriteReq {
+                addr: regmap::V0_X,
+                data: 5,
+                strb: 0xF,
+            }),
+            Some(regmap::V0_Y),
+        )?;
         x = nx;
         check_eq!(sim, x, b, Some(regmap::RESP_OKAY));
         check_eq!(sim, x, r, Some((regmap::RESP_OKAY, operand_value(7, 7))));
         x = m.expect(sim, x, regmap::V0_X, 5)?;
+        Ok(x)
+    });
+}
+
+/// Drive one channel's valid (with its payload already set) until its handshake.
+fn handshake(sim: &mut Sim<Bench>, mut x: X, m: &mut Master, aw: bool) -> R<X> {
+    for _ in 0..TIMEOUT {
+        wait_clock_false!(sim, clock, x);
+        let a = &x.slave.axi;
+        let done = if aw {
+            a.awvalid.val() && a.awready.val()
+        } else {
+            a.wvalid.val() && a.wready.val()
+        };
+        wait_clock_true!(sim, clock, x);
+        m.cycles += 1;
+        if done {
+            if aw {
+                x.slave.axi.awvalid.next = false;
+            } else {
+                x.slave.axi.wvalid.next = false;
+            }
+            return Ok(x);
+        }
+    }
+    fail(sim, x, "handshake timed out".into())
+}
+
+#[test]
+fn a_second_address_waits_for_the_first_write() {
+    // A master may send the next write address before the previous write is complete; the
+    // slave holds one and must not take (and lose) a second until the first is written.
+    run(10, NO_DELAY, 4, 2_000, |sim, mut x, m| {
+        x.slave.axi.bready.next = true;
+        x.slave.axi.wstrb.next = 0xF.into();
+        x.slave.axi.awaddr.next = (regmap::ORIG_X as u64).into();
+        x.slave.axi.awvalid.next = true;
+        x = handshake(sim, x, m, true)?;
+        x.slave.axi.awaddr.next = (regmap::ORIG_Y as u64).into();
+        x.slave.axi.awvalid.next = true;
+        for _ in 0..4 {
+            x = m.cycle(sim, x)?;
+            check!(sim, x, !x.slave.axi.awready.val());
+        }
+        x.slave.axi.wdata.next = 111.into();
+        x.slave.axi.wvalid.next = true;
+        x = handshake(sim, x, m, false)?;
+        x = handshake(sim, x, m, true)?;
+        x.slave.axi.wdata.next = 222.into();
+        x.slave.axi.wvalid.next = true;
+        x = handshake(sim, x, m, false)?;
+        for _ in 0..4 {
+            x = m.cycle(sim, x)?;
+        }
+        check!(sim, x, !x.slave.axi.bvalid.val());
+        x.slave.axi.bready.next = false;
+        x = m.expect(sim, x, regmap::ORIG_X, 111)?;
+        x = m.expect(sim, x, regmap::ORIG_Y, 222)?;
+        // The same with data first: a second data beat waits for the first address.
+        x.slave.axi.bready.next = true;
+        x.slave.axi.wdata.next = 333.into();
+        x.slave.axi.wvalid.next = true;
+        x = handshake(sim, x, m, false)?;
+        x.slave.axi.wdata.next = 444.into();
+        x.slave.axi.wvalid.next = true;
+        for _ in 0..4 {
+            x = m.cycle(sim, x)?;
+            check!(sim, x, !x.slave.axi.wready.val());
+        }
+        x.slave.axi.awaddr.next = (regmap::ORIG_Z as u64).into();
+        x.slave.axi.awvalid.next = true;
+        x = handshake(sim, x, m, true)?;
+        x = handshake(sim, x, m, false)?;
+        x.slave.axi.awaddr.next = (regmap::V0_X as u64).into();
+        x.slave.axi.awvalid.next = true;
+        x = handshake(sim, x, m, true)?;
+        for _ in 0..4 {
+            x = m.cycle(sim, x)?;
+        }
+        x.slave.axi.bready.next = false;
+        x = m.expect(sim, x, regmap::ORIG_Z, 333)?;
+        x = m.expect(sim, x, regmap::V0_X, 444)?;
         Ok(x)
     });
 }
@@ -504,7 +696,9 @@ impl Model {
     /// Apply a write; returns the expected response.
     fn write(&mut self, addr: usize, data: u32, strb: u32) -> u32 {
         let lane0 = strb & 1 == 1;
-        let mask = (0..4).filter(|l| strb >> l & 1 == 1).fold(0u32, |acc, l| acc | 0xFF << (8 * l));
+        let mask = (0..4)
+            .filter(|l| strb >> l & 1 == 1)
+            .fold(0u32, |acc, l| acc | 0xFF << (8 * l));
         match regmap::register_at(addr).map(|r| r.offset) {
             Some(regmap::GIE) => self.gie = if lane0 { data & 1 } else { self.gie },
             Some(regmap::IER) => self.ier = if lane0 { data & 3 } else { self.ier },
@@ -538,48 +732,73 @@ impl Model {
 /// Random writes and reads (together or alone) with random delays on all five channels,
 /// checked against [`Model`]; the interrupt output follows GIE, IER and ISR.
 fn random_traffic(seed: u64, transactions: usize) {
-    let timing = Timing { aw: 4, w: 4, b: 4, ar: 4, r: 4 };
-    run(seed, timing, 4, 60 * transactions as u64 + 1_000, move |sim, mut x, m| {
-        let mut rng = StdRng::seed_from_u64(seed ^ 0x5eed);
-        let mut model = Model { operands: [0; OPERAND_COUNT], gie: 0, ier: 0, isr: 0 };
-        let addr = |rng: &mut StdRng| -> usize {
-            if rng.gen_bool(0.8) {
-                regmap::REGISTERS[rng.gen_range(0..regmap::REGISTERS.len())].offset
-            } else {
-                rng.gen_range(0..1usize << regmap::ADDR_BITS)
-            }
-        };
-        for _ in 0..transactions {
-            let write = rng.gen_bool(0.6).then(|| {
-                let mut a = addr(&mut rng);
-                while a & !3 == regmap::CONTROL {
-                    a = addr(&mut rng);
+    let timing = Timing {
+        aw: 4,
+        w: 4,
+        b: 4,
+        ar: 4,
+        r: 4,
+    };
+    run(
+        seed,
+        timing,
+        4,
+        60 * transactions as u64 + 1_000,
+        move |sim, mut x, m| {
+            let mut rng = StdRng::seed_from_u64(seed ^ 0x5eed);
+            let mut model = Model {
+                operands: [0; OPERAND_COUNT],
+                gie: 0,
+                ier: 0,
+                isr: 0,
+            };
+            let addr = |rng: &mut StdRng| -> usize {
+                if rng.gen_bool(0.8) {
+                    regmap::REGISTERS[rng.gen_range(0..regmap::REGISTERS.len())].offset
+                } else {
+                    rng.gen_range(0..1usize << regmap::ADDR_BITS)
                 }
-                WriteReq { addr: a, data: rng.gen(), strb: if rng.gen_bool(0.5) { 0xF } else { rng.gen_range(0..16) } }
-            });
-            let read = (write.is_none() || rng.gen_bool(0.4)).then(|| addr(&mut rng));
-            // A read that overlaps a write may see the register before or after it: only
-            // check overlapping reads of other registers exactly.
-            let same = matches!((&write, read), (Some(w), Some(r)) if w.addr & !3 == r & !3);
-            let before = read.map(|r| model.read(r));
-            let want_b = write.as_ref().map(|w| model.write(w.addr, w.data, w.strb));
-            let after = read.map(|r| model.read(r));
-            let (nx, b, r) = m.transact(sim, x, write, read)?;
-            x = nx;
-            if b != want_b {
-                return fail(sim, x, format!("bresp {b:?} expected {want_b:?}"));
+            };
+            for _ in 0..transactions {
+                let write = rng.gen_bool(0.6).then(|| {
+                    let mut a = addr(&mut rng);
+                    while a & !3 == regmap::CONTROL {
+                        a = addr(&mut rng);
+                    }
+                    WriteReq {
+                        addr: a,
+                        data: rng.gen(),
+                        strb: if rng.gen_bool(0.5) {
+                            0xF
+                        } else {
+                            rng.gen_range(0..16)
+                        },
+                    }
+                });
+                let read = (write.is_none() || rng.gen_bool(0.4)).then(|| addr(&mut rng));
+                // A read that overlaps a write may see the register before or after it: only
+                // check overlapping reads of other registers exactly.
+                let same = matches!((&write, read), (Some(w), Some(r)) if w.addr & !3 == r & !3);
+                let before = read.map(|r| model.read(r));
+                let want_b = write.as_ref().map(|w| model.write(w.addr, w.data, w.strb));
+                let after = read.map(|r| model.read(r));
+                let (nx, b, r) = m.transact(sim, x, write, read)?;
+                x = nx;
+                if b != want_b {
+                    return fail(sim, x, format!("bresp {b:?} expected {want_b:?}"));
+                }
+                if r.is_some() && r != after && !(same && r == before) {
+                    return fail(sim, x, format!("read {read:?}: {r:?} expected {after:?}"));
+                }
+                let irq = model.gie == 1 && model.isr & model.ier != 0;
+                check_eq!(sim, x, x.slave.interrupt.val(), irq);
             }
-            if r.is_some() && r != after && !(same && r == before) {
-                return fail(sim, x, format!("read {read:?}: {r:?} expected {after:?}"));
+            for (i, &off) in OPERANDS.iter().enumerate() {
+                x = m.expect(sim, x, off, model.operands[i])?;
             }
-            let irq = model.gie == 1 && model.isr & model.ier != 0;
-            check_eq!(sim, x, x.slave.interrupt.val(), irq);
-        }
-        for (i, &off) in OPERANDS.iter().enumerate() {
-            x = m.expect(sim, x, off, model.operands[i])?;
-        }
-        Ok(x)
-    });
+            Ok(x)
+        },
+    );
 }
 
 #[test]
@@ -600,14 +819,24 @@ fn expected_result(ops: &[u32; OPERAND_COUNT]) -> [u32; 4] {
     [ops[2] & 1, ops[0].wrapping_add(ops[1]), ops[3], ops[14]]
 }
 
-fn write_operands(sim: &mut Sim<Bench>, mut x: X, m: &mut Master, ops: &[u32; OPERAND_COUNT]) -> R<X> {
+fn write_operands(
+    sim: &mut Sim<Bench>,
+    mut x: X,
+    m: &mut Master,
+    ops: &[u32; OPERAND_COUNT],
+) -> R<X> {
     for (i, &off) in OPERANDS.iter().enumerate() {
         x = m.write(sim, x, off, ops[i])?;
     }
     Ok(x)
 }
 
-fn check_results(sim: &mut Sim<Bench>, mut x: X, m: &mut Master, ops: &[u32; OPERAND_COUNT]) -> R<X> {
+fn check_results(
+    sim: &mut Sim<Bench>,
+    mut x: X,
+    m: &mut Master,
+    ops: &[u32; OPERAND_COUNT],
+) -> R<X> {
     let [hit, t, u, v] = expected_result(ops);
     x = m.expect(sim, x, regmap::RESULT, hit)?;
     x = m.expect(sim, x, regmap::T, t)?;
@@ -617,31 +846,48 @@ fn check_results(sim: &mut Sim<Bench>, mut x: X, m: &mut Master, ops: &[u32; OPE
 
 #[test]
 fn register_mode_sequence_with_done_idle_ready() {
-    run(6, Timing { aw: 1, w: 2, b: 1, ar: 1, r: 2 }, 12, 8_000, |sim, mut x, m| {
-        let ops: [u32; OPERAND_COUNT] = std::array::from_fn(|i| operand_value(i, 0xA5A5_0001));
-        x = write_operands(sim, x, m, &ops)?;
-        x = m.expect(sim, x, regmap::CONTROL, regmap::AP_IDLE)?;
-        x = m.write(sim, x, regmap::CONTROL, regmap::AP_START)?;
-        // Busy: ap_start still set, not idle, nothing done.
-        x = m.expect(sim, x, regmap::CONTROL, regmap::AP_START)?;
-        let (nx, ctrl) = m.poll_done(sim, x)?;
-        x = nx;
-        check_eq!(sim, x, ctrl, regmap::AP_DONE | regmap::AP_IDLE | regmap::AP_READY);
-        // Clear on read.
-        x = m.expect(sim, x, regmap::CONTROL, regmap::AP_IDLE)?;
-        x = check_results(sim, x, m, &ops)?;
-        check_eq!(sim, x, x.core.starts.q.val().index(), 1);
-        // Writing 0 to ap_start does not start; a second run with other operands.
-        x = m.write(sim, x, regmap::CONTROL, 0)?;
-        let ops2: [u32; OPERAND_COUNT] = std::array::from_fn(|i| operand_value(i, 0x0F0F_0002));
-        x = write_operands(sim, x, m, &ops2)?;
-        check_eq!(sim, x, x.core.starts.q.val().index(), 1);
-        x = m.write(sim, x, regmap::CONTROL, regmap::AP_START)?;
-        let (nx, _) = m.poll_done(sim, x)?;
-        x = check_results(sim, nx, m, &ops2)?;
-        check_eq!(sim, x, x.core.starts.q.val().index(), 2);
-        Ok(x)
-    });
+    run(
+        6,
+        Timing {
+            aw: 1,
+            w: 2,
+            b: 1,
+            ar: 1,
+            r: 2,
+        },
+        12,
+        8_000,
+        |sim, mut x, m| {
+            let ops: [u32; OPERAND_COUNT] = std::array::from_fn(|i| operand_value(i, 0xA5A5_0001));
+            x = write_operands(sim, x, m, &ops)?;
+            x = m.expect(sim, x, regmap::CONTROL, regmap::AP_IDLE)?;
+            x = m.write(sim, x, regmap::CONTROL, regmap::AP_START)?;
+            // Busy: ap_start still set, not idle, nothing done.
+            x = m.expect(sim, x, regmap::CONTROL, regmap::AP_START)?;
+            let (nx, ctrl) = m.poll_done(sim, x)?;
+            x = nx;
+            check_eq!(
+                sim,
+                x,
+                ctrl,
+                regmap::AP_DONE | regmap::AP_IDLE | regmap::AP_READY
+            );
+            // Clear on read.
+            x = m.expect(sim, x, regmap::CONTROL, regmap::AP_IDLE)?;
+            x = check_results(sim, x, m, &ops)?;
+            check_eq!(sim, x, x.core.starts.q.val().index(), 1);
+            // Writing 0 to ap_start does not start; a second run with other operands.
+            x = m.write(sim, x, regmap::CONTROL, 0)?;
+            let ops2: [u32; OPERAND_COUNT] = std::array::from_fn(|i| operand_value(i, 0x0F0F_0002));
+            x = write_operands(sim, x, m, &ops2)?;
+            check_eq!(sim, x, x.core.starts.q.val().index(), 1);
+            x = m.write(sim, x, regmap::CONTROL, regmap::AP_START)?;
+            let (nx, _) = m.poll_done(sim, x)?;
+            x = check_results(sim, nx, m, &ops2)?;
+            check_eq!(sim, x, x.core.starts.q.val().index(), 2);
+            Ok(x)
+        },
+    );
 }
 
 #[test]
@@ -682,7 +928,12 @@ fn interrupts_follow_gie_ier_isr() {
             check!(sim, x, waited < 100);
         }
         x = m.expect(sim, x, regmap::ISR, regmap::INT_READY)?;
-        x = m.expect(sim, x, regmap::CONTROL, regmap::AP_DONE | regmap::AP_IDLE | regmap::AP_READY)?;
+        x = m.expect(
+            sim,
+            x,
+            regmap::CONTROL,
+            regmap::AP_DONE | regmap::AP_IDLE | regmap::AP_READY,
+        )?;
         // IER masks a pending bit; GIE off silences everything.
         x = m.write(sim, x, regmap::IER, regmap::INT_DONE)?;
         check!(sim, x, !x.slave.interrupt.val());
@@ -699,7 +950,12 @@ fn auto_restart_and_operands_held_while_busy() {
     run(8, NO_DELAY, 100, 12_000, |sim, mut x, m| {
         let ops: [u32; OPERAND_COUNT] = std::array::from_fn(|i| operand_value(i, 11));
         x = write_operands(sim, x, m, &ops)?;
-        x = m.write(sim, x, regmap::CONTROL, regmap::AP_START | regmap::AUTO_RESTART)?;
+        x = m.write(
+            sim,
+            x,
+            regmap::CONTROL,
+            regmap::AP_START | regmap::AUTO_RESTART,
+        )?;
         // Rewrite every operand while the core runs: the core must not see a change until
         // the next start (the stand-in core flags any change), and the run in flight
         // returns the old operands' result.
@@ -747,7 +1003,12 @@ fn reset_clears_state() {
         x = m.write(sim, x, regmap::ORIG_X, 42)?;
         x = m.write(sim, x, regmap::GIE, 1)?;
         x = m.write(sim, x, regmap::IER, 3)?;
-        x = m.write(sim, x, regmap::CONTROL, regmap::AP_START | regmap::AUTO_RESTART)?;
+        x = m.write(
+            sim,
+            x,
+            regmap::CONTROL,
+            regmap::AP_START | regmap::AUTO_RESTART,
+        )?;
         x.slave.reset_n.next = false;
         x = m.cycle(sim, x)?;
         x = m.cycle(sim, x)?;
@@ -792,18 +1053,30 @@ fn verilog_lints_clean_with_verilator() {
         .arg(&top)
         .output()
         .expect("verilator is installed (scripts/ installs it)");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]
 fn verilog_synthesises_with_yosys() {
     let dir = tempfile::tempdir().unwrap();
     let top = slave_verilog(dir.path());
-    let script = format!("read_verilog {}; synth_xilinx -flatten -family xc7 -top top; stat", top.display());
+    let script = format!(
+        "read_verilog {}; synth_xilinx -flatten -family xc7 -top top; stat",
+        top.display()
+    );
     let out = Command::new("yosys")
         .args(["-q", "-p", &script])
         .output()
         .expect("yosys is installed (scripts/ installs it)");
     let log = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{}{}", log, String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}{}",
+        log,
+        String::from_utf8_lossy(&out.stderr)
+    );
 }

@@ -116,8 +116,20 @@ fn every_register_appears_with_its_offset() {
 fn generated_c_compiles() {
     let dir = tempfile::tempdir().unwrap();
     write_sources(dir.path());
-    let out = gcc(dir.path(), &["-fsyntax-only", HEADER_FILE, DRIVER_HEADER_FILE, DRIVER_SOURCE_FILE]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = gcc(
+        dir.path(),
+        &[
+            "-fsyntax-only",
+            HEADER_FILE,
+            DRIVER_HEADER_FILE,
+            DRIVER_SOURCE_FILE,
+        ],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]
@@ -125,12 +137,29 @@ fn driver_writes_and_reads_the_mapped_offsets() {
     let dir = tempfile::tempdir().unwrap();
     write_sources(dir.path());
     std::fs::write(dir.path().join("main.c"), FAKE_DEVICE).unwrap();
-    let out = gcc(dir.path(), &["-O1", "-o", "fake", "main.c", DRIVER_SOURCE_FILE]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = gcc(
+        dir.path(),
+        &["-O1", "-o", "fake", "main.c", DRIVER_SOURCE_FILE],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let run = Command::new(dir.path().join("fake")).output().unwrap();
-    assert!(run.status.success(), "driver returned {:?}", run.status.code());
+    assert!(
+        run.status.success(),
+        "driver returned {:?}",
+        run.status.code()
+    );
     let text = String::from_utf8(run.stdout).unwrap();
     let mut lines = text.lines();
-    assert_eq!(lines.next().unwrap(), format!("1 1.5 7 15 {} 7 3 4", regmap::ID_VALUE));
-    assert_eq!(lines.next().unwrap().trim(), "1 2 3 0.5 0.25 -1 7 8 9 10 11 12 13 14 15");
+    assert_eq!(
+        lines.next().unwrap(),
+        format!("1 1.5 7 15 {} 7 3 4", regmap::ID_VALUE)
+    );
+    assert_eq!(
+        lines.next().unwrap().trim(),
+        "1 2 3 0.5 0.25 -1 7 8 9 10 11 12 13 14 15"
+    );
 }

@@ -236,9 +236,31 @@ impl Logic for AxiLiteSlave {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, aw_full, aw_word, w_full, w_data, w_strb, b_valid, b_resp, r_valid,
-            r_data, r_resp, ap_start, ap_done, ap_ready, auto_restart, busy, start_q, gie, ier, isr,
-            hit_q, t_q, u_q, v_q
+            self,
+            clock,
+            aw_full,
+            aw_word,
+            w_full,
+            w_data,
+            w_strb,
+            b_valid,
+            b_resp,
+            r_valid,
+            r_data,
+            r_resp,
+            ap_start,
+            ap_done,
+            ap_ready,
+            auto_restart,
+            busy,
+            start_q,
+            gie,
+            ier,
+            isr,
+            hit_q,
+            t_q,
+            u_q,
+            v_q
         );
         for i in 0..OPERAND_COUNT {
             self.args[i].clock.next = self.clock.val();
