@@ -19,6 +19,12 @@ macro_rules! float_format {
             pub type Add = FloatAdd<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $m + 2 }, { $e + 2 }, { $m + 4 }, { $m + 5 }, false>;
             pub type Sub = FloatAdd<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $m + 2 }, { $e + 2 }, { $m + 4 }, { $m + 5 }, true>;
             pub type Mul = FloatMul<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $m + 2 }, { 2 * $m + 2 }, { $e + 2 }>;
+            // Recip: R = M+2 (remainder), Q = M+3 (quotient bits).
+            pub type Recip = FloatRecip<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $m + 2 }, { $e + 2 }, { $m + 2 }, { $m + 3 }>;
+            pub type Lt = FloatLt<$e, $m, { 1 + $e + $m }, { $m + 1 }>;
+            // FromF32: X = 10, the signed range of fp32's exponent.
+            pub type FromF32 = FloatFromF32<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $m + 2 }, 10>;
+            pub type ToF32 = FloatToF32<$e, $m, { 1 + $e + $m }, { $m + 1 }>;
         }
     };
 }

@@ -69,6 +69,35 @@ fn vectors(format: Format, random: usize, seed: u64) -> Vec<(u64, u64)> {
     v
 }
 
+/// Single operands for the unary operators: the edge values and both operands of the random pairs.
+fn singles(format: Format, random: usize, seed: u64) -> Vec<(u64, u64)> {
+    let edges = edge_values(format);
+    let pairs = vectors(format, random, seed);
+    let randoms = pairs[edges.len() * edges.len()..].iter().flat_map(|&(a, b)| [a, b]);
+    edges.iter().copied().chain(randoms).map(|a| (a, 0)).collect()
+}
+
+/// fp32 inputs for the conversion to `format`: fp32's own vectors, and the format's values
+/// widened to fp32 with random dropped bits, exact halfway points and halfway ± 1 ulp.
+fn fp32_inputs(format: Format, random: usize, seed: u64) -> Vec<(u64, u64)> {
+    let Format::Float { man, .. } = format else { unreachable!() };
+    let dropped = 23 - man;
+    let mut rng = StdRng::seed_from_u64(seed);
+    let mut v = singles(fp32::FORMAT, random / 2, seed);
+    for (a, _) in singles(format, random / 2, seed + 1) {
+        let wide = format.to_f32(a).to_bits() as u64;
+        if dropped == 0 || f32::from_bits(wide as u32).is_nan() {
+            continue;
+        }
+        let half = 1u64 << (dropped - 1);
+        v.push((wide | (rng.gen::<u64>() & ((1 << dropped) - 1)), 0));
+        v.push((wide | half, 0));
+        v.push((wide | half | 1, 0));
+        v.push(((wide | half) - 1, 0));
+    }
+    v
+}
+
 fn check<T: Operator>(what: &str, vectors: &[(u64, u64)], model: impl Fn(u64, u64) -> u64) {
     let max = T::max_stages();
     let mut stage_list = vec![0, max / 2, max];
@@ -91,6 +120,12 @@ macro_rules! float_tests {
                 check::<$fmt::Mul>(concat!(stringify!($fmt), " mul"), &v, |a, b| f.mul(a, b));
                 check::<$fmt::Add>(concat!(stringify!($fmt), " add"), &v, |a, b| f.add(a, b));
                 check::<$fmt::Sub>(concat!(stringify!($fmt), " sub"), &v, |a, b| f.sub(a, b));
+                check::<$fmt::Lt>(concat!(stringify!($fmt), " lt"), &v, |a, b| f.lt(a, b) as u64);
+                let u = singles(f, random, seed);
+                check::<$fmt::Recip>(concat!(stringify!($fmt), " recip"), &u, |a, _| f.recip(a));
+                check::<$fmt::ToF32>(concat!(stringify!($fmt), " to_f32"), &u, |a, _| f.to_f32(a).to_bits() as u64);
+                let w = fp32_inputs(f, random, seed);
+                check::<$fmt::FromF32>(concat!(stringify!($fmt), " from_f32"), &w, |a, _| f.from_f32(f32::from_bits(a as u32)));
             )*
         }
 

@@ -2,9 +2,15 @@
 //! rounding blocks. Semantics: the SPEC in `hw_model::format` (RNE, FTZ, canonical NaN).
 
 pub mod add;
+pub mod convert;
+pub mod lt;
 pub mod mul;
+pub mod recip;
 pub mod round;
 pub mod unpack;
 
 pub use add::FloatAdd;
+pub use convert::{FloatFromF32, FloatToF32};
+pub use lt::FloatLt;
 pub use mul::FloatMul;
+pub use recip::FloatRecip;
