@@ -17,7 +17,7 @@ use super::Mesh;
 pub struct GeometryError(pub String);
 
 /// Larger meshes are refused: they would only exhaust memory.
-pub const MAX_TRIANGLES: u64 = 20_000_000;
+pub const MAX_TRIANGLES: u64 = 4_000_000;
 
 /// Neighbouring profile segments that turn by more than this keep separate normals (a crease,
 /// e.g. the rim of a cylinder); gentler turns share an averaged, smooth normal.
@@ -196,7 +196,7 @@ pub fn lathe(profile: &[Vec2], segments: u32) -> Result<Mesh, GeometryError> {
             let b = corner(k, j1, n0);
             let c = corner(k + 1, j1, n1);
             let d = corner(k + 1, j, n1);
-            grid.quad(a, b, c, d, rows[k].is_pole(), rows[k + 1].is_pole());
+            grid.quad(a, b, c, d);
         }
     }
     Ok(grid.mesh)
@@ -321,8 +321,6 @@ fn extrude(profile: Profile, width: f32, across: u32, along: u32) -> Result<Mesh
                 corner(r, i + 1, top),
                 corner(r + 1, i + 1, bottom),
                 corner(r + 1, i, bottom),
-                false,
-                false,
             );
         }
     }
@@ -342,9 +340,6 @@ impl Row {
             Row::Pole(i) => *i,
         }
     }
-    fn is_pole(&self) -> bool {
-        matches!(self, Row::Pole(_))
-    }
 }
 
 type Corner = (u32, Vec3, Vec2);
@@ -361,27 +356,29 @@ impl Grid {
         (self.mesh.positions.len() - 1) as u32
     }
 
+    /// Adds the triangle unless it has no area (a ray could never hit it).
     fn triangle(&mut self, a: Corner, b: Corner, c: Corner) {
+        let [pa, pb, pc] = [a.0, b.0, c.0].map(|i| self.mesh.positions[i as usize]);
+        if (pb - pa).cross(pc - pa) == Vec3::ZERO {
+            return;
+        }
         self.mesh.triangles.push([a.0, b.0, c.0]);
         self.mesh.normals.push([a.1, b.1, c.1]);
         self.mesh.uvs.push([a.2, b.2, c.2]);
     }
 
-    /// Edge a–b collapsed (`ab_collapsed`) or edge c–d collapsed leaves one triangle.
-    fn quad(&mut self, a: Corner, b: Corner, c: Corner, d: Corner, ab_collapsed: bool, cd_collapsed: bool) {
-        if !ab_collapsed {
-            self.triangle(a, b, c);
-        }
-        if !cd_collapsed {
-            self.triangle(a, c, d);
-        }
+    /// Where an edge is collapsed (a pole: a and b, or c and d, are one vertex) only the other
+    /// triangle has area.
+    fn quad(&mut self, a: Corner, b: Corner, c: Corner, d: Corner) {
+        self.triangle(a, b, c);
+        self.triangle(a, c, d);
     }
 }
 
 /// Newell's Utah teapot, y up, spout towards +x, standing on y = 0: its 32 bicubic Bézier patches
-/// each cut into `segments`² quads (two triangles each, one where a patch edge is collapsed to
-/// a point, at the lid's knob and the bottom centre), scaled by `size` (at 1 it is 3.15 tall).
-/// Normals come from the patch derivatives.
+/// each cut into `segments`² quads of two triangles, less those without area (along the patch
+/// edges collapsed to a point, at the lid's knob and the bottom centre), scaled by `size` (at 1
+/// it is 3.15 tall). Normals come from the patch derivatives.
 pub fn teapot(segments: u32, size: f32) -> Result<Mesh, GeometryError> {
     at_least("segments", segments, 1)?;
     positive("size", size)?;
@@ -402,14 +399,9 @@ pub fn teapot(segments: u32, size: f32) -> Result<Mesh, GeometryError> {
         let at = |a: usize, b: usize| corners[a * (n + 1) + b];
         for a in 0..n {
             for b in 0..n {
-                let (c_a, c_b, c_c, c_d) = (at(a, b), at(a, b + 1), at(a + 1, b + 1), at(a + 1, b));
-                // Corners on the same collapsed edge coincide: that triangle has no area.
-                if !((a == 0 && patch.collapsed[EDGE_U0]) || (b == n - 1 && patch.collapsed[EDGE_V1])) {
-                    grid.triangle(c_a, c_b, c_c);
-                }
-                if !((a == n - 1 && patch.collapsed[EDGE_U1]) || (b == 0 && patch.collapsed[EDGE_V0])) {
-                    grid.triangle(c_a, c_c, c_d);
-                }
+                // Where a patch edge collapses to a point (or, coarsely cut, a whole quad to a
+                // line) a triangle has no area; `Grid::triangle` leaves those out.
+                grid.quad(at(a, b), at(a, b + 1), at(a + 1, b + 1), at(a + 1, b));
             }
         }
     }
