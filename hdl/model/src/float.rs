@@ -2,9 +2,12 @@
 //!
 //! Every operation forms the exact result as `sig × 2^e` (plus a sticky flag for the one
 //! inexact case, the reciprocal's quotient) and rounds it once in [`FloatFormat::round_pack`].
+//! Exact sums and products are formed in u64 when the format is narrow enough, else u128.
 //! No host float operation is used: host f32/f64 are what the tests compare against.
 
 /// The layout of one float format: `exp` exponent bits, `man` fraction bits.
+use std::ops::{Add, BitAnd, Shl, Shr, Sub};
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct FloatFormat {
     pub exp: u32,
@@ -20,10 +23,49 @@ pub(crate) enum Unpacked {
     Finite { sign: bool, sig: u64, e: i32 },
 }
 
-/// Alignment distance above which the smaller addend is replaced by one unit at this distance:
-/// the big significand (≤ 53 bits) shifted this far still fits a u128 with a carry bit, and
-/// the rounding position lies ≥ 70 bits above, so `big ± 1` rounds exactly like `big ± tiny`.
-const ALIGN_CAP: u32 = 74;
+/// The unsigned integers exact results are formed in: u64 whenever the format is narrow
+/// enough (the common, fast case), u128 for the widest formats.
+pub(crate) trait Wide:
+    Copy
+    + Ord
+    + From<u64>
+    + Shl<u32, Output = Self>
+    + Shr<u32, Output = Self>
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + BitAnd<Output = Self>
+{
+    const BITS: u32;
+    const ONE: Self;
+    fn leading_zeros(self) -> u32;
+    fn low_u64(self) -> u64;
+}
+
+impl Wide for u64 {
+    const BITS: u32 = 64;
+    const ONE: Self = 1;
+    #[inline]
+    fn leading_zeros(self) -> u32 {
+        u64::leading_zeros(self)
+    }
+    #[inline]
+    fn low_u64(self) -> u64 {
+        self
+    }
+}
+
+impl Wide for u128 {
+    const BITS: u32 = 128;
+    const ONE: Self = 1;
+    #[inline]
+    fn leading_zeros(self) -> u32 {
+        u128::leading_zeros(self)
+    }
+    #[inline]
+    fn low_u64(self) -> u64 {
+        self as u64
+    }
+}
 
 impl FloatFormat {
     pub const F32: FloatFormat = FloatFormat { exp: 8, man: 23 };
@@ -93,27 +135,23 @@ impl FloatFormat {
     /// Rounds the exact value `±(sig + δ) × 2^e` (δ ∈ (0, 1) if `sticky`, else 0; `sig` ≠ 0)
     /// to `man + 1` significant bits, ties to even, with an unbounded exponent; then
     /// overflows to ±Inf or flushes to ±0 (the flush-after-rounding rule of the SPEC).
+    /// Branch-free up to the range checks: the renderer's operands round up or down at random.
     #[inline]
-    pub fn round_pack(self, sign: bool, sig: u128, e: i32, sticky: bool) -> u64 {
-        debug_assert!(sig != 0);
-        let n = 128 - sig.leading_zeros() as i32;
-        let p = self.man as i32 + 1;
-        let (mut keep, mut e) = if n > p {
-            let sh = (n - p) as u32;
-            let keep = (sig >> sh) as u64;
-            let rem = sig & ((1u128 << sh) - 1);
-            let half = 1u128 << (sh - 1);
-            let up = rem > half || (rem == half && (sticky || keep & 1 == 1));
-            (keep + up as u64, e + sh as i32)
-        } else {
-            debug_assert!(!sticky, "an inexact value needs more bits than the format keeps");
-            ((sig as u64) << (p - n), e - (p - n))
-        };
-        if keep >> p != 0 {
-            keep >>= 1;
-            e += 1;
-        }
-        let biased = e + self.man as i32 + self.bias();
+    pub fn round_pack<W: Wide>(self, sign: bool, sig: W, e: i32, sticky: bool) -> u64 {
+        debug_assert!(sig != W::from(0));
+        let lz = sig.leading_zeros();
+        let norm = sig << lz; // leading one at the top bit
+        let p = self.man + 1;
+        let keep = (norm >> (W::BITS - p)).low_u64();
+        let rem = norm << p; // the dropped bits, left-aligned: a half ulp is the top bit alone
+        let half = W::ONE << (W::BITS - 1);
+        let up = (rem > half) | ((rem == half) & (sticky | (keep & 1 == 1)));
+        let keep = keep + up as u64;
+        let carry = (keep >> p) as u32; // rounded up to 2^p
+        let keep = keep >> carry;
+        // keep's unit is 2^(e + BITS − lz − p + carry); its leading bit sits `man` above.
+        let biased =
+            e + W::BITS as i32 - lz as i32 - p as i32 + carry as i32 + self.man as i32 + self.bias();
         if biased >= self.exp_ones() as i32 {
             self.inf(sign)
         } else if biased <= 0 {
@@ -130,7 +168,7 @@ impl FloatFormat {
             Unpacked::Nan => self.nan(),
             Unpacked::Inf(s) => self.inf(s),
             Unpacked::Zero(s) => self.zero(s),
-            Unpacked::Finite { sign, sig, e } => self.round_pack(sign, sig as u128, e, false),
+            Unpacked::Finite { sign, sig, e } => self.round_pack(sign, sig, e, false),
         }
     }
 
@@ -150,27 +188,45 @@ impl FloatFormat {
             (Zero(sa), Zero(sb)) => self.zero(sa && sb),
             (Zero(_), Finite { .. }) => b,
             (Finite { .. }, Zero(_)) => a,
-            (Finite { sign: sa, sig: ma, e: ea }, Finite { sign: sb, sig: mb, e: eb }) => {
-                // `big` has the larger exponent; align it down onto the smaller one's scale.
-                let (sbig, mbig, ebig, ssm, msm, esm) =
-                    if ea >= eb { (sa, ma, ea, sb, mb, eb) } else { (sb, mb, eb, sa, ma, ea) };
-                let d = (ebig - esm) as u32;
-                let (big, small, e) = if d > ALIGN_CAP {
-                    ((mbig as u128) << ALIGN_CAP, 1u128, ebig - ALIGN_CAP as i32)
+            (Finite { .. }, Finite { .. }) => {
+                // Order by magnitude: the aligned difference is then never negative.
+                let magnitude = !self.sign_bit();
+                let (x, y) = if a & magnitude >= b & magnitude { (a, b) } else { (b, a) };
+                if 2 * self.man + 5 <= 64 {
+                    self.add_ordered::<u64>(x, y)
                 } else {
-                    ((mbig as u128) << d, msm as u128, esm)
-                };
-                if sbig == ssm {
-                    self.round_pack(sbig, big + small, e, false)
-                } else if big > small {
-                    self.round_pack(sbig, big - small, e, false)
-                } else if small > big {
-                    self.round_pack(ssm, small - big, e, false)
-                } else {
-                    self.zero(false)
+                    self.add_ordered::<u128>(x, y)
                 }
             }
         }
+    }
+
+    /// Sign, significand and unbiased exponent (value = sig × 2^(e − man)) of a finite nonzero operand.
+    #[inline]
+    fn parts(self, bits: u64) -> (bool, u64, i32) {
+        let ef = self.exp_field(bits);
+        (bits & self.sign_bit() != 0, (bits & self.frac_mask()) | (1u64 << self.man), ef as i32 - self.bias())
+    }
+
+    /// The exact sum of finite nonzero `x`, `y` with |x| ≥ |y|, rounded once.
+    /// Alignment stops at `man + 3` bits: a smaller addend further down is below a quarter
+    /// of the rounding unit of `x << (man + 3)` and lies strictly between two rounding
+    /// boundaries next to it, so replacing it by one unit at that scale rounds identically
+    /// and no sticky bit is needed. Needs (man + 1) + (man + 3) + 1 bits of `W`.
+    #[inline]
+    fn add_ordered<W: Wide>(self, x: u64, y: u64) -> u64 {
+        let ((sx, mx, ex), (sy, my, ey)) = (self.parts(x), self.parts(y));
+        let cap = self.man + 3;
+        let d = (ex - ey) as u32;
+        let shift = d.min(cap);
+        let big = W::from(mx) << shift;
+        let small = W::from(if d > cap { 1 } else { my });
+        let sum = if sx == sy { big + small } else { big - small };
+        if sum == W::from(0) {
+            return self.zero(false); // x + (−x) = +0
+        }
+        // `parts` gives value = sig × 2^(e − man), so the unit of `sum` is 2^(ex − shift − man).
+        self.round_pack(sx, sum, ex - shift as i32 - self.man as i32, false)
     }
 
     #[inline]
@@ -195,13 +251,17 @@ impl FloatFormat {
                 self.zero(sa != sb)
             }
             (Finite { sign: sa, sig: ma, e: ea }, Finite { sign: sb, sig: mb, e: eb }) => {
-                self.round_pack(sa != sb, ma as u128 * mb as u128, ea + eb, false)
+                if self.man < 32 {
+                    self.round_pack(sa != sb, ma * mb, ea + eb, false)
+                } else {
+                    self.round_pack(sa != sb, ma as u128 * mb as u128, ea + eb, false)
+                }
             }
         }
     }
 
-    /// Correctly rounded 1/a: the quotient 2^K / sig carries ≥ man + 3 bits, the remainder
-    /// becomes the sticky flag.
+    /// Correctly rounded 1/a: the quotient 2^K / sig carries man + 3 or man + 4 bits (so it
+    /// fits a u64), the remainder becomes the sticky flag.
     #[inline]
     pub fn recip(self, a: u64) -> u64 {
         match self.unpack(a) {
@@ -210,12 +270,13 @@ impl FloatFormat {
             Unpacked::Zero(s) => self.inf(s),
             Unpacked::Finite { sign, sig, e } => {
                 let k = 2 * self.man + 3;
+                debug_assert!(sig >> self.man == 1);
                 let (q, r) = if k < 64 {
                     let num = 1u64 << k;
-                    ((num / sig) as u128, num % sig)
+                    (num / sig, num % sig)
                 } else {
                     let num = 1u128 << k;
-                    (num / sig as u128, (num % sig as u128) as u64)
+                    ((num / sig as u128) as u64, (num % sig as u128) as u64)
                 };
                 self.round_pack(sign, q, -(k as i32) - e, r != 0)
             }
