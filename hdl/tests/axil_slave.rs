@@ -201,6 +201,9 @@ struct WriteReq {
     strb: u32,
 }
 
+/// (rresp, rdata) of a read.
+type ReadResp = (u32, u32);
+
 const TIMEOUT: u32 = 200;
 
 impl Master {
@@ -241,7 +244,7 @@ impl Master {
         mut x: X,
         write: Option<WriteReq>,
         read: Option<usize>,
-    ) -> R<(X, Option<u32>, Option<(u32, u32)>)> {
+    ) -> R<(X, Option<u32>, Option<ReadResp>)> {
         let t = self.timing;
         let (aw_at, w_at, b_at) = (self.delay(t.aw), self.delay(t.w), self.delay(t.b));
         let (ar_at, r_at) = (self.delay(t.ar), self.delay(t.r));
