@@ -43,7 +43,7 @@ header=
 if [ -n "$verilog_dir" ]; then
     header=$verilog_dir/xrtfpga_hw.h
     [ -f "$header" ] || { echo "check.sh: $header missing" >&2; exit 1; }
-    yosys -Q -T -q -p "read_verilog $verilog_dir/*.v; hierarchy -top rtfpga_top; tee -q -o $tmp/ports.txt portlist rtfpga_top"
+    yosys -Q -T -q -p "read_verilog -noblackbox $verilog_dir/*.v; hierarchy -top rtfpga_top; tee -q -o $tmp/ports.txt portlist rtfpga_top"
     tclsh "$here/test/check_top_ports.tcl" "$tmp/ports.txt"
 else
     echo "check.sh: no generated Verilog (set VERILOG_DIR or build rtfpga with its verilog command): rtfpga_top's ports not checked"

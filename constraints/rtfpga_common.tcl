@@ -234,7 +234,12 @@ proc rtfpga::registers_from_header {path} {
     }
 
     set result {}
+    set seen [dict create]
     dict for {name offset} $regs {
+        if {[dict exists $seen $offset]} {
+            error "$path: registers [dict get $seen $offset] and $name are both at [format 0x%02x $offset]"
+        }
+        dict set seen $offset $name
         if {![dict exists $comments $name]} {
             error "$path: register $name has no '// 0x.. : $name \u2014 description (access)' line"
         }
