@@ -5,6 +5,49 @@
 //! rust-hdl cannot compute widths from generic parameters, so every derived width is a
 //! parameter of the operator; `float_format!` computes them from (exp, man) once.
 
+/// Per-format `max_stages(op)` and `rtl(op, stages)` over the module's operator types:
+/// every format module (float or fixed) invokes it after defining them.
+macro_rules! operator_table {
+    () => {
+        /// Maximum pipeline stages of `op` in this format.
+        pub fn max_stages(op: $crate::operator::Op) -> usize {
+            use $crate::operator::{Op, Operator};
+            match op {
+                Op::Add => <Add as Operator>::max_stages(),
+                Op::Sub => <Sub as Operator>::max_stages(),
+                Op::Mul => <Mul as Operator>::max_stages(),
+                Op::Recip => <Recip as Operator>::max_stages(),
+                Op::Lt => <Lt as Operator>::max_stages(),
+                Op::FromF32 => <FromF32 as Operator>::max_stages(),
+                Op::ToF32 => <ToF32 as Operator>::max_stages(),
+            }
+        }
+
+        /// Verilog and port widths of `op` in this format with `stages` registers.
+        pub fn rtl(
+            op: $crate::operator::Op,
+            stages: usize,
+        ) -> Result<$crate::verilog::OperatorRtl, $crate::operator::OperatorError> {
+            use $crate::operator::Op;
+            use $crate::verilog::operator_verilog;
+            let max = max_stages(op);
+            if stages > max {
+                return Err($crate::operator::OperatorError::TooManyStages { format: NAME.to_string(), op, stages, max });
+            }
+            Ok(match op {
+                Op::Add => operator_verilog::<Add>(stages),
+                Op::Sub => operator_verilog::<Sub>(stages),
+                Op::Mul => operator_verilog::<Mul>(stages),
+                Op::Recip => operator_verilog::<Recip>(stages),
+                Op::Lt => operator_verilog::<Lt>(stages),
+                Op::FromF32 => operator_verilog::<FromF32>(stages),
+                Op::ToF32 => operator_verilog::<ToF32>(stages),
+            })
+        }
+    };
+}
+pub(crate) use operator_table;
+
 /// `float_format!(name, exp = E, man = M)` defines `pub mod name` with the operator types.
 macro_rules! float_format {
     ($name:ident, exp = $e:literal, man = $m:literal) => {
@@ -25,6 +68,7 @@ macro_rules! float_format {
             // FromF32: X = 10, the signed range of fp32's exponent.
             pub type FromF32 = FloatFromF32<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $m + 2 }, 10>;
             pub type ToF32 = FloatToF32<$e, $m, { 1 + $e + $m }, { $m + 1 }>;
+            $crate::formats::operator_table!();
         }
     };
 }
@@ -33,3 +77,28 @@ float_format!(fp32, exp = 8, man = 23);
 float_format!(fp24, exp = 8, man = 15);
 float_format!(bf16, exp = 8, man = 7);
 float_format!(fp16, exp = 5, man = 10);
+
+/// Names of the formats that have rust-hdl operators.
+pub const NAMES: &[&str] = &[fp32::NAME, fp24::NAME, bf16::NAME, fp16::NAME];
+
+/// Verilog of `op` in the catalogue format `format` with `stages` pipeline registers.
+pub fn rtl(format: &str, op: crate::operator::Op, stages: usize) -> Result<crate::verilog::OperatorRtl, crate::operator::OperatorError> {
+    match format {
+        fp32::NAME => fp32::rtl(op, stages),
+        fp24::NAME => fp24::rtl(op, stages),
+        bf16::NAME => bf16::rtl(op, stages),
+        fp16::NAME => fp16::rtl(op, stages),
+        _ => Err(crate::operator::OperatorError::UnknownFormat(format.to_string())),
+    }
+}
+
+/// Maximum pipeline stages of `op` in the catalogue format `format`.
+pub fn max_stages(format: &str, op: crate::operator::Op) -> Result<usize, crate::operator::OperatorError> {
+    Ok(match format {
+        fp32::NAME => fp32::max_stages(op),
+        fp24::NAME => fp24::max_stages(op),
+        bf16::NAME => bf16::max_stages(op),
+        fp16::NAME => fp16::max_stages(op),
+        _ => return Err(crate::operator::OperatorError::UnknownFormat(format.to_string())),
+    })
+}

@@ -6,6 +6,7 @@ pub mod formats;
 pub mod intmul;
 pub mod operator;
 pub mod pipe;
+pub mod verilog;
 
 // AXI4-Lite slave, register map and C generation (issue 4).
 pub mod axil;

@@ -6,6 +6,59 @@
 //! exactly `stages` clock cycles.
 
 use rust_hdl::prelude::*;
+use std::fmt;
+use std::str::FromStr;
+
+/// The operators every number format provides (the same set as `hw_model::Format`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Op {
+    Add,
+    Sub,
+    Mul,
+    Recip,
+    Lt,
+    FromF32,
+    ToF32,
+}
+
+impl Op {
+    pub const ALL: [Op; 7] = [Op::Add, Op::Sub, Op::Mul, Op::Recip, Op::Lt, Op::FromF32, Op::ToF32];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Op::Add => "add",
+            Op::Sub => "sub",
+            Op::Mul => "mul",
+            Op::Recip => "recip",
+            Op::Lt => "lt",
+            Op::FromF32 => "from_f32",
+            Op::ToF32 => "to_f32",
+        }
+    }
+}
+
+impl fmt::Display for Op {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+#[derive(Debug, thiserror::Error, PartialEq, Eq)]
+pub enum OperatorError {
+    #[error("unknown operator `{0}`; expected one of add, sub, mul, recip, lt, from_f32, to_f32")]
+    UnknownOp(String),
+    #[error("format `{0}` has no rust-hdl operators; see `hdl::formats`")]
+    UnknownFormat(String),
+    #[error("{format} {op}: {stages} pipeline stages requested, at most {max}")]
+    TooManyStages { format: String, op: Op, stages: usize, max: usize },
+}
+
+impl FromStr for Op {
+    type Err = OperatorError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Op::ALL.into_iter().find(|op| op.name() == s).ok_or_else(|| OperatorError::UnknownOp(s.to_string()))
+    }
+}
 
 pub trait Operator: Block + Sized {
     /// Bits of input `a`.

@@ -2,8 +2,10 @@
 //! catalogue float format at 0, a middle and the maximum number of pipeline stages.
 //! More vectors: `cargo test --release -p hdl --test float_ops -- --ignored`.
 
-use hdl::formats::{bf16, fp16, fp24, fp32};
-use hdl::operator::{simulate_operator, Operator};
+use hdl::formats::{self, bf16, fp16, fp24, fp32};
+use hdl::operator::{simulate_operator, Op, Operator, OperatorError};
+use hdl::synth::{synthesize, SynthOptions};
+use hdl::verilog::{TOP, VERILATOR_WAIVERS};
 use hw_model::Format;
 use rand::{rngs::StdRng, Rng, SeedableRng};
 
@@ -150,4 +152,82 @@ fn float_operators_match_the_model() {
 #[ignore]
 fn float_operators_match_the_model_many_vectors() {
     check_all_formats(20_000, 2);
+}
+
+/// Runs `verilator --lint-only -Wall` (with the documented waivers) on generated Verilog.
+fn verilator_lint(verilog: &str) -> Result<(), String> {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("op.v");
+    std::fs::write(&path, verilog).unwrap();
+    let out = std::process::Command::new("verilator")
+        .args(["--lint-only", "-Wall"])
+        .args(VERILATOR_WAIVERS)
+        .args(["--top-module", TOP])
+        .arg(&path)
+        .output()
+        .expect("verilator is installed (make setup)");
+    if out.status.success() {
+        Ok(())
+    } else {
+        Err(String::from_utf8_lossy(&out.stderr).lines().take(20).collect::<Vec<_>>().join("\n"))
+    }
+}
+
+#[test]
+fn every_operator_passes_verilator_lint() {
+    for format in formats::NAMES {
+        for op in Op::ALL {
+            let max = formats::max_stages(format, op).unwrap();
+            for stages in [0, max] {
+                let rtl = formats::rtl(format, op, stages).unwrap();
+                assert_eq!(rtl.latency, stages);
+                if let Err(e) = verilator_lint(&rtl.verilog) {
+                    panic!("{format} {op} stages={stages}: verilator lint failed:\n{e}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn stages_beyond_the_maximum_are_an_error() {
+    let max = formats::max_stages("fp16", Op::Mul).unwrap();
+    assert!(matches!(formats::rtl("fp16", Op::Mul, max + 1), Err(OperatorError::TooManyStages { .. })));
+    assert!(matches!(formats::rtl("fp8", Op::Mul, 0), Err(OperatorError::UnknownFormat(_))));
+    assert_eq!("recip".parse::<Op>(), Ok(Op::Recip));
+    assert!("div".parse::<Op>().is_err());
+}
+
+/// yosys `synth_xilinx` of the fp32 multiplier: the 24×24 significand product must map onto
+/// DSP slices (≤ 3 DSP48E1) and the design must synthesise at 0 and max stages.
+#[test]
+fn fp32_mul_synthesises_onto_dsp_slices() {
+    for stages in [0, fp32::max_stages(Op::Mul)] {
+        let rtl = fp32::rtl(Op::Mul, stages).unwrap();
+        let report = synthesize(&rtl.verilog, TOP, &SynthOptions::default()).expect("yosys synth_xilinx");
+        eprintln!("fp32 mul stages={stages}: {} LUT {} FF {} DSP48E1 {} CARRY4", report.lut, report.ff, report.dsp48e1, report.carry4);
+        assert!(report.dsp48e1 >= 1 && report.dsp48e1 <= 3, "fp32 mul uses {} DSP48E1", report.dsp48e1);
+        assert!(report.lut < 1000, "fp32 mul uses {} LUTs: the multiplier went into fabric", report.lut);
+    }
+}
+
+/// Synthesis report of every operator in every format at 0 and max stages (slow: ~10 min):
+/// `cargo test --release -p hdl --test float_ops -- --ignored --nocapture synthesis_table`.
+#[test]
+#[ignore]
+fn synthesis_table() {
+    println!("| format | op | stages | LUT | FF | DSP48E1 | CARRY4 | depth |");
+    for format in formats::NAMES {
+        for op in Op::ALL {
+            let max = formats::max_stages(format, op).unwrap();
+            for stages in [0, max] {
+                let rtl = formats::rtl(format, op, stages).unwrap();
+                let r = synthesize(&rtl.verilog, TOP, &SynthOptions::default()).expect("yosys synth_xilinx");
+                println!("| {format} | {op} | {stages} | {} | {} | {} | {} | {} |", r.lut, r.ff, r.dsp48e1, r.carry4, r.logic_depth);
+                if op == Op::Mul && *format == "fp32" {
+                    assert!(r.dsp48e1 <= 3);
+                }
+            }
+        }
+    }
 }

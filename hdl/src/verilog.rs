@@ -1,0 +1,45 @@
+//! Verilog of one operator as a top module (`top`), with what a harness needs to drive it.
+
+use rust_hdl::prelude::*;
+
+use crate::operator::Operator;
+
+/// A generated operator: Verilog whose top module is `top` with ports `clock`, `a`
+/// (`b` when `b_width > 0`) and `y`; `y` answers the inputs of `latency` clocks earlier.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct OperatorRtl {
+    pub verilog: String,
+    pub a_width: usize,
+    /// 0 for a unary operator (no `b` port).
+    pub b_width: usize,
+    pub y_width: usize,
+    pub latency: usize,
+}
+
+/// Name of the top module in [`OperatorRtl::verilog`].
+pub const TOP: &str = "top";
+
+/// Verilator warnings rust-hdl's generated code cannot avoid, to pass as `-Wno-…` flags next
+/// to `-Wall`:
+/// - WIDTH: `bit_cast` is emitted as `(x) & N'hmask`, literals as 32-bit constants and
+///   struct fields as 64-bit indices, so operand widths differ although the values fit.
+/// - DECLFILENAME: one file holds all the modules of a design (`top`, `top$sub`, …).
+/// - UNUSEDSIGNAL: shared blocks (the unpacker's class flags, the flip-flop of a pipe built
+///   as a wire, the divisor after the last division row) have outputs some operators never
+///   read; synthesis removes them.
+pub const VERILATOR_WAIVERS: &[&str] = &["-Wno-WIDTH", "-Wno-DECLFILENAME", "-Wno-UNUSEDSIGNAL"];
+
+/// Builds `T` with `stages` pipeline registers and generates its Verilog.
+///
+/// Panics if `stages > T::max_stages()` (see [`crate::formats::rtl`] for a checked entry).
+pub fn operator_verilog<T: Operator>(stages: usize) -> OperatorRtl {
+    let mut uut = T::new(stages);
+    uut.connect_all();
+    OperatorRtl {
+        verilog: generate_verilog(&uut),
+        a_width: T::A_WIDTH,
+        b_width: T::B_WIDTH,
+        y_width: T::Y_WIDTH,
+        latency: stages,
+    }
+}
