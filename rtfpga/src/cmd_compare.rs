@@ -27,6 +27,7 @@ pub fn run(a: Args) -> Result<()> {
         save_png(&compare::diff_heatmap(&ia, &ib)?, d).with_context(|| format!("writing {}", d.display()))?;
     }
     println!("differing_pixels={} max_abs_error={}", stats.differing_pixels, stats.max_abs_error);
-    println!("psnr_db={}", compare::format_psnr(stats.psnr_db));
+    let psnr = if stats.psnr_db.is_infinite() { "inf".to_string() } else { format!("{:.4}", stats.psnr_db) };
+    println!("psnr_db={psnr}");
     Ok(())
 }

@@ -33,7 +33,7 @@ pub struct HwConfig {
 pub fn make(kind: EngineKind, hw: &HwConfig) -> Result<Box<dyn Intersector>> {
     Ok(match kind {
         EngineKind::F32 => Box::new(F32Intersector),
-        EngineKind::Model => Box::new(ModelIntersector::new(hw_model::lookup(&hw.format)?)),
+        EngineKind::Model => Box::new(ModelIntersector { format: hw_model::lookup(&hw.format)? }),
         EngineKind::Hw => bail!("the hardware engine is not available yet: co-simulation is issue 5"),
     })
 }
