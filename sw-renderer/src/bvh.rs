@@ -79,10 +79,10 @@ pub struct Bvh {
 /// A ray prepared for box tests.
 #[derive(Clone, Copy, Debug)]
 pub struct BoxRay {
-    orig: [f32; 3],
+    /// The origin moved by the ray's padding towards, and away from, every box side.
+    orig_lo: [f32; 3],
+    orig_hi: [f32; 3],
     inv_dir: [f32; 3],
-    /// Extra padding from the origin's magnitude (rounding in s = o − v0).
-    pad: f32,
     t_hi: f32,
 }
 
@@ -90,27 +90,35 @@ impl BoxRay {
     /// `bound` is the hit bound of the ray (`hit::NO_BOUND` or a light distance).
     pub fn new(orig: V3, dir: V3, bound: f32) -> BoxRay {
         let o = orig.to_array();
-        let magnitude = o.iter().fold(0.0f32, |m, x| m.max(x.abs()));
-        let pad = PAD * magnitude;
+        // Extra padding from the origin's magnitude (rounding in s = o − v0).
+        let pad = PAD * o.iter().fold(0.0f32, |m, x| m.max(x.abs()));
         BoxRay {
-            orig: o,
-            inv_dir: dir.to_array().map(|d| 1.0 / d),
-            pad,
+            orig_lo: o.map(|x| x + pad),
+            orig_hi: o.map(|x| x - pad),
+            // Huge instead of infinite slopes for (near) zero components: no 0·∞ NaNs.
+            inv_dir: dir.to_array().map(|d| {
+                let inv = 1.0 / d;
+                if inv.is_finite() {
+                    inv
+                } else {
+                    1e30f32.copysign(d)
+                }
+            }),
             t_hi: bound + bound.abs() * PAD + pad,
         }
     }
 
-    /// Slab test against [0, t_hi]; NaNs (0·∞ on a slab boundary) constrain nothing, which
-    /// keeps the test conservative.
-    #[inline]
+    /// Slab test against [0, t_hi].
+    #[inline(always)]
     fn enters(&self, b: &Aabb) -> bool {
         let mut near = 0.0f32;
         let mut far = self.t_hi;
         for a in 0..3 {
-            let t0 = (b.min[a] - self.pad - self.orig[a]) * self.inv_dir[a];
-            let t1 = (b.max[a] + self.pad - self.orig[a]) * self.inv_dir[a];
-            near = near.max(t0.min(t1));
-            far = far.min(t0.max(t1));
+            let t0 = (b.min[a] - self.orig_lo[a]) * self.inv_dir[a];
+            let t1 = (b.max[a] - self.orig_hi[a]) * self.inv_dir[a];
+            let (lo, hi) = if t0 < t1 { (t0, t1) } else { (t1, t0) };
+            near = if lo > near { lo } else { near };
+            far = if hi < far { hi } else { far };
         }
         near <= far
     }
@@ -165,24 +173,25 @@ impl Bvh {
 
     /// Appends to `out` every triangle of every leaf the ray enters, for which `keep` holds.
     pub fn candidates(&self, ray: &BoxRay, keep: impl Fn(u32) -> bool, out: &mut Vec<u32>) {
-        if self.order.is_empty() {
+        if self.order.is_empty() || !ray.enters(&self.nodes[0].bounds) {
             return;
         }
+        // Nodes on the stack were already found to be entered.
         let mut stack = [0u32; MAX_DEPTH + 2];
         let mut top = 1;
         while top > 0 {
             top -= 1;
             let node = &self.nodes[stack[top] as usize];
-            if !ray.enters(&node.bounds) {
-                continue;
-            }
             if node.count > 0 {
                 let leaf = &self.order[node.first as usize..(node.first + node.count) as usize];
                 out.extend(leaf.iter().copied().filter(|&t| keep(t)));
             } else {
-                stack[top] = node.first;
-                stack[top + 1] = node.first + 1;
-                top += 2;
+                for child in [node.first, node.first + 1] {
+                    if ray.enters(&self.nodes[child as usize].bounds) {
+                        stack[top] = child;
+                        top += 1;
+                    }
+                }
             }
         }
     }
