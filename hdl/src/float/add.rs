@@ -9,7 +9,7 @@
 //!   1. after aligning y
 //!   2. after the add/subtract
 //!   3. after normalization, before rounding and packing
-//! stages = 1 registers cut 2, stages = 2 cuts 0 and 2, stages = 3 cuts 0, 1 and 3.
+//! stages = 1 registers cut 2, stages = 2 cuts 1 and 3, stages = 3 cuts 0, 2 and 3.
 
 use rust_hdl::prelude::*;
 
