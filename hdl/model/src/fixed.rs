@@ -1,7 +1,7 @@
 //! Two's-complement fixed point as ap_fixed<W, I>: exact result, then quantise, then overflow.
 
 use crate::float::{FloatFormat, Unpacked};
-use crate::format::{Overflow, Quant};
+use crate::format::{Arith, Overflow, Quant};
 
 /// The layout of one fixed-point format: `int` integer bits (sign included), `frac` fraction bits.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -70,28 +70,29 @@ impl FixedFormat {
         let rem = (x - (floor << sh)) as u128;
         self.quantise(floor, rem, 1u128 << sh)
     }
+}
 
+impl Arith for FixedFormat {
     #[inline]
-    pub fn add(self, a: u64, b: u64) -> u64 {
+    fn add(self, a: u64, b: u64) -> u64 {
         self.fit(self.value(a) as i128 + self.value(b) as i128)
     }
     #[inline]
-    pub fn sub(self, a: u64, b: u64) -> u64 {
+    fn sub(self, a: u64, b: u64) -> u64 {
         self.fit(self.value(a) as i128 - self.value(b) as i128)
     }
     #[inline]
-    pub fn neg(self, a: u64) -> u64 {
+    fn neg(self, a: u64) -> u64 {
         self.fit(-(self.value(a) as i128))
     }
     #[inline]
-    pub fn mul(self, a: u64, b: u64) -> u64 {
+    fn mul(self, a: u64, b: u64) -> u64 {
         let product = self.value(a) as i128 * self.value(b) as i128;
         self.fit(self.quantise_shift(product, self.frac))
     }
-
     /// 1/x = 2^(2·frac) / X in units of 2^-frac; recip(0) = max.
     #[inline]
-    pub fn recip(self, a: u64) -> u64 {
+    fn recip(self, a: u64) -> u64 {
         let x = self.value(a) as i128;
         if x == 0 {
             return self.max() as u64 & self.mask();
@@ -102,14 +103,12 @@ impl FixedFormat {
         let rem = num.rem_euclid(div) as u128;
         self.fit(self.quantise(floor, rem, div as u128))
     }
-
     #[inline]
-    pub fn lt(self, a: u64, b: u64) -> bool {
+    fn lt(self, a: u64, b: u64) -> bool {
         self.value(a) < self.value(b)
     }
-
     /// From a float: NaN → 0, ±Inf → max/min, subnormals (flushed) → 0, else quantised and fitted.
-    pub fn from_float(self, src: FloatFormat, bits: u64) -> u64 {
+    fn convert_in(self, src: FloatFormat, bits: u64) -> u64 {
         match src.unpack(bits) {
             Unpacked::Nan | Unpacked::Zero(_) => 0,
             Unpacked::Inf(s) => (if s { self.min() } else { self.max() }) as u64 & self.mask(),
@@ -127,13 +126,17 @@ impl FixedFormat {
             }
         }
     }
-
     /// To a float: the exact value rounded once (RNE) into `dst`.
-    pub fn to_float(self, dst: FloatFormat, bits: u64) -> u64 {
+    fn convert_out(self, dst: FloatFormat, bits: u64) -> u64 {
         let x = self.value(bits);
         if x == 0 {
             return dst.zero(false);
         }
         dst.round_pack(x < 0, x.unsigned_abs() as u128, -(self.frac as i32), false)
+    }
+
+    #[inline]
+    fn is_nan(self, _a: u64) -> bool {
+        false
     }
 }

@@ -8,6 +8,8 @@
 /// The layout of one float format: `exp` exponent bits, `man` fraction bits.
 use std::ops::{Add, BitAnd, Shl, Shr, Sub};
 
+use crate::format::Arith;
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct FloatFormat {
     pub exp: u32,
@@ -172,35 +174,6 @@ impl FloatFormat {
         }
     }
 
-    #[inline]
-    pub fn add(self, a: u64, b: u64) -> u64 {
-        use Unpacked::*;
-        match (self.unpack(a), self.unpack(b)) {
-            (Nan, _) | (_, Nan) => self.nan(),
-            (Inf(sa), Inf(sb)) => {
-                if sa == sb {
-                    self.inf(sa)
-                } else {
-                    self.nan()
-                }
-            }
-            (Inf(s), _) | (_, Inf(s)) => self.inf(s),
-            (Zero(sa), Zero(sb)) => self.zero(sa && sb),
-            (Zero(_), Finite { .. }) => b,
-            (Finite { .. }, Zero(_)) => a,
-            (Finite { .. }, Finite { .. }) => {
-                // Order by magnitude: the aligned difference is then never negative.
-                let magnitude = !self.sign_bit();
-                let (x, y) = if a & magnitude >= b & magnitude { (a, b) } else { (b, a) };
-                if 2 * self.man + 5 <= 64 {
-                    self.add_ordered::<u64>(x, y)
-                } else {
-                    self.add_ordered::<u128>(x, y)
-                }
-            }
-        }
-    }
-
     /// Sign, significand and unbiased exponent (value = sig × 2^(e − man)) of a finite nonzero operand.
     #[inline]
     fn parts(self, bits: u64) -> (bool, u64, i32) {
@@ -229,18 +202,60 @@ impl FloatFormat {
         self.round_pack(sx, sum, ex - shift as i32 - self.man as i32, false)
     }
 
+    /// An order-preserving integer key; `None` for NaN. Flushed subnormals and both zeros map to 0.
     #[inline]
-    pub fn neg(self, a: u64) -> u64 {
+    fn order_key(self, a: u64) -> Option<i64> {
+        let ef = self.exp_field(a);
+        if ef == self.exp_ones() && a & self.frac_mask() != 0 {
+            return None;
+        }
+        if ef == 0 {
+            return Some(0);
+        }
+        let mag = (a & !self.sign_bit()) as i64;
+        Some(if a & self.sign_bit() != 0 { -mag } else { mag })
+    }
+}
+
+impl Arith for FloatFormat {
+    #[inline]
+    fn add(self, a: u64, b: u64) -> u64 {
+        use Unpacked::*;
+        match (self.unpack(a), self.unpack(b)) {
+            (Nan, _) | (_, Nan) => self.nan(),
+            (Inf(sa), Inf(sb)) => {
+                if sa == sb {
+                    self.inf(sa)
+                } else {
+                    self.nan()
+                }
+            }
+            (Inf(s), _) | (_, Inf(s)) => self.inf(s),
+            (Zero(sa), Zero(sb)) => self.zero(sa && sb),
+            (Zero(_), Finite { .. }) => b,
+            (Finite { .. }, Zero(_)) => a,
+            (Finite { .. }, Finite { .. }) => {
+                // Order by magnitude: the aligned difference is then never negative.
+                let magnitude = !self.sign_bit();
+                let (x, y) = if a & magnitude >= b & magnitude { (a, b) } else { (b, a) };
+                if 2 * self.man + 5 <= 64 {
+                    self.add_ordered::<u64>(x, y)
+                } else {
+                    self.add_ordered::<u128>(x, y)
+                }
+            }
+        }
+    }
+    #[inline]
+    fn neg(self, a: u64) -> u64 {
         a ^ self.sign_bit()
     }
-
     #[inline]
-    pub fn sub(self, a: u64, b: u64) -> u64 {
+    fn sub(self, a: u64, b: u64) -> u64 {
         self.add(a, self.neg(b))
     }
-
     #[inline]
-    pub fn mul(self, a: u64, b: u64) -> u64 {
+    fn mul(self, a: u64, b: u64) -> u64 {
         use Unpacked::*;
         match (self.unpack(a), self.unpack(b)) {
             (Nan, _) | (_, Nan) | (Inf(_), Zero(_)) | (Zero(_), Inf(_)) => self.nan(),
@@ -259,11 +274,10 @@ impl FloatFormat {
             }
         }
     }
-
     /// Correctly rounded 1/a: the quotient 2^K / sig carries man + 3 or man + 4 bits (so it
     /// fits a u64), the remainder becomes the sticky flag.
     #[inline]
-    pub fn recip(self, a: u64) -> u64 {
+    fn recip(self, a: u64) -> u64 {
         match self.unpack(a) {
             Unpacked::Nan => self.nan(),
             Unpacked::Inf(s) => self.zero(s),
@@ -282,31 +296,24 @@ impl FloatFormat {
             }
         }
     }
-
-    /// An order-preserving integer key; `None` for NaN. Flushed subnormals and both zeros map to 0.
     #[inline]
-    fn order_key(self, a: u64) -> Option<i64> {
-        let ef = self.exp_field(a);
-        if ef == self.exp_ones() && a & self.frac_mask() != 0 {
-            return None;
-        }
-        if ef == 0 {
-            return Some(0);
-        }
-        let mag = (a & !self.sign_bit()) as i64;
-        Some(if a & self.sign_bit() != 0 { -mag } else { mag })
-    }
-
-    #[inline]
-    pub fn lt(self, a: u64, b: u64) -> bool {
+    fn lt(self, a: u64, b: u64) -> bool {
         match (self.order_key(a), self.order_key(b)) {
             (Some(ka), Some(kb)) => ka < kb,
             _ => false,
         }
     }
+    #[inline]
+    fn is_nan(self, a: u64) -> bool {
+        self.exp_field(a) == self.exp_ones() && a & self.frac_mask() != 0
+    }
 
     #[inline]
-    pub fn is_nan(self, a: u64) -> bool {
-        self.exp_field(a) == self.exp_ones() && a & self.frac_mask() != 0
+    fn convert_in(self, src: FloatFormat, bits: u64) -> u64 {
+        self.convert_from(src, bits)
+    }
+    #[inline]
+    fn convert_out(self, dst: FloatFormat, bits: u64) -> u64 {
+        dst.convert_from(self, bits)
     }
 }

@@ -100,88 +100,51 @@ impl Format {
 
     #[inline]
     pub fn from_f32(&self, x: f32) -> u64 {
-        self.from_float(FloatFormat::F32, x.to_bits() as u64)
+        with_arith!(self, f => f.convert_in_f32(x))
     }
     #[inline]
     pub fn to_f32(&self, bits: u64) -> f32 {
-        f32::from_bits(self.to_float(FloatFormat::F32, bits) as u32)
+        with_arith!(self, f => f.convert_out_f32(bits))
     }
     /// From f64 (FTZ on input, one rounding): for tests and constants.
     pub fn from_f64(&self, x: f64) -> u64 {
-        self.from_float(FloatFormat::F64, x.to_bits())
+        with_arith!(self, f => f.convert_in(FloatFormat::F64, x.to_bits()))
     }
     /// To f64: exact for every valid format.
     pub fn to_f64(&self, bits: u64) -> f64 {
-        f64::from_bits(self.to_float(FloatFormat::F64, bits))
+        f64::from_bits(with_arith!(self, f => f.convert_out(FloatFormat::F64, bits)))
     }
-
-    #[inline]
-    fn from_float(&self, src: FloatFormat, bits: u64) -> u64 {
-        match self.kind() {
-            Kind::Float(f) => f.convert_from(src, bits),
-            Kind::Fixed(f) => f.from_float(src, bits),
-        }
-    }
-    #[inline]
-    fn to_float(&self, dst: FloatFormat, bits: u64) -> u64 {
-        match self.kind() {
-            Kind::Float(f) => dst.convert_from(f, bits),
-            Kind::Fixed(f) => f.to_float(dst, bits),
-        }
-    }
-
     #[inline]
     pub fn add(&self, a: u64, b: u64) -> u64 {
-        match self.kind() {
-            Kind::Float(f) => f.add(a, b),
-            Kind::Fixed(f) => f.add(a, b),
-        }
+        with_arith!(self, f => f.add(a, b))
     }
     #[inline]
     pub fn sub(&self, a: u64, b: u64) -> u64 {
-        match self.kind() {
-            Kind::Float(f) => f.sub(a, b),
-            Kind::Fixed(f) => f.sub(a, b),
-        }
+        with_arith!(self, f => f.sub(a, b))
     }
     #[inline]
     pub fn mul(&self, a: u64, b: u64) -> u64 {
-        match self.kind() {
-            Kind::Float(f) => f.mul(a, b),
-            Kind::Fixed(f) => f.mul(a, b),
-        }
+        with_arith!(self, f => f.mul(a, b))
     }
     #[inline]
     pub fn recip(&self, a: u64) -> u64 {
-        match self.kind() {
-            Kind::Float(f) => f.recip(a),
-            Kind::Fixed(f) => f.recip(a),
-        }
+        with_arith!(self, f => f.recip(a))
     }
     #[inline]
     pub fn neg(&self, a: u64) -> u64 {
-        match self.kind() {
-            Kind::Float(f) => f.neg(a),
-            Kind::Fixed(f) => f.neg(a),
-        }
+        with_arith!(self, f => f.neg(a))
     }
     #[inline]
     pub fn lt(&self, a: u64, b: u64) -> bool {
-        match self.kind() {
-            Kind::Float(f) => f.lt(a, b),
-            Kind::Fixed(f) => f.lt(a, b),
-        }
+        with_arith!(self, f => f.lt(a, b))
     }
     #[inline]
     pub fn is_nan(&self, a: u64) -> bool {
-        match self.kind() {
-            Kind::Float(f) => f.is_nan(a),
-            Kind::Fixed(_) => false,
-        }
+        with_arith!(self, f => f.is_nan(a))
     }
 
     #[inline]
-    fn kind(&self) -> Kind {
+    pub(crate) fn kind(&self) -> Kind {
         match *self {
             Format::Float { exp, man } => Kind::Float(FloatFormat { exp, man }),
             Format::Fixed { int, frac, quant, overflow } => Kind::Fixed(FixedFormat { int, frac, quant, overflow }),
@@ -189,8 +152,44 @@ impl Format {
     }
 }
 
+/// The operator set every kind of format implements (the SPEC above), on raw bits. Generic
+/// code over it (the MT datapath) is compiled once per kind, without per-operation dispatch.
+pub(crate) trait Arith: Copy {
+    fn add(self, a: u64, b: u64) -> u64;
+    fn sub(self, a: u64, b: u64) -> u64;
+    fn mul(self, a: u64, b: u64) -> u64;
+    fn recip(self, a: u64) -> u64;
+    fn neg(self, a: u64) -> u64;
+    fn lt(self, a: u64, b: u64) -> bool;
+    fn is_nan(self, a: u64) -> bool;
+    /// From a float format's bits, with the conversion rules of the SPEC.
+    fn convert_in(self, src: FloatFormat, bits: u64) -> u64;
+    /// To a float format's bits, one RNE rounding.
+    fn convert_out(self, dst: FloatFormat, bits: u64) -> u64;
+
+    #[inline]
+    fn convert_in_f32(self, x: f32) -> u64 {
+        self.convert_in(FloatFormat::F32, x.to_bits() as u64)
+    }
+    #[inline]
+    fn convert_out_f32(self, bits: u64) -> f32 {
+        f32::from_bits(self.convert_out(FloatFormat::F32, bits) as u32)
+    }
+}
+
+/// Runs `$body` with `$f` bound to the [`Arith`] implementation of a [`Format`].
+macro_rules! with_arith {
+    ($format:expr, $f:ident => $body:expr) => {
+        match $format.kind() {
+            $crate::format::Kind::Float($f) => $body,
+            $crate::format::Kind::Fixed($f) => $body,
+        }
+    };
+}
+pub(crate) use with_arith;
+
 /// The implementation behind a [`Format`].
-enum Kind {
+pub(crate) enum Kind {
     Float(FloatFormat),
     Fixed(FixedFormat),
 }

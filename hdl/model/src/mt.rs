@@ -1,6 +1,6 @@
 //! The Möller-Trumbore test in any format, in exactly the hardware's operation order.
 
-use crate::format::Format;
+use crate::format::{with_arith, Arith, Format};
 
 /// One ray-triangle test, IEEE fp32 at the ports as on the accelerator's bus.
 #[repr(C)]
@@ -39,13 +39,13 @@ pub const DET_EPSILON: f32 = 1e-8;
 type V = [u64; 3];
 
 #[inline]
-fn sub(f: &Format, a: &V, b: &V) -> V {
+fn sub<A: Arith>(f: A, a: &V, b: &V) -> V {
     [f.sub(a[0], b[0]), f.sub(a[1], b[1]), f.sub(a[2], b[2])]
 }
 
 /// a×b component by component as a.y·b.z − a.z·b.y, a.z·b.x − a.x·b.z, a.x·b.y − a.y·b.x.
 #[inline]
-fn cross(f: &Format, a: &V, b: &V) -> V {
+fn cross<A: Arith>(f: A, a: &V, b: &V) -> V {
     [
         f.sub(f.mul(a[1], b[2]), f.mul(a[2], b[1])),
         f.sub(f.mul(a[2], b[0]), f.mul(a[0], b[2])),
@@ -55,20 +55,23 @@ fn cross(f: &Format, a: &V, b: &V) -> V {
 
 /// (a.x·b.x + a.y·b.y) + a.z·b.z.
 #[inline]
-fn dot(f: &Format, a: &V, b: &V) -> u64 {
+fn dot<A: Arith>(f: A, a: &V, b: &V) -> u64 {
     f.add(f.add(f.mul(a[0], b[0]), f.mul(a[1], b[1])), f.mul(a[2], b[2]))
 }
 
 #[inline]
-fn load(f: &Format, x: &[f32; 3]) -> V {
-    [f.from_f32(x[0]), f.from_f32(x[1]), f.from_f32(x[2])]
+fn load<A: Arith>(f: A, x: &[f32; 3]) -> V {
+    [f.convert_in_f32(x[0]), f.convert_in_f32(x[1]), f.convert_in_f32(x[2])]
 }
 
 /// The test in `format`: fp32 inputs converted in, every operation rounded in the format,
 /// t, u, v converted back to fp32 (also on a miss).
 #[inline]
 pub fn mt_model(format: &Format, q: &MtQuery) -> MtResult {
-    let f = format;
+    with_arith!(format, f => mt_in(f, q))
+}
+
+fn mt_in<A: Arith>(f: A, q: &MtQuery) -> MtResult {
     let (orig, dir, v0) = (load(f, &q.orig), load(f, &q.dir), load(f, &q.v0));
     let e1 = sub(f, &load(f, &q.v1), &v0);
     let e2 = sub(f, &load(f, &q.v2), &v0);
@@ -81,7 +84,7 @@ pub fn mt_model(format: &Format, q: &MtQuery) -> MtResult {
     let v = f.mul(dot(f, &dir, &qv), inv);
     let t = f.mul(dot(f, &e2, &qv), inv);
 
-    let (zero, one, eps) = (f.from_f32(0.0), f.from_f32(1.0), f.from_f32(DET_EPSILON));
+    let (zero, one, eps) = (f.convert_in_f32(0.0), f.convert_in_f32(1.0), f.convert_in_f32(DET_EPSILON));
     let parallel = f.lt(det, eps) && f.lt(f.neg(eps), det);
     let hit = !parallel
         && !f.lt(u, zero)
@@ -89,5 +92,5 @@ pub fn mt_model(format: &Format, q: &MtQuery) -> MtResult {
         && !f.lt(v, zero)
         && !f.lt(one, f.add(u, v))
         && f.lt(zero, t);
-    MtResult { hit, t: f.to_f32(t), u: f.to_f32(u), v: f.to_f32(v) }
+    MtResult { hit, t: f.convert_out_f32(t), u: f.convert_out_f32(u), v: f.convert_out_f32(v) }
 }

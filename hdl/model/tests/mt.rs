@@ -41,6 +41,7 @@ impl Watch {
 
 /// Native f32 MT in the hardware's order; also says whether any input or intermediate is
 /// subnormal (where flush-to-zero may legitimately differ).
+#[allow(clippy::nonminimal_bool, clippy::neg_cmp_op_on_partial_ord)] // the C++ rejections, NaN behaviour included
 fn mt_native(q: &MtQuery) -> (MtResult, bool) {
     let mut w = Watch::default();
     for a in [q.orig, q.dir, q.v0, q.v1, q.v2] {
