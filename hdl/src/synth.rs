@@ -29,14 +29,19 @@ const COMBINATIONAL_CELLS: &str = "t:LUT* %u t:MUXF* %u t:CARRY4 %u \
 
 #[derive(Debug, thiserror::Error)]
 pub enum SynthError {
-    #[error("yosys not found on PATH: install it with `apt-get install yosys` (or run `make setup`)")]
+    #[error(
+        "yosys not found on PATH: install it with `apt-get install yosys` (or run `make setup`)"
+    )]
     YosysNotFound,
     #[error("yosys failed to synthesise top `{top}`:\n{output}")]
     Failed { top: String, output: String },
     #[error("unexpected yosys output ({what}): {detail}")]
     Parse { what: String, detail: String },
     #[error("{path}: {source}")]
-    Io { path: PathBuf, source: std::io::Error },
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
 }
 
 /// Synthesis settings.
@@ -50,7 +55,10 @@ pub struct SynthOptions {
 
 impl Default for SynthOptions {
     fn default() -> Self {
-        SynthOptions { abc9: false, yosys: PathBuf::from("yosys") }
+        SynthOptions {
+            abc9: false,
+            yosys: PathBuf::from("yosys"),
+        }
     }
 }
 
@@ -80,8 +88,16 @@ pub struct SynthReport {
 impl SynthReport {
     /// Sums the cell counts into the report's categories.
     pub fn from_cells(cells: BTreeMap<String, u64>, logic_depth: u64) -> Self {
-        let sum = |pred: &dyn Fn(&str) -> bool| cells.iter().filter(|(c, _)| pred(c)).map(|(_, n)| n).sum::<u64>();
-        let is_lut = |c: &str| c.len() == 4 && c.starts_with("LUT") && matches!(c.as_bytes()[3], b'1'..=b'6');
+        let sum = |pred: &dyn Fn(&str) -> bool| {
+            cells
+                .iter()
+                .filter(|(c, _)| pred(c))
+                .map(|(_, n)| n)
+                .sum::<u64>()
+        };
+        let is_lut = |c: &str| {
+            c.len() == 4 && c.starts_with("LUT") && matches!(c.as_bytes()[3], b'1'..=b'6')
+        };
         SynthReport {
             lut: sum(&is_lut),
             ff: sum(&|c| c.starts_with("FD")),
@@ -108,14 +124,26 @@ impl SynthReport {
     pub fn markdown_row(&self, design: &str) -> String {
         format!(
             "| {design} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-            self.lut, self.ff, self.dsp48e1, self.carry4, self.bram, self.muxf7, self.muxf8, self.srl, self.lutram, self.logic_depth
+            self.lut,
+            self.ff,
+            self.dsp48e1,
+            self.carry4,
+            self.bram,
+            self.muxf7,
+            self.muxf8,
+            self.srl,
+            self.lutram,
+            self.logic_depth
         )
     }
 }
 
 /// Cell counts of module `top` from the output of `stat -json`.
 pub fn parse_stat_json(json: &str, top: &str) -> Result<BTreeMap<String, u64>, SynthError> {
-    let parse_err = |detail: String| SynthError::Parse { what: "stat -json".into(), detail };
+    let parse_err = |detail: String| SynthError::Parse {
+        what: "stat -json".into(),
+        detail,
+    };
     let v: serde_json::Value = serde_json::from_str(json).map_err(|e| parse_err(e.to_string()))?;
     let module = v["modules"]
         .get(format!("\\{top}"))
@@ -123,13 +151,17 @@ pub fn parse_stat_json(json: &str, top: &str) -> Result<BTreeMap<String, u64>, S
     // A module without cells has no `num_cells_by_type`.
     let empty = serde_json::Map::new();
     let by_type = match module.get("num_cells_by_type") {
-        Some(m) => m.as_object().ok_or_else(|| parse_err("num_cells_by_type is not an object".into()))?,
+        Some(m) => m
+            .as_object()
+            .ok_or_else(|| parse_err("num_cells_by_type is not an object".into()))?,
         None => &empty,
     };
     by_type
         .iter()
         .map(|(cell, n)| {
-            let n = n.as_u64().ok_or_else(|| parse_err(format!("count of {cell} is not a number")))?;
+            let n = n
+                .as_u64()
+                .ok_or_else(|| parse_err(format!("count of {cell} is not a number")))?;
             Ok((cell.trim_start_matches('\\').to_string(), n))
         })
         .collect()
@@ -140,16 +172,26 @@ pub fn parse_ltp(text: &str) -> Result<u64, SynthError> {
     let line = text
         .lines()
         .find(|l| l.contains("Longest topological path"))
-        .ok_or_else(|| SynthError::Parse { what: "ltp".into(), detail: "no \"Longest topological path\" line".into() })?;
+        .ok_or_else(|| SynthError::Parse {
+            what: "ltp".into(),
+            detail: "no \"Longest topological path\" line".into(),
+        })?;
     line.split("length=")
         .nth(1)
         .and_then(|rest| rest.split(')').next())
         .and_then(|n| n.trim().parse().ok())
-        .ok_or_else(|| SynthError::Parse { what: "ltp".into(), detail: line.to_string() })
+        .ok_or_else(|| SynthError::Parse {
+            what: "ltp".into(),
+            detail: line.to_string(),
+        })
 }
 
 fn first_lines(out: &std::process::Output) -> String {
-    let text = format!("{}{}", String::from_utf8_lossy(&out.stderr), String::from_utf8_lossy(&out.stdout));
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stderr),
+        String::from_utf8_lossy(&out.stdout)
+    );
     let mut lines: Vec<&str> = text.lines().collect();
     // Errors first, so that warnings cannot push them out of the excerpt.
     lines.sort_by_key(|l| !l.contains("ERROR"));
@@ -158,18 +200,35 @@ fn first_lines(out: &std::process::Output) -> String {
 }
 
 fn write(path: &Path, text: &str) -> Result<(), SynthError> {
-    std::fs::write(path, text).map_err(|source| SynthError::Io { path: path.to_path_buf(), source })
+    std::fs::write(path, text).map_err(|source| SynthError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 fn read(path: &Path) -> Result<String, SynthError> {
-    std::fs::read_to_string(path).map_err(|source| SynthError::Io { path: path.to_path_buf(), source })
+    std::fs::read_to_string(path).map_err(|source| SynthError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// Synthesises `verilog` (top module `top`) for xc7 and reports its resources and logic depth.
-pub fn synthesize(verilog: &str, top: &str, options: &SynthOptions) -> Result<SynthReport, SynthError> {
-    let dir = tempfile::tempdir().map_err(|source| SynthError::Io { path: std::env::temp_dir(), source })?;
-    let (src, stat, ltp, script) =
-        (dir.path().join("design.v"), dir.path().join("stat.json"), dir.path().join("ltp.txt"), dir.path().join("synth.ys"));
+pub fn synthesize(
+    verilog: &str,
+    top: &str,
+    options: &SynthOptions,
+) -> Result<SynthReport, SynthError> {
+    let dir = tempfile::tempdir().map_err(|source| SynthError::Io {
+        path: std::env::temp_dir(),
+        source,
+    })?;
+    let (src, stat, ltp, script) = (
+        dir.path().join("design.v"),
+        dir.path().join("stat.json"),
+        dir.path().join("ltp.txt"),
+        dir.path().join("synth.ys"),
+    );
     write(&src, verilog)?;
     let abc9 = if options.abc9 { " -abc9" } else { "" };
     write(
@@ -192,10 +251,16 @@ pub fn synthesize(verilog: &str, top: &str, options: &SynthOptions) -> Result<Sy
         .output()
         .map_err(|e| match e.kind() {
             std::io::ErrorKind::NotFound => SynthError::YosysNotFound,
-            _ => SynthError::Io { path: options.yosys.clone(), source: e },
+            _ => SynthError::Io {
+                path: options.yosys.clone(),
+                source: e,
+            },
         })?;
     if !out.status.success() {
-        return Err(SynthError::Failed { top: top.to_string(), output: first_lines(&out) });
+        return Err(SynthError::Failed {
+            top: top.to_string(),
+            output: first_lines(&out),
+        });
     }
     let cells = parse_stat_json(&read(&stat)?, top)?;
     Ok(SynthReport::from_cells(cells, parse_ltp(&read(&ltp)?)?))
@@ -208,19 +273,38 @@ mod tests {
     #[test]
     fn categories_sum_the_right_cells() {
         let cells: BTreeMap<String, u64> = [
-            ("LUT2", 3), ("LUT6", 4), ("LUT6_2", 100), ("FDRE", 5), ("FDSE", 1), ("DSP48E1", 2), ("CARRY4", 7),
-            ("RAMB18E1", 1), ("RAMB36E1", 2), ("MUXF7", 8), ("MUXF8", 9), ("SRLC32E", 10), ("RAM64M", 11),
+            ("LUT2", 3),
+            ("LUT6", 4),
+            ("LUT6_2", 100),
+            ("FDRE", 5),
+            ("FDSE", 1),
+            ("DSP48E1", 2),
+            ("CARRY4", 7),
+            ("RAMB18E1", 1),
+            ("RAMB36E1", 2),
+            ("MUXF7", 8),
+            ("MUXF8", 9),
+            ("SRLC32E", 10),
+            ("RAM64M", 11),
         ]
         .into_iter()
         .map(|(c, n)| (c.to_string(), n))
         .collect();
         let r = SynthReport::from_cells(cells, 6);
         assert_eq!((r.lut, r.ff, r.dsp48e1, r.carry4, r.bram), (7, 6, 2, 7, 3));
-        assert_eq!((r.muxf7, r.muxf8, r.srl, r.lutram, r.logic_depth), (8, 9, 10, 11, 6));
-        assert_eq!(r.markdown_row("x"), "| x | 7 | 6 | 2 | 7 | 3 | 8 | 9 | 10 | 11 | 6 |");
+        assert_eq!(
+            (r.muxf7, r.muxf8, r.srl, r.lutram, r.logic_depth),
+            (8, 9, 10, 11, 6)
+        );
+        assert_eq!(
+            r.markdown_row("x"),
+            "| x | 7 | 6 | 2 | 7 | 3 | 8 | 9 | 10 | 11 | 6 |"
+        );
         let columns = |s: &str| s.matches('|').count();
         let header = SynthReport::markdown_header();
-        assert!(header.lines().all(|l| columns(l) == columns(&r.markdown_row("x"))));
+        assert!(header
+            .lines()
+            .all(|l| columns(l) == columns(&r.markdown_row("x"))));
     }
 
     #[test]
@@ -233,7 +317,10 @@ mod tests {
         let empty = r#"{"modules": {"\\top": {"num_cells": 0}}}"#;
         assert!(parse_stat_json(empty, "top").unwrap().is_empty());
 
-        assert_eq!(parse_ltp("\nLongest topological path in top (length=12):\n  0: \\a\n").unwrap(), 12);
+        assert_eq!(
+            parse_ltp("\nLongest topological path in top (length=12):\n  0: \\a\n").unwrap(),
+            12
+        );
         assert!(parse_ltp("nothing here").is_err());
     }
 }

@@ -71,17 +71,30 @@ fn a_register_in_the_middle_halves_the_depth() {
 
 #[test]
 fn missing_yosys_is_a_clear_error() {
-    let options = SynthOptions { yosys: "yosys-not-installed-rtfpga".into(), ..SynthOptions::default() };
+    let options = SynthOptions {
+        yosys: "yosys-not-installed-rtfpga".into(),
+        ..SynthOptions::default()
+    };
     let err = synthesize("module top; endmodule", "top", &options).unwrap_err();
     assert!(matches!(err, SynthError::YosysNotFound));
-    assert_eq!(err.to_string(), "yosys not found on PATH: install it with `apt-get install yosys` (or run `make setup`)");
+    assert_eq!(
+        err.to_string(),
+        "yosys not found on PATH: install it with `apt-get install yosys` (or run `make setup`)"
+    );
 }
 
 #[test]
 fn invalid_verilog_is_an_error_with_yosys_message() {
-    let err = synthesize("module top(input a, output b);\n  assign b = a +;\nendmodule\n", "top", &SynthOptions::default())
-        .unwrap_err();
+    let err = synthesize(
+        "module top(input a, output b);\n  assign b = a +;\nendmodule\n",
+        "top",
+        &SynthOptions::default(),
+    )
+    .unwrap_err();
     let text = err.to_string();
     assert!(matches!(err, SynthError::Failed { .. }), "{text}");
-    assert!(text.contains("ERROR") && text.contains("design.v:2"), "{text}");
+    assert!(
+        text.contains("ERROR") && text.contains("design.v:2"),
+        "{text}"
+    );
 }

@@ -11,11 +11,19 @@ pub enum SimError {
 
     /// A tool ran but failed; `output` holds the first lines of what it printed.
     #[error("{tool} failed ({what}):\n{output}")]
-    ToolFailed { tool: String, what: String, output: String },
+    ToolFailed {
+        tool: String,
+        what: String,
+        output: String,
+    },
 
     /// The Verilog's port declarations could not be understood.
     #[error("Verilog ports of module `{module}`, line {line}: {message}")]
-    Ports { module: String, line: usize, message: String },
+    Ports {
+        module: String,
+        line: usize,
+        message: String,
+    },
 
     /// The model's port list does not fit what the caller asked for.
     #[error("model interface: {0}")]
@@ -23,15 +31,24 @@ pub enum SimError {
 
     /// A file or directory operation failed.
     #[error("{path}: {source}")]
-    Io { path: PathBuf, source: std::io::Error },
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
 
     /// The built shared object could not be loaded or lacks a symbol.
     #[error("loading {path}: {source}")]
-    Load { path: PathBuf, source: libloading::Error },
+    Load {
+        path: PathBuf,
+        source: libloading::Error,
+    },
 }
 
 impl SimError {
     pub(crate) fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
-        SimError::Io { path: path.into(), source }
+        SimError::Io {
+            path: path.into(),
+            source,
+        }
     }
 }

@@ -14,7 +14,9 @@ use sim::{build, run_pipelined, BuildOptions, ModelSpec};
 /// close magnitudes (cancellation in add/sub, ties in rounding) with random signs.
 fn vectors(format: Format, n: usize, seed: u64) -> Vec<[u64; 2]> {
     let width = format.width();
-    let Format::Float { man, .. } = format else { panic!("float formats only") };
+    let Format::Float { man, .. } = format else {
+        panic!("float formats only")
+    };
     let mask = (1u64 << width) - 1;
     let mut rng = StdRng::seed_from_u64(seed);
     (0..n)
@@ -23,7 +25,9 @@ fn vectors(format: Format, n: usize, seed: u64) -> Vec<[u64; 2]> {
             let b = if i % 2 == 0 {
                 rng.gen::<u64>() & mask
             } else {
-                (a ^ (rng.gen::<u64>() & ((1 << man) - 1)) ^ (rng.gen_range(0..2u64) << (width - 1))) & mask
+                (a ^ (rng.gen::<u64>() & ((1 << man) - 1))
+                    ^ (rng.gen_range(0..2u64) << (width - 1)))
+                    & mask
             };
             [a, b]
         })
@@ -32,12 +36,26 @@ fn vectors(format: Format, n: usize, seed: u64) -> Vec<[u64; 2]> {
 
 /// Builds operator `T` with `stages` registers, streams `vectors` through it and compares
 /// every result with `model`. Returns the simulated vectors per second.
-fn check<T: Operator>(what: &str, stages: usize, vectors: &[[u64; 2]], model: impl Fn(u64, u64) -> u64) -> f64 {
+fn check<T: Operator>(
+    what: &str,
+    stages: usize,
+    vectors: &[[u64; 2]],
+    model: impl Fn(u64, u64) -> u64,
+) -> f64 {
     let mut op = T::new(stages);
     op.connect_all();
-    let built = build(&ModelSpec::rust_hdl(generate_verilog(&op)), &BuildOptions::default()).unwrap();
+    let built = build(
+        &ModelSpec::rust_hdl(generate_verilog(&op)),
+        &BuildOptions::default(),
+    )
+    .unwrap();
     let mut sim = built.instantiate();
-    let inputs: Vec<&str> = sim.interface().inputs.iter().map(|p| p.name.as_str()).collect();
+    let inputs: Vec<&str> = sim
+        .interface()
+        .inputs
+        .iter()
+        .map(|p| p.name.as_str())
+        .collect();
     let start = std::time::Instant::now();
     let out: Vec<[u64; 1]> = if T::B_WIDTH == 0 {
         assert_eq!(inputs, ["a"]);
@@ -50,7 +68,11 @@ fn check<T: Operator>(what: &str, stages: usize, vectors: &[[u64; 2]], model: im
     let rate = vectors.len() as f64 / start.elapsed().as_secs_f64();
     for (v, y) in vectors.iter().zip(&out) {
         let want = model(v[0], v[1]);
-        assert_eq!(y[0], want, "{what} stages={stages}: a={:#x} b={:#x} gave {:#x}, model {want:#x}", v[0], v[1], y[0]);
+        assert_eq!(
+            y[0], want,
+            "{what} stages={stages}: a={:#x} b={:#x} gave {:#x}, model {want:#x}",
+            v[0], v[1], y[0]
+        );
     }
     rate
 }
@@ -61,14 +83,54 @@ macro_rules! check_format {
         let v = vectors(f, $n, 0x5eed);
         for stages in [0, usize::MAX] {
             let s = |max: usize| stages.min(max);
-            let r = check::<$fmt::Mul>(concat!(stringify!($fmt), " mul"), s($fmt::Mul::max_stages()), &v, |a, b| f.mul(a, b));
-            println!("{} mul stages={}: {:.2} M vectors/s", stringify!($fmt), s($fmt::Mul::max_stages()), r / 1e6);
-            let r = check::<$fmt::Add>(concat!(stringify!($fmt), " add"), s($fmt::Add::max_stages()), &v, |a, b| f.add(a, b));
-            println!("{} add stages={}: {:.2} M vectors/s", stringify!($fmt), s($fmt::Add::max_stages()), r / 1e6);
-            check::<$fmt::Sub>(concat!(stringify!($fmt), " sub"), s($fmt::Sub::max_stages()), &v, |a, b| f.sub(a, b));
-            check::<$fmt::Lt>(concat!(stringify!($fmt), " lt"), s($fmt::Lt::max_stages()), &v, |a, b| u64::from(f.lt(a, b)));
-            let r = check::<$fmt::Recip>(concat!(stringify!($fmt), " recip"), s($fmt::Recip::max_stages()), &v, |a, _| f.recip(a));
-            println!("{} recip stages={}: {:.2} M vectors/s", stringify!($fmt), s($fmt::Recip::max_stages()), r / 1e6);
+            let r = check::<$fmt::Mul>(
+                concat!(stringify!($fmt), " mul"),
+                s($fmt::Mul::max_stages()),
+                &v,
+                |a, b| f.mul(a, b),
+            );
+            println!(
+                "{} mul stages={}: {:.2} M vectors/s",
+                stringify!($fmt),
+                s($fmt::Mul::max_stages()),
+                r / 1e6
+            );
+            let r = check::<$fmt::Add>(
+                concat!(stringify!($fmt), " add"),
+                s($fmt::Add::max_stages()),
+                &v,
+                |a, b| f.add(a, b),
+            );
+            println!(
+                "{} add stages={}: {:.2} M vectors/s",
+                stringify!($fmt),
+                s($fmt::Add::max_stages()),
+                r / 1e6
+            );
+            check::<$fmt::Sub>(
+                concat!(stringify!($fmt), " sub"),
+                s($fmt::Sub::max_stages()),
+                &v,
+                |a, b| f.sub(a, b),
+            );
+            check::<$fmt::Lt>(
+                concat!(stringify!($fmt), " lt"),
+                s($fmt::Lt::max_stages()),
+                &v,
+                |a, b| u64::from(f.lt(a, b)),
+            );
+            let r = check::<$fmt::Recip>(
+                concat!(stringify!($fmt), " recip"),
+                s($fmt::Recip::max_stages()),
+                &v,
+                |a, _| f.recip(a),
+            );
+            println!(
+                "{} recip stages={}: {:.2} M vectors/s",
+                stringify!($fmt),
+                s($fmt::Recip::max_stages()),
+                r / 1e6
+            );
         }
     }};
 }

@@ -77,14 +77,21 @@ fn ports_are_read_from_rust_hdl_verilog() {
         ("not_c", Direction::Output, 48),
     ];
     for (n, d, w) in expected {
-        assert!(ports.contains(&Port::new(n, d, w)), "{n} missing from {ports:?}");
+        assert!(
+            ports.contains(&Port::new(n, d, w)),
+            "{n} missing from {ports:?}"
+        );
     }
     assert_eq!(ports.len(), expected.len());
 }
 
 #[test]
 fn registered_adder_and_counter_match_rust_for_1m_cycles() {
-    let model = build(&ModelSpec::rust_hdl(add_count_verilog()), &BuildOptions::default()).unwrap();
+    let model = build(
+        &ModelSpec::rust_hdl(add_count_verilog()),
+        &BuildOptions::default(),
+    )
+    .unwrap();
     let mut sim = model.instantiate();
     let iface = sim.interface().clone();
     // Port order of the packed buffers is the Verilog's: find each port's value slot.
@@ -105,7 +112,12 @@ fn registered_adder_and_counter_match_rust_for_1m_cycles() {
         stimuli.clear();
         in_words.clear();
         for _ in 0..BATCH {
-            let (a, b, en, c) = (rng.gen::<u32>(), rng.gen::<u32>(), rng.gen_bool(0.7), rng.gen::<u64>());
+            let (a, b, en, c) = (
+                rng.gen::<u32>(),
+                rng.gen::<u32>(),
+                rng.gen_bool(0.7),
+                rng.gen::<u64>(),
+            );
             let mut values = [0u64; 4];
             values[in_slot("a")] = a.into();
             values[in_slot("b")] = b.into();
@@ -120,9 +132,18 @@ fn registered_adder_and_counter_match_rust_for_1m_cycles() {
         simulated += t.elapsed();
         for (i, (a, b, en, c)) in stimuli.iter().enumerate() {
             let mut got = [0u64; 3];
-            iface.unpack_outputs(&out_words[i * iface.out_words()..(i + 1) * iface.out_words()], &mut got).unwrap();
+            iface
+                .unpack_outputs(
+                    &out_words[i * iface.out_words()..(i + 1) * iface.out_words()],
+                    &mut got,
+                )
+                .unwrap();
             let want = reference.cycle(*a, *b, *en, *c);
-            let got = [got[out_slot("sum")], got[out_slot("count")], got[out_slot("not_c")]];
+            let got = [
+                got[out_slot("sum")],
+                got[out_slot("count")],
+                got[out_slot("not_c")],
+            ];
             assert_eq!(got, want, "cycle {}", sim.cycles() as usize - BATCH + i);
         }
     }
@@ -137,16 +158,34 @@ fn registered_adder_and_counter_match_rust_for_1m_cycles() {
 
 #[test]
 fn run_pipelined_aligns_results_with_their_inputs() {
-    let model = build(&ModelSpec::rust_hdl(add_count_verilog()), &BuildOptions::default()).unwrap();
+    let model = build(
+        &ModelSpec::rust_hdl(add_count_verilog()),
+        &BuildOptions::default(),
+    )
+    .unwrap();
     let mut sim = model.instantiate();
-    let names: Vec<String> = sim.interface().inputs.iter().map(|p| p.name.clone()).collect();
-    let sum_slot = sim.interface().outputs.iter().position(|p| p.name == "sum").unwrap();
+    let names: Vec<String> = sim
+        .interface()
+        .inputs
+        .iter()
+        .map(|p| p.name.clone())
+        .collect();
+    let sum_slot = sim
+        .interface()
+        .outputs
+        .iter()
+        .position(|p| p.name == "sum")
+        .unwrap();
     let mut rng = rand::rngs::StdRng::seed_from_u64(11);
     let vectors: Vec<[u64; 4]> = (0..10_000)
         .map(|_| {
             let mut v = [0u64; 4];
             for (slot, name) in names.iter().enumerate() {
-                v[slot] = if name == "enable" { 0 } else { rng.gen::<u32>().into() };
+                v[slot] = if name == "enable" {
+                    0
+                } else {
+                    rng.gen::<u32>().into()
+                };
             }
             v
         })
@@ -168,7 +207,11 @@ fn second_build_is_cached() {
     // A unique comment gives a key no earlier run has built.
     let nonce: u64 = rand::random();
     let verilog = format!("// cache test {nonce}\n{}", add_count_verilog());
-    let first = build(&ModelSpec::rust_hdl(verilog.clone()), &BuildOptions::default()).unwrap();
+    let first = build(
+        &ModelSpec::rust_hdl(verilog.clone()),
+        &BuildOptions::default(),
+    )
+    .unwrap();
     let second = build(&ModelSpec::rust_hdl(verilog), &BuildOptions::default()).unwrap();
     assert!(!first.cached);
     assert!(second.cached);
@@ -185,9 +228,17 @@ const WIDE: &str = "module wide(input wire [99:0] x$in, input wire [6:0] k, outp
 
 #[test]
 fn wide_combinational_ports_and_independent_instances() {
-    let spec = ModelSpec { verilog: WIDE.into(), top: "wide".into(), ports: None, clock: None };
+    let spec = ModelSpec {
+        verilog: WIDE.into(),
+        top: "wide".into(),
+        ports: None,
+        clock: None,
+    };
     let model = build(&spec, &BuildOptions::default()).unwrap();
-    assert_eq!((model.interface().in_words(), model.interface().out_words()), (5, 5));
+    assert_eq!(
+        (model.interface().in_words(), model.interface().out_words()),
+        (5, 5)
+    );
     let run_one = |seed: u32| {
         let mut sim = model.instantiate();
         let input = [seed, !seed, seed ^ 0x5555_5555, 0xFFFF_FFF5, 0xFFFF_FFFF];
@@ -199,7 +250,9 @@ fn wide_combinational_ports_and_independent_instances() {
         assert!(matches!(err, SimError::Interface(_)));
     };
     std::thread::scope(|s| {
-        let handles: Vec<_> = (0..2u32).map(|i| s.spawn(move || run_one(i * 0x1234_5679))).collect();
+        let handles: Vec<_> = (0..2u32)
+            .map(|i| s.spawn(move || run_one(i * 0x1234_5679)))
+            .collect();
         handles.into_iter().for_each(|h| h.join().unwrap());
     });
     // Instances move between threads.
@@ -209,11 +262,18 @@ fn wide_combinational_ports_and_independent_instances() {
 
 #[test]
 fn trace_build_writes_a_vcd_window() {
-    let options = BuildOptions { trace: true, ..BuildOptions::default() };
+    let options = BuildOptions {
+        trace: true,
+        ..BuildOptions::default()
+    };
     let model = build(&ModelSpec::rust_hdl(add_count_verilog()), &options).unwrap();
     let mut sim = model.instantiate();
     let iface = sim.interface().clone();
-    let enable = iface.inputs.iter().position(|p| p.name == "enable").unwrap();
+    let enable = iface
+        .inputs
+        .iter()
+        .position(|p| p.name == "enable")
+        .unwrap();
     let mut values = [0u64; 4];
     values[enable] = 1;
     let mut words = Vec::new();
@@ -228,21 +288,38 @@ fn trace_build_writes_a_vcd_window() {
     }
     sim.close_trace();
     let text = std::fs::read_to_string(&vcd).unwrap();
-    assert!(text.contains("$var") && text.contains(" count_reg"), "{}", &text[..text.len().min(2000)]);
+    assert!(
+        text.contains("$var") && text.contains(" count_reg"),
+        "{}",
+        &text[..text.len().min(2000)]
+    );
     // Ten time steps (clock low/high per cycle) in the window.
     let stamps = text.lines().filter(|l| l.starts_with('#')).count();
     assert_eq!(stamps, 10, "{text}");
 
-    let plain = build(&ModelSpec::rust_hdl(add_count_verilog()), &BuildOptions::default()).unwrap();
-    let err = plain.instantiate().open_trace(&vcd).unwrap_err().to_string();
+    let plain = build(
+        &ModelSpec::rust_hdl(add_count_verilog()),
+        &BuildOptions::default(),
+    )
+    .unwrap();
+    let err = plain
+        .instantiate()
+        .open_trace(&vcd)
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("without tracing"), "{err}");
 }
 
 #[test]
 fn missing_verilator_is_a_clear_error() {
     let empty = tempfile::tempdir().unwrap();
-    let options = BuildOptions { search_path: Some(empty.path().as_os_str().to_owned()), ..BuildOptions::default() };
-    let err = build(&ModelSpec::rust_hdl(add_count_verilog()), &options).err().expect("must fail");
+    let options = BuildOptions {
+        search_path: Some(empty.path().as_os_str().to_owned()),
+        ..BuildOptions::default()
+    };
+    let err = build(&ModelSpec::rust_hdl(add_count_verilog()), &options)
+        .err()
+        .expect("must fail");
     assert_eq!(
         err.to_string(),
         "verilator not found on PATH: install it with `apt-get install verilator` (or run `make setup`)"
@@ -251,15 +328,28 @@ fn missing_verilator_is_a_clear_error() {
 
 #[test]
 fn invalid_verilog_is_an_error_with_verilators_message() {
-    let verilog = "module top(clock, a, q);\ninput wire clock;\ninput wire [3:0] a;\noutput reg [3:0] q;\n\
+    let verilog =
+        "module top(clock, a, q);\ninput wire clock;\ninput wire [3:0] a;\noutput reg [3:0] q;\n\
                    always @(posedge clock) q <= a +;\nendmodule\n";
-    let err = build(&ModelSpec::rust_hdl(verilog), &BuildOptions::default()).err().expect("must fail");
-    let text = err.to_string();
-    assert!(matches!(err, SimError::ToolFailed { .. }), "{text}");
-    assert!(text.contains("%Error") && text.contains("top.v:5"), "{text}");
-
-    let err = build(&ModelSpec::rust_hdl("module top(clock, q);\ninput wire clock;\nendmodule"), &BuildOptions::default())
+    let err = build(&ModelSpec::rust_hdl(verilog), &BuildOptions::default())
         .err()
         .expect("must fail");
-    assert!(err.to_string().contains("port `q` has no input/output declaration"), "{err}");
+    let text = err.to_string();
+    assert!(matches!(err, SimError::ToolFailed { .. }), "{text}");
+    assert!(
+        text.contains("%Error") && text.contains("top.v:5"),
+        "{text}"
+    );
+
+    let err = build(
+        &ModelSpec::rust_hdl("module top(clock, q);\ninput wire clock;\nendmodule"),
+        &BuildOptions::default(),
+    )
+    .err()
+    .expect("must fail");
+    assert!(
+        err.to_string()
+            .contains("port `q` has no input/output declaration"),
+        "{err}"
+    );
 }

@@ -20,8 +20,15 @@ pub fn default_dir() -> PathBuf {
     }
     std::env::current_exe()
         .ok()
-        .and_then(|exe| exe.ancestors().find(|d| d.join("CACHEDIR.TAG").is_file()).map(Path::to_path_buf))
-        .map_or_else(|| std::env::temp_dir().join("rtfpga-verilator-cache"), |t| t.join("verilator-cache"))
+        .and_then(|exe| {
+            exe.ancestors()
+                .find(|d| d.join("CACHEDIR.TAG").is_file())
+                .map(Path::to_path_buf)
+        })
+        .map_or_else(
+            || std::env::temp_dir().join("rtfpga-verilator-cache"),
+            |t| t.join("verilator-cache"),
+        )
 }
 
 /// Hex SHA-256 of the parts, each length-prefixed so that boundaries matter.
@@ -84,7 +91,9 @@ mod tests {
         assert!(cached);
 
         std::thread::scope(|s| {
-            let handles: Vec<_> = (0..4).map(|_| s.spawn(|| get_or_build(root.path(), "race", write))).collect();
+            let handles: Vec<_> = (0..4)
+                .map(|_| s.spawn(|| get_or_build(root.path(), "race", write)))
+                .collect();
             for h in handles {
                 let (p, _) = h.join().unwrap().unwrap();
                 assert_eq!(std::fs::read_to_string(p.join("f")).unwrap(), "1");

@@ -9,7 +9,11 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 /// Verilator's runtime sources, compiled once per toolchain into `libverilated.a`.
-const RUNTIME_SOURCES: &[&str] = &["verilated.cpp", "verilated_vcd_c.cpp", "verilated_threads.cpp"];
+const RUNTIME_SOURCES: &[&str] = &[
+    "verilated.cpp",
+    "verilated_vcd_c.cpp",
+    "verilated_threads.cpp",
+];
 const RUNTIME_LIB: &str = "libverilated.a";
 /// File name of a built model inside its cache entry.
 pub const MODEL_LIB: &str = "model.so";
@@ -42,21 +46,39 @@ fn cxx_flags(tc: &Toolchain, trace: bool) -> Vec<String> {
 }
 
 /// Compiles each `(source, object, opt)` with `flags`, on as many threads as there are cores.
-fn compile_all(tc: &Toolchain, flags: &[String], jobs: &[(PathBuf, PathBuf, &str)], include: &Path) -> Result<(), SimError> {
+fn compile_all(
+    tc: &Toolchain,
+    flags: &[String],
+    jobs: &[(PathBuf, PathBuf, &str)],
+    include: &Path,
+) -> Result<(), SimError> {
     let next = AtomicUsize::new(0);
     let first_error: Mutex<Option<SimError>> = Mutex::new(None);
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).min(jobs.len().max(1));
+    let threads = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .min(jobs.len().max(1));
     std::thread::scope(|s| {
         for _ in 0..threads {
             s.spawn(|| loop {
                 let i = next.fetch_add(1, Ordering::Relaxed);
-                let Some((src, obj, opt)) = jobs.get(i) else { break };
+                let Some((src, obj, opt)) = jobs.get(i) else {
+                    break;
+                };
                 if first_error.lock().unwrap().is_some() {
                     break;
                 }
                 let mut cmd = Command::new(&tc.cxx);
-                cmd.arg(opt).args(flags).arg(format!("-I{}", include.display())).arg("-c").arg(src).arg("-o").arg(obj);
-                let what = format!("compiling {}", src.file_name().unwrap_or_default().to_string_lossy());
+                cmd.arg(opt)
+                    .args(flags)
+                    .arg(format!("-I{}", include.display()))
+                    .arg("-c")
+                    .arg(src)
+                    .arg("-o")
+                    .arg(obj);
+                let what = format!(
+                    "compiling {}",
+                    src.file_name().unwrap_or_default().to_string_lossy()
+                );
                 if let Err(e) = run(cmd, "c++ compiler", &what) {
                     first_error.lock().unwrap().get_or_insert(e);
                 }
@@ -69,15 +91,26 @@ fn compile_all(tc: &Toolchain, flags: &[String], jobs: &[(PathBuf, PathBuf, &str
 /// Verilator's runtime as a static library in the cache, built on first use.
 pub fn runtime(tc: &Toolchain, cache_root: &Path) -> Result<PathBuf, SimError> {
     let flags = cxx_flags(tc, true);
-    let name = format!("runtime-{}", &cache::key(&[tc.versions.as_bytes(), flags.join(" ").as_bytes()])[..16]);
+    let name = format!(
+        "runtime-{}",
+        &cache::key(&[tc.versions.as_bytes(), flags.join(" ").as_bytes()])[..16]
+    );
     let (dir, _) = cache::get_or_build(cache_root, &name, |tmp| {
         let jobs: Vec<_> = RUNTIME_SOURCES
             .iter()
-            .map(|src| (tc.include.join(src), tmp.join(src).with_extension("o"), "-O3"))
+            .map(|src| {
+                (
+                    tc.include.join(src),
+                    tmp.join(src).with_extension("o"),
+                    "-O3",
+                )
+            })
             .collect();
         compile_all(tc, &flags, &jobs, tmp)?;
         let mut ar = Command::new("ar");
-        ar.arg("rcs").arg(tmp.join(RUNTIME_LIB)).args(jobs.iter().map(|j| &j.1));
+        ar.arg("rcs")
+            .arg(tmp.join(RUNTIME_LIB))
+            .args(jobs.iter().map(|j| &j.1));
         run(ar, "ar", "archiving the Verilator runtime")?;
         Ok(())
     })?;
@@ -86,9 +119,19 @@ pub fn runtime(tc: &Toolchain, cache_root: &Path) -> Result<PathBuf, SimError> {
 
 /// What `verilator` is told for a model (besides the output directory and the source file).
 pub fn verilator_args(top: &str, trace: bool, extra: &[String]) -> Vec<String> {
-    let mut args: Vec<String> = ["--cc", "-O3", "--x-assign", "fast", "--x-initial", "fast", "--noassert", "--prefix", "Vmodel"]
-        .map(String::from)
-        .to_vec();
+    let mut args: Vec<String> = [
+        "--cc",
+        "-O3",
+        "--x-assign",
+        "fast",
+        "--x-initial",
+        "fast",
+        "--noassert",
+        "--prefix",
+        "Vmodel",
+    ]
+    .map(String::from)
+    .to_vec();
     // rust-hdl's output has width-mismatched literals (WIDTH) and similar lint findings; they
     // are reported by the lint step, not a reason to refuse simulation.
     args.push("-Wno-fatal".into());
@@ -125,7 +168,11 @@ pub fn model(
         if src.extension().is_some_and(|e| e == "cpp") {
             let name = src.file_name().unwrap_or_default().to_string_lossy();
             // Construction and initial code run once: don't spend -O3 compile time on them.
-            let opt = if name.contains("__Slow") || name.contains("__Syms") { "-O1" } else { "-O3" };
+            let opt = if name.contains("__Slow") || name.contains("__Syms") {
+                "-O1"
+            } else {
+                "-O3"
+            };
             jobs.push((src.clone(), src.with_extension("o"), opt));
         }
     }
@@ -137,7 +184,12 @@ pub fn model(
         .args(jobs.iter().map(|j| &j.1))
         .arg(runtime_lib)
         // Keep each model's copy of the runtime private, so models loaded side by side don't mix.
-        .args(["-Wl,--exclude-libs,ALL", "-Wl,-Bsymbolic", "-pthread", "-latomic"]);
+        .args([
+            "-Wl,--exclude-libs,ALL",
+            "-Wl,-Bsymbolic",
+            "-pthread",
+            "-latomic",
+        ]);
     run(link, "c++ compiler", "linking the model")?;
     // The intermediate files are large and not needed once the model is linked.
     std::fs::remove_dir_all(&obj).map_err(|e| SimError::io(&obj, e))?;

@@ -42,7 +42,11 @@ impl Interface {
                 .cloned()
                 .collect()
         };
-        Ok(Interface { clock: clock.map(str::to_string), inputs: data(Direction::Input), outputs: data(Direction::Output) })
+        Ok(Interface {
+            clock: clock.map(str::to_string),
+            inputs: data(Direction::Input),
+            outputs: data(Direction::Output),
+        })
     }
 
     pub fn in_words(&self) -> usize {
@@ -83,7 +87,10 @@ impl Interface {
 /// Value-per-port packing needs as many values as ports and ports of at most 64 bits.
 fn check_narrow(ports: &[Port], values: usize, what: &str) -> Result<(), SimError> {
     if ports.len() != values {
-        return Err(SimError::Interface(format!("{values} {what} values given, the model has {} {what} ports", ports.len())));
+        return Err(SimError::Interface(format!(
+            "{values} {what} values given, the model has {} {what} ports",
+            ports.len()
+        )));
     }
     match ports.iter().find(|p| p.width > 64) {
         Some(p) => Err(SimError::Interface(format!(
@@ -133,14 +140,22 @@ mod tests {
         assert_eq!(values, [0xAB_1234_5678, 5]);
         assert!(i.pack_inputs(&[1], &mut words).is_err());
         let wide = Interface::new(&ports(), Some("clock")).unwrap();
-        let e = wide.unpack_outputs(&[0; 4], &mut [0]).unwrap_err().to_string();
+        let e = wide
+            .unpack_outputs(&[0; 4], &mut [0])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("`y` is 100 bits"), "{e}");
     }
 
     #[test]
     fn bad_clock_is_an_error() {
-        let e = Interface::new(&ports(), Some("ap_clk")).unwrap_err().to_string();
-        assert!(e.contains("no clock port `ap_clk`") && e.contains("clock, a, b, y"), "{e}");
+        let e = Interface::new(&ports(), Some("ap_clk"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("no clock port `ap_clk`") && e.contains("clock, a, b, y"),
+            "{e}"
+        );
         assert!(Interface::new(&ports(), Some("a")).is_err());
     }
 }

@@ -43,7 +43,12 @@ pub struct ModelSpec {
 impl ModelSpec {
     /// A rust-hdl design: top module `top`, clock `clock`, ports read from the Verilog.
     pub fn rust_hdl(verilog: impl Into<String>) -> Self {
-        ModelSpec { verilog: verilog.into(), top: "top".into(), ports: None, clock: Some("clock".into()) }
+        ModelSpec {
+            verilog: verilog.into(),
+            top: "top".into(),
+            ports: None,
+            clock: Some("clock".into()),
+        }
     }
 }
 
@@ -78,7 +83,10 @@ impl Default for BuildOptions {
 
 /// Builds (or takes from the cache) and loads the model of `spec`.
 pub fn build(spec: &ModelSpec, options: &BuildOptions) -> Result<Model, SimError> {
-    let path_var = options.search_path.clone().or_else(|| std::env::var_os("PATH"));
+    let path_var = options
+        .search_path
+        .clone()
+        .or_else(|| std::env::var_os("PATH"));
     let tc = toolchain::Toolchain::locate(&options.verilator, &options.cxx, path_var.as_ref())?;
     let ports = match &spec.ports {
         Some(p) => p.clone(),
@@ -101,7 +109,15 @@ pub fn build(spec: &ModelSpec, options: &BuildOptions) -> Result<Model, SimError
     } else {
         let runtime = compile::runtime(&tc, &root)?;
         cache::get_or_build(&root, &name, |tmp| {
-            compile::model(&tc, &runtime, tmp, &spec.verilog, &args, &shim_src, options.trace)
+            compile::model(
+                &tc,
+                &runtime,
+                tmp,
+                &spec.verilog,
+                &args,
+                &shim_src,
+                options.trace,
+            )
         })?
     };
     Model::load(&dir.join(compile::MODEL_LIB), iface, cached, options.trace)

@@ -44,14 +44,25 @@ fn symbol<T: Copy>(lib: &Library, path: &Path, name: &str) -> Result<T, SimError
     // SAFETY: the symbol's type is the one the generated shim declares for `name`.
     unsafe { lib.get::<T>(name.as_bytes()) }
         .map(|s| *s)
-        .map_err(|source| SimError::Load { path: path.to_path_buf(), source })
+        .map_err(|source| SimError::Load {
+            path: path.to_path_buf(),
+            source,
+        })
 }
 
 impl Model {
-    pub(crate) fn load(path: &Path, interface: Interface, cached: bool, trace: bool) -> Result<Self, SimError> {
+    pub(crate) fn load(
+        path: &Path,
+        interface: Interface,
+        cached: bool,
+        trace: bool,
+    ) -> Result<Self, SimError> {
         // SAFETY: the library is one this crate built from its own shim; its initialisers are
         // Verilator's and the C++ runtime's.
-        let lib = unsafe { Library::new(path) }.map_err(|source| SimError::Load { path: path.to_path_buf(), source })?;
+        let lib = unsafe { Library::new(path) }.map_err(|source| SimError::Load {
+            path: path.to_path_buf(),
+            source,
+        })?;
         let abi: WordsFn = symbol(&lib, path, "rtfpga_abi_version")?;
         let in_words: WordsFn = symbol(&lib, path, "rtfpga_in_words")?;
         let out_words: WordsFn = symbol(&lib, path, "rtfpga_out_words")?;
@@ -72,7 +83,14 @@ impl Model {
             open_trace: symbol(&lib, path, "rtfpga_open_trace")?,
             close_trace: symbol(&lib, path, "rtfpga_close_trace")?,
         };
-        Ok(Model { lib: Arc::new(lib), entries, interface: Arc::new(interface), path: path.to_path_buf(), cached, trace })
+        Ok(Model {
+            lib: Arc::new(lib),
+            entries,
+            interface: Arc::new(interface),
+            path: path.to_path_buf(),
+            cached,
+            trace,
+        })
     }
 
     /// The clock and data ports, and how they are packed.
@@ -89,7 +107,13 @@ impl Model {
     pub fn instantiate(&self) -> VerilatedModel {
         // SAFETY: `create` has no preconditions; the handle is destroyed exactly once in Drop.
         let handle = unsafe { (self.entries.create)() };
-        VerilatedModel { _lib: self.lib.clone(), entries: self.entries, interface: self.interface.clone(), handle, cycles: 0 }
+        VerilatedModel {
+            _lib: self.lib.clone(),
+            entries: self.entries,
+            interface: self.interface.clone(),
+            handle,
+            cycles: 0,
+        }
     }
 }
 
@@ -129,7 +153,10 @@ impl VerilatedModel {
     /// `outputs` receives `n × out_words` words, sampled at each rising edge.
     pub fn run(&mut self, inputs: &[u32], outputs: &mut [u32]) -> Result<(), SimError> {
         let (iw, ow) = (self.interface.in_words(), self.interface.out_words());
-        let n = if iw > 0 { inputs.len() / iw } else { outputs.len() / ow.max(1) };
+        let n = inputs
+            .len()
+            .checked_div(iw)
+            .unwrap_or_else(|| outputs.len() / ow.max(1));
         self.check("input", inputs.len(), iw, n)?;
         self.check("output", outputs.len(), ow, n)?;
         // SAFETY: the buffers hold exactly n cycles' worth of words, as the shim reads/writes.
@@ -157,13 +184,19 @@ impl VerilatedModel {
     /// Starts writing a VCD of every following cycle to `path` (needs a model built with
     /// `trace: true`). Two time steps per clock cycle: clock low, clock high.
     pub fn open_trace(&mut self, path: &Path) -> Result<(), SimError> {
-        let c_path = CString::new(path.to_string_lossy().as_bytes())
-            .map_err(|_| SimError::Interface(format!("trace path {} contains a NUL byte", path.display())))?;
+        let c_path = CString::new(path.to_string_lossy().as_bytes()).map_err(|_| {
+            SimError::Interface(format!("trace path {} contains a NUL byte", path.display()))
+        })?;
         // SAFETY: valid handle and NUL-terminated path.
         match unsafe { (self.entries.open_trace)(self.handle, c_path.as_ptr()) } {
             0 => Ok(()),
-            -1 => Err(SimError::Interface("model was built without tracing: build it with `trace: true`".into())),
-            _ => Err(SimError::io(path, std::io::Error::other("cannot open the VCD file"))),
+            -1 => Err(SimError::Interface(
+                "model was built without tracing: build it with `trace: true`".into(),
+            )),
+            _ => Err(SimError::io(
+                path,
+                std::io::Error::other("cannot open the VCD file"),
+            )),
         }
     }
 

@@ -23,7 +23,11 @@ pub struct Port {
 
 impl Port {
     pub fn new(name: impl Into<String>, direction: Direction, width: u32) -> Self {
-        Port { name: name.into(), direction, width }
+        Port {
+            name: name.into(),
+            direction,
+            width,
+        }
     }
 
     /// 32-bit words this port occupies in the packed input/output buffers.
@@ -67,7 +71,10 @@ fn tokenize(src: &str) -> Vec<Token> {
             while i < chars.len() && !chars[i].is_whitespace() {
                 i += 1;
             }
-            tokens.push(Token { text: chars[start..i].iter().collect(), line });
+            tokens.push(Token {
+                text: chars[start..i].iter().collect(),
+                line,
+            });
         } else if c.is_alphanumeric() || c == '_' || c == '$' || c == '\'' {
             let start = i;
             while i < chars.len()
@@ -75,9 +82,15 @@ fn tokenize(src: &str) -> Vec<Token> {
             {
                 i += 1;
             }
-            tokens.push(Token { text: chars[start..i].iter().collect(), line });
+            tokens.push(Token {
+                text: chars[start..i].iter().collect(),
+                line,
+            });
         } else {
-            tokens.push(Token { text: c.to_string(), line });
+            tokens.push(Token {
+                text: c.to_string(),
+                line,
+            });
             i += 1;
         }
     }
@@ -103,11 +116,17 @@ impl<'a> Parser<'a> {
     }
 
     fn error(&self, message: impl Into<String>) -> SimError {
-        SimError::Ports { module: self.module.to_string(), line: self.line(), message: message.into() }
+        SimError::Ports {
+            module: self.module.to_string(),
+            line: self.line(),
+            message: message.into(),
+        }
     }
 
     fn next(&mut self) -> Result<&'a str, SimError> {
-        let t = self.peek().ok_or_else(|| self.error("unexpected end of file"))?;
+        let t = self
+            .peek()
+            .ok_or_else(|| self.error("unexpected end of file"))?;
         self.pos += 1;
         Ok(t)
     }
@@ -118,7 +137,10 @@ impl<'a> Parser<'a> {
                 self.pos += 1;
                 Ok(())
             }
-            other => Err(self.error(format!("expected `{what}`, found `{}`", other.unwrap_or("end of file")))),
+            other => Err(self.error(format!(
+                "expected `{what}`, found `{}`",
+                other.unwrap_or("end of file")
+            ))),
         }
     }
 
@@ -141,7 +163,10 @@ impl<'a> Parser<'a> {
 
     /// `[wire|reg|logic] [signed] [[msb:lsb]]` after a direction keyword; returns the width.
     fn port_type(&mut self) -> Result<u32, SimError> {
-        while matches!(self.peek(), Some("wire" | "reg" | "logic" | "signed" | "unsigned")) {
+        while matches!(
+            self.peek(),
+            Some("wire" | "reg" | "logic" | "signed" | "unsigned")
+        ) {
             self.pos += 1;
         }
         if self.peek() != Some("[") {
@@ -152,14 +177,16 @@ impl<'a> Parser<'a> {
         self.expect(":")?;
         let lsb = self.integer()?;
         self.expect("]")?;
-        Ok(u32::try_from((msb - lsb).abs() + 1).map_err(|_| self.error("port range too wide"))?)
+        u32::try_from((msb - lsb).abs() + 1).map_err(|_| self.error("port range too wide"))
     }
 
     fn direction(&mut self) -> Result<Option<Direction>, SimError> {
         let dir = match self.peek() {
             Some("input") => Direction::Input,
             Some("output") => Direction::Output,
-            Some("inout") => return Err(self.error("inout ports are not supported by the simulator")),
+            Some("inout") => {
+                return Err(self.error("inout ports are not supported by the simulator"))
+            }
             _ => return Ok(None),
         };
         self.pos += 1;
@@ -168,7 +195,10 @@ impl<'a> Parser<'a> {
 
     fn identifier(&mut self) -> Result<String, SimError> {
         let t = self.next()?;
-        if t.chars().next().is_some_and(|c| c.is_alphabetic() || c == '_' || c == '\\') {
+        if t.chars()
+            .next()
+            .is_some_and(|c| c.is_alphabetic() || c == '_' || c == '\\')
+        {
             Ok(t.to_string())
         } else {
             self.pos -= 1;
@@ -180,7 +210,11 @@ impl<'a> Parser<'a> {
 /// Reads the ports of module `top` from `verilog`, in header order.
 pub fn parse_ports(verilog: &str, top: &str) -> Result<Vec<Port>, SimError> {
     let tokens = tokenize(verilog);
-    let mut p = Parser { tokens: &tokens, pos: 0, module: top };
+    let mut p = Parser {
+        tokens: &tokens,
+        pos: 0,
+        module: top,
+    };
     let start = tokens
         .windows(2)
         .position(|w| w[0].text == "module" && w[1].text == top)
@@ -208,13 +242,20 @@ pub fn parse_ports(verilog: &str, top: &str) -> Result<Vec<Port>, SimError> {
         let line = p.line();
         let name = p.identifier()?;
         match current {
-            Some((direction, width)) => ansi.push(Port { name, direction, width }),
+            Some((direction, width)) => ansi.push(Port {
+                name,
+                direction,
+                width,
+            }),
             None => names.push((name, line)),
         }
         if p.peek() == Some(",") {
             p.pos += 1;
         } else if p.peek() != Some(")") {
-            return Err(p.error(format!("expected `,` or `)` in the port list, found `{}`", p.peek().unwrap_or("end of file"))));
+            return Err(p.error(format!(
+                "expected `,` or `)` in the port list, found `{}`",
+                p.peek().unwrap_or("end of file")
+            )));
         }
     }
     p.expect(")")?;
@@ -239,17 +280,20 @@ fn body_declarations(p: &mut Parser, names: Vec<(String, usize)>) -> Result<Vec<
         let width = p.port_type()?;
         loop {
             let name = p.identifier()?;
-            let idx = names
-                .iter()
-                .position(|(n, _)| *n == name)
-                .ok_or_else(|| p.error(format!("`{name}` is declared as a port but is not in the module header")))?;
+            let idx = names.iter().position(|(n, _)| *n == name).ok_or_else(|| {
+                p.error(format!(
+                    "`{name}` is declared as a port but is not in the module header"
+                ))
+            })?;
             declared[idx] = Some((dir, width));
             match p.next()? {
                 "," => continue,
                 ";" => break,
                 t => {
                     p.pos -= 1;
-                    return Err(p.error(format!("expected `,` or `;` after port `{name}`, found `{t}`")));
+                    return Err(p.error(format!(
+                        "expected `,` or `;` after port `{name}`, found `{t}`"
+                    )));
                 }
             }
         }
@@ -258,7 +302,11 @@ fn body_declarations(p: &mut Parser, names: Vec<(String, usize)>) -> Result<Vec<
         .into_iter()
         .zip(declared)
         .map(|((name, line), decl)| match decl {
-            Some((direction, width)) => Ok(Port { name, direction, width }),
+            Some((direction, width)) => Ok(Port {
+                name,
+                direction,
+                width,
+            }),
             None => Err(SimError::Ports {
                 module: p.module.to_string(),
                 line,
@@ -274,7 +322,8 @@ mod tests {
 
     #[test]
     fn rust_hdl_style_header() {
-        let v = "// generated\nmodule top(clock,a,b$x,sum);\n// Module arguments\ninput wire  clock;\n\
+        let v =
+            "// generated\nmodule top(clock,a,b$x,sum);\n// Module arguments\ninput wire  clock;\n\
                  input wire  [31:0] a;\ninput wire signed [7:0] b$x;\noutput reg  [32:0] sum;\n\
                  reg [3:0] local;\nendmodule\nmodule other(q); output wire q; endmodule";
         let ports = parse_ports(v, "top").unwrap();
@@ -308,12 +357,20 @@ mod tests {
 
     #[test]
     fn errors_name_the_line() {
-        let err = parse_ports("module top(a);\ninput wire [W-1:0] a;\nendmodule", "top").unwrap_err();
+        let err =
+            parse_ports("module top(a);\ninput wire [W-1:0] a;\nendmodule", "top").unwrap_err();
         assert!(matches!(err, SimError::Ports { line: 2, .. }), "{err}");
         let err = parse_ports("module top(a, b);\ninput a;\nendmodule", "top").unwrap_err();
-        assert!(err.to_string().contains("port `b` has no input/output declaration"), "{err}");
+        assert!(
+            err.to_string()
+                .contains("port `b` has no input/output declaration"),
+            "{err}"
+        );
         let err = parse_ports("module other(a); endmodule", "top").unwrap_err();
-        assert!(err.to_string().contains("no `module` of that name"), "{err}");
+        assert!(
+            err.to_string().contains("no `module` of that name"),
+            "{err}"
+        );
         let err = parse_ports("module top(inout x);\nendmodule", "top").unwrap_err();
         assert!(err.to_string().contains("inout"), "{err}");
         assert!(parse_ports("module top(a,", "top").is_err());

@@ -21,7 +21,11 @@ pub fn cpp_name(verilog_name: &str) -> String {
     let mut i = 0;
     while i < chars.len() {
         let c = chars[i];
-        let plain = if i == 0 { c.is_ascii_alphabetic() } else { c.is_ascii_alphanumeric() };
+        let plain = if i == 0 {
+            c.is_ascii_alphabetic()
+        } else {
+            c.is_ascii_alphanumeric()
+        };
         if plain {
             out.push(c);
         } else if c == '_' {
@@ -62,7 +66,13 @@ fn set_input(code: &mut String, p: &Port, offset: usize) {
         n => {
             for w in 0..n {
                 let bits = if w + 1 == n { top_bits } else { 32 };
-                writeln!(code, "    m->{m}[{w}] = in[{}] & {};", offset + w, mask(bits)).unwrap();
+                writeln!(
+                    code,
+                    "    m->{m}[{w}] = in[{}] & {};",
+                    offset + w,
+                    mask(bits)
+                )
+                .unwrap();
             }
             Ok(())
         }
@@ -102,7 +112,10 @@ pub fn generate(iface: &Interface) -> String {
         offset += p.words();
     }
     let (clock_low, clock_high) = match &iface.clock {
-        Some(c) => (format!("m->{} = 0;", cpp_name(c)), format!("m->{} = 1;", cpp_name(c))),
+        Some(c) => (
+            format!("m->{} = 0;", cpp_name(c)),
+            format!("m->{} = 1;", cpp_name(c)),
+        ),
         None => (String::new(), String::new()),
     };
     let cycle_body = if iface.clock.is_some() {

@@ -33,7 +33,8 @@ pub fn find_on_path(name: &str, path_var: Option<&OsString>) -> Option<PathBuf> 
 #[cfg(unix)]
 fn is_executable(p: &Path) -> bool {
     use std::os::unix::fs::PermissionsExt;
-    p.metadata().is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o111 != 0)
+    p.metadata()
+        .is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o111 != 0)
 }
 
 #[cfg(not(unix))]
@@ -42,14 +43,20 @@ fn is_executable(p: &Path) -> bool {
 }
 
 fn locate(name: &str, package: &str, path_var: Option<&OsString>) -> Result<PathBuf, SimError> {
-    find_on_path(name, path_var)
-        .ok_or_else(|| SimError::ToolNotFound { tool: name.to_string(), package: package.to_string() })
+    find_on_path(name, path_var).ok_or_else(|| SimError::ToolNotFound {
+        tool: name.to_string(),
+        package: package.to_string(),
+    })
 }
 
 /// The first `ERROR_LINES` lines of a process's stderr and stdout, error lines first (so that
 /// a long list of warnings cannot hide the error).
 fn first_lines(out: &std::process::Output) -> String {
-    let text = format!("{}{}", String::from_utf8_lossy(&out.stderr), String::from_utf8_lossy(&out.stdout));
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stderr),
+        String::from_utf8_lossy(&out.stdout)
+    );
     let mut lines: Vec<&str> = text.lines().collect();
     lines.sort_by_key(|l| !l.to_ascii_lowercase().contains("error"));
     let mut shown = lines[..lines.len().min(ERROR_LINES)].join("\n");
@@ -64,11 +71,19 @@ pub fn run(mut cmd: Command, tool: &str, what: &str) -> Result<std::process::Out
     let out = cmd
         .stdin(Stdio::null())
         .output()
-        .map_err(|e| SimError::ToolFailed { tool: tool.into(), what: what.into(), output: e.to_string() })?;
+        .map_err(|e| SimError::ToolFailed {
+            tool: tool.into(),
+            what: what.into(),
+            output: e.to_string(),
+        })?;
     if out.status.success() {
         Ok(out)
     } else {
-        Err(SimError::ToolFailed { tool: tool.into(), what: format!("{what}, {}", out.status), output: first_lines(&out) })
+        Err(SimError::ToolFailed {
+            tool: tool.into(),
+            what: format!("{what}, {}", out.status),
+            output: first_lines(&out),
+        })
     }
 }
 
@@ -76,12 +91,21 @@ fn first_line_of(path: &Path, tool: &str, args: &[&str]) -> Result<String, SimEr
     let mut cmd = Command::new(path);
     cmd.args(args);
     let out = run(cmd, tool, &args.join(" "))?;
-    Ok(String::from_utf8_lossy(&out.stdout).lines().next().unwrap_or("").trim().to_string())
+    Ok(String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .next()
+        .unwrap_or("")
+        .trim()
+        .to_string())
 }
 
 impl Toolchain {
     /// Finds `verilator` and `cxx` on `path_var` and asks Verilator where its runtime is.
-    pub fn locate(verilator: &str, cxx: &str, path_var: Option<&OsString>) -> Result<Self, SimError> {
+    pub fn locate(
+        verilator: &str,
+        cxx: &str,
+        path_var: Option<&OsString>,
+    ) -> Result<Self, SimError> {
         let verilator = locate(verilator, "verilator", path_var)?;
         let cxx = locate(cxx, "g++", path_var)?;
         let root = first_line_of(&verilator, "verilator", &["--getenv", "VERILATOR_ROOT"])?;
@@ -98,7 +122,12 @@ impl Toolchain {
             first_line_of(&verilator, "verilator", &["--version"])?,
             first_line_of(&cxx, "c++ compiler", &["--version"])?
         );
-        Ok(Toolchain { verilator, cxx, include, versions })
+        Ok(Toolchain {
+            verilator,
+            cxx,
+            include,
+            versions,
+        })
     }
 }
 
@@ -109,7 +138,9 @@ mod tests {
     #[test]
     fn missing_tool_gives_install_hint() {
         let empty = OsString::from("/nonexistent-dir-for-rtfpga-test");
-        let err = Toolchain::locate("verilator", "g++", Some(&empty)).unwrap_err().to_string();
+        let err = Toolchain::locate("verilator", "g++", Some(&empty))
+            .unwrap_err()
+            .to_string();
         assert_eq!(err, "verilator not found on PATH: install it with `apt-get install verilator` (or run `make setup`)");
     }
 
@@ -126,6 +157,9 @@ mod tests {
         cmd.args(["-c", "echo first; echo '%Error: oops' >&2; exit 3"]);
         let err = run(cmd, "sh", "a test").unwrap_err().to_string();
         assert!(err.contains("a test") && err.contains("first"), "{err}");
-        assert!(err.find("%Error: oops") < err.find("first"), "error lines come first: {err}");
+        assert!(
+            err.find("%Error: oops") < err.find("first"),
+            "error lines come first: {err}"
+        );
     }
 }
