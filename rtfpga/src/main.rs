@@ -5,6 +5,7 @@
 mod engine;
 mod cmd_compare;
 mod cmd_formats;
+mod cmd_golden;
 mod cmd_render;
 
 use clap::{Parser, Subcommand};
@@ -24,6 +25,8 @@ enum Command {
     Compare(cmd_compare::Args),
     /// List the number-format catalogue.
     Formats(cmd_formats::Args),
+    /// Regenerate the golden images of the built-in scenes.
+    Golden(cmd_golden::Args),
 }
 
 fn main() -> std::process::ExitCode {
@@ -32,6 +35,7 @@ fn main() -> std::process::ExitCode {
         Command::Render(a) => cmd_render::run(a),
         Command::Compare(a) => cmd_compare::run(a),
         Command::Formats(a) => cmd_formats::run(a),
+        Command::Golden(a) => cmd_golden::run(a),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

@@ -4,6 +4,7 @@
 pub mod bvh;
 pub mod camera;
 pub mod compare;
+pub mod golden;
 pub mod hit;
 pub mod intersect;
 pub mod math;
