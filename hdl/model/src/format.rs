@@ -17,7 +17,8 @@
 //! lt(a, b): a < b as real numbers; false if either is NaN; −0 == +0.
 //!
 //! Refinements where the text above was silent (added by the model, same meaning elsewhere):
-//! - Bits above `width()` in an operand must be 0; results always have them 0.
+//! - Operators assume a format that passed `validate()`. Bits above `width()` in an operand
+//!   must be 0; results always have them 0.
 //! - Float neg flips the sign bit and nothing else (NaN, Inf and zero patterns included), as
 //!   a wire swap does; fixed neg is the exact −x, then the overflow mode (−min wraps to min or
 //!   saturates to max).
