@@ -8,7 +8,15 @@ use super::{toml_scene, Scene, SceneError};
 
 macro_rules! scene_file {
     ($stem:literal) => {
-        ($stem, include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/", $stem, ".toml")))
+        (
+            $stem,
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/../scenes/",
+                $stem,
+                ".toml"
+            )),
+        )
     };
 }
 
@@ -30,11 +38,17 @@ pub fn names() -> Vec<&'static str> {
 
 /// The TOML text of a built-in scene.
 pub fn text(name: &str) -> Option<&'static str> {
-    SCENES.iter().find(|(n, _)| *n == name).map(|(_, text)| *text)
+    SCENES
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, text)| *text)
 }
 
 /// Load a built-in scene; `None` if there is no built-in of that name.
 pub fn load(name: &str) -> Option<Result<Scene, SceneError>> {
     let text = text(name)?;
-    Some(toml_scene::load_str(text, &Path::new("scenes").join(format!("{name}.toml"))))
+    Some(toml_scene::load_str(
+        text,
+        &Path::new("scenes").join(format!("{name}.toml")),
+    ))
 }

@@ -27,7 +27,9 @@ fn finite(name: &str, x: f32) -> Result<f32, GeometryError> {
     if x.is_finite() {
         Ok(x)
     } else {
-        Err(GeometryError(format!("{name} must be a finite number, found {x}")))
+        Err(GeometryError(format!(
+            "{name} must be a finite number, found {x}"
+        )))
     }
 }
 
@@ -35,7 +37,9 @@ fn positive(name: &str, x: f32) -> Result<f32, GeometryError> {
     if finite(name, x)? > 0.0 {
         Ok(x)
     } else {
-        Err(GeometryError(format!("{name} must be greater than 0, found {x}")))
+        Err(GeometryError(format!(
+            "{name} must be greater than 0, found {x}"
+        )))
     }
 }
 
@@ -43,7 +47,9 @@ fn non_negative(name: &str, x: f32) -> Result<f32, GeometryError> {
     if finite(name, x)? >= 0.0 {
         Ok(x)
     } else {
-        Err(GeometryError(format!("{name} must be 0 or more, found {x}")))
+        Err(GeometryError(format!(
+            "{name} must be 0 or more, found {x}"
+        )))
     }
 }
 
@@ -51,7 +57,9 @@ fn at_least(name: &str, n: u32, min: u32) -> Result<u32, GeometryError> {
     if n >= min {
         Ok(n)
     } else {
-        Err(GeometryError(format!("{name} must be at least {min}, found {n}")))
+        Err(GeometryError(format!(
+            "{name} must be at least {min}, found {n}"
+        )))
     }
 }
 
@@ -89,7 +97,8 @@ impl Profile {
         let mut faces = Vec::with_capacity(points.len() - 1);
         for (k, w) in points.windows(2).enumerate() {
             let t = w[1] - w[0];
-            if t.length() <= 1e-6 * (w[0].abs().max_element() + w[1].abs().max_element()).max(1e-6) {
+            if t.length() <= 1e-6 * (w[0].abs().max_element() + w[1].abs().max_element()).max(1e-6)
+            {
                 return Err(GeometryError(format!(
                     "profile points {k} and {} are the same point ({}, {})",
                     k + 1,
@@ -109,8 +118,16 @@ impl Profile {
         };
         let normals = (0..faces.len())
             .map(|k| {
-                let start = if k > 0 { smooth(faces[k - 1], faces[k]) } else { faces[k] };
-                let end = if k + 1 < faces.len() { smooth(faces[k + 1], faces[k]) } else { faces[k] };
+                let start = if k > 0 {
+                    smooth(faces[k - 1], faces[k])
+                } else {
+                    faces[k]
+                };
+                let end = if k + 1 < faces.len() {
+                    smooth(faces[k + 1], faces[k])
+                } else {
+                    faces[k]
+                };
                 [start, end]
             })
             .collect();
@@ -184,11 +201,19 @@ pub fn lathe(profile: &[Vec2], segments: u32) -> Result<Mesh, GeometryError> {
                 } else {
                     // A ring, or the apex of a cone: there each column keeps its own normal,
                     // taken at the middle of the column.
-                    let a = if profile.points[row].x == 0.0 { angle(2 * j + 1, 2 * n) } else { angle(col, n) };
+                    let a = if profile.points[row].x == 0.0 {
+                        angle(2 * j + 1, 2 * n)
+                    } else {
+                        angle(col, n)
+                    };
                     let (s, c) = a.sin_cos();
                     Vec3::new(n2.x * c, n2.y, -n2.x * s).normalize()
                 };
-                let u = if col == j1 && j1 == 0 { 1.0 } else { col as f32 / n as f32 };
+                let u = if col == j1 && j1 == 0 {
+                    1.0
+                } else {
+                    col as f32 / n as f32
+                };
                 let v = row as f32 / profile.segments() as f32;
                 (rows[row].index(col), normal, Vec2::new(u, v))
             };
@@ -208,11 +233,20 @@ fn angle(j: usize, n: usize) -> f32 {
 
 /// A closed cylinder (a frustum when `top_radius` differs from `radius`, a cone when it is 0)
 /// standing on y = 0 around the y axis.
-pub fn cylinder(radius: f32, top_radius: f32, height: f32, segments: u32) -> Result<Mesh, GeometryError> {
+pub fn cylinder(
+    radius: f32,
+    top_radius: f32,
+    height: f32,
+    segments: u32,
+) -> Result<Mesh, GeometryError> {
     positive("radius", radius)?;
     non_negative("top_radius", top_radius)?;
     positive("height", height)?;
-    let mut profile = vec![Vec2::ZERO, Vec2::new(radius, 0.0), Vec2::new(top_radius, height)];
+    let mut profile = vec![
+        Vec2::ZERO,
+        Vec2::new(radius, 0.0),
+        Vec2::new(top_radius, height),
+    ];
     if top_radius > 0.0 {
         profile.push(Vec2::new(0.0, height));
     }
@@ -221,13 +255,23 @@ pub fn cylinder(radius: f32, top_radius: f32, height: f32, segments: u32) -> Res
 
 /// A pen along the y axis: a conical tip of `tip_length` with its point at the origin, then a
 /// cylindrical body of `length` and `radius`, closed by a flat cap.
-pub fn pen(radius: f32, length: f32, tip_length: f32, segments: u32) -> Result<Mesh, GeometryError> {
+pub fn pen(
+    radius: f32,
+    length: f32,
+    tip_length: f32,
+    segments: u32,
+) -> Result<Mesh, GeometryError> {
     positive("radius", radius)?;
     positive("length", length)?;
     positive("tip_length", tip_length)?;
     let top = tip_length + length;
     lathe(
-        &[Vec2::ZERO, Vec2::new(radius, tip_length), Vec2::new(radius, top), Vec2::new(0.0, top)],
+        &[
+            Vec2::ZERO,
+            Vec2::new(radius, tip_length),
+            Vec2::new(radius, top),
+            Vec2::new(0.0, top),
+        ],
         segments,
     )
 }
@@ -261,8 +305,15 @@ pub fn backdrop(b: &Backdrop) -> Result<Mesh, GeometryError> {
     at_least("width_segments", b.width_segments, 1)?;
     let floor_segments = at_least("floor_segments", b.floor_segments, 1)?;
     let wall_segments = at_least("wall_segments", b.wall_segments, 1)?;
-    let bend_segments = if b.radius > 0.0 { at_least("bend_segments", b.bend_segments, 1)? } else { 0 };
-    check_size(2 * (floor_segments as u64 + wall_segments as u64 + bend_segments as u64) * b.width_segments as u64)?;
+    let bend_segments = if b.radius > 0.0 {
+        at_least("bend_segments", b.bend_segments, 1)?
+    } else {
+        0
+    };
+    check_size(
+        2 * (floor_segments as u64 + wall_segments as u64 + bend_segments as u64)
+            * b.width_segments as u64,
+    )?;
     let back = -b.depth / 2.0;
     let bend_z = back + b.radius;
     let front = b.depth / 2.0;
@@ -273,7 +324,10 @@ pub fn backdrop(b: &Backdrop) -> Result<Mesh, GeometryError> {
     }
     for i in 0..bend_segments {
         let phi = std::f32::consts::FRAC_PI_2 * i as f32 / bend_segments as f32;
-        points.push(Vec2::new(bend_z - b.radius * phi.sin(), b.radius * (1.0 - phi.cos())));
+        points.push(Vec2::new(
+            bend_z - b.radius * phi.sin(),
+            b.radius * (1.0 - phi.cos()),
+        ));
     }
     for i in 0..=wall_segments {
         let t = i as f32 / wall_segments as f32;
@@ -299,7 +353,9 @@ fn extrude(profile: Profile, width: f32, across: u32, along: u32) -> Result<Mesh
     let rows: Vec<Vec<u32>> = (0..=rows_total)
         .map(|r| {
             let p = row_point(r);
-            (0..=across).map(|i| grid.vertex(Vec3::new(x(i), p.y, p.x))).collect()
+            (0..=across)
+                .map(|i| grid.vertex(Vec3::new(x(i), p.y, p.x)))
+                .collect()
         })
         .collect();
     for r in 0..rows_total {
@@ -314,7 +370,11 @@ fn extrude(profile: Profile, width: f32, across: u32, along: u32) -> Result<Mesh
         let (top, bottom) = (normal(f0), normal(f1));
         for i in 0..across {
             let corner = |row: usize, col: usize, n: Vec3| {
-                (rows[row][col], n, Vec2::new(col as f32 / across as f32, row as f32 / rows_total as f32))
+                (
+                    rows[row][col],
+                    n,
+                    Vec2::new(col as f32 / across as f32, row as f32 / rows_total as f32),
+                )
             };
             grid.quad(
                 corner(r, i, top),
@@ -428,7 +488,9 @@ struct BezierPatch {
 impl BezierPatch {
     fn new(indices: &[u16; 16]) -> BezierPatch {
         let control: [[glam::DVec3; 4]; 4] = std::array::from_fn(|i| {
-            std::array::from_fn(|j| glam::Vec3::from_array(TEAPOT_POINTS[indices[4 * i + j] as usize]).as_dvec3())
+            std::array::from_fn(|j| {
+                glam::Vec3::from_array(TEAPOT_POINTS[indices[4 * i + j] as usize]).as_dvec3()
+            })
         });
         let same = |pts: [glam::DVec3; 4]| pts.iter().all(|p| *p == pts[0]);
         let collapsed = [
@@ -453,13 +515,14 @@ impl BezierPatch {
     /// The surface point and unit outward normal at (u, v). Where the derivatives vanish (on a
     /// collapsed edge) the normal is taken a little inside the patch, where it is well defined.
     fn point_and_normal(&self, u: f64, v: f64) -> (glam::DVec3, glam::DVec3) {
-        let point = if (u == 0.0 && self.collapsed[EDGE_U0]) || (v == 0.0 && self.collapsed[EDGE_V0]) {
-            self.control[0][0]
-        } else if u == 1.0 && self.collapsed[EDGE_U1] || (v == 1.0 && self.collapsed[EDGE_V1]) {
-            self.control[3][3]
-        } else {
-            self.eval(bernstein(u), bernstein(v))
-        };
+        let point =
+            if (u == 0.0 && self.collapsed[EDGE_U0]) || (v == 0.0 && self.collapsed[EDGE_V0]) {
+                self.control[0][0]
+            } else if u == 1.0 && self.collapsed[EDGE_U1] || (v == 1.0 && self.collapsed[EDGE_V1]) {
+                self.control[3][3]
+            } else {
+                self.eval(bernstein(u), bernstein(v))
+            };
         let (mut nu, mut nv) = (u, v);
         for _ in 0..8 {
             let du = self.eval(bernstein_derivative(nu), bernstein(nv));
@@ -485,13 +548,19 @@ fn bernstein(t: f64) -> [f64; 4] {
 
 fn bernstein_derivative(t: f64) -> [f64; 4] {
     let s = 1.0 - t;
-    [-3.0 * s * s, 3.0 * s * s - 6.0 * t * s, 6.0 * t * s - 3.0 * t * t, 3.0 * t * t]
+    [
+        -3.0 * s * s,
+        3.0 * s * s - 6.0 * t * s,
+        6.0 * t * s - 3.0 * t * t,
+        3.0 * t * t,
+    ]
 }
 
 /// The Utah teapot as Martin Newell modelled it in 1975 (public data; 32 patches with the bottom
 /// added in later distributions, 306 points, z up), as published in the `teaset` archive of
 /// Steve Baker (sjbaker.org/teapot) — there 1-based, here 0-based indices into TEAPOT_POINTS,
 /// 16 per patch, row by row.
+#[rustfmt::skip]
 const TEAPOT_PATCHES: [[u16; 16]; 32] = [
     [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15],
     [3, 16, 17, 18, 7, 19, 20, 21, 11, 22, 23, 24, 15, 25, 26, 27],
@@ -527,6 +596,7 @@ const TEAPOT_PATCHES: [[u16; 16]; 32] = [
     [269, 269, 269, 269, 299, 304, 305, 278, 296, 302, 303, 274, 293, 300, 301, 270],
 ];
 
+#[rustfmt::skip]
 const TEAPOT_POINTS: [[f32; 3]; 306] = [
     [1.4, 0.0, 2.4], [1.4, -0.784, 2.4], [0.784, -1.4, 2.4], [0.0, -1.4, 2.4],
     [1.3375, 0.0, 2.53125], [1.3375, -0.749, 2.53125], [0.749, -1.3375, 2.53125],

@@ -14,11 +14,17 @@ use serde::{Deserialize, Deserializer};
 use toml::Spanned;
 
 use super::procedural::{self, Backdrop, GeometryError};
-use super::{thesis, Light, LightKind, Mat44, Material, MaterialKind, Mesh, Object, Options, Scene, SceneError};
+use super::{
+    thesis, Light, LightKind, Mat44, Material, MaterialKind, Mesh, Object, Options, Scene,
+    SceneError,
+};
 
 /// Read and load a `.toml` scene file; `.geo` references are relative to its directory.
 pub fn load_file(path: &Path) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io { path: path.to_path_buf(), source })?;
+    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
     load_str(&text, path)
 }
 
@@ -26,7 +32,8 @@ pub fn load_file(path: &Path) -> Result<Scene, SceneError> {
 /// file stem) and is the base of relative `.geo` paths.
 pub fn load_str(text: &str, origin: &Path) -> Result<Scene, SceneError> {
     let source = Source { text, path: origin };
-    let def: SceneDef = toml::from_str(text).map_err(|e| source.error(e.span(), e.message().trim_end().to_string()))?;
+    let def: SceneDef = toml::from_str(text)
+        .map_err(|e| source.error(e.span(), e.message().trim_end().to_string()))?;
     let options = def.options.build(&source)?;
     let lights = def.lights.into_iter().map(LightDef::build).collect();
     let mut meshes = MeshCache::default();
@@ -35,8 +42,16 @@ pub fn load_str(text: &str, origin: &Path) -> Result<Scene, SceneError> {
         .into_iter()
         .map(|object| object_from(object, &source, &mut meshes))
         .collect::<Result<Vec<_>, _>>()?;
-    let name = origin.file_stem().map_or_else(|| origin.display().to_string(), |s| s.to_string_lossy().into_owned());
-    Ok(Scene { name, options, lights, objects })
+    let name = origin.file_stem().map_or_else(
+        || origin.display().to_string(),
+        |s| s.to_string_lossy().into_owned(),
+    );
+    Ok(Scene {
+        name,
+        options,
+        lights,
+        objects,
+    })
 }
 
 /// The text being loaded and its name, for error messages with a line number.
@@ -48,14 +63,32 @@ struct Source<'a> {
 impl Source<'_> {
     fn error(&self, span: Option<Range<usize>>, what: String) -> SceneError {
         let Some(span) = span else {
-            return SceneError::Invalid { path: self.path.to_path_buf(), what };
+            return SceneError::Invalid {
+                path: self.path.to_path_buf(),
+                what,
+            };
         };
         let start = span.start.min(self.text.len());
         let end = span.end.clamp(start, self.text.len());
-        let line = self.text.as_bytes()[..start].iter().filter(|&&b| b == b'\n').count() + 1;
+        let line = self.text.as_bytes()[..start]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1;
         let found = self.text.get(start..end).unwrap_or("");
-        let token: String = found.lines().next().unwrap_or("").chars().take(60).collect();
-        SceneError::Syntax { path: self.path.to_path_buf(), line, token, what }
+        let token: String = found
+            .lines()
+            .next()
+            .unwrap_or("")
+            .chars()
+            .take(60)
+            .collect();
+        SceneError::Syntax {
+            path: self.path.to_path_buf(),
+            line,
+            token,
+            what,
+        }
     }
 
     fn error_at<T>(&self, at: &Spanned<T>, what: String) -> SceneError {
@@ -72,10 +105,14 @@ impl<'de> Deserialize<'de> for Num {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Num, D::Error> {
         let x = f64::deserialize(deserializer)?;
         if !x.is_finite() {
-            return Err(serde::de::Error::custom(format!("expected a finite number, found {x}")));
+            return Err(serde::de::Error::custom(format!(
+                "expected a finite number, found {x}"
+            )));
         }
         if x.abs() > f32::MAX as f64 {
-            return Err(serde::de::Error::custom(format!("{x} does not fit a 32-bit float")));
+            return Err(serde::de::Error::custom(format!(
+                "{x} does not fit a 32-bit float"
+            )));
         }
         Ok(Num(x as f32))
     }
@@ -135,12 +172,17 @@ impl OptionsDef {
     fn build(self, source: &Source) -> Result<Options, SceneError> {
         for side in [&self.width, &self.height] {
             if *side.get_ref() == 0 {
-                return Err(source.error_at(side, "expected an image size of at least 1 pixel".into()));
+                return Err(
+                    source.error_at(side, "expected an image size of at least 1 pixel".into())
+                );
             }
         }
         let fov = self.fov.get_ref().0;
         if !(fov > 0.0 && fov < 180.0) {
-            return Err(source.error_at(&self.fov, "expected a fov in degrees between 0 and 180, exclusive".into()));
+            return Err(source.error_at(
+                &self.fov,
+                "expected a fov in degrees between 0 and 180, exclusive".into(),
+            ));
         }
         let camera_to_world = match (self.camera_to_world, self.look_at) {
             (Some(m), None) => mat44(m.into_inner()),
@@ -185,10 +227,20 @@ impl LookAtDef {
     /// The camera looks along its −z: z points from `to` back to `from`.
     fn camera_to_world(&self) -> Result<Mat44, String> {
         let (from, to, up) = (vec3(self.from), vec3(self.to), vec3(self.up));
-        let z = (from - to).try_normalize().ok_or("look_at: from and to must differ")?;
-        let x = up.cross(z).try_normalize().ok_or("look_at: up must not be parallel to the view direction")?;
+        let z = (from - to)
+            .try_normalize()
+            .ok_or("look_at: from and to must differ")?;
+        let x = up
+            .cross(z)
+            .try_normalize()
+            .ok_or("look_at: up must not be parallel to the view direction")?;
         let y = z.cross(x);
-        Ok(Mat44([[x.x, x.y, x.z, 0.0], [y.x, y.y, y.z, 0.0], [z.x, z.y, z.z, 0.0], [from.x, from.y, from.z, 1.0]]))
+        Ok(Mat44([
+            [x.x, x.y, x.z, 0.0],
+            [y.x, y.y, y.z, 0.0],
+            [z.x, z.y, z.z, 0.0],
+            [from.x, from.y, from.z, 1.0],
+        ]))
     }
 }
 
@@ -415,21 +467,28 @@ impl GeometryDef {
             GeometryDef::Geo(path) => {
                 return thesis::load_geo(path).map_err(|e| match e {
                     // Say which scene line asked for the missing file.
-                    SceneError::Io { path, source: io } => {
-                        source.error(Some(span), format!("cannot read geometry file {}: {io}", path.display()))
-                    }
+                    SceneError::Io { path, source: io } => source.error(
+                        Some(span),
+                        format!("cannot read geometry file {}: {io}", path.display()),
+                    ),
                     other => other,
-                })
+                });
             }
             GeometryDef::Plane(p) => procedural::plane(p.width.0, p.depth.0, p.segments),
             GeometryDef::Lathe(l) => {
-                let profile: Vec<Vec2> = l.profile.iter().map(|[r, h]| Vec2::new(r.0, h.0)).collect();
+                let profile: Vec<Vec2> =
+                    l.profile.iter().map(|[r, h]| Vec2::new(r.0, h.0)).collect();
                 procedural::lathe(&profile, l.segments)
             }
-            GeometryDef::Cylinder(c) => {
-                procedural::cylinder(c.radius.0, c.top_radius.unwrap_or(c.radius).0, c.height.0, c.segments)
+            GeometryDef::Cylinder(c) => procedural::cylinder(
+                c.radius.0,
+                c.top_radius.unwrap_or(c.radius).0,
+                c.height.0,
+                c.segments,
+            ),
+            GeometryDef::Pen(p) => {
+                procedural::pen(p.radius.0, p.length.0, p.tip_length.0, p.segments)
             }
-            GeometryDef::Pen(p) => procedural::pen(p.radius.0, p.length.0, p.tip_length.0, p.segments),
             GeometryDef::Backdrop(b) => procedural::backdrop(&Backdrop {
                 width: b.width.0,
                 depth: b.depth.0,
@@ -442,7 +501,8 @@ impl GeometryDef {
             }),
             GeometryDef::Teapot(t) => procedural::teapot(t.segments, t.size.0),
         };
-        generated.map_err(|e: GeometryError| source.error(Some(span), format!("object `{object}`: {e}")))
+        generated
+            .map_err(|e: GeometryError| source.error(Some(span), format!("object `{object}`: {e}")))
     }
 }
 
@@ -451,15 +511,24 @@ struct MeshCache {
     meshes: Vec<(GeometryDef, Arc<Mesh>)>,
 }
 
-fn object_from(object: Spanned<ObjectDef>, source: &Source, meshes: &mut MeshCache) -> Result<Object, SceneError> {
+fn object_from(
+    object: Spanned<ObjectDef>,
+    source: &Source,
+    meshes: &mut MeshCache,
+) -> Result<Object, SceneError> {
     let span = object.span();
     let def = object.into_inner();
     let base = source.path.parent().unwrap_or(Path::new(""));
-    fn spanned<T: Clone>(g: &Option<Spanned<T>>, f: fn(T) -> GeometryDef) -> Option<(Range<usize>, GeometryDef)> {
+    fn spanned<T: Clone>(
+        g: &Option<Spanned<T>>,
+        f: fn(T) -> GeometryDef,
+    ) -> Option<(Range<usize>, GeometryDef)> {
         g.as_ref().map(|s| (s.span(), f(s.get_ref().clone())))
     }
     let given: Vec<(Range<usize>, GeometryDef)> = [
-        def.geo.as_ref().map(|g| (g.span(), GeometryDef::Geo(base.join(g.get_ref())))),
+        def.geo
+            .as_ref()
+            .map(|g| (g.span(), GeometryDef::Geo(base.join(g.get_ref())))),
         spanned(&def.plane, GeometryDef::Plane),
         spanned(&def.lathe, GeometryDef::Lathe),
         spanned(&def.cylinder, GeometryDef::Cylinder),
@@ -475,15 +544,19 @@ fn object_from(object: Spanned<ObjectDef>, source: &Source, meshes: &mut MeshCac
         [] => {
             return Err(source.error(
                 Some(span),
-                format!("object `{}` has no geometry: expected one of {GEOMETRY_KEYS}", def.name),
+                format!(
+                    "object `{}` has no geometry: expected one of {GEOMETRY_KEYS}",
+                    def.name
+                ),
             ))
         }
-        [_, second, ..] => {
-            return Err(source.error(
-                Some(second.0.clone()),
-                format!("object `{}` has more than one geometry: expected exactly one of {GEOMETRY_KEYS}", def.name),
-            ))
-        }
+        [_, second, ..] => return Err(source.error(
+            Some(second.0.clone()),
+            format!(
+                "object `{}` has more than one geometry: expected exactly one of {GEOMETRY_KEYS}",
+                def.name
+            ),
+        )),
     };
     let mesh = match meshes.meshes.iter().find(|(g, _)| *g == geometry) {
         Some((_, mesh)) => Arc::clone(mesh),
@@ -494,5 +567,10 @@ fn object_from(object: Spanned<ObjectDef>, source: &Source, meshes: &mut MeshCac
             mesh
         }
     };
-    Ok(Object { name: def.name, mesh, object_to_world: mat44(def.object_to_world), material: def.material.build() })
+    Ok(Object {
+        name: def.name,
+        mesh,
+        object_to_world: mat44(def.object_to_world),
+        material: def.material.build(),
+    })
 }
