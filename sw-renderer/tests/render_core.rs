@@ -421,7 +421,15 @@ fn wavefront_render_equals_the_recursive_reference_bit_for_bit() {
 #[test]
 fn thesis_scenes_equal_the_recursive_reference() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/scenes/thesis");
-    for name in ["Simple_plane_scene", "Glasses_point_scene", "Utah_teapot_scene"] {
+    for name in [
+        "Simple_plane_scene",
+        "Simple_plane2_scene",
+        "Glasses_scene",
+        "Glasses_point_scene",
+        "Glass_pen_scene",
+        "Utah_teapot_scene",
+        "All_materials_scene",
+    ] {
         let dir = root.join(name);
         if !dir.is_dir() {
             eprintln!("skipping {name}: {} not found", dir.display());
