@@ -14,16 +14,31 @@ use sw_renderer::world::WorldTriangle;
 /// A bumpy sphere of 2·rings·segments triangles.
 fn mesh(rings: u32, segments: u32) -> Vec<WorldTriangle> {
     let point = |r: u32, s: u32| {
-        let (theta, phi) = (std::f32::consts::PI * r as f32 / rings as f32, std::f32::consts::TAU * s as f32 / segments as f32);
+        let (theta, phi) = (
+            std::f32::consts::PI * r as f32 / rings as f32,
+            std::f32::consts::TAU * s as f32 / segments as f32,
+        );
         let radius = 1.0 + 0.05 * (7.0 * theta).sin() * (5.0 * phi).cos();
-        V3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin()) * radius
+        V3::new(
+            theta.sin() * phi.cos(),
+            theta.cos(),
+            theta.sin() * phi.sin(),
+        ) * radius
     };
     let mut tris = Vec::new();
     for r in 0..rings {
         for s in 0..segments {
             let n = [V3::new(0.0, 1.0, 0.0); 3];
-            tris.push(WorldTriangle { verts: [point(r, s), point(r + 1, s), point(r + 1, s + 1)], normals: n, object: 0 });
-            tris.push(WorldTriangle { verts: [point(r, s), point(r + 1, s + 1), point(r, s + 1)], normals: n, object: 0 });
+            tris.push(WorldTriangle {
+                verts: [point(r, s), point(r + 1, s), point(r + 1, s + 1)],
+                normals: n,
+                object: 0,
+            });
+            tris.push(WorldTriangle {
+                verts: [point(r, s), point(r + 1, s + 1), point(r, s + 1)],
+                normals: n,
+                object: 0,
+            });
         }
     }
     tris
@@ -41,7 +56,13 @@ fn rays(n: usize) -> Vec<(V3, V3)> {
 }
 
 fn query(o: V3, d: V3, t: &WorldTriangle) -> MtQuery {
-    MtQuery { orig: o.to_array(), dir: d.to_array(), v0: t.verts[0].to_array(), v1: t.verts[1].to_array(), v2: t.verts[2].to_array() }
+    MtQuery {
+        orig: o.to_array(),
+        dir: d.to_array(),
+        v0: t.verts[0].to_array(),
+        v1: t.verts[1].to_array(),
+        v2: t.verts[2].to_array(),
+    }
 }
 
 fn bench(c: &mut Criterion) {

@@ -27,13 +27,14 @@ struct Aabb {
 }
 
 impl Aabb {
-    const EMPTY: Aabb = Aabb { min: [f32::INFINITY; 3], max: [f32::NEG_INFINITY; 3] };
+    const EMPTY: Aabb = Aabb {
+        min: [f32::INFINITY; 3],
+        max: [f32::NEG_INFINITY; 3],
+    };
 
     fn grow_point(&mut self, p: [f32; 3]) {
-        for a in 0..3 {
-            self.min[a] = self.min[a].min(p[a]);
-            self.max[a] = self.max[a].max(p[a]);
-        }
+        self.min = [0, 1, 2].map(|a| self.min[a].min(p[a]));
+        self.max = [0, 1, 2].map(|a| self.max[a].max(p[a]));
     }
 
     fn grow(&mut self, b: &Aabb) {
@@ -42,8 +43,12 @@ impl Aabb {
     }
 
     fn area(&self) -> f32 {
-        let d = [self.max[0] - self.min[0], self.max[1] - self.min[1], self.max[2] - self.min[2]];
-        if d.iter().any(|x| !(*x >= 0.0)) {
+        let d = [
+            self.max[0] - self.min[0],
+            self.max[1] - self.min[1],
+            self.max[2] - self.min[2],
+        ];
+        if d.iter().any(|x| x.is_nan() || *x < 0.0) {
             return 0.0;
         }
         2.0 * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0])
@@ -51,7 +56,11 @@ impl Aabb {
 
     /// Grown by `PAD` times its largest coordinate magnitude.
     fn padded(&self) -> Aabb {
-        let magnitude = self.min.iter().chain(&self.max).fold(0.0f32, |m, x| m.max(x.abs()));
+        let magnitude = self
+            .min
+            .iter()
+            .chain(&self.max)
+            .fold(0.0f32, |m, x| m.max(x.abs()));
         let pad = PAD * magnitude + f32::MIN_POSITIVE;
         Aabb {
             min: self.min.map(|x| x - pad),
@@ -134,10 +143,16 @@ impl Bvh {
                 b
             })
             .collect();
-        let centroids: Vec<[f32; 3]> =
-            boxes.iter().map(|b| [0, 1, 2].map(|a| 0.5 * b.min[a] + 0.5 * b.max[a])).collect();
+        let centroids: Vec<[f32; 3]> = boxes
+            .iter()
+            .map(|b| [0, 1, 2].map(|a| 0.5 * b.min[a] + 0.5 * b.max[a]))
+            .collect();
         let mut order: Vec<u32> = (0..triangles.len() as u32).collect();
-        let mut nodes = vec![Node { bounds: Aabb::EMPTY, first: 0, count: 0 }];
+        let mut nodes = vec![Node {
+            bounds: Aabb::EMPTY,
+            first: 0,
+            count: 0,
+        }];
         let mut work = vec![(0usize, 0usize, order.len(), 0usize)];
 
         while let Some((node, start, end, depth)) = work.pop() {
@@ -147,21 +162,49 @@ impl Bvh {
                 bounds.grow(&boxes[t as usize]);
                 centre_bounds.grow_point(centroids[t as usize]);
             }
-            let leaf = Node { bounds: bounds.padded(), first: start as u32, count: (end - start) as u32 };
+            let leaf = Node {
+                bounds: bounds.padded(),
+                first: start as u32,
+                count: (end - start) as u32,
+            };
             let split = if end - start <= 2 || depth >= MAX_DEPTH {
                 None
             } else {
-                best_split(&order[start..end], &boxes, &centroids, &centre_bounds, bounds.area())
+                best_split(
+                    &order[start..end],
+                    &boxes,
+                    &centroids,
+                    &centre_bounds,
+                    bounds.area(),
+                )
             };
             match split {
                 Some((axis, bin)) => {
                     let slice = &mut order[start..end];
-                    let (lo, extent) = (centre_bounds.min[axis], centre_bounds.max[axis] - centre_bounds.min[axis]);
-                    let mid = start + partition(slice, |t| bin_of(centroids[t as usize][axis], lo, extent) < bin);
+                    let (lo, extent) = (
+                        centre_bounds.min[axis],
+                        centre_bounds.max[axis] - centre_bounds.min[axis],
+                    );
+                    let mid = start
+                        + partition(slice, |t| {
+                            bin_of(centroids[t as usize][axis], lo, extent) < bin
+                        });
                     let left = nodes.len();
-                    nodes.push(Node { bounds: Aabb::EMPTY, first: 0, count: 0 });
-                    nodes.push(Node { bounds: Aabb::EMPTY, first: 0, count: 0 });
-                    nodes[node] = Node { bounds: bounds.padded(), first: left as u32, count: 0 };
+                    nodes.push(Node {
+                        bounds: Aabb::EMPTY,
+                        first: 0,
+                        count: 0,
+                    });
+                    nodes.push(Node {
+                        bounds: Aabb::EMPTY,
+                        first: 0,
+                        count: 0,
+                    });
+                    nodes[node] = Node {
+                        bounds: bounds.padded(),
+                        first: left as u32,
+                        count: 0,
+                    };
                     work.push((left, start, mid, depth + 1));
                     work.push((left + 1, mid, end, depth + 1));
                 }
@@ -217,7 +260,8 @@ fn best_split(
     for axis in 0..3 {
         let lo = centre_bounds.min[axis];
         let extent = centre_bounds.max[axis] - lo;
-        if !(extent > 0.0) || !extent.is_finite() {
+        let splittable = extent > 0.0 && extent.is_finite();
+        if !splittable {
             continue;
         }
         let mut bins = [(Aabb::EMPTY, 0usize); BINS];
@@ -232,7 +276,11 @@ fn best_split(
         for i in (1..BINS).rev() {
             acc.grow(&bins[i].0);
             n += bins[i].1;
-            right_cost[i] = if n == 0 { f32::INFINITY } else { acc.area() * n as f32 };
+            right_cost[i] = if n == 0 {
+                f32::INFINITY
+            } else {
+                acc.area() * n as f32
+            };
         }
         let (mut acc, mut n) = (Aabb::EMPTY, 0usize);
         for i in 1..BINS {
@@ -242,7 +290,7 @@ fn best_split(
                 continue;
             }
             let cost = acc.area() * n as f32 + right_cost[i];
-            if best.map_or(true, |(c, _, _)| cost < c) {
+            if best.is_none_or(|(c, _, _)| cost < c) {
                 best = Some((cost, axis, i));
             }
         }
@@ -276,7 +324,11 @@ mod tests {
 
     fn tri(x: f32) -> WorldTriangle {
         WorldTriangle {
-            verts: [V3::new(x, 0.0, 0.0), V3::new(x + 0.5, 0.0, 0.0), V3::new(x, 0.5, 0.0)],
+            verts: [
+                V3::new(x, 0.0, 0.0),
+                V3::new(x + 0.5, 0.0, 0.0),
+                V3::new(x, 0.5, 0.0),
+            ],
             normals: [V3::new(0.0, 0.0, 1.0); 3],
             object: 0,
         }

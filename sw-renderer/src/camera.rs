@@ -37,7 +37,8 @@ impl Camera {
     pub fn screen(&self, i: u32, j: u32) -> (f32, f32) {
         let w = f64::from(self.width as f32);
         let h = f64::from(self.height as f32);
-        let x = (2.0 * (f64::from(i) + 0.5) / w - 1.0) * f64::from(self.aspect) * f64::from(self.scale);
+        let x =
+            (2.0 * (f64::from(i) + 0.5) / w - 1.0) * f64::from(self.aspect) * f64::from(self.scale);
         let y = (1.0 - 2.0 * (f64::from(j) + 0.5) / h) * f64::from(self.scale);
         (x as f32, y as f32)
     }

@@ -40,7 +40,12 @@ pub fn closest_hit(candidates: &[u32], results: &[MtResult], bound: f32) -> Opti
             Some(b) => r.t < b.t || (r.t == b.t && triangle < b.triangle),
         };
         if better {
-            best = Some(Hit { triangle, t: r.t, u: r.u, v: r.v });
+            best = Some(Hit {
+                triangle,
+                t: r.t,
+                u: r.u,
+                v: r.v,
+            });
         }
     }
     best
@@ -56,12 +61,27 @@ mod tests {
     use super::*;
 
     fn hit(t: f32) -> MtResult {
-        MtResult { hit: true, t, u: 0.1, v: 0.2 }
+        MtResult {
+            hit: true,
+            t,
+            u: 0.1,
+            v: 0.2,
+        }
     }
 
     #[test]
     fn nearest_wins_and_ties_go_to_the_lower_index_whatever_the_order() {
-        let results = [hit(2.0), hit(1.0), hit(1.0), MtResult { hit: false, t: 0.5, u: 0.0, v: 0.0 }];
+        let results = [
+            hit(2.0),
+            hit(1.0),
+            hit(1.0),
+            MtResult {
+                hit: false,
+                t: 0.5,
+                u: 0.0,
+                v: 0.0,
+            },
+        ];
         let h = closest_hit(&[7, 9, 3, 1], &results, NO_BOUND).unwrap();
         assert_eq!((h.triangle, h.t), (3, 1.0));
         let h = closest_hit(&[7, 3, 9, 1], &results, NO_BOUND).unwrap();

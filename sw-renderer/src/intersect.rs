@@ -27,6 +27,8 @@ pub const DET_EPSILON: f32 = 1e-8;
 /// `if (fabs(det) < eps) …; if (u < 0 || u > 1) …; if (v < 0 || u + v > 1) …` so NaNs fall
 /// through them exactly as there; a hit also needs t > 0. t, u, v are returned on a miss too.
 #[inline]
+// The rejections stay in the C++ form on purpose: their NaN behaviour is the specification.
+#[allow(clippy::nonminimal_bool, clippy::manual_range_contains)]
 pub fn mt_f32(q: &MtQuery) -> MtResult {
     let orig = V3::from_array(q.orig);
     let dir = V3::from_array(q.dir);
@@ -68,7 +70,13 @@ mod tests {
     use super::*;
 
     fn query(orig: [f32; 3], dir: [f32; 3]) -> MtQuery {
-        MtQuery { orig, dir, v0: [0.0, 0.0, 0.0], v1: [1.0, 0.0, 0.0], v2: [0.0, 1.0, 0.0] }
+        MtQuery {
+            orig,
+            dir,
+            v0: [0.0, 0.0, 0.0],
+            v1: [1.0, 0.0, 0.0],
+            v2: [0.0, 1.0, 0.0],
+        }
     }
 
     #[test]
@@ -108,7 +116,10 @@ mod tests {
 
     #[test]
     fn batch_answers_in_order() {
-        let qs = [query([0.25, 0.25, 1.0], [0.0, 0.0, -1.0]), query([2.0, 2.0, 1.0], [0.0, 0.0, -1.0])];
+        let qs = [
+            query([0.25, 0.25, 1.0], [0.0, 0.0, -1.0]),
+            query([2.0, 2.0, 1.0], [0.0, 0.0, -1.0]),
+        ];
         let mut rs = [MtResult::default(); 2];
         F32Intersector.intersect_batch(&qs, &mut rs);
         assert!(rs[0].hit && !rs[1].hit);

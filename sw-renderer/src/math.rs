@@ -21,14 +21,22 @@ pub struct V3 {
 }
 
 impl V3 {
-    pub const ZERO: V3 = V3 { x: 0.0, y: 0.0, z: 0.0 };
+    pub const ZERO: V3 = V3 {
+        x: 0.0,
+        y: 0.0,
+        z: 0.0,
+    };
 
     pub const fn new(x: f32, y: f32, z: f32) -> V3 {
         V3 { x, y, z }
     }
 
     pub const fn from_array(a: [f32; 3]) -> V3 {
-        V3 { x: a[0], y: a[1], z: a[2] }
+        V3 {
+            x: a[0],
+            y: a[1],
+            z: a[2],
+        }
     }
 
     pub const fn to_array(self) -> [f32; 3] {
@@ -231,13 +239,7 @@ mod tests {
     use super::*;
 
     fn mat_mul(a: &Mat44, b: &Mat44) -> [[f32; 4]; 4] {
-        let mut r = [[0.0; 4]; 4];
-        for i in 0..4 {
-            for j in 0..4 {
-                r[i][j] = (0..4).map(|k| a.0[i][k] * b.0[k][j]).sum();
-            }
-        }
-        r
+        [0, 1, 2, 3].map(|i| [0, 1, 2, 3].map(|j| (0..4).map(|k| a.0[i][k] * b.0[k][j]).sum()))
     }
 
     #[test]
@@ -260,7 +262,12 @@ mod tests {
 
     #[test]
     fn singular_matrix_inverts_to_identity() {
-        let m = Mat44([[1.0, 2.0, 3.0, 0.0], [2.0, 4.0, 6.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]]);
+        let m = Mat44([
+            [1.0, 2.0, 3.0, 0.0],
+            [2.0, 4.0, 6.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+        ]);
         assert_eq!(inverse(&m), Mat44::IDENTITY);
     }
 
@@ -268,7 +275,10 @@ mod tests {
     fn point_transform_divides_by_w_and_direction_ignores_translation() {
         let mut m = Mat44::IDENTITY;
         m.0[3] = [1.0, 2.0, 3.0, 2.0];
-        assert_eq!(mult_point(&m, V3::new(1.0, 1.0, 1.0)), V3::new(1.0, 1.5, 2.0));
+        assert_eq!(
+            mult_point(&m, V3::new(1.0, 1.0, 1.0)),
+            V3::new(1.0, 1.5, 2.0)
+        );
         assert_eq!(mult_dir(&m, V3::new(1.0, 1.0, 1.0)), V3::new(1.0, 1.0, 1.0));
     }
 

@@ -34,7 +34,12 @@ pub struct RenderOptions {
 
 impl Default for RenderOptions {
     fn default() -> Self {
-        RenderOptions { width: None, height: None, progress: false, tile_size: 32 }
+        RenderOptions {
+            width: None,
+            height: None,
+            progress: false,
+            tile_size: 32,
+        }
     }
 }
 
@@ -58,27 +63,52 @@ pub enum RenderError {
     #[error("cannot render scene `{scene}`: {source}")]
     World { scene: String, source: WorldError },
     #[error("cannot render scene `{scene}` at {width}×{height}: width, height and tile size must be positive")]
-    EmptyImage { scene: String, width: u32, height: u32 },
+    EmptyImage {
+        scene: String,
+        width: u32,
+        height: u32,
+    },
     #[error("cannot write PNG {}: {source}", path.display())]
-    Save { path: PathBuf, source: image::ImageError },
+    Save {
+        path: PathBuf,
+        source: image::ImageError,
+    },
 }
 
-pub fn render(scene: &Scene, isect: &dyn Intersector, opts: &RenderOptions) -> Result<RenderOutput, RenderError> {
+pub fn render(
+    scene: &Scene,
+    isect: &dyn Intersector,
+    opts: &RenderOptions,
+) -> Result<RenderOutput, RenderError> {
     let width = opts.width.unwrap_or(scene.options.width);
     let height = opts.height.unwrap_or(scene.options.height);
     if width == 0 || height == 0 || opts.tile_size == 0 {
-        return Err(RenderError::EmptyImage { scene: scene.name.clone(), width, height });
+        return Err(RenderError::EmptyImage {
+            scene: scene.name.clone(),
+            width,
+            height,
+        });
     }
     let start = Instant::now();
-    let prepared =
-        PreparedScene::new(scene).map_err(|source| RenderError::World { scene: scene.name.clone(), source })?;
-    let camera = Camera::new(scene.options.camera_to_world, scene.options.fov_deg, width, height);
+    let prepared = PreparedScene::new(scene).map_err(|source| RenderError::World {
+        scene: scene.name.clone(),
+        source,
+    })?;
+    let camera = Camera::new(
+        scene.options.camera_to_world,
+        scene.options.fov_deg,
+        width,
+        height,
+    );
     let prepare_time = start.elapsed();
 
     let tiles = tiles(width, height, opts.tile_size);
     let progress = if opts.progress {
-        let bar = ProgressBar::with_draw_target(Some(tiles.len() as u64), ProgressDrawTarget::stderr());
-        if let Ok(style) = ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} tiles {elapsed}/{eta}") {
+        let bar =
+            ProgressBar::with_draw_target(Some(tiles.len() as u64), ProgressDrawTarget::stderr());
+        if let Ok(style) =
+            ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} tiles {elapsed}/{eta}")
+        {
             bar.set_style(style);
         }
         bar.set_message(format!("{} ({})", scene.name, isect.name()));
@@ -91,7 +121,10 @@ pub fn render(scene: &Scene, isect: &dyn Intersector, opts: &RenderOptions) -> R
     let traced: Vec<(Vec<V3>, TraceStats)> = tiles
         .par_iter()
         .map(|tile| {
-            let rays: Vec<(V3, V3)> = tile.pixels().map(|(i, j)| (camera.origin, camera.direction(i, j))).collect();
+            let rays: Vec<(V3, V3)> = tile
+                .pixels()
+                .map(|(i, j)| (camera.origin, camera.direction(i, j)))
+                .collect();
             let out = trace_rays(&prepared, isect, &rays);
             progress.inc(1);
             out
@@ -107,13 +140,23 @@ pub fn render(scene: &Scene, isect: &dyn Intersector, opts: &RenderOptions) -> R
         }
         trace += stats;
     }
-    Ok(RenderOutput { image, stats: RenderStats { trace, prepare_time, render_time: start.elapsed() } })
+    Ok(RenderOutput {
+        image,
+        stats: RenderStats {
+            trace,
+            prepare_time,
+            render_time: start.elapsed(),
+        },
+    })
 }
 
 pub fn save_png(image: &RgbImage, path: &Path) -> Result<(), RenderError> {
     image
         .save_with_format(path, image::ImageFormat::Png)
-        .map_err(|source| RenderError::Save { path: path.to_path_buf(), source })
+        .map_err(|source| RenderError::Save {
+            path: path.to_path_buf(),
+            source,
+        })
 }
 
 /// A rectangle of pixels.
@@ -136,7 +179,12 @@ fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
     let mut tiles = Vec::new();
     for y0 in (0..height).step_by(size as usize) {
         for x0 in (0..width).step_by(size as usize) {
-            tiles.push(Tile { x0, y0, x1: (x0 + size).min(width), y1: (y0 + size).min(height) });
+            tiles.push(Tile {
+                x0,
+                y0,
+                x1: (x0 + size).min(width),
+                y1: (y0 + size).min(height),
+            });
         }
     }
     tiles

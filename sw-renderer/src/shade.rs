@@ -46,14 +46,26 @@ impl PreparedLight {
 
     pub fn illuminate(&self, p: V3) -> Illumination {
         match *self {
-            PreparedLight::Distant { dir, intensity } => Illumination { dir, intensity, distance: NO_BOUND },
-            PreparedLight::Point { pos, color, intensity } => {
+            PreparedLight::Distant { dir, intensity } => Illumination {
+                dir,
+                intensity,
+                distance: NO_BOUND,
+            },
+            PreparedLight::Point {
+                pos,
+                color,
+                intensity,
+            } => {
                 let l = p - pos;
                 let r2 = l.dot(l);
                 // `sqrt(r2)` and `4 * M_PI * r2` were evaluated in double in the C++.
                 let distance = f64::from(r2).sqrt() as f32;
                 let falloff = (4.0 * std::f64::consts::PI * f64::from(r2)) as f32;
-                Illumination { dir: l.div_s(distance), intensity: (color * intensity).div_s(falloff), distance }
+                Illumination {
+                    dir: l.div_s(distance),
+                    intensity: (color * intensity).div_s(falloff),
+                    distance,
+                }
             }
         }
     }
@@ -126,12 +138,19 @@ pub struct LightTerm {
 
 impl LightTerm {
     pub fn diffuse(light: &Illumination, normal: V3) -> LightTerm {
-        LightTerm { intensity: light.intensity, cos: cpp_max(0.0, normal.dot(-light.dir)), specular: 0.0 }
+        LightTerm {
+            intensity: light.intensity,
+            cos: cpp_max(0.0, normal.dot(-light.dir)),
+            specular: 0.0,
+        }
     }
 
     pub fn phong(light: &Illumination, normal: V3, view: V3, exponent: f32) -> LightTerm {
         let r = reflect(light.dir, normal);
-        LightTerm { specular: cpp_max(0.0, r.dot(-view)).powf(exponent), ..LightTerm::diffuse(light, normal) }
+        LightTerm {
+            specular: cpp_max(0.0, r.dot(-view)).powf(exponent),
+            ..LightTerm::diffuse(light, normal)
+        }
     }
 }
 
@@ -146,14 +165,24 @@ fn vis_f(visible: bool) -> f32 {
 
 /// `hitColor += vis * pattern * lightIntensity * max(0, N·(−L))` over the lights.
 pub fn diffuse_colour(terms: impl Iterator<Item = (LightTerm, bool)>) -> V3 {
-    terms.fold(V3::ZERO, |acc, (l, visible)| acc + l.intensity * (vis_f(visible) * DIFFUSE_PATTERN) * l.cos)
+    terms.fold(V3::ZERO, |acc, (l, visible)| {
+        acc + l.intensity * (vis_f(visible) * DIFFUSE_PATTERN) * l.cos
+    })
 }
 
 /// Phong: `diffuse += vis·albedo·I·cos`, `specular += vis·I·spec`, then `diffuse·Kd + specular·Ks`.
-pub fn phong_colour(terms: impl Iterator<Item = (LightTerm, bool)>, albedo: V3, kd: f32, ks: f32) -> V3 {
+pub fn phong_colour(
+    terms: impl Iterator<Item = (LightTerm, bool)>,
+    albedo: V3,
+    kd: f32,
+    ks: f32,
+) -> V3 {
     let (diffuse, specular) = terms.fold((V3::ZERO, V3::ZERO), |(d, s), (l, visible)| {
         let v = vis_f(visible);
-        (d + (albedo * v).mul_v(l.intensity) * l.cos, s + l.intensity * v * l.specular)
+        (
+            d + (albedo * v).mul_v(l.intensity) * l.cos,
+            s + l.intensity * v * l.specular,
+        )
     });
     diffuse * kd + specular * ks
 }
@@ -179,7 +208,10 @@ mod tests {
 
     #[test]
     fn reflect_mirrors_about_the_normal() {
-        assert_eq!(reflect(V3::new(1.0, -1.0, 0.0), V3::new(0.0, 1.0, 0.0)), V3::new(1.0, 1.0, 0.0));
+        assert_eq!(
+            reflect(V3::new(1.0, -1.0, 0.0), V3::new(0.0, 1.0, 0.0)),
+            V3::new(1.0, 1.0, 0.0)
+        );
     }
 
     #[test]
@@ -206,16 +238,26 @@ mod tests {
 
     #[test]
     fn point_light_falls_off_with_four_pi_r_squared() {
-        let light = PreparedLight::Point { pos: V3::new(0.0, 0.0, 2.0), color: V3::new(1.0, 1.0, 1.0), intensity: 100.0 };
+        let light = PreparedLight::Point {
+            pos: V3::new(0.0, 0.0, 2.0),
+            color: V3::new(1.0, 1.0, 1.0),
+            intensity: 100.0,
+        };
         let il = light.illuminate(V3::ZERO);
         assert_eq!(il.distance, 2.0);
         assert_eq!(il.dir, V3::new(0.0, 0.0, -1.0));
-        assert_eq!(il.intensity.x, 100.0f32 / (16.0 * std::f64::consts::PI) as f32);
+        assert_eq!(
+            il.intensity.x,
+            100.0f32 / (16.0 * std::f64::consts::PI) as f32
+        );
     }
 
     #[test]
     fn output_truncates_and_clamps() {
         assert_eq!(to_rgb8(V3::new(-1.0, 0.5, 2.0)), [0, 127, 255]);
-        assert_eq!(to_rgb8(V3::new(f32::NAN, 1.0 / 255.0, 0.999)), [255, 1, 254]);
+        assert_eq!(
+            to_rgb8(V3::new(f32::NAN, 1.0 / 255.0, 0.999)),
+            [255, 1, 254]
+        );
     }
 }

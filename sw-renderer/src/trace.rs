@@ -16,8 +16,8 @@ use crate::intersect::{Intersector, MtQuery, MtResult};
 use crate::math::V3;
 use crate::scene::{MaterialKind, Scene};
 use crate::shade::{
-    diffuse_colour, fresnel, fresnel_colour, hit_normal, hit_point, mirror_colour, phong_colour, reflect,
-    refract, LightTerm, PreparedLight,
+    diffuse_colour, fresnel, fresnel_colour, hit_normal, hit_point, mirror_colour, phong_colour,
+    reflect, refract, LightTerm, PreparedLight,
 };
 use crate::world::{World, WorldError};
 
@@ -38,7 +38,9 @@ impl PreparedScene {
     pub fn new(scene: &Scene) -> Result<PreparedScene, WorldError> {
         let world = World::new(scene)?;
         let bvh = Bvh::build(&world.triangles);
-        let casts_shadow = (0..world.triangles.len() as u32).map(|t| world.casts_shadow(t)).collect();
+        let casts_shadow = (0..world.triangles.len() as u32)
+            .map(|t| world.casts_shadow(t))
+            .collect();
         Ok(PreparedScene {
             bvh,
             casts_shadow,
@@ -85,10 +87,21 @@ impl AddAssign for TraceStats {
 enum Shading {
     /// A miss, a ray deeper than the maximum depth, or (until traced) a pending ray.
     Background,
-    Diffuse { terms: Range<usize> },
-    Phong { terms: Range<usize>, object: u32 },
-    Mirror { reflection: usize },
-    Glass { kr: f32, refraction: Option<usize>, reflection: usize },
+    Diffuse {
+        terms: Range<usize>,
+    },
+    Phong {
+        terms: Range<usize>,
+        object: u32,
+    },
+    Mirror {
+        reflection: usize,
+    },
+    Glass {
+        kr: f32,
+        refraction: Option<usize>,
+        reflection: usize,
+    },
 }
 
 /// One castRay call.
@@ -114,12 +127,27 @@ enum SecondaryKind {
 }
 
 /// Traces the primary rays `(origin, direction)` and returns one colour per ray.
-pub fn trace_rays(scene: &PreparedScene, isect: &dyn Intersector, primary: &[(V3, V3)]) -> (Vec<V3>, TraceStats) {
-    let mut tree = RayTree { scene, nodes: Vec::new(), terms: Vec::new(), visible: Vec::new(), stats: TraceStats::default() };
+pub fn trace_rays(
+    scene: &PreparedScene,
+    isect: &dyn Intersector,
+    primary: &[(V3, V3)],
+) -> (Vec<V3>, TraceStats) {
+    let mut tree = RayTree {
+        scene,
+        nodes: Vec::new(),
+        terms: Vec::new(),
+        visible: Vec::new(),
+        stats: TraceStats::default(),
+    };
     let mut level: Vec<usize> = Vec::with_capacity(primary.len());
     for &(orig, dir) in primary {
         level.push(tree.nodes.len());
-        tree.nodes.push(CastNode { orig, dir, depth: 0, shading: Shading::Background });
+        tree.nodes.push(CastNode {
+            orig,
+            dir,
+            depth: 0,
+            shading: Shading::Background,
+        });
     }
     tree.stats.primary_rays = primary.len() as u64;
     let mut shadows: Vec<ShadowRay> = Vec::new();
@@ -135,7 +163,9 @@ pub fn trace_rays(scene: &PreparedScene, isect: &dyn Intersector, primary: &[(V3
             batch.add_ray(scene, s.orig, s.dir, s.bound, true);
         }
         if !batch.queries.is_empty() {
-            batch.results.resize(batch.queries.len(), MtResult::default());
+            batch
+                .results
+                .resize(batch.queries.len(), MtResult::default());
             isect.intersect_batch(&batch.queries, &mut batch.results);
             tree.stats.batches += 1;
             tree.stats.mt_queries += batch.queries.len() as u64;
@@ -145,7 +175,9 @@ pub fn trace_rays(scene: &PreparedScene, isect: &dyn Intersector, primary: &[(V3
         let mut next_shadows = Vec::new();
         for (k, &n) in level.iter().enumerate() {
             let r = batch.ranges[k].clone();
-            if let Some(hit) = closest_hit(&batch.candidates[r.clone()], &batch.results[r], NO_BOUND) {
+            if let Some(hit) =
+                closest_hit(&batch.candidates[r.clone()], &batch.results[r], NO_BOUND)
+            {
                 tree.shade_hit(n, &hit, &mut next_level, &mut next_shadows);
             }
         }
@@ -180,15 +212,26 @@ impl Batch {
         let start = self.candidates.len();
         let ray = BoxRay::new(orig, dir, bound);
         if shadow {
-            scene.bvh.candidates(&ray, |t| scene.casts_shadow[t as usize], &mut self.candidates);
+            scene.bvh.candidates(
+                &ray,
+                |t| scene.casts_shadow[t as usize],
+                &mut self.candidates,
+            );
         } else {
             scene.bvh.candidates(&ray, |_| true, &mut self.candidates);
         }
         let (o, d) = (orig.to_array(), dir.to_array());
-        self.queries.extend(self.candidates[start..].iter().map(|&t| {
-            let [v0, v1, v2] = scene.world.triangles[t as usize].verts;
-            MtQuery { orig: o, dir: d, v0: v0.to_array(), v1: v1.to_array(), v2: v2.to_array() }
-        }));
+        self.queries
+            .extend(self.candidates[start..].iter().map(|&t| {
+                let [v0, v1, v2] = scene.world.triangles[t as usize].verts;
+                MtQuery {
+                    orig: o,
+                    dir: d,
+                    v0: v0.to_array(),
+                    v1: v1.to_array(),
+                    v2: v2.to_array(),
+                }
+            }));
         self.ranges.push(start..self.candidates.len());
     }
 }
@@ -204,9 +247,21 @@ struct RayTree<'a> {
 
 impl RayTree<'_> {
     /// A secondary castRay; deeper than the maximum depth it is the background, untraced.
-    fn cast(&mut self, orig: V3, dir: V3, depth: u32, kind: SecondaryKind, next: &mut Vec<usize>) -> usize {
+    fn cast(
+        &mut self,
+        orig: V3,
+        dir: V3,
+        depth: u32,
+        kind: SecondaryKind,
+        next: &mut Vec<usize>,
+    ) -> usize {
         let index = self.nodes.len();
-        self.nodes.push(CastNode { orig, dir, depth, shading: Shading::Background });
+        self.nodes.push(CastNode {
+            orig,
+            dir,
+            depth,
+            shading: Shading::Background,
+        });
         if depth <= self.scene.max_depth {
             next.push(index);
             match kind {
@@ -217,7 +272,13 @@ impl RayTree<'_> {
         index
     }
 
-    fn shade_hit(&mut self, n: usize, hit: &crate::hit::Hit, next: &mut Vec<usize>, shadows: &mut Vec<ShadowRay>) {
+    fn shade_hit(
+        &mut self,
+        n: usize,
+        hit: &crate::hit::Hit,
+        next: &mut Vec<usize>,
+        shadows: &mut Vec<ShadowRay>,
+    ) {
         let scene = self.scene;
         let (orig, dir, depth) = (self.nodes[n].orig, self.nodes[n].dir, self.nodes[n].depth);
         let tri = &scene.world.triangles[hit.triangle as usize];
@@ -235,20 +296,34 @@ impl RayTree<'_> {
                     };
                     let slot = self.visible.len();
                     self.visible.push(true);
-                    shadows.push(ShadowRay { orig: p + normal * scene.bias, dir: -il.dir, bound: il.distance, slot });
+                    shadows.push(ShadowRay {
+                        orig: p + normal * scene.bias,
+                        dir: -il.dir,
+                        bound: il.distance,
+                        slot,
+                    });
                     self.terms.push((term, slot));
                 }
                 self.stats.shadow_rays += scene.lights.len() as u64;
                 let terms = start..self.terms.len();
                 if material.kind == MaterialKind::Phong {
-                    Shading::Phong { terms, object: tri.object }
+                    Shading::Phong {
+                        terms,
+                        object: tri.object,
+                    }
                 } else {
                     Shading::Diffuse { terms }
                 }
             }
             MaterialKind::Reflection => {
                 let r = reflect(dir, normal).normalized();
-                let reflection = self.cast(p + normal * scene.bias, r, depth + 1, SecondaryKind::Reflection, next);
+                let reflection = self.cast(
+                    p + normal * scene.bias,
+                    r,
+                    depth + 1,
+                    SecondaryKind::Reflection,
+                    next,
+                );
                 Shading::Mirror { reflection }
             }
             MaterialKind::ReflectionRefraction => {
@@ -263,7 +338,11 @@ impl RayTree<'_> {
                 let d = reflect(dir, normal).normalized();
                 let o = if outside { p + bias } else { p - bias };
                 let reflection = self.cast(o, d, depth + 1, SecondaryKind::Reflection, next);
-                Shading::Glass { kr, refraction, reflection }
+                Shading::Glass {
+                    kr,
+                    refraction,
+                    reflection,
+                }
             }
         };
         self.nodes[n].shading = shading;
@@ -273,7 +352,11 @@ impl RayTree<'_> {
     fn colours(&self) -> Vec<V3> {
         let mut colour = vec![V3::ZERO; self.nodes.len()];
         for i in (0..self.nodes.len()).rev() {
-            let lit = |terms: &Range<usize>| self.terms[terms.clone()].iter().map(|&(t, slot)| (t, self.visible[slot]));
+            let lit = |terms: &Range<usize>| {
+                self.terms[terms.clone()]
+                    .iter()
+                    .map(|&(t, slot)| (t, self.visible[slot]))
+            };
             colour[i] = match &self.nodes[i].shading {
                 Shading::Background => self.scene.background,
                 Shading::Diffuse { terms } => diffuse_colour(lit(terms)),
@@ -282,7 +365,11 @@ impl RayTree<'_> {
                     phong_colour(lit(terms), V3::from(m.albedo), m.kd, m.ks)
                 }
                 Shading::Mirror { reflection } => mirror_colour(colour[*reflection]),
-                Shading::Glass { kr, refraction, reflection } => {
+                Shading::Glass {
+                    kr,
+                    refraction,
+                    reflection,
+                } => {
                     let refracted = refraction.map_or(V3::ZERO, |r| colour[r]);
                     fresnel_colour(colour[*reflection], refracted, *kr)
                 }

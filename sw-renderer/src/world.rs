@@ -13,9 +13,18 @@ use crate::scene::{Material, MaterialKind, Scene};
 #[derive(Debug, Error)]
 pub enum WorldError {
     #[error("object `{object}`: triangle {triangle} uses vertex {index}, but the mesh has {count} vertices")]
-    VertexIndex { object: String, triangle: usize, index: u32, count: usize },
+    VertexIndex {
+        object: String,
+        triangle: usize,
+        index: u32,
+        count: usize,
+    },
     #[error("object `{object}`: {triangles} triangles but {normals} corner-normal triples")]
-    NormalCount { object: String, triangles: usize, normals: usize },
+    NormalCount {
+        object: String,
+        triangles: usize,
+        normals: usize,
+    },
     #[error("the scene has {0} triangles; at most 2^32 - 1 are supported")]
     TooManyTriangles(usize),
 }
@@ -55,15 +64,22 @@ impl World {
             }
             let o2w = &object.object_to_world;
             let normal_matrix = transpose(&inverse(o2w));
-            let positions: Vec<V3> = mesh.positions.iter().map(|p| mult_point(o2w, V3::from(*p))).collect();
+            let positions: Vec<V3> = mesh
+                .positions
+                .iter()
+                .map(|p| mult_point(o2w, V3::from(*p)))
+                .collect();
             for (t, (tri, normals)) in mesh.triangles.iter().zip(&mesh.normals).enumerate() {
                 let vertex = |index: u32| {
-                    positions.get(index as usize).copied().ok_or_else(|| WorldError::VertexIndex {
-                        object: object.name.clone(),
-                        triangle: t,
-                        index,
-                        count: positions.len(),
-                    })
+                    positions
+                        .get(index as usize)
+                        .copied()
+                        .ok_or_else(|| WorldError::VertexIndex {
+                            object: object.name.clone(),
+                            triangle: t,
+                            index,
+                            count: positions.len(),
+                        })
                 };
                 let normal = |n: glam::Vec3| mult_dir(&normal_matrix, V3::from(n)).normalized();
                 triangles.push(WorldTriangle {
@@ -74,7 +90,10 @@ impl World {
             }
         }
         let materials = scene.objects.iter().map(|o| o.material.clone()).collect();
-        Ok(World { triangles, materials })
+        Ok(World {
+            triangles,
+            materials,
+        })
     }
 
     /// Shadow rays ignore objects of type reflection+refraction (the reference's `kShadowRay`).

@@ -20,7 +20,13 @@ fn query(orig: V3, dir: V3, t: &WorldTriangle) -> MtQuery {
 }
 
 /// The reference's `trace`, literally: objects in order, triangles in order.
-fn brute_force(tris: &[WorldTriangle], orig: V3, dir: V3, bound: f32, skip: &[bool]) -> Option<Hit> {
+fn brute_force(
+    tris: &[WorldTriangle],
+    orig: V3,
+    dir: V3,
+    bound: f32,
+    skip: &[bool],
+) -> Option<Hit> {
     let mut isect_t = bound;
     let mut best = None;
     let objects = tris.iter().map(|t| t.object).max().map_or(0, |m| m + 1);
@@ -31,7 +37,12 @@ fn brute_force(tris: &[WorldTriangle], orig: V3, dir: V3, bound: f32, skip: &[bo
             let r = mt_f32(&query(orig, dir, tri));
             if r.hit && r.t < t_near {
                 t_near = r.t;
-                found = Some(Hit { triangle: i as u32, t: r.t, u: r.u, v: r.v });
+                found = Some(Hit {
+                    triangle: i as u32,
+                    t: r.t,
+                    u: r.u,
+                    v: r.v,
+                });
             }
         }
         if found.is_some() && t_near < isect_t {
@@ -45,10 +56,24 @@ fn brute_force(tris: &[WorldTriangle], orig: V3, dir: V3, bound: f32, skip: &[bo
     best
 }
 
-fn gathered(bvh: &Bvh, tris: &[WorldTriangle], orig: V3, dir: V3, bound: f32, skip: &[bool]) -> (Vec<u32>, Vec<sw_renderer::intersect::MtResult>) {
+fn gathered(
+    bvh: &Bvh,
+    tris: &[WorldTriangle],
+    orig: V3,
+    dir: V3,
+    bound: f32,
+    skip: &[bool],
+) -> (Vec<u32>, Vec<sw_renderer::intersect::MtResult>) {
     let mut cands = Vec::new();
-    bvh.candidates(&BoxRay::new(orig, dir, bound), |t| !skip[tris[t as usize].object as usize], &mut cands);
-    let results = cands.iter().map(|&t| mt_f32(&query(orig, dir, &tris[t as usize]))).collect();
+    bvh.candidates(
+        &BoxRay::new(orig, dir, bound),
+        |t| !skip[tris[t as usize].object as usize],
+        &mut cands,
+    );
+    let results = cands
+        .iter()
+        .map(|&t| mt_f32(&query(orig, dir, &tris[t as usize])))
+        .collect();
     (cands, results)
 }
 
@@ -103,7 +128,11 @@ fn make_ray(tris: &[WorldTriangle], (o, d, mode, pick, a, b): RayParams) -> (V3,
         return (o, d.normalized());
     }
     let [v0, v1, v2] = tris[((pick * tris.len() as f64) as usize).min(tris.len() - 1)].verts;
-    let (a, b) = if a + b > 1.0 { (1.0 - a, 1.0 - b) } else { (a, b) };
+    let (a, b) = if a + b > 1.0 {
+        (1.0 - a, 1.0 - b)
+    } else {
+        (a, b)
+    };
     let (a, b) = match mode {
         2 => (a, b),
         3 => (0.0, b),
@@ -120,10 +149,15 @@ fn assert_same(bvh: Option<Hit>, brute: Option<Hit>) -> Result<(), TestCaseError
         (Some(x), Some(y)) => {
             prop_assert_eq!(x.triangle, y.triangle);
             prop_assert_eq!(x.t.to_bits(), y.t.to_bits());
-            prop_assert_eq!((x.u.to_bits(), x.v.to_bits()), (y.u.to_bits(), y.v.to_bits()));
+            prop_assert_eq!(
+                (x.u.to_bits(), x.v.to_bits()),
+                (y.u.to_bits(), y.v.to_bits())
+            );
             Ok(())
         }
-        (x, y) => Err(TestCaseError::fail(format!("bvh {x:?} vs brute force {y:?}"))),
+        (x, y) => Err(TestCaseError::fail(format!(
+            "bvh {x:?} vs brute force {y:?}"
+        ))),
     }
 }
 
@@ -178,11 +212,25 @@ fn gathering_prunes_most_triangles() {
     for i in 0..100 {
         for j in 0..100 {
             let p = |dx: f32, dy: f32| V3::new(i as f32 + dx, j as f32 + dy, 0.0);
-            tris.push(WorldTriangle { verts: [p(0.0, 0.0), p(1.0, 0.0), p(0.0, 1.0)], normals: [V3::new(0.0, 0.0, 1.0); 3], object: 0 });
+            tris.push(WorldTriangle {
+                verts: [p(0.0, 0.0), p(1.0, 0.0), p(0.0, 1.0)],
+                normals: [V3::new(0.0, 0.0, 1.0); 3],
+                object: 0,
+            });
         }
     }
     let bvh = Bvh::build(&tris);
-    let (cands, results) = gathered(&bvh, &tris, V3::new(50.2, 50.2, 3.0), V3::new(0.0, 0.0, -1.0), NO_BOUND, &[false]);
+    let (cands, results) = gathered(
+        &bvh,
+        &tris,
+        V3::new(50.2, 50.2, 3.0),
+        V3::new(0.0, 0.0, -1.0),
+        NO_BOUND,
+        &[false],
+    );
     assert!(cands.len() <= 16, "{} candidates", cands.len());
-    assert_eq!(closest_hit(&cands, &results, NO_BOUND).map(|h| h.triangle), Some(50 * 100 + 50));
+    assert_eq!(
+        closest_hit(&cands, &results, NO_BOUND).map(|h| h.triangle),
+        Some(50 * 100 + 50)
+    );
 }

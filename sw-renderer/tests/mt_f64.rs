@@ -30,7 +30,11 @@ fn dot(a: D3, b: D3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 fn cross(a: D3, b: D3) -> D3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 fn norm(a: D3) -> f64 {
     dot(a, a).sqrt()
@@ -62,15 +66,32 @@ fn mt_f64(q: &MtQuery) -> Mt64 {
     let qv = cross(s, e1);
     let v = dot(d, qv) / det;
     let t = dot(e2, qv) / det;
-    let hit = det.abs() >= f64::from(1e-8f32) && (0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0 && t > 0.0;
-    let (mu, mv, mt) = (norm(s) * norm(p) / det.abs(), norm(d) * norm(qv) / det.abs(), norm(e2) * norm(qv) / det.abs());
+    let hit = det.abs() >= f64::from(1e-8f32)
+        && (0.0..=1.0).contains(&u)
+        && v >= 0.0
+        && u + v <= 1.0
+        && t > 0.0;
+    let (mu, mv, mt) = (
+        norm(s) * norm(p) / det.abs(),
+        norm(d) * norm(qv) / det.abs(),
+        norm(e2) * norm(qv) / det.abs(),
+    );
     let in_band = u.abs() <= BAND * mu
         || (1.0 - u).abs() <= BAND * mu
         || v.abs() <= BAND * mv
         || (1.0 - u - v).abs() <= BAND * (mu + mv)
         || t.abs() <= BAND * mt
         || (det.abs() - f64::from(1e-8f32)).abs() <= BAND * norm(e1) * norm(p);
-    Mt64 { hit, t, u, v, in_band, mu, mv, mt }
+    Mt64 {
+        hit,
+        t,
+        u,
+        v,
+        in_band,
+        mu,
+        mv,
+        mt,
+    }
 }
 
 fn random_point(rng: &mut StdRng, scale: f32) -> [f32; 3] {
@@ -84,7 +105,11 @@ fn random_point(rng: &mut StdRng, scale: f32) -> [f32; 3] {
 fn random_query(rng: &mut StdRng, on_edges: bool) -> MtQuery {
     let scale = [1.0, 10.0, 100.0][rng.gen_range(0..3)];
     let v0 = random_point(rng, scale);
-    let size = if rng.gen_bool(0.2) { scale * 1e-3 } else { scale };
+    let size = if rng.gen_bool(0.2) {
+        scale * 1e-3
+    } else {
+        scale
+    };
     let v1 = {
         let d = random_point(rng, size);
         [v0[0] + d[0], v0[1] + d[1], v0[2] + d[2]]
@@ -94,7 +119,11 @@ fn random_query(rng: &mut StdRng, on_edges: bool) -> MtQuery {
         [v0[0] + d[0], v0[1] + d[1], v0[2] + d[2]]
     };
     let orig = random_point(rng, 2.0 * scale);
-    let kind = if on_edges { rng.gen_range(2..4) } else { [0, 1, 4, 5, 6][rng.gen_range(0..5)] };
+    let kind = if on_edges {
+        rng.gen_range(2..4)
+    } else {
+        [0, 1, 4, 5, 6][rng.gen_range(0..5)]
+    };
     let dir = match kind {
         0 => random_point(rng, 1.0),
         kind => {
@@ -102,7 +131,9 @@ fn random_query(rng: &mut StdRng, on_edges: bool) -> MtQuery {
             if a + b > 1.0 {
                 (a, b) = (1.0 - a, 1.0 - b);
             }
-            let mut near = || 10f32.powf(rng.gen_range(-4.0..-1.0)) * if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+            let mut near = || {
+                10f32.powf(rng.gen_range(-4.0..-1.0)) * if rng.gen_bool(0.5) { 1.0 } else { -1.0 }
+            };
             match kind {
                 2 => a = 0.0,
                 3 => b = 1.0 - a,
@@ -114,14 +145,23 @@ fn random_query(rng: &mut StdRng, on_edges: bool) -> MtQuery {
             let mut d = [0, 1, 2].map(|k| target[k] - orig[k]);
             if kind == 4 {
                 // Nearly parallel: push the direction into the triangle's plane.
-                let n = cross(wide([v1[0] - v0[0], v1[1] - v0[1], v1[2] - v0[2]]), wide([v2[0] - v0[0], v2[1] - v0[1], v2[2] - v0[2]]));
+                let n = cross(
+                    wide([v1[0] - v0[0], v1[1] - v0[1], v1[2] - v0[2]]),
+                    wide([v2[0] - v0[0], v2[1] - v0[1], v2[2] - v0[2]]),
+                );
                 let k = dot(wide(d), n) / dot(n, n) * (1.0 - 1e-6);
                 d = [0, 1, 2].map(|i| (f64::from(d[i]) - k * n[i]) as f32);
             }
             d
         }
     };
-    MtQuery { orig, dir, v0, v1, v2 }
+    MtQuery {
+        orig,
+        dir,
+        v0,
+        v1,
+        v2,
+    }
 }
 
 fn check(cases: usize, seed: u64, on_edges: bool) -> (usize, usize, usize) {
@@ -132,11 +172,16 @@ fn check(cases: usize, seed: u64, on_edges: bool) -> (usize, usize, usize) {
         let (a, b) = (mt_f32(&q), mt_f64(&q));
         in_band += usize::from(b.in_band);
         if a.hit != b.hit {
-            assert!(b.in_band, "case {i}: f32 hit={} f64 hit={} outside the band: {q:?} f64 t={} u={} v={}", a.hit, b.hit, b.t, b.u, b.v);
+            assert!(
+                b.in_band,
+                "case {i}: f32 hit={} f64 hit={} outside the band: {q:?} f64 t={} u={} v={}",
+                a.hit, b.hit, b.t, b.u, b.v
+            );
             exceptions += 1;
         } else if a.hit && !b.in_band {
             hits += 1;
-            let close = |x: f32, y: f64, magnitude: f64| (f64::from(x) - y).abs() <= BAND * magnitude;
+            let close =
+                |x: f32, y: f64, magnitude: f64| (f64::from(x) - y).abs() <= BAND * magnitude;
             assert!(
                 close(a.u, b.u, b.mu) && close(a.v, b.v, b.mv) && close(a.t, b.t, b.mt),
                 "case {i}: {a:?} vs t={} u={} v={}",

@@ -14,10 +14,12 @@ use sw_renderer::hit::{Hit, NO_BOUND};
 use sw_renderer::intersect::{mt_f32, F32Intersector, Intersector, MtQuery, MtResult};
 use sw_renderer::math::V3;
 use sw_renderer::render::{render, RenderOptions};
-use sw_renderer::scene::{Light, LightKind, Mat44, Material, MaterialKind, Mesh, Object, Options, Scene};
+use sw_renderer::scene::{
+    Light, LightKind, Mat44, Material, MaterialKind, Mesh, Object, Options, Scene,
+};
 use sw_renderer::shade::{
-    diffuse_colour, fresnel, fresnel_colour, hit_normal, hit_point, mirror_colour, phong_colour, reflect, refract,
-    to_rgb8, LightTerm, PreparedLight,
+    diffuse_colour, fresnel, fresnel_colour, hit_normal, hit_point, mirror_colour, phong_colour,
+    reflect, refract, to_rgb8, LightTerm, PreparedLight,
 };
 use sw_renderer::world::World;
 
@@ -31,7 +33,12 @@ fn translation(x: f32, y: f32, z: f32) -> Mat44 {
 
 /// Maps (0, 0, −1) to (0, 0, +1): a distant light shining up, or a quad facing down.
 fn flip_z() -> Mat44 {
-    Mat44([[1.0, 0.0, 0.0, 0.0], [0.0, -1.0, 0.0, 0.0], [0.0, 0.0, -1.0, 0.0], [0.0, 0.0, 0.0, 1.0]])
+    Mat44([
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, -1.0, 0.0, 0.0],
+        [0.0, 0.0, -1.0, 0.0],
+        [0.0, 0.0, 0.0, 1.0],
+    ])
 }
 
 /// A square in the plane z = 0 facing +z, corners at ±half.
@@ -53,7 +60,11 @@ fn sphere(rings: u32, segments: u32) -> Mesh {
         let theta = PI * r as f32 / rings as f32;
         for s in 0..segments {
             let phi = 2.0 * PI * s as f32 / segments as f32;
-            positions.push(Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin()));
+            positions.push(Vec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                theta.sin() * phi.sin(),
+            ));
         }
     }
     let idx = |r: u32, s: u32| r * segments + s % segments;
@@ -64,25 +75,55 @@ fn sphere(rings: u32, segments: u32) -> Mesh {
             triangles.push([idx(r, s), idx(r + 1, s + 1), idx(r, s + 1)]);
         }
     }
-    let normals = triangles.iter().map(|t| t.map(|i| positions[i as usize].normalize())).collect();
+    let normals = triangles
+        .iter()
+        .map(|t| t.map(|i| positions[i as usize].normalize()))
+        .collect();
     let uvs = vec![[Vec2::ZERO; 3]; triangles.len()];
-    Mesh { positions, triangles, normals, uvs }
+    Mesh {
+        positions,
+        triangles,
+        normals,
+        uvs,
+    }
 }
 
 fn material(kind: MaterialKind) -> Material {
-    Material { kind, ior: 1.5, albedo: Vec3::new(0.6, 0.5, 0.4), kd: 0.8, ks: 0.2, n: 10.0 }
+    Material {
+        kind,
+        ior: 1.5,
+        albedo: Vec3::new(0.6, 0.5, 0.4),
+        kd: 0.8,
+        ks: 0.2,
+        n: 10.0,
+    }
 }
 
 fn object(name: &str, mesh: Mesh, object_to_world: Mat44, material: Material) -> Object {
-    Object { name: name.to_string(), mesh: Arc::new(mesh), object_to_world, material }
+    Object {
+        name: name.to_string(),
+        mesh: Arc::new(mesh),
+        object_to_world,
+        material,
+    }
 }
 
 fn distant(color: Vec3, intensity: f32, light_to_world: Mat44) -> Light {
-    Light { kind: LightKind::Distant, color, intensity, light_to_world }
+    Light {
+        kind: LightKind::Distant,
+        color,
+        intensity,
+        light_to_world,
+    }
 }
 
 fn point(color: Vec3, intensity: f32, at: [f32; 3]) -> Light {
-    Light { kind: LightKind::Point, color, intensity, light_to_world: translation(at[0], at[1], at[2]) }
+    Light {
+        kind: LightKind::Point,
+        color,
+        intensity,
+        light_to_world: translation(at[0], at[1], at[2]),
+    }
 }
 
 /// A camera at (0, 0, 5) looking down −z at an odd-sized image (the centre pixel looks
@@ -105,7 +146,9 @@ fn scene(objects: Vec<Object>, lights: Vec<Light>) -> Scene {
 }
 
 fn render_f32(scene: &Scene) -> RgbImage {
-    render(scene, &F32Intersector, &RenderOptions::default()).unwrap().image
+    render(scene, &F32Intersector, &RenderOptions::default())
+        .unwrap()
+        .image
 }
 
 fn centre(img: &RgbImage) -> [u8; 3] {
@@ -150,19 +193,40 @@ fn camera_rays_follow_the_reference_formulas() {
 #[test]
 fn diffuse_plane_under_a_distant_light() {
     // Light straight down: N·(−L) = 1, colour = 0.9 · colour · intensity.
-    let plane = object("plane", quad(100.0), Mat44::IDENTITY, material(MaterialKind::Diffuse));
-    let s = scene(vec![plane.clone()], vec![distant(Vec3::new(1.0, 0.5, 0.25), 0.5, Mat44::IDENTITY)]);
+    let plane = object(
+        "plane",
+        quad(100.0),
+        Mat44::IDENTITY,
+        material(MaterialKind::Diffuse),
+    );
+    let s = scene(
+        vec![plane.clone()],
+        vec![distant(Vec3::new(1.0, 0.5, 0.25), 0.5, Mat44::IDENTITY)],
+    );
     let img = render_f32(&s);
     let want = [byte(0.9 * 0.5), byte(0.9 * 0.25), byte(0.9 * 0.125)];
     assert_eq!(want, [114, 57, 28]);
-    assert!(img.pixels().all(|p| p.0 == want), "{:?}", img.pixels().collect::<Vec<_>>());
+    assert!(
+        img.pixels().all(|p| p.0 == want),
+        "{:?}",
+        img.pixels().collect::<Vec<_>>()
+    );
 
     // Tilted by 60° about x: cos = 0.5.
     let (sin, cos) = (60.0f32.to_radians().sin(), 60.0f32.to_radians().cos());
-    let tilt = Mat44([[1.0, 0.0, 0.0, 0.0], [0.0, cos, sin, 0.0], [0.0, -sin, cos, 0.0], [0.0, 0.0, 0.0, 1.0]]);
+    let tilt = Mat44([
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, cos, sin, 0.0],
+        [0.0, -sin, cos, 0.0],
+        [0.0, 0.0, 0.0, 1.0],
+    ]);
     let s = scene(vec![plane.clone()], vec![distant(Vec3::ONE, 1.0, tilt)]);
     let c = centre(&render_f32(&s));
-    assert!(c.iter().all(|&x| x == byte(0.9 * 0.5) || x == byte(0.9 * 0.5) - 1), "{c:?}");
+    assert!(
+        c.iter()
+            .all(|&x| x == byte(0.9 * 0.5) || x == byte(0.9 * 0.5) - 1),
+        "{c:?}"
+    );
 
     // Lit from below: nothing.
     let s = scene(vec![plane], vec![distant(Vec3::ONE, 1.0, flip_z())]);
@@ -174,21 +238,47 @@ fn shadows_are_cast_except_by_glass() {
     // A small square hovers at z = 1 over a lit plane; the light comes in at 45° so the
     // shadow falls beside the square. Plane pixels outside the square's own footprint are
     // either lit (0.9·cos 45°) or in shadow (0).
-    let plane = object("plane", quad(100.0), Mat44::IDENTITY, material(MaterialKind::Diffuse));
-    let occluder = |kind| object("occluder", quad(0.3), translation(0.0, 0.0, 1.0), material(kind));
+    let plane = object(
+        "plane",
+        quad(100.0),
+        Mat44::IDENTITY,
+        material(MaterialKind::Diffuse),
+    );
+    let occluder = |kind| {
+        object(
+            "occluder",
+            quad(0.3),
+            translation(0.0, 0.0, 1.0),
+            material(kind),
+        )
+    };
     let r = std::f32::consts::FRAC_1_SQRT_2;
-    let tilt = Mat44([[1.0, 0.0, 0.0, 0.0], [0.0, r, r, 0.0], [0.0, -r, r, 0.0], [0.0, 0.0, 0.0, 1.0]]);
-    let mut s = scene(vec![plane, occluder(MaterialKind::Phong)], vec![distant(Vec3::ONE, 1.0, tilt)]);
+    let tilt = Mat44([
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, r, r, 0.0],
+        [0.0, -r, r, 0.0],
+        [0.0, 0.0, 0.0, 1.0],
+    ]);
+    let mut s = scene(
+        vec![plane, occluder(MaterialKind::Phong)],
+        vec![distant(Vec3::ONE, 1.0, tilt)],
+    );
     s.options.width = 41;
     s.options.height = 41;
     s.options.fov_deg = 60.0;
-    let footprint: Vec<bool> = render_f32(&Scene { objects: vec![occluder(MaterialKind::Diffuse)], ..s.clone() })
-        .pixels()
-        .map(|p| p.0 != [0, 0, 0])
-        .collect();
+    let footprint: Vec<bool> = render_f32(&Scene {
+        objects: vec![occluder(MaterialKind::Diffuse)],
+        ..s.clone()
+    })
+    .pixels()
+    .map(|p| p.0 != [0, 0, 0])
+    .collect();
     let lit = [byte(0.9 * r); 3];
     let count = |img: &RgbImage, colour: [u8; 3]| {
-        img.pixels().zip(&footprint).filter(|(p, &inside)| !inside && p.0 == colour).count()
+        img.pixels()
+            .zip(&footprint)
+            .filter(|(p, &inside)| !inside && p.0 == colour)
+            .count()
     };
     let opaque = render_f32(&s);
     let outside = footprint.iter().filter(|&&f| !f).count();
@@ -203,8 +293,18 @@ fn shadows_are_cast_except_by_glass() {
 
 #[test]
 fn point_light_falls_off_with_the_square_of_the_distance() {
-    let plane = object("plane", quad(100.0), Mat44::IDENTITY, material(MaterialKind::Diffuse));
-    let at = |h: f32| scene(vec![plane.clone()], vec![point(Vec3::ONE, 10.0, [0.0, 0.0, h])]);
+    let plane = object(
+        "plane",
+        quad(100.0),
+        Mat44::IDENTITY,
+        material(MaterialKind::Diffuse),
+    );
+    let at = |h: f32| {
+        scene(
+            vec![plane.clone()],
+            vec![point(Vec3::ONE, 10.0, [0.0, 0.0, h])],
+        )
+    };
     // Centre pixel hits (0, 0, 0) straight below the light: I = 10 / float(4π r²), cos = 1.
     let i1 = 10.0f32 / (4.0 * std::f64::consts::PI) as f32;
     let i2 = 10.0f32 / (16.0 * std::f64::consts::PI) as f32;
@@ -215,20 +315,35 @@ fn point_light_falls_off_with_the_square_of_the_distance() {
 
 #[test]
 fn mirror_reflects_with_weight_point_eight() {
-    let mirror = object("mirror", quad(100.0), Mat44::IDENTITY, material(MaterialKind::Reflection));
+    let mirror = object(
+        "mirror",
+        quad(100.0),
+        Mat44::IDENTITY,
+        material(MaterialKind::Reflection),
+    );
     // Only background in the reflection: 0.8 · background.
     let mut s = scene(vec![mirror.clone()], vec![]);
     s.options.background = Vec3::new(0.5, 0.25, 1.0);
     let img = render_f32(&s);
-    assert!(img.pixels().all(|p| p.0 == [byte(0.4), byte(0.2), byte(0.8)]));
+    assert!(img
+        .pixels()
+        .all(|p| p.0 == [byte(0.4), byte(0.2), byte(0.8)]));
     // A wall facing down at z = 10 behind the camera, lit by a point light at z = 8 (its
     // shadow ray is bounded by the distance 2, so the mirror does not occlude it).
-    let wall = object("wall", quad(100.0), {
-        let mut m = flip_z();
-        m.0[3] = [0.0, 0.0, 10.0, 1.0];
-        m
-    }, material(MaterialKind::Diffuse));
-    let s = scene(vec![mirror, wall], vec![point(Vec3::ONE, 10.0, [0.0, 0.0, 8.0])]);
+    let wall = object(
+        "wall",
+        quad(100.0),
+        {
+            let mut m = flip_z();
+            m.0[3] = [0.0, 0.0, 10.0, 1.0];
+            m
+        },
+        material(MaterialKind::Diffuse),
+    );
+    let s = scene(
+        vec![mirror, wall],
+        vec![point(Vec3::ONE, 10.0, [0.0, 0.0, 8.0])],
+    );
     let i = 10.0f32 / (16.0 * std::f64::consts::PI) as f32;
     assert_eq!(centre(&render_f32(&s)), [byte(0.8 * 0.9 * i); 3]);
     assert_eq!(byte(0.8 * 0.9 * i), 36);
@@ -239,9 +354,22 @@ fn glass_mixes_reflection_and_refraction_by_fresnel() {
     // Normal incidence on ior 1.5: kr = ((1.5 − 1)/(1.5 + 1))² = 0.04. Behind the glass a
     // diffuse plane lit by a yellow light straight down (the glass casts no shadow);
     // in front only the blue background.
-    let glass = object("glass", quad(100.0), Mat44::IDENTITY, material(MaterialKind::ReflectionRefraction));
-    let floor = object("floor", quad(100.0), translation(0.0, 0.0, -1.0), material(MaterialKind::Diffuse));
-    let mut s = scene(vec![glass, floor], vec![distant(Vec3::new(1.0, 1.0, 0.0), 1.0, Mat44::IDENTITY)]);
+    let glass = object(
+        "glass",
+        quad(100.0),
+        Mat44::IDENTITY,
+        material(MaterialKind::ReflectionRefraction),
+    );
+    let floor = object(
+        "floor",
+        quad(100.0),
+        translation(0.0, 0.0, -1.0),
+        material(MaterialKind::Diffuse),
+    );
+    let mut s = scene(
+        vec![glass, floor],
+        vec![distant(Vec3::new(1.0, 1.0, 0.0), 1.0, Mat44::IDENTITY)],
+    );
     s.options.background = Vec3::new(0.0, 0.0, 1.0);
     let c = centre(&render_f32(&s));
     assert_eq!(c, [byte(0.9 * 0.96), byte(0.9 * 0.96), byte(0.04)]);
@@ -282,7 +410,12 @@ fn ref_trace(world: &World, orig: V3, dir: V3, bound: f32, shadow: bool) -> Opti
     for (k, m) in world.materials.iter().enumerate() {
         let mut t_near = f32::MAX;
         let mut found = None;
-        for (i, tri) in world.triangles.iter().enumerate().filter(|(_, t)| t.object as usize == k) {
+        for (i, tri) in world
+            .triangles
+            .iter()
+            .enumerate()
+            .filter(|(_, t)| t.object as usize == k)
+        {
             let q = MtQuery {
                 orig: orig.to_array(),
                 dir: dir.to_array(),
@@ -293,7 +426,12 @@ fn ref_trace(world: &World, orig: V3, dir: V3, bound: f32, shadow: bool) -> Opti
             let r = mt_f32(&q);
             if r.hit && r.t < t_near {
                 t_near = r.t;
-                found = Some(Hit { triangle: i as u32, t: r.t, u: r.u, v: r.v });
+                found = Some(Hit {
+                    triangle: i as u32,
+                    t: r.t,
+                    u: r.u,
+                    v: r.v,
+                });
             }
         }
         if found.is_some() && t_near < isect_t {
@@ -308,12 +446,21 @@ fn ref_trace(world: &World, orig: V3, dir: V3, bound: f32, shadow: bool) -> Opti
 }
 
 /// The reference's recursive `castRay`.
-fn ref_cast(s: &Scene, world: &World, lights: &[PreparedLight], orig: V3, dir: V3, depth: u32) -> V3 {
+fn ref_cast(
+    s: &Scene,
+    world: &World,
+    lights: &[PreparedLight],
+    orig: V3,
+    dir: V3,
+    depth: u32,
+) -> V3 {
     let bg = V3::from(s.options.background);
     if depth > s.options.max_depth {
         return bg;
     }
-    let Some(hit) = ref_trace(world, orig, dir, NO_BOUND, false) else { return bg };
+    let Some(hit) = ref_trace(world, orig, dir, NO_BOUND, false) else {
+        return bg;
+    };
     let tri = &world.triangles[hit.triangle as usize];
     let m = &world.materials[tri.object as usize];
     let p = hit_point(orig, dir, &hit);
@@ -325,7 +472,11 @@ fn ref_cast(s: &Scene, world: &World, lights: &[PreparedLight], orig: V3, dir: V
             .map(|l| {
                 let il = l.illuminate(p);
                 let vis = ref_trace(world, p + n * bias, -il.dir, il.distance, true).is_none();
-                let term = if phong { LightTerm::phong(&il, n, dir, m.n) } else { LightTerm::diffuse(&il, n) };
+                let term = if phong {
+                    LightTerm::phong(&il, n, dir, m.n)
+                } else {
+                    LightTerm::diffuse(&il, n)
+                };
                 (term, vis)
             })
             .collect::<Vec<_>>()
@@ -344,10 +495,24 @@ fn ref_cast(s: &Scene, world: &World, lights: &[PreparedLight], orig: V3, dir: V
             let mut refraction = V3::ZERO;
             if kr < 1.0 {
                 let d = refract(dir, n, m.ior).normalized();
-                refraction = ref_cast(s, world, lights, if outside { p - b } else { p + b }, d, depth + 1);
+                refraction = ref_cast(
+                    s,
+                    world,
+                    lights,
+                    if outside { p - b } else { p + b },
+                    d,
+                    depth + 1,
+                );
             }
             let d = reflect(dir, n).normalized();
-            let reflection = ref_cast(s, world, lights, if outside { p + b } else { p - b }, d, depth + 1);
+            let reflection = ref_cast(
+                s,
+                world,
+                lights,
+                if outside { p + b } else { p - b },
+                d,
+                depth + 1,
+            );
             fresnel_colour(reflection, refraction, kr)
         }
     }
@@ -356,9 +521,21 @@ fn ref_cast(s: &Scene, world: &World, lights: &[PreparedLight], orig: V3, dir: V
 fn ref_render(s: &Scene) -> RgbImage {
     let world = World::new(s).unwrap();
     let lights: Vec<_> = s.lights.iter().map(PreparedLight::new).collect();
-    let cam = Camera::new(s.options.camera_to_world, s.options.fov_deg, s.options.width, s.options.height);
+    let cam = Camera::new(
+        s.options.camera_to_world,
+        s.options.fov_deg,
+        s.options.width,
+        s.options.height,
+    );
     RgbImage::from_fn(s.options.width, s.options.height, |i, j| {
-        Rgb(to_rgb8(ref_cast(s, &world, &lights, cam.origin, cam.direction(i, j), 0)))
+        Rgb(to_rgb8(ref_cast(
+            s,
+            &world,
+            &lights,
+            cam.origin,
+            cam.direction(i, j),
+            0,
+        )))
     })
 }
 
@@ -366,27 +543,71 @@ fn ref_render(s: &Scene) -> RgbImage {
 /// inside, total internal reflection), mirrors seeing glass and each other.
 fn all_materials_scene() -> Scene {
     let scaled = |s: f32, at: [f32; 3]| {
-        Mat44([[s, 0.0, 0.0, 0.0], [0.0, s, 0.0, 0.0], [0.0, 0.0, s, 0.0], [at[0], at[1], at[2], 1.0]])
+        Mat44([
+            [s, 0.0, 0.0, 0.0],
+            [0.0, s, 0.0, 0.0],
+            [0.0, 0.0, s, 0.0],
+            [at[0], at[1], at[2], 1.0],
+        ])
     };
-    let tilted_mirror = Mat44([[1.0, 0.0, 0.0, 0.0], [0.0, 0.8, 0.6, 0.0], [0.0, -0.6, 0.8, 0.0], [0.0, 2.0, -3.0, 1.0]]);
+    let tilted_mirror = Mat44([
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, 0.8, 0.6, 0.0],
+        [0.0, -0.6, 0.8, 0.0],
+        [0.0, 2.0, -3.0, 1.0],
+    ]);
     let mut glass = material(MaterialKind::ReflectionRefraction);
     glass.ior = 1.3;
     let mut s = scene(
         vec![
-            object("floor", quad(8.0), translation(0.0, 0.0, -2.0), material(MaterialKind::Diffuse)),
-            object("glass ball", sphere(8, 14), scaled(0.9, [-0.8, 0.0, -0.5]), glass),
-            object("phong ball", sphere(7, 12), scaled(0.7, [1.0, 0.3, -1.0]), material(MaterialKind::Phong)),
-            object("mirror", quad(2.0), tilted_mirror, material(MaterialKind::Reflection)),
+            object(
+                "floor",
+                quad(8.0),
+                translation(0.0, 0.0, -2.0),
+                material(MaterialKind::Diffuse),
+            ),
+            object(
+                "glass ball",
+                sphere(8, 14),
+                scaled(0.9, [-0.8, 0.0, -0.5]),
+                glass,
+            ),
+            object(
+                "phong ball",
+                sphere(7, 12),
+                scaled(0.7, [1.0, 0.3, -1.0]),
+                material(MaterialKind::Phong),
+            ),
+            object(
+                "mirror",
+                quad(2.0),
+                tilted_mirror,
+                material(MaterialKind::Reflection),
+            ),
             // Non-uniform scale: normals need the inverse transpose.
             object(
                 "squashed",
                 sphere(6, 10),
-                Mat44([[0.5, 0.0, 0.0, 0.0], [0.0, 1.2, 0.0, 0.0], [0.0, 0.0, 0.3, 0.0], [0.5, -1.4, -1.2, 1.0]]),
+                Mat44([
+                    [0.5, 0.0, 0.0, 0.0],
+                    [0.0, 1.2, 0.0, 0.0],
+                    [0.0, 0.0, 0.3, 0.0],
+                    [0.5, -1.4, -1.2, 1.0],
+                ]),
                 material(MaterialKind::Diffuse),
             ),
         ],
         vec![
-            distant(Vec3::new(1.0, 0.9, 0.8), 0.8, Mat44([[1.0, 0.0, 0.0, 0.0], [0.0, 0.8, 0.6, 0.0], [0.0, -0.6, 0.8, 0.0], [0.0, 0.0, 0.0, 1.0]])),
+            distant(
+                Vec3::new(1.0, 0.9, 0.8),
+                0.8,
+                Mat44([
+                    [1.0, 0.0, 0.0, 0.0],
+                    [0.0, 0.8, 0.6, 0.0],
+                    [0.0, -0.6, 0.8, 0.0],
+                    [0.0, 0.0, 0.0, 1.0],
+                ]),
+            ),
             point(Vec3::new(0.6, 0.7, 1.0), 300.0, [2.0, 3.0, 3.0]),
         ],
     );
@@ -401,13 +622,24 @@ fn all_materials_scene() -> Scene {
 #[test]
 fn wavefront_render_equals_the_recursive_reference_bit_for_bit() {
     let s = all_materials_scene();
-    let got = render(&s, &F32Intersector, &RenderOptions { tile_size: 16, ..Default::default() }).unwrap();
+    let got = render(
+        &s,
+        &F32Intersector,
+        &RenderOptions {
+            tile_size: 16,
+            ..Default::default()
+        },
+    )
+    .unwrap();
     let want = ref_render(&s);
     let diff = compare(&got.image, &want).unwrap();
     assert_eq!(diff.differing_pixels, 0, "{diff:?}");
     // The scene really exercises every path.
     let st = got.stats.trace;
-    assert!(st.reflection_rays > 100 && st.refraction_rays > 100 && st.shadow_rays > 1000, "{st:?}");
+    assert!(
+        st.reflection_rays > 100 && st.refraction_rays > 100 && st.shadow_rays > 1000,
+        "{st:?}"
+    );
     assert_eq!(st.primary_rays, 64 * 48);
     // Distinct colours: not a blank image.
     let mut colours: Vec<[u8; 3]> = got.image.pixels().map(|p| p.0).collect();
@@ -452,8 +684,21 @@ fn thesis_scenes_equal_the_recursive_reference() {
 fn image_does_not_depend_on_thread_count_or_tile_size() {
     let s = all_materials_scene();
     let in_pool = |threads: usize, tile_size: u32| {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| render(&s, &F32Intersector, &RenderOptions { tile_size, ..Default::default() }).unwrap())
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            render(
+                &s,
+                &F32Intersector,
+                &RenderOptions {
+                    tile_size,
+                    ..Default::default()
+                },
+            )
+            .unwrap()
+        })
     };
     let one = in_pool(1, 32);
     let two = in_pool(2, 32);
@@ -474,7 +719,10 @@ impl Intersector for Splitting {
         format!("f32 split {}", self.chunk)
     }
     fn intersect_batch(&self, queries: &[MtQuery], results: &mut [MtResult]) {
-        for (q, r) in queries.chunks(self.chunk).zip(results.chunks_mut(self.chunk)) {
+        for (q, r) in queries
+            .chunks(self.chunk)
+            .zip(results.chunks_mut(self.chunk))
+        {
             self.calls.fetch_add(1, Ordering::Relaxed);
             F32Intersector.intersect_batch(q, r);
         }
@@ -485,7 +733,10 @@ impl Intersector for Splitting {
 fn image_does_not_depend_on_batch_boundaries() {
     let s = all_materials_scene();
     let whole = render(&s, &F32Intersector, &RenderOptions::default()).unwrap();
-    let split = Splitting { chunk: 5, calls: AtomicU64::new(0) };
+    let split = Splitting {
+        chunk: 5,
+        calls: AtomicU64::new(0),
+    };
     let parts = render(&s, &split, &RenderOptions::default()).unwrap();
     assert_eq!(whole.image, parts.image);
     assert!(split.calls.load(Ordering::Relaxed) > 3 * parts.stats.trace.batches);
@@ -494,9 +745,26 @@ fn image_does_not_depend_on_batch_boundaries() {
 #[test]
 fn width_and_height_override_the_scene() {
     let s = all_materials_scene();
-    let out = render(&s, &F32Intersector, &RenderOptions { width: Some(20), height: Some(10), ..Default::default() }).unwrap();
+    let out = render(
+        &s,
+        &F32Intersector,
+        &RenderOptions {
+            width: Some(20),
+            height: Some(10),
+            ..Default::default()
+        },
+    )
+    .unwrap();
     assert_eq!(out.image.dimensions(), (20, 10));
-    assert!(render(&s, &F32Intersector, &RenderOptions { width: Some(0), ..Default::default() }).is_err());
+    assert!(render(
+        &s,
+        &F32Intersector,
+        &RenderOptions {
+            width: Some(0),
+            ..Default::default()
+        }
+    )
+    .is_err());
 }
 
 // ---------------------------------------------------------------- image comparison
@@ -506,7 +774,9 @@ fn psnr_of_identical_known_and_mismatched_images() {
     let a = RgbImage::from_fn(8, 4, |i, j| Rgb([(i * 20) as u8, (j * 40) as u8, 100]));
     assert_eq!(psnr(&a, &a).unwrap(), f64::INFINITY);
     // Every sample off by one: MSE = 1, PSNR = 10·log10(255²) = 48.1308 dB.
-    let b = RgbImage::from_fn(8, 4, |i, j| Rgb([(i * 20) as u8 + 1, (j * 40) as u8 + 1, 99]));
+    let b = RgbImage::from_fn(8, 4, |i, j| {
+        Rgb([(i * 20) as u8 + 1, (j * 40) as u8 + 1, 99])
+    });
     let d = compare(&a, &b).unwrap();
     assert_eq!(d.mse, 1.0);
     assert!((d.psnr_db - 48.130_803_6).abs() < 1e-6, "{}", d.psnr_db);
@@ -521,7 +791,12 @@ fn psnr_of_identical_known_and_mismatched_images() {
     let small = RgbImage::new(4, 4);
     assert_eq!(
         psnr(&a, &small),
-        Err(CompareError::SizeMismatch { a_width: 8, a_height: 4, b_width: 4, b_height: 4 })
+        Err(CompareError::SizeMismatch {
+            a_width: 8,
+            a_height: 4,
+            b_width: 4,
+            b_height: 4
+        })
     );
     assert!(diff_heatmap(&a, &small).is_err());
 }
@@ -529,7 +804,10 @@ fn psnr_of_identical_known_and_mismatched_images() {
 #[test]
 fn heatmap_is_black_exactly_where_images_agree() {
     let a = RgbImage::from_fn(6, 6, |i, j| Rgb([(i * 30) as u8, (j * 30) as u8, 7]));
-    assert!(diff_heatmap(&a, &a).unwrap().pixels().all(|p| p.0 == [0, 0, 0]));
+    assert!(diff_heatmap(&a, &a)
+        .unwrap()
+        .pixels()
+        .all(|p| p.0 == [0, 0, 0]));
     let mut b = a.clone();
     b.get_pixel_mut(2, 3).0[2] = 8;
     b.get_pixel_mut(5, 0).0[0] = 255;
