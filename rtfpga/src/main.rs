@@ -3,6 +3,7 @@
 //! `docs/architecture.md`; each subcommand lives in its own module.
 
 mod engine;
+mod cmd_bench;
 mod cmd_compare;
 mod cmd_formats;
 mod cmd_golden;
@@ -25,6 +26,8 @@ enum Command {
     Compare(cmd_compare::Args),
     /// List the number-format catalogue.
     Formats(cmd_formats::Args),
+    /// Time renders of scenes at several sizes (Markdown table).
+    Bench(cmd_bench::Args),
     /// Regenerate the golden images of the built-in scenes.
     Golden(cmd_golden::Args),
 }
@@ -36,6 +39,7 @@ fn main() -> std::process::ExitCode {
         Command::Compare(a) => cmd_compare::run(a),
         Command::Formats(a) => cmd_formats::run(a),
         Command::Golden(a) => cmd_golden::run(a),
+        Command::Bench(a) => cmd_bench::run(a),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,
