@@ -2,18 +2,20 @@
 //! (exactly widened) inputs.
 //!
 //! # Tolerance band
-//! f32 rounding moves every computed quantity by a few ulps of the magnitudes that went
-//! into it, so near a decision boundary the two precisions may decide differently. A case
-//! counts as "inside the band" when one of the f64 values is within `BAND` (relative, about
-//! 170 f32 ulps) of its boundary, measured against the size of the terms it was computed from:
-//! - |u| or |1 − u| ≤ BAND·|s|·|p|/|det|,
-//! - |v| ≤ BAND·|d|·|q|/|det|, |1 − u − v| ≤ BAND·(|s|·|p| + |d|·|q|)/|det|,
-//! - |t| ≤ BAND·|e2|·|q|/|det|,
-//! - ||det| − 1e-8| ≤ BAND·|e1|·|p| (the parallel-ray epsilon),
+//! f32 rounding moves every computed quantity by a few ulps of the magnitudes that went into
+//! it (cross products cancel, so the magnitudes are products of input lengths). With
+//! κ = |e1|·|d|·|e2|/|det| (the conditioning of det) these magnitudes are
+//! - m_u = |s|·|d|·|e2|/|det| + |u|·κ,
+//! - m_v = |d|·|s|·|e1|/|det| + |v|·κ,
+//! - m_t = |e2|·|s|·|e1|/|det| + |t|·κ,
 //!
-//! where |·| of a vector is its Euclidean norm. Outside the band hit/miss must agree; inside
-//! it the disagreements are counted and must stay a small share of the cases. Where both hit
-//! outside the band, t, u, v must agree within BAND times those same magnitudes.
+//! where |·| of a vector is its Euclidean norm. A case is "inside the band" when one of the
+//! f64 values is within `BAND` (relative, about 170 f32 ulps) times its magnitude of its
+//! decision boundary: |u| or |1 − u| ≤ BAND·m_u, |v| ≤ BAND·m_v, |1 − u − v| ≤ BAND·(m_u + m_v),
+//! |t| ≤ BAND·m_t, or ||det| − 1e-8| ≤ BAND·|e1|·|d|·|e2| (the parallel-ray epsilon).
+//! Outside the band hit/miss must agree; inside it the disagreements are counted and must stay
+//! a small share of the cases. Where both hit outside the band, t, u, v must agree within
+//! BAND times their magnitudes.
 
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -71,17 +73,17 @@ fn mt_f64(q: &MtQuery) -> Mt64 {
         && v >= 0.0
         && u + v <= 1.0
         && t > 0.0;
-    let (mu, mv, mt) = (
-        norm(s) * norm(p) / det.abs(),
-        norm(d) * norm(qv) / det.abs(),
-        norm(e2) * norm(qv) / det.abs(),
-    );
+    let (ns, nd, n1, n2) = (norm(s), norm(d), norm(e1), norm(e2));
+    let kappa = n1 * nd * n2 / det.abs();
+    let mu = ns * nd * n2 / det.abs() + u.abs() * kappa;
+    let mv = nd * ns * n1 / det.abs() + v.abs() * kappa;
+    let mt = n2 * ns * n1 / det.abs() + t.abs() * kappa;
     let in_band = u.abs() <= BAND * mu
         || (1.0 - u).abs() <= BAND * mu
         || v.abs() <= BAND * mv
         || (1.0 - u - v).abs() <= BAND * (mu + mv)
         || t.abs() <= BAND * mt
-        || (det.abs() - f64::from(1e-8f32)).abs() <= BAND * norm(e1) * norm(p);
+        || (det.abs() - f64::from(1e-8f32)).abs() <= BAND * n1 * nd * n2;
     Mt64 {
         hit,
         t,
