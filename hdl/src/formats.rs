@@ -44,6 +44,9 @@ macro_rules! operator_table {
                 Op::ToF32 => operator_verilog::<ToF32>(stages),
             })
         }
+
+        // The MT lane over these operators (`MtLane`, `mt_lane_verilog`).
+        $crate::mt::mt_lane!();
     };
 }
 pub(crate) use operator_table;

@@ -4,6 +4,7 @@
 pub mod float;
 pub mod formats;
 pub mod intmul;
+pub mod mt;
 pub mod operator;
 pub mod pipe;
 pub mod verilog;

@@ -1,0 +1,96 @@
+//! The Möller-Trumbore datapath: one lane per format (`formats::<name>::MtLane`, from the
+//! [`mt_lane!`] body every format module expands), its timing ([`schedule`]) and the delay
+//! lines that balance it ([`delay`]).
+//!
+//! A lane takes fp32 at its ports, converts into the format, runs the dataflow of
+//! `hw_model::mt_model` operator for operator and converts t, u, v back to fp32. `depth` is
+//! the pipeline registers per operator: every operator is built with
+//! `min(depth, its max_stages())`, so depths beyond [`max_depth`] change nothing. Parallel
+//! branches are padded with delay lines, so a lane accepts a query every cycle (II = 1) and
+//! answers it, with `valid_out`, exactly [`latency`] cycles later.
+
+pub mod delay;
+mod lane;
+pub mod schedule;
+
+pub(crate) use lane::mt_lane;
+
+use hw_model::{Format, MtQuery, MtResult};
+use rust_hdl::prelude::*;
+
+use crate::formats;
+use crate::operator::{Op, OperatorError};
+use schedule::{OpLatencies, Schedule};
+
+/// The lane's timing in catalogue format `format` at `depth`.
+pub fn schedule(format: &str, depth: usize) -> Result<Schedule, OperatorError> {
+    Ok(Schedule::new(OpLatencies::try_for_depth(depth, |op| formats::max_stages(format, op))?))
+}
+
+/// Cycles from query to result of a lane in catalogue format `format` at `depth`.
+pub fn latency(format: &str, depth: usize) -> Result<usize, OperatorError> {
+    Ok(schedule(format, depth)?.latency)
+}
+
+/// The depth at which every operator of `format` has all its pipeline registers.
+pub fn max_depth(format: &str) -> Result<usize, OperatorError> {
+    Op::ALL.into_iter().map(|op| formats::max_stages(format, op)).try_fold(0, |m, s| Ok(m.max(s?)))
+}
+
+/// A query as the lane's 15 input words: orig, dir, v0, v1, v2 (x, y, z each), fp32 bits.
+pub fn query_words(q: &MtQuery) -> [u32; 15] {
+    let mut words = [0; 15];
+    let fields = [q.orig, q.dir, q.v0, q.v1, q.v2];
+    for (w, x) in words.iter_mut().zip(fields.iter().flatten()) {
+        *w = x.to_bits();
+    }
+    words
+}
+
+/// What a lane's outputs show in one cycle (t, u, v as fp32 bits).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LaneOutput {
+    pub valid: bool,
+    pub hit: bool,
+    pub t: u32,
+    pub u: u32,
+    pub v: u32,
+}
+
+impl LaneOutput {
+    pub fn result(&self) -> MtResult {
+        MtResult { hit: self.hit, t: f32::from_bits(self.t), u: f32::from_bits(self.u), v: f32::from_bits(self.v) }
+    }
+}
+
+/// The port plumbing every format's `MtLane` shares, so tests and drivers are written once.
+pub trait Lane: Block + Sized {
+    const NAME: &'static str;
+    const FORMAT: Format;
+    fn new(depth: usize) -> Self;
+    fn latency(depth: usize) -> usize;
+    fn clock(&mut self) -> &mut Signal<In, Clock>;
+    fn set_inputs(&mut self, valid: bool, query: &[u32; 15]);
+    fn outputs(&self) -> LaneOutput;
+}
+
+/// Runs a freshly built lane in rust-hdl's simulator for `inputs.len() + flush` cycles,
+/// feeding `inputs[c]` (valid, query) in cycle `c` (then invalid all-zero queries) and
+/// returning what the outputs show in every cycle.
+pub fn simulate_lane<L: Lane>(depth: usize, inputs: &[(bool, MtQuery)], flush: usize) -> Vec<LaneOutput> {
+    let mut lane = L::new(depth);
+    lane.connect_all();
+    let idle = (false, MtQuery::default());
+    (0..inputs.len() + flush)
+        .map(|cycle| {
+            let (valid, q) = inputs.get(cycle).unwrap_or(&idle);
+            lane.set_inputs(*valid, &query_words(q));
+            lane.clock().next = Clock { clk: false };
+            assert!(simulate(&mut lane, 10_000), "lane logic did not settle");
+            let out = lane.outputs();
+            lane.clock().next = Clock { clk: true };
+            assert!(simulate(&mut lane, 10_000), "lane logic did not settle");
+            out
+        })
+        .collect()
+}

@@ -1,0 +1,153 @@
+//! The MT lane of every format in rust-hdl's simulator, bit for bit against
+//! `hw_model::mt_model`, one query per cycle, with `valid_out` checked to be `valid_in`
+//! delayed by exactly `latency(depth)`. rust-hdl simulates a ~30-operator design at about a
+//! thousand cycles a second, so the default run uses a few dozen queries per format; more:
+//! `cargo test --release -p hdl --test mt_lane -- --ignored`.
+
+use hdl::formats::{self, bf16, fp16, fp24, fp32};
+use hdl::mt::{self, simulate_lane, Lane};
+use hw_model::{mt_model, MtQuery};
+use rand::{rngs::StdRng, Rng, SeedableRng};
+
+fn query(orig: [f32; 3], dir: [f32; 3], v0: [f32; 3], v1: [f32; 3], v2: [f32; 3]) -> MtQuery {
+    MtQuery { orig, dir, v0, v1, v2 }
+}
+
+/// Hand-picked cases on the triangle (0,0,2), (1,0,2), (0,1,2) and some degenerate inputs.
+fn edge_cases() -> Vec<MtQuery> {
+    let (v0, v1, v2) = ([0.0, 0.0, 2.0], [1.0, 0.0, 2.0], [0.0, 1.0, 2.0]);
+    let on = |x: f32, y: f32, dir: [f32; 3]| query([x, y, 0.0], dir, v0, v1, v2);
+    let down = [0.0, 0.0, 1.0];
+    vec![
+        on(0.25, 0.25, down),              // hit inside
+        on(1.0, 1.0, down),                // miss: u + v > 1
+        on(-0.5, 0.25, down),              // miss: u < 0
+        on(0.25, -0.5, down),              // miss: v < 0
+        on(0.25, 0.25, [0.0, 0.0, -1.0]),  // behind the ray: t < 0
+        on(0.0, 0.0, down),                // vertex v0: u = v = 0
+        on(0.5, 0.5, down),                // edge: u + v = 1
+        on(0.0, 0.5, down),                // edge: u = 0
+        query([0.0, 0.25, 2.0], [1.0, 0.0, 0.0], v0, v1, v2), // edge-on: det = 0
+        on(0.25, 0.25, [1.0, 0.0, 1e-9]),  // det ≈ 0 (below eps in fp32)
+        on(0.25, 0.25, [1.0, 0.0, 2e-8]),  // det just above eps in fp32
+        on(0.25, 0.25, [0.0, 0.0, 1e-30]), // det underflows in narrow formats
+        query([0.1, 0.1, 0.0], down, v0, v0, v2), // degenerate triangle
+        on(0.25, 0.25, [f32::NAN, 0.0, 1.0]),
+        on(0.25, 0.25, [0.0, 0.0, f32::INFINITY]),
+        on(1e-40, 0.25, down), // subnormal input
+        on(3.0e4, 0.25, down), // overflows fp16's and the fixed formats' range
+    ]
+}
+
+/// Rays from random points towards random points near a random triangle (about half hit),
+/// then random bit patterns; all coordinates within ±4 so the fixed formats can hold them.
+fn random_queries(n: usize, seed: u64) -> Vec<MtQuery> {
+    let mut rng = StdRng::seed_from_u64(seed);
+    let mut point = |r: f32| [0; 3].map(|_| rng.gen_range(-r..r));
+    (0..n)
+        .map(|i| {
+            if i % 4 == 3 {
+                let mut bits = [[0f32; 3]; 5];
+                bits.iter_mut().flatten().for_each(|x| *x = f32::from_bits(rand::random()));
+                return query(bits[0], bits[1], bits[2], bits[3], bits[4]);
+            }
+            let (v0, v1, v2, orig, target) = (point(2.0), point(2.0), point(2.0), point(4.0), point(0.5));
+            let centre = [0, 1, 2].map(|k| (v0[k] + v1[k] + v2[k]) / 3.0 + target[k]);
+            let dir = [0, 1, 2].map(|k| (centre[k] - orig[k]) / 4.0);
+            query(orig, dir, v0, v1, v2)
+        })
+        .collect()
+}
+
+/// Streams `queries` through `L` at `depth` with a gap in `valid_in` every fifth cycle and
+/// checks every result and the valid line against the model and `latency(depth)`.
+fn check<L: Lane>(depth: usize, queries: &[MtQuery]) {
+    let latency = L::latency(depth);
+    assert_eq!(mt::latency(L::NAME, depth), Ok(latency), "{} runtime latency table", L::NAME);
+    // Three idle cycles first, so the first valid_out edge measures the latency.
+    let inputs: Vec<(bool, MtQuery)> = (0..3)
+        .map(|_| (false, MtQuery::default()))
+        .chain(queries.iter().enumerate().map(|(i, q)| (i % 5 != 4, *q)))
+        .collect();
+    let out = simulate_lane::<L>(depth, &inputs, latency);
+    let first_valid = out.iter().position(|o| o.valid).expect("valid_out never rose");
+    assert_eq!(first_valid - 3, latency, "{} depth {depth}: observed latency", L::NAME);
+    for (cycle, o) in out.iter().enumerate() {
+        let Some(c) = cycle.checked_sub(latency) else {
+            assert!(!o.valid, "{} depth {depth}: valid_out in cycle {cycle}", L::NAME);
+            continue;
+        };
+        let (valid, q) = inputs.get(c).copied().unwrap_or((false, MtQuery::default()));
+        assert_eq!(o.valid, valid, "{} depth {depth}: valid_out in cycle {cycle}", L::NAME);
+        let want = mt_model(&L::FORMAT, &q);
+        assert!(
+            o.result().same_bits(&want),
+            "{} depth {depth}: {q:?}\n lane  {:?}\n model {want:?}",
+            L::NAME,
+            o.result()
+        );
+    }
+}
+
+fn check_format<L: Lane>(depth: usize, random: usize, seed: u64) {
+    let mut queries = edge_cases();
+    queries.extend(random_queries(random, seed));
+    check::<L>(depth, &queries);
+}
+
+#[test]
+fn fp32_lane_matches_the_model() {
+    check_format::<fp32::MtLane>(1, 16, 1);
+}
+
+#[test]
+fn fp24_lane_matches_the_model() {
+    check_format::<fp24::MtLane>(1, 16, 2);
+}
+
+#[test]
+fn bf16_lane_matches_the_model() {
+    check_format::<bf16::MtLane>(1, 16, 3);
+}
+
+#[test]
+fn fp16_lane_matches_the_model_at_depths_0_and_2() {
+    check_format::<fp16::MtLane>(0, 16, 4);
+    check_format::<fp16::MtLane>(2, 8, 5);
+}
+
+/// Every format with rust-hdl operators has its lane checked above.
+#[test]
+fn every_format_with_operators_is_checked() {
+    let checked = [fp32::NAME, fp24::NAME, bf16::NAME, fp16::NAME];
+    for name in formats::NAMES {
+        assert!(checked.contains(name), "format {name} has a lane but no lane test");
+    }
+}
+
+#[test]
+fn latency_table_answers_every_format_and_rejects_unknown_ones() {
+    for name in formats::NAMES {
+        let max = mt::max_depth(name).unwrap();
+        let latencies: Vec<usize> = (0..=max + 1).map(|d| mt::latency(name, d).unwrap()).collect();
+        assert_eq!(latencies[0], 0, "{name}: a combinational lane");
+        assert!(latencies.windows(2).all(|w| w[0] < w[1] || w[0] == w[1]), "{name}: {latencies:?}");
+        assert_eq!(latencies[max], latencies[max + 1], "{name}: depth beyond max_depth");
+        assert!(latencies[max - 1] < latencies[max], "{name}: max_depth is the smallest saturating depth");
+    }
+    assert!(mt::latency("fp8", 1).is_err());
+    assert!(mt::max_depth("fp8").is_err());
+}
+
+/// `cargo test --release -p hdl --test mt_lane -- --ignored`
+#[test]
+#[ignore]
+fn every_lane_matches_the_model_on_more_queries_and_depths() {
+    for depth in [0, 1, 3] {
+        check_format::<fp32::MtLane>(depth, 300, 10 + depth as u64);
+        check_format::<fp24::MtLane>(depth, 300, 20 + depth as u64);
+        check_format::<bf16::MtLane>(depth, 300, 30 + depth as u64);
+        check_format::<fp16::MtLane>(depth, 300, 40 + depth as u64);
+    }
+    check_format::<fp32::MtLane>(usize::MAX, 100, 50);
+}
