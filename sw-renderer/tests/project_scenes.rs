@@ -254,6 +254,7 @@ fn backdrop_floor_bends_into_wall() {
         depth: 30.0,
         height: 20.0,
         radius: 8.0,
+        bend_height: 8.0,
         width_segments: 4,
         floor_segments: 3,
         bend_segments: 8,
@@ -290,12 +291,52 @@ fn backdrop_floor_bends_into_wall() {
         }
     }
     // Radius 0: a sharp corner with separate floor and wall normals.
-    let sharp = procedural::backdrop(&Backdrop { radius: 0.0, ..b }).unwrap();
+    let sharp = procedural::backdrop(&Backdrop {
+        radius: 0.0,
+        bend_height: 0.0,
+        ..b.clone()
+    })
+    .unwrap();
     assert_eq!(sharp.triangles.len(), 2 * 4 * (3 + 2));
     for (tri, normals) in sharp.triangles.iter().zip(&sharp.normals) {
         let on_floor = tri.iter().all(|&i| sharp.positions[i as usize].y == 0.0);
         for n in normals {
             assert_eq!(*n, if on_floor { Vec3::Y } else { Vec3::Z });
+        }
+    }
+}
+
+#[test]
+fn backdrop_can_end_inside_an_elliptic_bend() {
+    // The thesis' Glass pen backdrop: the wall still leans back where it ends.
+    let b = Backdrop {
+        width: 10.0,
+        depth: 30.0,
+        height: 18.0,
+        radius: 12.0,
+        bend_height: 22.0,
+        width_segments: 2,
+        floor_segments: 2,
+        bend_segments: 10,
+        wall_segments: 3,
+    };
+    let mesh = procedural::backdrop(&b).unwrap();
+    assert_well_formed(&mesh, "elliptic backdrop");
+    assert_eq!(winding_agreement(&mesh), 1.0);
+    // No wall rows: floor and bend only.
+    assert_eq!(mesh.triangles.len(), 2 * 2 * (2 + 10));
+    let (lo, hi) = bounds(&mesh);
+    assert!((hi.y - 18.0).abs() < 1e-4, "{hi}");
+    // On the ellipse at y = 18: z = -15 + 12 - 12·sin(acos(1 - 18/22)).
+    let top_z = -3.0 - 12.0 * (1.0f32 - (1.0 - 18.0 / 22.0f32).powi(2)).sqrt();
+    assert!((lo.z - top_z).abs() < 1e-4, "{lo} vs {top_z}");
+    // The top row's normals lean up as well as forward: the ellipse's normal there is
+    // (z, y) ∝ (22·sin φ, 12·cos φ) with cos φ = 1 − 18/22, i.e. y ≈ 0.10.
+    for (tri, normals) in mesh.triangles.iter().zip(&mesh.normals) {
+        for (&i, n) in tri.iter().zip(normals) {
+            if mesh.positions[i as usize].y > 17.9 {
+                assert!(n.y > 0.05 && n.y < 0.2 && n.z > 0.98, "top normal {n}");
+            }
         }
     }
 }
@@ -416,12 +457,27 @@ fn generators_refuse_bad_parameters() {
                 depth: 5.0,
                 height: 5.0,
                 radius: 6.0,
+                bend_height: 6.0,
                 width_segments: 1,
                 floor_segments: 1,
                 bend_segments: 4,
                 wall_segments: 1,
             }),
-            "smaller than both",
+            "smaller than depth",
+        ),
+        (
+            procedural::backdrop(&Backdrop {
+                width: 10.0,
+                depth: 5.0,
+                height: 5.0,
+                radius: 1.0,
+                bend_height: 0.0,
+                width_segments: 1,
+                floor_segments: 1,
+                bend_segments: 4,
+                wall_segments: 1,
+            }),
+            "both be 0",
         ),
     ];
     for (result, expected) in cases {

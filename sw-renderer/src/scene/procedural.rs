@@ -277,14 +277,17 @@ pub fn pen(
 }
 
 /// A studio backdrop: a floor in y = 0 running along z from `depth`/2 back to −`depth`/2, where
-/// it bends up (a quarter circle of `radius`; 0 gives a sharp corner) into a wall of `height`.
-/// `width` runs along x, centred. Normals face the open side (up, and +z on the wall).
+/// it bends up into a wall at z = −`depth`/2 that ends at `height`. The bend is a quarter
+/// ellipse reaching `radius` along z and `bend_height` up (equal: a quarter circle; both 0: a
+/// sharp corner); a `height` below `bend_height` ends the backdrop inside the bend, still
+/// leaning back. `width` runs along x, centred. Normals face the open side (up, then +z).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Backdrop {
     pub width: f32,
     pub depth: f32,
     pub height: f32,
     pub radius: f32,
+    pub bend_height: f32,
     pub width_segments: u32,
     pub floor_segments: u32,
     pub bend_segments: u32,
@@ -292,21 +295,33 @@ pub struct Backdrop {
 }
 
 pub fn backdrop(b: &Backdrop) -> Result<Mesh, GeometryError> {
+    positive("width", b.width)?;
     positive("depth", b.depth)?;
     positive("height", b.height)?;
     non_negative("radius", b.radius)?;
-    if b.radius >= b.depth || b.radius >= b.height {
+    non_negative("bend_height", b.bend_height)?;
+    if b.radius >= b.depth {
         return Err(GeometryError(format!(
-            "radius ({}) must be smaller than both depth ({}) and height ({})",
-            b.radius, b.depth, b.height
+            "radius ({}) must be smaller than depth ({})",
+            b.radius, b.depth
         )));
     }
-    positive("width", b.width)?;
+    if (b.radius == 0.0) != (b.bend_height == 0.0) {
+        return Err(GeometryError(format!(
+            "radius ({}) and bend_height ({}) must both be 0 (a sharp corner) or both be more",
+            b.radius, b.bend_height
+        )));
+    }
     at_least("width_segments", b.width_segments, 1)?;
     let floor_segments = at_least("floor_segments", b.floor_segments, 1)?;
-    let wall_segments = at_least("wall_segments", b.wall_segments, 1)?;
     let bend_segments = if b.radius > 0.0 {
         at_least("bend_segments", b.bend_segments, 1)?
+    } else {
+        0
+    };
+    let has_wall = b.height > b.bend_height;
+    let wall_segments = if has_wall {
+        at_least("wall_segments", b.wall_segments, 1)?
     } else {
         0
     };
@@ -322,16 +337,31 @@ pub fn backdrop(b: &Backdrop) -> Result<Mesh, GeometryError> {
         let t = i as f32 / floor_segments as f32;
         points.push(Vec2::new(front + (bend_z - front) * t, 0.0));
     }
-    for i in 0..bend_segments {
-        let phi = std::f32::consts::FRAC_PI_2 * i as f32 / bend_segments as f32;
-        points.push(Vec2::new(
+    // The ellipse (z, y) = (bend_z − radius·sin φ, bend_height·(1 − cos φ)), up to the height.
+    let bend_end = if has_wall {
+        std::f32::consts::FRAC_PI_2
+    } else {
+        (1.0 - b.height / b.bend_height).acos()
+    };
+    let on_bend = |phi: f32| {
+        Vec2::new(
             bend_z - b.radius * phi.sin(),
-            b.radius * (1.0 - phi.cos()),
-        ));
+            b.bend_height * (1.0 - phi.cos()),
+        )
+    };
+    for i in 0..bend_segments {
+        points.push(on_bend(bend_end * i as f32 / bend_segments as f32));
     }
-    for i in 0..=wall_segments {
-        let t = i as f32 / wall_segments as f32;
-        points.push(Vec2::new(back, b.radius + (b.height - b.radius) * t));
+    if has_wall {
+        for i in 0..=wall_segments {
+            let t = i as f32 / wall_segments as f32;
+            points.push(Vec2::new(
+                back,
+                b.bend_height + (b.height - b.bend_height) * t,
+            ));
+        }
+    } else {
+        points.push(on_bend(bend_end));
     }
     extrude(Profile::new(points)?, b.width, b.width_segments, 1)
 }

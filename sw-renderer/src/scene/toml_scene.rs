@@ -418,6 +418,8 @@ struct BackdropDef {
     height: Num,
     #[serde(default)]
     radius: Option<Num>,
+    /// Defaults to `radius`.
+    bend_height: Option<Num>,
     #[serde(default = "one_segment")]
     width_segments: u32,
     #[serde(default = "one_segment")]
@@ -494,6 +496,7 @@ impl GeometryDef {
                 depth: b.depth.0,
                 height: b.height.0,
                 radius: b.radius.map_or(0.0, |r| r.0),
+                bend_height: b.bend_height.or(b.radius).map_or(0.0, |h| h.0),
                 width_segments: b.width_segments,
                 floor_segments: b.floor_segments,
                 bend_segments: b.bend_segments,
@@ -550,13 +553,15 @@ fn object_from(
                 ),
             ))
         }
-        [_, second, ..] => return Err(source.error(
-            Some(second.0.clone()),
-            format!(
+        [_, second, ..] => {
+            return Err(source.error(
+                Some(second.0.clone()),
+                format!(
                 "object `{}` has more than one geometry: expected exactly one of {GEOMETRY_KEYS}",
                 def.name
             ),
-        )),
+            ))
+        }
     };
     let mesh = match meshes.meshes.iter().find(|(g, _)| *g == geometry) {
         Some((_, mesh)) => Arc::clone(mesh),
