@@ -2,6 +2,7 @@
 //! helpers that drive them.
 
 pub mod error;
+pub mod projection;
 pub mod verilator;
 
 pub use error::SimError;

@@ -1,0 +1,96 @@
+//! The work of one frame, counted from a real software render of the scene.
+//!
+//! The ray tree (primary, reflection, refraction and shadow rays) is the reference's: the
+//! project's renderer reproduces the thesis images bit for bit, so it casts the same rays.
+//! Only the number of ray-triangle tests depends on how candidates are found:
+//! - the thesis' renderer had no acceleration structure: every ray was tested against every
+//!   triangle, except that shadow rays skip reflection+refraction objects
+//!   (reference-renderer.md, "Intersection"); which object a ray hits does not change how
+//!   many triangles it is tested against, so the count follows from the rays by kind;
+//! - the project's renderer tests only the BVH's candidates (`TraceStats::mt_queries`).
+
+use sw_renderer::intersect::F32Intersector;
+use sw_renderer::render::{render, RenderOptions};
+use sw_renderer::scene::{MaterialKind, Scene};
+
+use super::ProjectionError;
+
+/// How the renderer finds the triangles a ray is tested against.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Traversal {
+    /// Every triangle (shadow rays: every shadow-casting triangle), as the thesis did.
+    BruteForce,
+    /// The candidates of the project's BVH.
+    Bvh,
+}
+
+/// Counts of one frame of one scene at one size.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Workload {
+    pub scene: String,
+    pub width: u32,
+    pub height: u32,
+    pub primary_rays: u64,
+    pub reflection_rays: u64,
+    pub refraction_rays: u64,
+    pub shadow_rays: u64,
+    /// All triangles of the scene.
+    pub triangles: u64,
+    /// Triangles of objects that are not reflection+refraction (what shadow rays test).
+    pub shadow_casting_triangles: u64,
+    /// Möller-Trumbore tests of the BVH render.
+    pub bvh_tests: u64,
+    /// Intersector batches of the BVH render (one per wavefront level per tile).
+    pub batches: u64,
+}
+
+impl Workload {
+    /// Renders `scene` at `width`×`height` with the f32 reference and counts its work.
+    pub fn measure(scene: &Scene, width: u32, height: u32) -> Result<Workload, ProjectionError> {
+        let opts = RenderOptions {
+            width: Some(width),
+            height: Some(height),
+            ..Default::default()
+        };
+        let stats = render(scene, &F32Intersector, &opts)
+            .map_err(|e| ProjectionError::Render(e.to_string()))?
+            .stats
+            .trace;
+        let shadow_casting = scene
+            .objects
+            .iter()
+            .filter(|o| o.material.kind != MaterialKind::ReflectionRefraction)
+            .map(|o| o.mesh.triangles.len() as u64)
+            .sum();
+        Ok(Workload {
+            scene: scene.name.clone(),
+            width,
+            height,
+            primary_rays: stats.primary_rays,
+            reflection_rays: stats.reflection_rays,
+            refraction_rays: stats.refraction_rays,
+            shadow_rays: stats.shadow_rays,
+            triangles: scene.triangle_count() as u64,
+            shadow_casting_triangles: shadow_casting,
+            bvh_tests: stats.mt_queries,
+            batches: stats.batches,
+        })
+    }
+
+    pub fn rays(&self) -> u64 {
+        self.primary_rays + self.reflection_rays + self.refraction_rays + self.shadow_rays
+    }
+
+    /// Tests of the thesis' renderer: Σ over rays of the triangles it tests.
+    pub fn brute_force_tests(&self) -> u64 {
+        (self.primary_rays + self.reflection_rays + self.refraction_rays) * self.triangles
+            + self.shadow_rays * self.shadow_casting_triangles
+    }
+
+    pub fn tests(&self, traversal: Traversal) -> u64 {
+        match traversal {
+            Traversal::BruteForce => self.brute_force_tests(),
+            Traversal::Bvh => self.bvh_tests,
+        }
+    }
+}
