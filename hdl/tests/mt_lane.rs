@@ -4,7 +4,7 @@
 //! thousand cycles a second, so the default run uses a few dozen queries per format; more:
 //! `cargo test --release -p hdl --test mt_lane -- --ignored`.
 
-use hdl::formats::{self, bf16, fp16, fp24, fp32};
+use hdl::formats::{self, bf16, fp16, fp24, fp32, fx16_10, fx32_16_rnd_sat};
 use hdl::mt::{self, simulate_lane, Lane};
 use hw_model::{mt_model, MtQuery};
 use rand::{rngs::StdRng, Rng, SeedableRng};
@@ -43,14 +43,13 @@ fn edge_cases() -> Vec<MtQuery> {
 /// then random bit patterns; all coordinates within ±4 so the fixed formats can hold them.
 fn random_queries(n: usize, seed: u64) -> Vec<MtQuery> {
     let mut rng = StdRng::seed_from_u64(seed);
-    let mut point = |r: f32| [0; 3].map(|_| rng.gen_range(-r..r));
     (0..n)
         .map(|i| {
             if i % 4 == 3 {
-                let mut bits = [[0f32; 3]; 5];
-                bits.iter_mut().flatten().for_each(|x| *x = f32::from_bits(rand::random()));
-                return query(bits[0], bits[1], bits[2], bits[3], bits[4]);
+                let mut bits = || [0; 3].map(|_| f32::from_bits(rng.gen()));
+                return query(bits(), bits(), bits(), bits(), bits());
             }
+            let mut point = |r: f32| [0; 3].map(|_| rng.gen_range(-r..r));
             let (v0, v1, v2, orig, target) = (point(2.0), point(2.0), point(2.0), point(4.0), point(0.5));
             let centre = [0, 1, 2].map(|k| (v0[k] + v1[k] + v2[k]) / 3.0 + target[k]);
             let dir = [0, 1, 2].map(|k| (centre[k] - orig[k]) / 4.0);
@@ -72,6 +71,10 @@ fn check<L: Lane>(depth: usize, queries: &[MtQuery]) {
     let out = simulate_lane::<L>(depth, &inputs, latency);
     let first_valid = out.iter().position(|o| o.valid).expect("valid_out never rose");
     assert_eq!(first_valid - 3, latency, "{} depth {depth}: observed latency", L::NAME);
+    let hits = out.iter().filter(|o| o.valid && o.hit).count();
+    let valid = out.iter().filter(|o| o.valid).count();
+    eprintln!("{} depth {depth}: latency {latency}, {hits} hits of {valid} valid queries", L::NAME);
+    assert!(hits >= 3 && valid - hits >= 3, "{} depth {depth}: only {hits} hits of {valid}", L::NAME);
     for (cycle, o) in out.iter().enumerate() {
         let Some(c) = cycle.checked_sub(latency) else {
             assert!(!o.valid, "{} depth {depth}: valid_out in cycle {cycle}", L::NAME);
@@ -95,33 +98,45 @@ fn check_format<L: Lane>(depth: usize, random: usize, seed: u64) {
     check::<L>(depth, &queries);
 }
 
-#[test]
-fn fp32_lane_matches_the_model() {
-    check_format::<fp32::MtLane>(1, 16, 1);
+/// One test a format (at `depth`, with `random` random queries after the edge cases), and
+/// `CHECKED`, the formats covered.
+macro_rules! lane_tests {
+    ($($test:ident: $fmt:ident, depth $depth:expr, random $random:expr;)*) => {
+        $(
+            #[test]
+            fn $test() {
+                check_format::<formats::$fmt::MtLane>($depth, $random, stringify!($fmt).len() as u64);
+            }
+        )*
+        const CHECKED: &[&str] = &[$(formats::$fmt::NAME),*];
+    };
 }
 
-#[test]
-fn fp24_lane_matches_the_model() {
-    check_format::<fp24::MtLane>(1, 16, 2);
-}
-
-#[test]
-fn bf16_lane_matches_the_model() {
-    check_format::<bf16::MtLane>(1, 16, 3);
-}
-
-#[test]
-fn fp16_lane_matches_the_model_at_depths_0_and_2() {
-    check_format::<fp16::MtLane>(0, 16, 4);
-    check_format::<fp16::MtLane>(2, 8, 5);
+lane_tests! {
+    fp32_lane_matches_the_model: fp32, depth 1, random 64;
+    fp24_lane_matches_the_model: fp24, depth 1, random 64;
+    bf16_lane_matches_the_model: bf16, depth 1, random 64;
+    fp16_lane_matches_the_model_combinational: fp16, depth 0, random 64;
+    fp16_lane_matches_the_model: fp16, depth 2, random 64;
+    fx16_10_lane_matches_the_model: fx16_10, depth 1, random 64;
+    fx16_10_rnd_sat_lane_matches_the_model: fx16_10_rnd_sat, depth 1, random 64;
+    fx16_13_lane_matches_the_model: fx16_13, depth 1, random 64;
+    fx16_13_rnd_sat_lane_matches_the_model: fx16_13_rnd_sat, depth 1, random 64;
+    fx21_12_lane_matches_the_model: fx21_12, depth 1, random 64;
+    fx21_12_rnd_sat_lane_matches_the_model: fx21_12_rnd_sat, depth 1, random 64;
+    fx25_10_lane_matches_the_model: fx25_10, depth 0, random 64;
+    fx25_10_rnd_sat_lane_matches_the_model: fx25_10_rnd_sat, depth 2, random 64;
+    fx32_16_lane_matches_the_model: fx32_16, depth 1, random 64;
+    fx32_16_rnd_sat_lane_matches_the_model: fx32_16_rnd_sat, depth 1, random 64;
+    fx32_20_lane_matches_the_model: fx32_20, depth 1, random 64;
+    fx32_20_rnd_sat_lane_matches_the_model: fx32_20_rnd_sat, depth 3, random 64;
 }
 
 /// Every format with rust-hdl operators has its lane checked above.
 #[test]
 fn every_format_with_operators_is_checked() {
-    let checked = [fp32::NAME, fp24::NAME, bf16::NAME, fp16::NAME];
     for name in formats::NAMES {
-        assert!(checked.contains(name), "format {name} has a lane but no lane test");
+        assert!(CHECKED.contains(name), "format {name} has a lane but no lane test");
     }
 }
 
@@ -144,10 +159,13 @@ fn latency_table_answers_every_format_and_rejects_unknown_ones() {
 #[ignore]
 fn every_lane_matches_the_model_on_more_queries_and_depths() {
     for depth in [0, 1, 3] {
-        check_format::<fp32::MtLane>(depth, 300, 10 + depth as u64);
-        check_format::<fp24::MtLane>(depth, 300, 20 + depth as u64);
-        check_format::<bf16::MtLane>(depth, 300, 30 + depth as u64);
-        check_format::<fp16::MtLane>(depth, 300, 40 + depth as u64);
+        let seed = 10 * depth as u64;
+        check_format::<fp32::MtLane>(depth, 300, seed + 1);
+        check_format::<fp24::MtLane>(depth, 300, seed + 2);
+        check_format::<bf16::MtLane>(depth, 300, seed + 3);
+        check_format::<fp16::MtLane>(depth, 300, seed + 4);
+        check_format::<fx16_10::MtLane>(depth, 300, seed + 5);
+        check_format::<fx32_16_rnd_sat::MtLane>(depth, 300, seed + 6);
     }
     check_format::<fp32::MtLane>(usize::MAX, 100, 50);
 }
