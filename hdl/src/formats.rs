@@ -81,8 +81,39 @@ float_format!(fp24, exp = 8, man = 15);
 float_format!(bf16, exp = 8, man = 7);
 float_format!(fp16, exp = 5, man = 10);
 
+// The fixed-point formats (`fixed_format!` is in `crate::fixed`).
+crate::fixed::fixed_format!(fx16_10, int = 10, frac = 6, Trn, Wrap);
+crate::fixed::fixed_format!(fx16_10_rnd_sat, int = 10, frac = 6, Rnd, Sat);
+crate::fixed::fixed_format!(fx16_13, int = 13, frac = 3, Trn, Wrap);
+crate::fixed::fixed_format!(fx16_13_rnd_sat, int = 13, frac = 3, Rnd, Sat);
+crate::fixed::fixed_format!(fx21_12, int = 12, frac = 9, Trn, Wrap);
+crate::fixed::fixed_format!(fx21_12_rnd_sat, int = 12, frac = 9, Rnd, Sat);
+crate::fixed::fixed_format!(fx25_10, int = 10, frac = 15, Trn, Wrap);
+crate::fixed::fixed_format!(fx25_10_rnd_sat, int = 10, frac = 15, Rnd, Sat);
+crate::fixed::fixed_format!(fx32_16, int = 16, frac = 16, Trn, Wrap);
+crate::fixed::fixed_format!(fx32_16_rnd_sat, int = 16, frac = 16, Rnd, Sat);
+crate::fixed::fixed_format!(fx32_20, int = 20, frac = 12, Trn, Wrap);
+crate::fixed::fixed_format!(fx32_20_rnd_sat, int = 20, frac = 12, Rnd, Sat);
+
 /// Names of the formats that have rust-hdl operators.
-pub const NAMES: &[&str] = &[fp32::NAME, fp24::NAME, bf16::NAME, fp16::NAME];
+pub const NAMES: &[&str] = &[
+    fp32::NAME,
+    fp24::NAME,
+    bf16::NAME,
+    fp16::NAME,
+    fx16_10::NAME,
+    fx16_10_rnd_sat::NAME,
+    fx16_13::NAME,
+    fx16_13_rnd_sat::NAME,
+    fx21_12::NAME,
+    fx21_12_rnd_sat::NAME,
+    fx25_10::NAME,
+    fx25_10_rnd_sat::NAME,
+    fx32_16::NAME,
+    fx32_16_rnd_sat::NAME,
+    fx32_20::NAME,
+    fx32_20_rnd_sat::NAME,
+];
 
 /// Verilog of `op` in the catalogue format `format` with `stages` pipeline registers.
 pub fn rtl(format: &str, op: crate::operator::Op, stages: usize) -> Result<crate::verilog::OperatorRtl, crate::operator::OperatorError> {
@@ -91,6 +122,18 @@ pub fn rtl(format: &str, op: crate::operator::Op, stages: usize) -> Result<crate
         fp24::NAME => fp24::rtl(op, stages),
         bf16::NAME => bf16::rtl(op, stages),
         fp16::NAME => fp16::rtl(op, stages),
+        fx16_10::NAME => fx16_10::rtl(op, stages),
+        fx16_10_rnd_sat::NAME => fx16_10_rnd_sat::rtl(op, stages),
+        fx16_13::NAME => fx16_13::rtl(op, stages),
+        fx16_13_rnd_sat::NAME => fx16_13_rnd_sat::rtl(op, stages),
+        fx21_12::NAME => fx21_12::rtl(op, stages),
+        fx21_12_rnd_sat::NAME => fx21_12_rnd_sat::rtl(op, stages),
+        fx25_10::NAME => fx25_10::rtl(op, stages),
+        fx25_10_rnd_sat::NAME => fx25_10_rnd_sat::rtl(op, stages),
+        fx32_16::NAME => fx32_16::rtl(op, stages),
+        fx32_16_rnd_sat::NAME => fx32_16_rnd_sat::rtl(op, stages),
+        fx32_20::NAME => fx32_20::rtl(op, stages),
+        fx32_20_rnd_sat::NAME => fx32_20_rnd_sat::rtl(op, stages),
         _ => Err(crate::operator::OperatorError::UnknownFormat(format.to_string())),
     }
 }
@@ -102,6 +145,18 @@ pub fn max_stages(format: &str, op: crate::operator::Op) -> Result<usize, crate:
         fp24::NAME => fp24::max_stages(op),
         bf16::NAME => bf16::max_stages(op),
         fp16::NAME => fp16::max_stages(op),
+        fx16_10::NAME => fx16_10::max_stages(op),
+        fx16_10_rnd_sat::NAME => fx16_10_rnd_sat::max_stages(op),
+        fx16_13::NAME => fx16_13::max_stages(op),
+        fx16_13_rnd_sat::NAME => fx16_13_rnd_sat::max_stages(op),
+        fx21_12::NAME => fx21_12::max_stages(op),
+        fx21_12_rnd_sat::NAME => fx21_12_rnd_sat::max_stages(op),
+        fx25_10::NAME => fx25_10::max_stages(op),
+        fx25_10_rnd_sat::NAME => fx25_10_rnd_sat::max_stages(op),
+        fx32_16::NAME => fx32_16::max_stages(op),
+        fx32_16_rnd_sat::NAME => fx32_16_rnd_sat::max_stages(op),
+        fx32_20::NAME => fx32_20::max_stages(op),
+        fx32_20_rnd_sat::NAME => fx32_20_rnd_sat::max_stages(op),
         _ => return Err(crate::operator::OperatorError::UnknownFormat(format.to_string())),
     })
 }

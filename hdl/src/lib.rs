@@ -1,6 +1,7 @@
 //! The accelerator in rust-hdl: number-format operators, the Möller-Trumbore pipeline,
 //! Verilog generation.
 
+pub mod fixed;
 pub mod float;
 pub mod formats;
 pub mod intmul;

@@ -1,0 +1,59 @@
+//! Fixed-point operators over any ap_fixed<W, I> format: one operator a file, sharing the
+//! quantisation (`round`) and overflow (`fit`) blocks. Semantics: the SPEC in
+//! `hw_model::format` (two's complement; Trn/Rnd quantisation; Wrap/Sat overflow).
+//!
+//! The quantisation and overflow modes are `const bool` parameters (RND, SAT) of every
+//! operator that can round or overflow; `fixed_format!` derives them from the format.
+
+pub mod add;
+pub mod convert;
+pub mod fit;
+pub mod lt;
+pub mod mul;
+pub mod recip;
+pub mod round;
+
+pub use add::FixedAdd;
+pub use convert::{FixedFromF32, FixedToF32};
+pub use lt::FixedLt;
+pub use mul::FixedMul;
+pub use recip::FixedRecip;
+
+/// `fixed_format!(name, int = I, frac = F, Quant, Overflow)` defines `pub mod name` with the
+/// operator types of ap_fixed<I+F, I> (`Quant`: Trn or Rnd, `Overflow`: Wrap or Sat, the
+/// variants of `hw_model::Quant` / `hw_model::Overflow`).
+macro_rules! fixed_format {
+    ($name:ident, int = $i:literal, frac = $f:literal, $quant:ident, $overflow:ident) => {
+        pub mod $name {
+            use crate::fixed::*;
+            /// Catalogue name of the format (`hw_model::catalogue::lookup`).
+            pub const NAME: &str = stringify!($name);
+            pub const WIDTH: usize = $i + $f;
+            pub const FORMAT: hw_model::Format = hw_model::Format::Fixed {
+                int: $i,
+                frac: $f,
+                quant: hw_model::Quant::$quant,
+                overflow: hw_model::Overflow::$overflow,
+            };
+            const RND: bool = matches!(hw_model::Quant::$quant, hw_model::Quant::Rnd);
+            const SAT: bool = matches!(hw_model::Overflow::$overflow, hw_model::Overflow::Sat);
+            // Width parameters, in the order the operators take them (see their docs).
+            pub type Add = FixedAdd<{ $i + $f }, { $i + $f + 1 }, SAT, false>;
+            pub type Sub = FixedAdd<{ $i + $f }, { $i + $f + 1 }, SAT, true>;
+            pub type Mul = FixedMul<{ $i + $f }, $f, { 2 * ($i + $f) }, RND, SAT>;
+            pub type Recip = FixedRecip<
+                { $i + $f },
+                $f,
+                { 2 * $f + 1 },
+                { if 2 * $f + 2 > $i + $f { 2 * $f + 2 } else { $i + $f } },
+                RND,
+                SAT,
+            >;
+            pub type Lt = FixedLt<{ $i + $f }>;
+            pub type FromF32 = FixedFromF32<{ $i + $f }, $f, { $i + $f + 49 }, { $i + $f + 25 }, RND, SAT>;
+            pub type ToF32 = FixedToF32<{ $i + $f }, $f, { $i + $f + 25 }>;
+            $crate::formats::operator_table!();
+        }
+    };
+}
+pub(crate) use fixed_format;
