@@ -17,3 +17,8 @@ pub mod regmap;
 
 // yosys resource and logic-depth reports (issue 3).
 pub mod synth;
+
+// The accelerator top (lanes, AXI4-Lite, AXI4-Stream, rtfpga_top wrapper) and the generated
+// file set (issue 4).
+pub mod generate;
+pub mod top;
