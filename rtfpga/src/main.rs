@@ -7,6 +7,7 @@ mod cmd_bench;
 mod cmd_compare;
 mod cmd_formats;
 mod cmd_golden;
+mod cmd_project;
 mod cmd_render;
 
 use clap::{Parser, Subcommand};
@@ -30,6 +31,8 @@ enum Command {
     Bench(cmd_bench::Args),
     /// Regenerate the golden images of the built-in scenes.
     Golden(cmd_golden::Args),
+    /// Projected ZedBoard frame time of an accelerator design; --calibration: the model vs the thesis.
+    Project(cmd_project::Args),
 }
 
 fn main() -> std::process::ExitCode {
@@ -40,6 +43,7 @@ fn main() -> std::process::ExitCode {
         Command::Formats(a) => cmd_formats::run(a),
         Command::Golden(a) => cmd_golden::run(a),
         Command::Bench(a) => cmd_bench::run(a),
+        Command::Project(a) => cmd_project::run(a),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

@@ -1,0 +1,179 @@
+//! `rtfpga project`: the projected frame time of a scene on the ZedBoard for an accelerator
+//! design, and (`--calibration`) the model against every time the thesis measured.
+//! The model is `sim::projection`; docs/projection.md explains it.
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Context, Result};
+use clap::{Args as ClapArgs, ValueEnum};
+use sim::projection::{self, Board, Calibration, Design, Frontend, Role, Setup, Traversal, Workload, Workloads};
+use sw_renderer::scene::Scene;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum DesignKind {
+    /// The thesis' accelerator: one AXI4-Lite call per ray-triangle test.
+    Thesis,
+    /// The project's: queries streamed by DMA through HP ports into pipelined lanes.
+    Stream,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum TraversalKind {
+    /// Every ray against every triangle, as the thesis' renderer.
+    BruteForce,
+    /// Only the BVH's candidates, as the project's renderer.
+    Bvh,
+}
+
+/// Mean latency of the thesis' HLS unit (Run 1): the midpoint of its 32–110 cycles.
+const THESIS_CYCLES_PER_TEST: f64 = 71.0;
+
+#[derive(ClapArgs)]
+pub struct Args {
+    /// Scene directory, .toml scene or built-in name (not needed with --calibration alone).
+    #[arg(long)]
+    scene: Option<String>,
+    #[arg(long)]
+    width: Option<u32>,
+    #[arg(long)]
+    height: Option<u32>,
+    #[arg(long, value_enum, default_value_t = DesignKind::Stream)]
+    design: DesignKind,
+    /// How candidates are found [default: brute-force for thesis, bvh for stream].
+    #[arg(long, value_enum)]
+    traversal: Option<TraversalKind>,
+    /// Datapath number format of the stream design (sets its pipeline latency with --depth).
+    #[arg(long, default_value = "fp32")]
+    format: String,
+    /// Pipeline registers per operator of the stream design.
+    #[arg(long, default_value_t = 1)]
+    depth: usize,
+    /// Stream: MT lanes; thesis: accelerators.
+    #[arg(long, default_value_t = 1)]
+    lanes: u32,
+    /// Fabric clock f_PL in MHz.
+    #[arg(long, default_value_t = 100.0)]
+    fpl_mhz: f64,
+    /// Thesis: mean cycles of one call [default: 71, Run 1's 32–110 midpoint];
+    /// stream: cycles between queries per lane [default: 1, II = 1].
+    #[arg(long)]
+    cycles_per_test: Option<f64>,
+    /// Stream: HP ports the DMA uses (1–4).
+    #[arg(long, default_value_t = 1)]
+    hp_ports: u32,
+    /// Stream: fraction of the HP ports' peak bandwidth the DMA reaches.
+    #[arg(long, default_value_t = 0.8)]
+    dma_efficiency: f64,
+    /// Stream: ARM cycles to pack one query into the DMA buffer.
+    #[arg(long, default_value_t = 40.0)]
+    pack_cycles: f64,
+    /// Print the calibration table (measured vs modelled thesis times).
+    #[arg(long)]
+    calibration: bool,
+    /// With --calibration: skip the slow scenes (Glass pen, Glasses, All materials).
+    #[arg(long)]
+    quick: bool,
+    /// Directory of the thesis scenes the model is calibrated on.
+    #[arg(long, default_value = "../shared/scenes/thesis")]
+    thesis_scenes: PathBuf,
+}
+
+pub fn run(a: Args) -> Result<()> {
+    if a.scene.is_none() && !a.calibration {
+        bail!("nothing to do: give --scene to project a frame and/or --calibration");
+    }
+    let design = design(&a)?;
+    if !a.thesis_scenes.is_dir() {
+        bail!("thesis scenes: {} is not a directory (set --thesis-scenes)", a.thesis_scenes.display());
+    }
+    let mut workloads = Workloads::new(&a.thesis_scenes);
+    let quick = a.quick;
+    let calibration = projection::calibrate(&mut workloads, |m| {
+        !quick || ["Simple_plane_scene", "Simple_plane2_scene", "Utah_teapot_scene"].contains(&m.scene)
+    })
+    .context("calibrating the model on the thesis' measurements")?;
+    if a.calibration {
+        print_calibration(&calibration);
+    }
+    if let Some(spec) = &a.scene {
+        let scene = Scene::load(spec)?;
+        let width = a.width.unwrap_or(scene.options.width);
+        let height = a.height.unwrap_or(scene.options.height);
+        let workload = Workload::measure(&scene, width, height)?;
+        print_projection(&workload, &design, &calibration.board)?;
+    }
+    Ok(())
+}
+
+fn design(a: &Args) -> Result<Design> {
+    let traversal = match a.traversal {
+        Some(TraversalKind::BruteForce) => Traversal::BruteForce,
+        Some(TraversalKind::Bvh) => Traversal::Bvh,
+        None if a.design == DesignKind::Thesis => Traversal::BruteForce,
+        None => Traversal::Bvh,
+    };
+    let frontend = match a.design {
+        DesignKind::Thesis => {
+            if a.format != "fp32" {
+                bail!("--format {}: the thesis design is the fp32 HLS unit", a.format);
+            }
+            Frontend::Thesis { units: a.lanes, cycles_per_test: a.cycles_per_test.unwrap_or(THESIS_CYCLES_PER_TEST) }
+        }
+        DesignKind::Stream => {
+            hw_model::lookup(&a.format)?;
+            let latency = hdl::mt::latency(&a.format, a.depth)
+                .with_context(|| format!("pipeline latency of format {} at depth {}", a.format, a.depth))?;
+            Frontend::Stream {
+                lanes: a.lanes,
+                cycles_per_test: a.cycles_per_test.unwrap_or(1.0),
+                pipeline_latency: u32::try_from(latency).context("pipeline latency")?,
+                hp_ports: a.hp_ports,
+                dma_efficiency: a.dma_efficiency,
+                pack_arm_cycles: a.pack_cycles,
+            }
+        }
+    };
+    let d = Design { frontend, traversal, fpl_mhz: a.fpl_mhz };
+    d.validate()?;
+    Ok(d)
+}
+
+fn print_projection(w: &Workload, d: &Design, b: &Board) -> Result<()> {
+    let p = projection::project(w, d, b)?;
+    let arm = b.arm_only_s(w, Traversal::BruteForce);
+    println!("scene: {} at {}x{}", w.scene, w.width, w.height);
+    println!("design: {:?}, traversal {:?}, f_PL {} MHz", d.frontend, d.traversal, d.fpl_mhz);
+    println!("rays: {} (primary {}, reflection {}, refraction {}, shadow {}); tests: {}",
+        w.rays(), w.primary_rays, w.reflection_rays, w.refraction_rays, w.shadow_rays, p.tests);
+    println!("\n| term | seconds |\n|---|---|");
+    println!("| ARM | {:.4} |", p.arm_s);
+    println!("| bus (AXI4-Lite) | {:.4} |", p.bus_s);
+    println!("| accelerator | {:.4} |", p.accel_s);
+    println!("| total | {:.4} |", p.total_s());
+    println!("\narm_software_s={arm:.4} total_s={:.4} speedup_vs_arm={:.2}", p.total_s(), arm / p.total_s());
+    Ok(())
+}
+
+fn print_calibration(c: &Calibration) {
+    let b = &c.board;
+    println!("fitted constants (4, from the 4 `fit` rows; all other rows are held-out checks):");
+    println!("  ARM per ray (non-MT work)  {:.1} ns", b.arm_ray_ns);
+    println!("  ARM per MT test            {:.1} ns ({:.1} cycles at 667 MHz)", b.arm_test_ns, b.arm_test_ns * projection::ARM_MHZ / 1e3);
+    println!("  AXI4-Lite access, fixed    {:.1} ns", b.access_fixed_ns);
+    println!("  AXI4-Lite access, fabric   {:.2} cycles ({:.0} ns at 100 MHz, {:.0} ns at 214 MHz)",
+        b.access_pl_cycles, b.access_ns(100.0), b.access_ns(214.0));
+    println!("\n| measurement | source | scene | size | setup | role | measured s | modelled s | error % |");
+    println!("|---|---|---|---|---|---|---|---|---|");
+    for r in &c.rows {
+        let m = &r.measurement;
+        let setup = match m.setup {
+            Setup::Arm => "ARM 667 MHz".to_string(),
+            Setup::Accelerator { fpl_mhz, units, latency } => {
+                format!("{units}× HLS {}–{} cyc @ {fpl_mhz} MHz", latency.0, latency.1)
+            }
+        };
+        let role = if m.role == Role::Fit { "fit" } else { "check" };
+        println!("| {} | {} | {} | {}x{} | {setup} | {role} | {} | {:.3} | {:+.1} |",
+            m.label, m.source, m.scene, m.width, m.height, m.seconds, r.modelled_s, r.error_pct());
+    }
+}
