@@ -32,6 +32,10 @@ test: setup
 golden: build
 	$(RTFPGA) golden --out golden
 
+# Regenerate the committed Verilog of the default configurations (a test checks they are current).
+verilog: build
+	$(RTFPGA) verilog --defaults --out generated-verilog
+
 bench: build
 	$(CARGO) bench -p sw-renderer
 

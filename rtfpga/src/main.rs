@@ -9,6 +9,8 @@ mod cmd_formats;
 mod cmd_golden;
 mod cmd_project;
 mod cmd_render;
+mod cmd_synth;
+mod cmd_verilog;
 
 use clap::{Parser, Subcommand};
 
@@ -33,6 +35,10 @@ enum Command {
     Golden(cmd_golden::Args),
     /// Projected ZedBoard frame time of an accelerator design; --calibration: the model vs the thesis.
     Project(cmd_project::Args),
+    /// Generate the accelerator's Verilog (rtfpga_top.v), C header/driver and config.json.
+    Verilog(cmd_verilog::Args),
+    /// yosys resources and logic depth of the accelerator or one operator; lanes that fit.
+    Synth(cmd_synth::Args),
 }
 
 fn main() -> std::process::ExitCode {
@@ -42,6 +48,8 @@ fn main() -> std::process::ExitCode {
         Command::Compare(a) => cmd_compare::run(a),
         Command::Formats(a) => cmd_formats::run(a),
         Command::Golden(a) => cmd_golden::run(a),
+        Command::Verilog(a) => cmd_verilog::run(a),
+        Command::Synth(a) => cmd_synth::run(a),
         Command::Bench(a) => cmd_bench::run(a),
         Command::Project(a) => cmd_project::run(a),
     };

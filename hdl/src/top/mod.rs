@@ -7,6 +7,7 @@
 //! - [`wrapper`]: the Verilog top `rtfpga_top` around rust-hdl's body.
 
 pub mod accelerator;
+pub mod fit;
 pub mod stream;
 pub mod wrapper;
 

@@ -1,0 +1,122 @@
+//! How many lanes of a configuration fit a device: synthesise the accelerator with 1 and 2
+//! lanes, take the difference as the cost of a lane and the rest as the fixed part (AXI-Lite
+//! slave, stream front end), and divide what the device has left by the per-lane cost.
+use serde::Serialize;
+
+use crate::synth::{synthesize, SynthError, SynthOptions, SynthReport};
+use crate::top::{top_verilog, wrapper, TopConfig, TopError};
+
+/// The resources of a device that bound the lane count.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct Device {
+    pub name: &'static str,
+    pub lut: u64,
+    pub ff: u64,
+    pub dsp48e1: u64,
+    /// Block RAM in RAMB18 halves (a RAMB36 counts 2).
+    pub bram18: u64,
+}
+
+/// The ZedBoard's Zynq-7020 (DS190): 53,200 LUTs, 106,400 FFs, 220 DSP48E1, 140 RAMB36.
+pub const XC7Z020: Device = Device { name: "XC7Z020", lut: 53_200, ff: 106_400, dsp48e1: 220, bram18: 280 };
+
+/// What a design uses of the resources a [`Device`] lists.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Usage {
+    pub lut: u64,
+    pub ff: u64,
+    pub dsp48e1: u64,
+    pub bram18: u64,
+}
+
+impl Usage {
+    pub fn of(report: &SynthReport) -> Self {
+        let cells = |name: &str| report.cells.get(name).copied().unwrap_or(0);
+        Usage {
+            // SRLs and LUT RAM occupy LUTs too.
+            lut: report.lut + report.srl + report.lutram,
+            ff: report.ff,
+            dsp48e1: report.dsp48e1,
+            bram18: cells("RAMB18E1") + 2 * cells("RAMB36E1"),
+        }
+    }
+}
+
+/// The lane estimate of one configuration.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct LaneFit {
+    pub device: &'static str,
+    pub per_lane: Usage,
+    pub fixed: Usage,
+    pub lanes: u64,
+    /// The resource that runs out first.
+    pub limit: &'static str,
+}
+
+/// Lanes that fit `device` given the 1-lane and 2-lane usages.
+pub fn fit_from(one: Usage, two: Usage, device: &Device) -> LaneFit {
+    let per_lane = Usage {
+        lut: two.lut.saturating_sub(one.lut),
+        ff: two.ff.saturating_sub(one.ff),
+        dsp48e1: two.dsp48e1.saturating_sub(one.dsp48e1),
+        bram18: two.bram18.saturating_sub(one.bram18),
+    };
+    let fixed = Usage {
+        lut: one.lut.saturating_sub(per_lane.lut),
+        ff: one.ff.saturating_sub(per_lane.ff),
+        dsp48e1: one.dsp48e1.saturating_sub(per_lane.dsp48e1),
+        bram18: one.bram18.saturating_sub(per_lane.bram18),
+    };
+    let candidates = [
+        ("LUT", device.lut, fixed.lut, per_lane.lut),
+        ("FF", device.ff, fixed.ff, per_lane.ff),
+        ("DSP48E1", device.dsp48e1, fixed.dsp48e1, per_lane.dsp48e1),
+        ("BRAM", device.bram18, fixed.bram18, per_lane.bram18),
+    ];
+    let (limit, lanes) = candidates
+        .iter()
+        .filter(|c| c.3 > 0)
+        .map(|&(name, budget, fixed, lane)| (name, budget.saturating_sub(fixed) / lane))
+        .min_by_key(|&(_, n)| n)
+        .unwrap_or(("nothing", u64::MAX));
+    LaneFit { device: device.name, per_lane, fixed, lanes, limit }
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum FitError {
+    #[error(transparent)]
+    Config(#[from] TopError),
+    #[error(transparent)]
+    Synth(#[from] SynthError),
+}
+
+/// yosys report of the whole accelerator (`rtfpga_top`) of `config`.
+pub fn synthesize_top(config: &TopConfig, options: &SynthOptions) -> Result<SynthReport, FitError> {
+    Ok(synthesize(&top_verilog(config)?, wrapper::TOP, options)?)
+}
+
+/// Synthesises `config`'s format and depth with 1 and 2 lanes and estimates the lanes that fit.
+pub fn lanes_that_fit(config: &TopConfig, options: &SynthOptions, device: &Device) -> Result<LaneFit, FitError> {
+    let at = |lanes| -> Result<Usage, FitError> {
+        Ok(Usage::of(&synthesize_top(&TopConfig::new(&config.format, config.depth, lanes), options)?))
+    };
+    Ok(fit_from(at(1)?, at(2)?, device))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_scarcest_resource_sets_the_lane_count() {
+        let one = Usage { lut: 3000, ff: 4000, dsp48e1: 20, bram18: 6 };
+        let two = Usage { lut: 5000, ff: 7000, dsp48e1: 38, bram18: 10 };
+        let f = fit_from(one, two, &XC7Z020);
+        assert_eq!(f.per_lane, Usage { lut: 2000, ff: 3000, dsp48e1: 18, bram18: 4 });
+        assert_eq!(f.fixed, Usage { lut: 1000, ff: 1000, dsp48e1: 2, bram18: 2 });
+        // DSP: (220 - 2) / 18 = 12; LUT: 52200 / 2000 = 26; FF: 35; BRAM: 278 / 4 = 69.
+        assert_eq!((f.lanes, f.limit), (12, "DSP48E1"));
+        let lut_bound = fit_from(one, Usage { lut: 33_000, ..two }, &XC7Z020);
+        assert_eq!((lut_bound.lanes, lut_bound.limit), (1, "LUT"));
+    }
+}
