@@ -10,7 +10,13 @@ use hw_model::{mt_model, MtQuery};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 
 fn query(orig: [f32; 3], dir: [f32; 3], v0: [f32; 3], v1: [f32; 3], v2: [f32; 3]) -> MtQuery {
-    MtQuery { orig, dir, v0, v1, v2 }
+    MtQuery {
+        orig,
+        dir,
+        v0,
+        v1,
+        v2,
+    }
 }
 
 /// Hand-picked cases on the triangle (0,0,2), (1,0,2), (0,1,2) and some degenerate inputs.
@@ -19,19 +25,19 @@ fn edge_cases() -> Vec<MtQuery> {
     let on = |x: f32, y: f32, dir: [f32; 3]| query([x, y, 0.0], dir, v0, v1, v2);
     let down = [0.0, 0.0, 1.0];
     vec![
-        on(0.25, 0.25, down),              // hit inside
-        on(1.0, 1.0, down),                // miss: u + v > 1
-        on(-0.5, 0.25, down),              // miss: u < 0
-        on(0.25, -0.5, down),              // miss: v < 0
-        on(0.25, 0.25, [0.0, 0.0, -1.0]),  // behind the ray: t < 0
-        on(0.0, 0.0, down),                // vertex v0: u = v = 0
-        on(0.5, 0.5, down),                // edge: u + v = 1
-        on(0.0, 0.5, down),                // edge: u = 0
+        on(0.25, 0.25, down),                                 // hit inside
+        on(1.0, 1.0, down),                                   // miss: u + v > 1
+        on(-0.5, 0.25, down),                                 // miss: u < 0
+        on(0.25, -0.5, down),                                 // miss: v < 0
+        on(0.25, 0.25, [0.0, 0.0, -1.0]),                     // behind the ray: t < 0
+        on(0.0, 0.0, down),                                   // vertex v0: u = v = 0
+        on(0.5, 0.5, down),                                   // edge: u + v = 1
+        on(0.0, 0.5, down),                                   // edge: u = 0
         query([0.0, 0.25, 2.0], [1.0, 0.0, 0.0], v0, v1, v2), // edge-on: det = 0
-        on(0.25, 0.25, [1.0, 0.0, 1e-9]),  // det ≈ 0 (below eps in fp32)
-        on(0.25, 0.25, [1.0, 0.0, 2e-8]),  // det just above eps in fp32
-        on(0.25, 0.25, [0.0, 0.0, 1e-30]), // det underflows in narrow formats
-        query([0.1, 0.1, 0.0], down, v0, v0, v2), // degenerate triangle
+        on(0.25, 0.25, [1.0, 0.0, 1e-9]),                     // det ≈ 0 (below eps in fp32)
+        on(0.25, 0.25, [1.0, 0.0, 2e-8]),                     // det just above eps in fp32
+        on(0.25, 0.25, [0.0, 0.0, 1e-30]),                    // det underflows in narrow formats
+        query([0.1, 0.1, 0.0], down, v0, v0, v2),             // degenerate triangle
         on(0.25, 0.25, [f32::NAN, 0.0, 1.0]),
         on(0.25, 0.25, [0.0, 0.0, f32::INFINITY]),
         on(1e-40, 0.25, down), // subnormal input
@@ -50,7 +56,8 @@ fn random_queries(n: usize, seed: u64) -> Vec<MtQuery> {
                 return query(bits(), bits(), bits(), bits(), bits());
             }
             let mut point = |r: f32| [0; 3].map(|_| rng.gen_range(-r..r));
-            let (v0, v1, v2, orig, target) = (point(2.0), point(2.0), point(2.0), point(4.0), point(0.5));
+            let (v0, v1, v2, orig, target) =
+                (point(2.0), point(2.0), point(2.0), point(4.0), point(0.5));
             let centre = [0, 1, 2].map(|k| (v0[k] + v1[k] + v2[k]) / 3.0 + target[k]);
             let dir = [0, 1, 2].map(|k| (centre[k] - orig[k]) / 4.0);
             query(orig, dir, v0, v1, v2)
@@ -62,26 +69,58 @@ fn random_queries(n: usize, seed: u64) -> Vec<MtQuery> {
 /// checks every result and the valid line against the model and `latency(depth)`.
 fn check<L: Lane>(depth: usize, queries: &[MtQuery]) {
     let latency = L::latency(depth);
-    assert_eq!(mt::latency(L::NAME, depth), Ok(latency), "{} runtime latency table", L::NAME);
+    assert_eq!(
+        mt::latency(L::NAME, depth),
+        Ok(latency),
+        "{} runtime latency table",
+        L::NAME
+    );
     // Three idle cycles first, so the first valid_out edge measures the latency.
     let inputs: Vec<(bool, MtQuery)> = (0..3)
         .map(|_| (false, MtQuery::default()))
         .chain(queries.iter().enumerate().map(|(i, q)| (i % 5 != 4, *q)))
         .collect();
     let out = simulate_lane::<L>(depth, &inputs, latency);
-    let first_valid = out.iter().position(|o| o.valid).expect("valid_out never rose");
-    assert_eq!(first_valid - 3, latency, "{} depth {depth}: observed latency", L::NAME);
+    let first_valid = out
+        .iter()
+        .position(|o| o.valid)
+        .expect("valid_out never rose");
+    assert_eq!(
+        first_valid - 3,
+        latency,
+        "{} depth {depth}: observed latency",
+        L::NAME
+    );
     let hits = out.iter().filter(|o| o.valid && o.hit).count();
     let valid = out.iter().filter(|o| o.valid).count();
-    eprintln!("{} depth {depth}: latency {latency}, {hits} hits of {valid} valid queries", L::NAME);
-    assert!(hits >= 3 && valid - hits >= 3, "{} depth {depth}: only {hits} hits of {valid}", L::NAME);
+    eprintln!(
+        "{} depth {depth}: latency {latency}, {hits} hits of {valid} valid queries",
+        L::NAME
+    );
+    assert!(
+        hits >= 3 && valid - hits >= 3,
+        "{} depth {depth}: only {hits} hits of {valid}",
+        L::NAME
+    );
     for (cycle, o) in out.iter().enumerate() {
         let Some(c) = cycle.checked_sub(latency) else {
-            assert!(!o.valid, "{} depth {depth}: valid_out in cycle {cycle}", L::NAME);
+            assert!(
+                !o.valid,
+                "{} depth {depth}: valid_out in cycle {cycle}",
+                L::NAME
+            );
             continue;
         };
-        let (valid, q) = inputs.get(c).copied().unwrap_or((false, MtQuery::default()));
-        assert_eq!(o.valid, valid, "{} depth {depth}: valid_out in cycle {cycle}", L::NAME);
+        let (valid, q) = inputs
+            .get(c)
+            .copied()
+            .unwrap_or((false, MtQuery::default()));
+        assert_eq!(
+            o.valid,
+            valid,
+            "{} depth {depth}: valid_out in cycle {cycle}",
+            L::NAME
+        );
         let want = mt_model(&L::FORMAT, &q);
         assert!(
             o.result().same_bits(&want),
@@ -136,7 +175,10 @@ lane_tests! {
 #[test]
 fn every_format_with_operators_is_checked() {
     for name in formats::NAMES {
-        assert!(CHECKED.contains(name), "format {name} has a lane but no lane test");
+        assert!(
+            CHECKED.contains(name),
+            "format {name} has a lane but no lane test"
+        );
     }
 }
 
@@ -144,11 +186,23 @@ fn every_format_with_operators_is_checked() {
 fn latency_table_answers_every_format_and_rejects_unknown_ones() {
     for name in formats::NAMES {
         let max = mt::max_depth(name).unwrap();
-        let latencies: Vec<usize> = (0..=max + 1).map(|d| mt::latency(name, d).unwrap()).collect();
+        let latencies: Vec<usize> = (0..=max + 1)
+            .map(|d| mt::latency(name, d).unwrap())
+            .collect();
         assert_eq!(latencies[0], 0, "{name}: a combinational lane");
-        assert!(latencies.windows(2).all(|w| w[0] < w[1] || w[0] == w[1]), "{name}: {latencies:?}");
-        assert_eq!(latencies[max], latencies[max + 1], "{name}: depth beyond max_depth");
-        assert!(latencies[max - 1] < latencies[max], "{name}: max_depth is the smallest saturating depth");
+        assert!(
+            latencies.windows(2).all(|w| w[0] < w[1] || w[0] == w[1]),
+            "{name}: {latencies:?}"
+        );
+        assert_eq!(
+            latencies[max],
+            latencies[max + 1],
+            "{name}: depth beyond max_depth"
+        );
+        assert!(
+            latencies[max - 1] < latencies[max],
+            "{name}: max_depth is the smallest saturating depth"
+        );
     }
     assert!(mt::latency("fp8", 1).is_err());
     assert!(mt::max_depth("fp8").is_err());
@@ -168,4 +222,57 @@ fn every_lane_matches_the_model_on_more_queries_and_depths() {
         check_format::<fx32_16_rnd_sat::MtLane>(depth, 300, seed + 6);
     }
     check_format::<fp32::MtLane>(usize::MAX, 100, 50);
+}
+
+/// Latency of every format's lane at depths 0, 1, 2 and max (printed; run with --nocapture).
+#[test]
+fn latency_table() {
+    println!(
+        "| format | max depth | latency d=0 | d=1 | d=2 | d=max |\n|---|---:|---:|---:|---:|---:|"
+    );
+    for name in formats::NAMES {
+        let max = mt::max_depth(name).unwrap();
+        let l: Vec<usize> = [0, 1, 2, max]
+            .iter()
+            .map(|&d| mt::latency(name, d).unwrap())
+            .collect();
+        println!(
+            "| {name} | {max} | {} | {} | {} | {} |",
+            l[0], l[1], l[2], l[3]
+        );
+    }
+}
+
+/// yosys xc7 resources and register-to-register logic depth of the fp32 and fp16 lanes at
+/// depths 0, 1, 2, max (slow: minutes per fp32 synthesis), checked against the issue's
+/// resource goal of at most 60 DSP48E1 per fp32 lane:
+/// `cargo test --release -p hdl --test mt_lane -- --ignored --nocapture lane_resources`
+#[test]
+#[ignore]
+fn lane_resources() {
+    use hdl::synth::{synthesize, SynthOptions, SynthReport};
+    let lanes: [(&str, fn(usize) -> String); 2] = [
+        (fp32::NAME, fp32::mt_lane_verilog),
+        (fp16::NAME, fp16::mt_lane_verilog),
+    ];
+    println!("{}", SynthReport::markdown_header());
+    for (name, verilog) in lanes {
+        let max = mt::max_depth(name).unwrap();
+        for depth in [0, 1, 2, max] {
+            let report =
+                synthesize(&verilog(depth), hdl::verilog::TOP, &SynthOptions::default()).unwrap();
+            let latency = mt::latency(name, depth).unwrap();
+            println!(
+                "{}",
+                report.markdown_row(&format!("{name} depth {depth} (latency {latency})"))
+            );
+            if name == fp32::NAME {
+                assert!(
+                    report.dsp48e1 <= 60,
+                    "fp32 lane at depth {depth}: {} DSP48E1",
+                    report.dsp48e1
+                );
+            }
+        }
+    }
 }

@@ -33,25 +33,60 @@ fn queries(n: usize, scale: f32, seed: u64) -> Vec<MtQuery> {
             0 | 1 => {
                 let on_grid = i % 4 == 1;
                 let mut p = |r: f32| {
-                    [0; 3].map(|_| if on_grid { grid(&mut rng, r, 4) } else { rng.gen_range(-r..r) })
+                    [0; 3].map(|_| {
+                        if on_grid {
+                            grid(&mut rng, r, 4)
+                        } else {
+                            rng.gen_range(-r..r)
+                        }
+                    })
                 };
                 let (v0, v1, v2, orig) = (p(scale / 2.0), p(scale / 2.0), p(scale / 2.0), p(scale));
                 let (a, b) = (rng.gen_range(-0.25..1.0f32), rng.gen_range(-0.25..1.0f32));
-                let (a, b) = if on_grid { ((a * 8.0).round() / 8.0, (b * 8.0).round() / 8.0) } else { (a, b) };
-                let dir = [0, 1, 2].map(|k| v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]) - orig[k]);
-                MtQuery { orig, dir, v0, v1, v2 }
+                let (a, b) = if on_grid {
+                    ((a * 8.0).round() / 8.0, (b * 8.0).round() / 8.0)
+                } else {
+                    (a, b)
+                };
+                let dir =
+                    [0, 1, 2].map(|k| v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]) - orig[k]);
+                MtQuery {
+                    orig,
+                    dir,
+                    v0,
+                    v1,
+                    v2,
+                }
             }
             2 => {
                 let mut p = |r: f32| [0; 3].map(|_| rng.gen_range(-r..r));
-                let (v0, v1, v2, offset) = (p(scale / 2.0), p(scale / 2.0), p(scale / 2.0), p(1e-3 * scale));
+                let (v0, v1, v2, offset) = (
+                    p(scale / 2.0),
+                    p(scale / 2.0),
+                    p(scale / 2.0),
+                    p(1e-3 * scale),
+                );
                 let (a, b) = (rng.gen_range(-1.0..2.0f32), rng.gen_range(-1.0..2.0f32));
-                let orig = [0, 1, 2].map(|k| v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]) + offset[k]);
+                let orig = [0, 1, 2]
+                    .map(|k| v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]) + offset[k]);
                 let dir = [0, 1, 2].map(|k| v1[k] - v2[k]);
-                MtQuery { orig, dir, v0, v1, v2 }
+                MtQuery {
+                    orig,
+                    dir,
+                    v0,
+                    v1,
+                    v2,
+                }
             }
             _ => {
                 let mut bits = || [0; 3].map(|_| f32::from_bits(rng.gen()));
-                MtQuery { orig: bits(), dir: bits(), v0: bits(), v1: bits(), v2: bits() }
+                MtQuery {
+                    orig: bits(),
+                    dir: bits(),
+                    v0: bits(),
+                    v1: bits(),
+                    v2: bits(),
+                }
             }
         })
         .collect()
@@ -64,11 +99,15 @@ fn run_lane<L: Lane>(verilog: String, depth: usize, queries: &[MtQuery]) -> Vec<
     let latency = L::latency(depth);
     let built = build(&ModelSpec::rust_hdl(verilog), &BuildOptions::default()).unwrap();
     let mut sim = built.instantiate();
-    let names = |ports: &[sim::verilator::Port]| ports.iter().map(|p| p.name.clone()).collect::<Vec<_>>();
+    let names =
+        |ports: &[sim::verilator::Port]| ports.iter().map(|p| p.name.clone()).collect::<Vec<_>>();
     let mut want_inputs = vec!["valid_in".to_string()];
     want_inputs.extend((0..15).map(|i| format!("query${i}")));
     assert_eq!(names(&sim.interface().inputs), want_inputs);
-    assert_eq!(names(&sim.interface().outputs), ["valid_out", "hit", "t", "u", "v"]);
+    assert_eq!(
+        names(&sim.interface().outputs),
+        ["valid_out", "hit", "t", "u", "v"]
+    );
     let inputs: Vec<[u64; 16]> = queries
         .iter()
         .enumerate()
@@ -94,15 +133,34 @@ fn run_lane<L: Lane>(verilog: String, depth: usize, queries: &[MtQuery]) -> Vec<
         .zip(&inputs)
         .zip(&out)
         .map(|((q, input), o)| {
-            let lane = LaneOutput { valid: o[0] != 0, hit: o[1] != 0, t: o[2] as u32, u: o[3] as u32, v: o[4] as u32 };
-            assert_eq!(u64::from(lane.valid), input[0], "{} depth {depth}: valid_out of {q:?}", L::NAME);
+            let lane = LaneOutput {
+                valid: o[0] != 0,
+                hit: o[1] != 0,
+                t: o[2] as u32,
+                u: o[3] as u32,
+                v: o[4] as u32,
+            };
+            assert_eq!(
+                u64::from(lane.valid),
+                input[0],
+                "{} depth {depth}: valid_out of {q:?}",
+                L::NAME
+            );
             let (got, want) = (lane.result(), mt_model(&L::FORMAT, q));
-            assert!(got.same_bits(&want), "{} depth {depth}: {q:?}\n lane  {got:?}\n model {want:?}", L::NAME);
+            assert!(
+                got.same_bits(&want),
+                "{} depth {depth}: {q:?}\n lane  {got:?}\n model {want:?}",
+                L::NAME
+            );
             hits += usize::from(got.hit);
             got
         })
         .collect();
-    assert!(hits * 10 > queries.len(), "{}: only {hits} hits: the generator no longer aims at triangles", L::NAME);
+    assert!(
+        hits * 10 > queries.len(),
+        "{}: only {hits} hits: the generator no longer aims at triangles",
+        L::NAME
+    );
     results
 }
 
@@ -110,10 +168,18 @@ fn run_lane<L: Lane>(verilog: String, depth: usize, queries: &[MtQuery]) -> Vec<
 /// the realistic ones, whose intermediates stay far above the subnormal range.
 fn check_against_f32(queries: &[MtQuery], lane: &[MtResult]) {
     let same = |x: f32, y: f32| x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan());
-    for (i, (q, got)) in queries.iter().zip(lane).enumerate().filter(|(i, _)| i % 4 <= 1) {
+    for (i, (q, got)) in queries
+        .iter()
+        .zip(lane)
+        .enumerate()
+        .filter(|(i, _)| i % 4 <= 1)
+    {
         let want = mt_f32(q);
         assert!(
-            got.hit == want.hit && same(got.t, want.t) && same(got.u, want.u) && same(got.v, want.v),
+            got.hit == want.hit
+                && same(got.t, want.t)
+                && same(got.u, want.u)
+                && same(got.v, want.v),
             "query {i} {q:?}:\n lane {got:?}\n f32  {want:?}"
         );
     }
@@ -147,6 +213,10 @@ fn lanes_match_the_model_on_200k_queries() {
     fp32_at(0, 200_000, 10);
     fp32_at(hdl::mt::max_depth(fp32::NAME).unwrap(), 200_000, 11);
     let fp16_max = hdl::mt::max_depth(fp16::NAME).unwrap();
-    run_lane::<fp16::MtLane>(fp16::mt_lane_verilog(fp16_max), fp16_max, &queries(200_000, 8.0, 12));
+    run_lane::<fp16::MtLane>(
+        fp16::mt_lane_verilog(fp16_max),
+        fp16_max,
+        &queries(200_000, 8.0, 12),
+    );
     run_lane::<fx32_16::MtLane>(fx32_16::mt_lane_verilog(3), 3, &queries(200_000, 8.0, 13));
 }

@@ -15,7 +15,9 @@ macro_rules! mt_lane {
         mod mt_lane_impl {
             use rust_hdl::prelude::*;
 
-            use super::{max_stages, Add, FromF32, Lt, Mul, Recip, Sub, ToF32, FORMAT, NAME, WIDTH};
+            use super::{
+                max_stages, Add, FromF32, Lt, Mul, Recip, Sub, ToF32, FORMAT, NAME, WIDTH,
+            };
             use $crate::mt::delay::Delay;
             use $crate::mt::schedule::{OpLatencies, Schedule};
 
@@ -353,7 +355,8 @@ macro_rules! mt_lane {
                     self.parallel_at_out.clock.next = self.clock.val();
                     self.in_range_at_out.clock.next = self.clock.val();
                     self.sum_above_one_at_out.clock.next = self.clock.val();
-                    self.parallel_at_out.d.next = self.det_below_eps.y.val() & self.det_above_neg_eps.y.val();
+                    self.parallel_at_out.d.next =
+                        self.det_below_eps.y.val() & self.det_above_neg_eps.y.val();
                     self.in_range_at_out.d.next = !self.u_below_zero.y.val()
                         & !self.u_above_one.y.val()
                         & !self.v_below_zero.y.val()

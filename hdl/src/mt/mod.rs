@@ -24,7 +24,9 @@ use schedule::{OpLatencies, Schedule};
 
 /// The lane's timing in catalogue format `format` at `depth`.
 pub fn schedule(format: &str, depth: usize) -> Result<Schedule, OperatorError> {
-    Ok(Schedule::new(OpLatencies::try_for_depth(depth, |op| formats::max_stages(format, op))?))
+    Ok(Schedule::new(OpLatencies::try_for_depth(depth, |op| {
+        formats::max_stages(format, op)
+    })?))
 }
 
 /// Cycles from query to result of a lane in catalogue format `format` at `depth`.
@@ -34,7 +36,10 @@ pub fn latency(format: &str, depth: usize) -> Result<usize, OperatorError> {
 
 /// The depth at which every operator of `format` has all its pipeline registers.
 pub fn max_depth(format: &str) -> Result<usize, OperatorError> {
-    Op::ALL.into_iter().map(|op| formats::max_stages(format, op)).try_fold(0, |m, s| Ok(m.max(s?)))
+    Op::ALL
+        .into_iter()
+        .map(|op| formats::max_stages(format, op))
+        .try_fold(0, |m, s| Ok(m.max(s?)))
 }
 
 /// A query as the lane's 15 input words: orig, dir, v0, v1, v2 (x, y, z each), fp32 bits.
@@ -59,7 +64,12 @@ pub struct LaneOutput {
 
 impl LaneOutput {
     pub fn result(&self) -> MtResult {
-        MtResult { hit: self.hit, t: f32::from_bits(self.t), u: f32::from_bits(self.u), v: f32::from_bits(self.v) }
+        MtResult {
+            hit: self.hit,
+            t: f32::from_bits(self.t),
+            u: f32::from_bits(self.u),
+            v: f32::from_bits(self.v),
+        }
     }
 }
 
@@ -77,7 +87,11 @@ pub trait Lane: Block + Sized {
 /// Runs a freshly built lane in rust-hdl's simulator for `inputs.len() + flush` cycles,
 /// feeding `inputs[c]` (valid, query) in cycle `c` (then invalid all-zero queries) and
 /// returning what the outputs show in every cycle.
-pub fn simulate_lane<L: Lane>(depth: usize, inputs: &[(bool, MtQuery)], flush: usize) -> Vec<LaneOutput> {
+pub fn simulate_lane<L: Lane>(
+    depth: usize,
+    inputs: &[(bool, MtQuery)],
+    flush: usize,
+) -> Vec<LaneOutput> {
     let mut lane = L::new(depth);
     lane.connect_all();
     let idle = (false, MtQuery::default());

@@ -32,13 +32,18 @@ pub struct OpLatencies {
 impl OpLatencies {
     /// Every operator built with `min(depth, its max_stages)` registers.
     pub fn for_depth(depth: usize, max_stages: impl Fn(Op) -> usize) -> Self {
-        match Self::try_for_depth(depth, |op| Ok::<_, std::convert::Infallible>(max_stages(op))) {
+        match Self::try_for_depth(depth, |op| {
+            Ok::<_, std::convert::Infallible>(max_stages(op))
+        }) {
             Ok(ops) => ops,
         }
     }
 
     /// [`OpLatencies::for_depth`] with a lookup of `max_stages` that can fail.
-    pub fn try_for_depth<E>(depth: usize, max_stages: impl Fn(Op) -> Result<usize, E>) -> Result<Self, E> {
+    pub fn try_for_depth<E>(
+        depth: usize,
+        max_stages: impl Fn(Op) -> Result<usize, E>,
+    ) -> Result<Self, E> {
         let at = |op| max_stages(op).map(|max| depth.min(max));
         Ok(OpLatencies {
             add: at(Op::Add)?,
@@ -84,7 +89,17 @@ impl Schedule {
         let t_scale = t_recip + ops.mul;
         let t_sum = t_scale + ops.add;
         let latency = (t_sum + ops.lt).max(t_scale + ops.to_f32);
-        Schedule { ops, t_load, t_edge, t_cross, t_dot, t_recip, t_scale, t_sum, latency }
+        Schedule {
+            ops,
+            t_load,
+            t_edge,
+            t_cross,
+            t_dot,
+            t_recip,
+            t_scale,
+            t_sum,
+            latency,
+        }
     }
 
     /// dir (ready at t_load) to the cross product p = dir × e2 (at t_edge).
@@ -126,7 +141,15 @@ mod tests {
     use super::*;
 
     fn uniform(n: usize) -> OpLatencies {
-        OpLatencies { add: n, sub: n, mul: n, recip: n, lt: n, from_f32: n, to_f32: n }
+        OpLatencies {
+            add: n,
+            sub: n,
+            mul: n,
+            recip: n,
+            lt: n,
+            from_f32: n,
+            to_f32: n,
+        }
     }
 
     #[test]
@@ -134,10 +157,23 @@ mod tests {
         let s = Schedule::new(uniform(0));
         assert_eq!(s.latency, 0);
         assert_eq!(
-            [s.dir_to_cross(), s.edge_to_dot(), s.third_product(), s.numerator_to_scale()],
+            [
+                s.dir_to_cross(),
+                s.edge_to_dot(),
+                s.third_product(),
+                s.numerator_to_scale()
+            ],
             [0; 4]
         );
-        assert_eq!([s.parallel_to_out(), s.range_to_out(), s.sum_to_out(), s.result_to_out()], [0; 4]);
+        assert_eq!(
+            [
+                s.parallel_to_out(),
+                s.range_to_out(),
+                s.sum_to_out(),
+                s.result_to_out()
+            ],
+            [0; 4]
+        );
     }
 
     #[test]
@@ -153,7 +189,15 @@ mod tests {
 
     #[test]
     fn every_path_reaches_the_output_at_the_latency() {
-        let ops = OpLatencies { add: 4, sub: 3, mul: 2, recip: 27, lt: 1, from_f32: 1, to_f32: 5 };
+        let ops = OpLatencies {
+            add: 4,
+            sub: 3,
+            mul: 2,
+            recip: 27,
+            lt: 1,
+            from_f32: 1,
+            to_f32: 5,
+        };
         let s = Schedule::new(ops);
         // A slow conversion out makes t, u, v the critical path.
         assert_eq!(s.latency, s.t_scale + 5);
@@ -172,7 +216,18 @@ mod tests {
             _ => 1,
         };
         let ops = OpLatencies::for_depth(2, max);
-        assert_eq!(ops, OpLatencies { add: 2, sub: 2, mul: 2, recip: 2, lt: 1, from_f32: 1, to_f32: 1 });
+        assert_eq!(
+            ops,
+            OpLatencies {
+                add: 2,
+                sub: 2,
+                mul: 2,
+                recip: 2,
+                lt: 1,
+                from_f32: 1,
+                to_f32: 1
+            }
+        );
         assert_eq!(OpLatencies::for_depth(100, max).recip, 27);
     }
 }
