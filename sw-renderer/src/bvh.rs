@@ -13,12 +13,12 @@ use crate::math::V3;
 use crate::world::WorldTriangle;
 
 /// Triangles per leaf the SAH may keep without trying to split.
-const MAX_LEAF: usize = 4;
+const MAX_LEAF: usize = 2;
 const BINS: usize = 16;
 /// Relative padding of boxes and bounds (≈ 840 ulps: far above Möller-Trumbore's rounding).
 const PAD: f32 = 1e-4;
 /// The build never nests deeper, so a fixed traversal stack suffices.
-const MAX_DEPTH: usize = 96;
+const MAX_DEPTH: usize = 64;
 
 #[derive(Clone, Copy, Debug)]
 struct Aabb {
@@ -69,8 +69,8 @@ impl Aabb {
     }
 }
 
-/// A flattened node: a leaf lists `order[first..first + count]`; an inner node (`count == 0`)
-/// has its children at `first` and `first + 1`.
+/// A node of the binary build: a leaf lists `order[first..first + count]`; an inner node
+/// (`count == 0`) has its children at `first` and `first + 1`.
 #[derive(Clone, Copy, Debug)]
 struct Node {
     bounds: Aabb,
@@ -78,11 +78,73 @@ struct Node {
     count: u32,
 }
 
+/// A child of an inner node: a leaf `order[first..first + count]`, or (`count == 0`) the inner
+/// node `first`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct Link {
+    first: u32,
+    count: u32,
+}
+
+/// A walk's stack of entered, unvisited subtrees. The build never nests deeper than
+/// `MAX_DEPTH`, and a walk pushes at most one subtree per level, so it never overflows.
+struct Stack {
+    entries: [Pending; MAX_DEPTH + 2],
+    len: usize,
+}
+
+impl Default for Stack {
+    fn default() -> Self {
+        Stack {
+            entries: [Pending::default(); MAX_DEPTH + 2],
+            len: 0,
+        }
+    }
+}
+
+impl Stack {
+    #[inline(always)]
+    fn push(&mut self, p: Pending) {
+        self.entries[self.len] = p;
+        self.len += 1;
+    }
+
+    #[inline(always)]
+    fn pop(&mut self) -> Option<Pending> {
+        self.len = self.len.checked_sub(1)?;
+        Some(self.entries[self.len])
+    }
+
+    fn entries(&self) -> &[Pending] {
+        &self.entries[..self.len]
+    }
+}
+
+/// An inner node holding both children's padded boxes side by side, so that one fetch of 64
+/// bytes tests both children.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+struct Inner {
+    /// `[axis][child]`.
+    min: [[f32; 2]; 3],
+    max: [[f32; 2]; 3],
+    child: [Link; 2],
+}
+
 #[derive(Clone, Debug)]
 pub struct Bvh {
-    nodes: Vec<Node>,
+    root_bounds: Aabb,
+    root: Link,
+    inner: Vec<Inner>,
     /// Global triangle indices, grouped by leaf.
     order: Vec<u32>,
+}
+
+/// An entered subtree a walk has not visited yet, with the ray's entry distance into its box.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Pending {
+    link: Link,
+    near: f32,
 }
 
 /// A ray prepared for box tests.
@@ -117,19 +179,43 @@ impl BoxRay {
         }
     }
 
-    /// Slab test against [0, t_hi].
+    /// Slab test of one axis: the ray's parameter interval inside [min, max].
     #[inline(always)]
-    fn enters(&self, b: &Aabb) -> bool {
+    fn slab(&self, axis: usize, min: f32, max: f32) -> (f32, f32) {
+        let t0 = (min - self.orig_lo[axis]) * self.inv_dir[axis];
+        let t1 = (max - self.orig_hi[axis]) * self.inv_dir[axis];
+        if t0 < t1 {
+            (t0, t1)
+        } else {
+            (t1, t0)
+        }
+    }
+
+    /// Slab test against [0, t_hi]: the entry distance if the ray enters the box.
+    fn entry(&self, b: &Aabb) -> Option<f32> {
         let mut near = 0.0f32;
         let mut far = self.t_hi;
         for a in 0..3 {
-            let t0 = (b.min[a] - self.orig_lo[a]) * self.inv_dir[a];
-            let t1 = (b.max[a] - self.orig_hi[a]) * self.inv_dir[a];
-            let (lo, hi) = if t0 < t1 { (t0, t1) } else { (t1, t0) };
+            let (lo, hi) = self.slab(a, b.min[a], b.max[a]);
             near = if lo > near { lo } else { near };
             far = if hi < far { hi } else { far };
         }
-        near <= far
+        (near <= far).then_some(near)
+    }
+
+    /// The same test for both children of `node`: whether each is entered, and where.
+    #[inline(always)]
+    fn enters_children(&self, node: &Inner) -> ([bool; 2], [f32; 2]) {
+        let mut near = [0.0f32; 2];
+        let mut far = [self.t_hi; 2];
+        for a in 0..3 {
+            for c in 0..2 {
+                let (lo, hi) = self.slab(a, node.min[a][c], node.max[a][c]);
+                near[c] = if lo > near[c] { lo } else { near[c] };
+                far[c] = if hi < far[c] { hi } else { far[c] };
+            }
+        }
+        ([near[0] <= far[0], near[1] <= far[1]], near)
     }
 }
 
@@ -167,7 +253,7 @@ impl Bvh {
                 first: start as u32,
                 count: (end - start) as u32,
             };
-            let split = if end - start <= 2 || depth >= MAX_DEPTH {
+            let split = if end - start <= 1 || depth >= MAX_DEPTH {
                 None
             } else {
                 best_split(
@@ -211,37 +297,161 @@ impl Bvh {
                 None => nodes[node] = leaf,
             }
         }
-        Bvh { nodes, order }
+        let (root, inner) = pack(&nodes);
+        Bvh {
+            root_bounds: nodes[0].bounds,
+            root,
+            inner,
+            order,
+        }
     }
 
     /// Appends to `out` every triangle of every leaf the ray enters, for which `keep` holds.
     pub fn candidates(&self, ray: &BoxRay, keep: impl Fn(u32) -> bool, out: &mut Vec<u32>) {
-        if self.order.is_empty() || !ray.enters(&self.nodes[0].bounds) {
-            return;
+        let mut stack = Stack::default();
+        if let Some(root) = self.root(ray) {
+            stack.push(root);
         }
-        // Nodes on the stack were already found to be entered.
-        let mut stack = [0u32; MAX_DEPTH + 2];
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let node = &self.nodes[stack[top] as usize];
-            if node.count > 0 {
-                let leaf = &self.order[node.first as usize..(node.first + node.count) as usize];
-                out.extend(leaf.iter().copied().filter(|&t| keep(t)));
-            } else {
-                for child in [node.first, node.first + 1] {
-                    if ray.enters(&self.nodes[child as usize].bounds) {
-                        stack[top] = child;
-                        top += 1;
+        self.walk(ray, &mut stack, |leaf| {
+            out.extend(self.leaf(leaf).iter().copied().filter(|&t| keep(t)));
+            true
+        });
+    }
+
+    /// A first pass of [`Bvh::candidates`]: the leaves the ray enters, nearer boxes first,
+    /// until at least `enough` triangles are gathered. The subtrees it has not visited go to
+    /// `pending`, for [`Bvh::remaining_candidates`].
+    pub fn nearest_candidates(
+        &self,
+        ray: &BoxRay,
+        keep: impl Fn(u32) -> bool,
+        enough: usize,
+        out: &mut Vec<u32>,
+        pending: &mut Vec<Pending>,
+    ) {
+        let start = out.len();
+        let mut stack = Stack::default();
+        if let Some(root) = self.root(ray) {
+            stack.push(root);
+        }
+        self.walk(ray, &mut stack, |leaf| {
+            out.extend(self.leaf(leaf).iter().copied().filter(|&t| keep(t)));
+            out.len() - start < enough
+        });
+        pending.extend_from_slice(stack.entries());
+    }
+
+    /// The second pass: what [`Bvh::candidates`] gathers for `ray` but the first pass (with
+    /// the same origin and direction, and a bound at least as large) did not.
+    ///
+    /// Entry distances do not depend on the bound, so a pending subtree is entered within the
+    /// new bound exactly if its entry distance is. With the first pass' nearest hit `h`, and
+    /// the bound `h.t.next_up()`, both passes together hold every triangle whose hit is at
+    /// least as near as `h`: the closest hit over both is the closest hit over all.
+    pub fn remaining_candidates(
+        &self,
+        ray: &BoxRay,
+        keep: impl Fn(u32) -> bool,
+        pending: &[Pending],
+        out: &mut Vec<u32>,
+    ) {
+        let mut stack = Stack::default();
+        pending.iter().for_each(|&p| stack.push(p));
+        self.walk(ray, &mut stack, |leaf| {
+            out.extend(self.leaf(leaf).iter().copied().filter(|&t| keep(t)));
+            true
+        });
+    }
+
+    fn root(&self, ray: &BoxRay) -> Option<Pending> {
+        if self.order.is_empty() {
+            return None;
+        }
+        ray.entry(&self.root_bounds).map(|near| Pending {
+            link: self.root,
+            near,
+        })
+    }
+
+    fn leaf(&self, leaf: Link) -> &[u32] {
+        &self.order[leaf.first as usize..(leaf.first + leaf.count) as usize]
+    }
+
+    /// Visits the leaves under the subtrees on `stack` (entered ones; the top first) that the
+    /// ray enters, the nearer-entered child of each inner node first, until `visit` returns
+    /// false; what is left unvisited stays on `stack`.
+    #[inline(always)]
+    fn walk(&self, ray: &BoxRay, stack: &mut Stack, mut visit: impl FnMut(Link) -> bool) {
+        while let Some(Pending { mut link, near }) = stack.pop() {
+            if near > ray.t_hi {
+                continue;
+            }
+            loop {
+                if link.count > 0 {
+                    if !visit(link) {
+                        return;
                     }
+                    break;
+                }
+                let node = &self.inner[link.first as usize];
+                let (enters, near) = ray.enters_children(node);
+                match enters {
+                    [true, true] => {
+                        let nearer = usize::from(near[1] < near[0]);
+                        let farther = 1 - nearer;
+                        stack.push(Pending {
+                            link: node.child[farther],
+                            near: near[farther],
+                        });
+                        link = node.child[nearer];
+                    }
+                    [true, false] => link = node.child[0],
+                    [false, true] => link = node.child[1],
+                    [false, false] => break,
                 }
             }
         }
     }
 
     pub fn node_count(&self) -> usize {
-        self.nodes.len()
+        2 * self.inner.len() + 1
     }
+}
+
+/// The binary nodes as inner nodes with their children's boxes, and the root's link.
+fn pack(nodes: &[Node]) -> (Link, Vec<Inner>) {
+    let mut inner_index = vec![0u32; nodes.len()];
+    let mut count = 0;
+    for (i, node) in nodes.iter().enumerate() {
+        if node.count == 0 {
+            inner_index[i] = count;
+            count += 1;
+        }
+    }
+    let link = |i: usize| match nodes[i].count {
+        0 => Link {
+            first: inner_index[i],
+            count: 0,
+        },
+        n => Link {
+            first: nodes[i].first,
+            count: n,
+        },
+    };
+    let inner = nodes
+        .iter()
+        // A lone root with no triangles is no inner node.
+        .filter(|node| node.count == 0 && nodes.len() > 1)
+        .map(|node| {
+            let c = [node.first as usize, node.first as usize + 1];
+            Inner {
+                min: [0, 1, 2].map(|a| c.map(|i| nodes[i].bounds.min[a])),
+                max: [0, 1, 2].map(|a| c.map(|i| nodes[i].bounds.max[a])),
+                child: c.map(link),
+            }
+        })
+        .collect();
+    (link(0), inner)
 }
 
 fn bin_of(c: f32, lo: f32, extent: f32) -> usize {

@@ -30,25 +30,38 @@ fn counts(r: &MtResult, bound: f32) -> bool {
 /// `results`; ties go to the lower global index.
 pub fn closest_hit(candidates: &[u32], results: &[MtResult], bound: f32) -> Option<Hit> {
     debug_assert_eq!(candidates.len(), results.len());
-    let mut best: Option<Hit> = None;
-    for (&triangle, r) in candidates.iter().zip(results) {
-        if !counts(r, bound) {
-            continue;
-        }
-        let better = match best {
-            None => true,
-            Some(b) => r.t < b.t || (r.t == b.t && triangle < b.triangle),
-        };
-        if better {
-            best = Some(Hit {
+    candidates
+        .iter()
+        .zip(results)
+        .filter(|(_, r)| counts(r, bound))
+        .fold(None, |best, (&triangle, r)| {
+            let hit = Hit {
                 triangle,
                 t: r.t,
                 u: r.u,
                 v: r.v,
-            });
+            };
+            nearer(best, Some(hit))
+        })
+}
+
+/// The nearer of two hits (ties go to the lower global index): how closest hits over two
+/// candidate sets combine into the closest hit over their union.
+pub fn nearer(a: Option<Hit>, b: Option<Hit>) -> Option<Hit> {
+    match (a, b) {
+        (Some(x), Some(y)) => {
+            let y_nearer = y.t < x.t || (y.t == x.t && y.triangle < x.triangle);
+            Some(if y_nearer { y } else { x })
         }
+        (x, None) => x,
+        (None, y) => y,
     }
-    best
+}
+
+/// The bound for gathering the rest of a ray's candidates once `first` is its nearest hit so
+/// far: hits exactly as near as `first` must still be found (the lower index wins a tie).
+pub fn remaining_bound(first: Option<Hit>, bound: f32) -> f32 {
+    first.map_or(bound, |h| h.t.next_up())
 }
 
 /// Whether any result blocks a shadow ray bounded by the light's distance.
@@ -86,6 +99,22 @@ mod tests {
         assert_eq!((h.triangle, h.t), (3, 1.0));
         let h = closest_hit(&[7, 3, 9, 1], &results, NO_BOUND).unwrap();
         assert_eq!((h.triangle, h.t), (3, 1.0));
+    }
+
+    #[test]
+    fn closest_over_two_parts_equals_closest_over_the_whole() {
+        let results = [hit(2.0), hit(1.0), hit(1.0), hit(3.0), hit(1.0)];
+        let cands = [7, 9, 3, 12, 2];
+        let whole = closest_hit(&cands, &results, NO_BOUND);
+        for split in 0..=cands.len() {
+            let a = closest_hit(&cands[..split], &results[..split], NO_BOUND);
+            let b = closest_hit(&cands[split..], &results[split..], NO_BOUND);
+            assert_eq!(nearer(a, b), whole);
+            assert_eq!(nearer(b, a), whole);
+        }
+        let h = closest_hit(&[4], &[hit(1.0)], NO_BOUND);
+        assert_eq!(remaining_bound(h, NO_BOUND), 1.0f32.next_up());
+        assert_eq!(remaining_bound(None, 7.0), 7.0);
     }
 
     #[test]

@@ -10,8 +10,8 @@
 
 use std::ops::{AddAssign, Range};
 
-use crate::bvh::{BoxRay, Bvh};
-use crate::hit::{closest_hit, occluded, NO_BOUND};
+use crate::bvh::{BoxRay, Bvh, Pending};
+use crate::hit::{closest_hit, nearer, remaining_bound, Hit, NO_BOUND};
 use crate::intersect::{Intersector, MtQuery, MtResult};
 use crate::math::V3;
 use crate::scene::{MaterialKind, Scene};
@@ -50,6 +50,11 @@ impl PreparedScene {
             bias: scene.options.bias,
             max_depth: scene.options.max_depth,
         })
+    }
+
+    /// Whether `ray` is tested against `triangle` (shadow rays skip some objects).
+    fn tests(&self, ray: &LevelRay, triangle: u32) -> bool {
+        !ray.shadow || self.casts_shadow[triangle as usize]
     }
 }
 
@@ -126,7 +131,25 @@ enum SecondaryKind {
     Refraction,
 }
 
+/// Candidates the first pass gathers per ray (nearest leaves first): enough that it usually
+/// holds the ray's hit, which then bounds the second pass.
+const FIRST_PASS_CANDIDATES: usize = 4;
+
+/// A ray of one level: a castRay's closest-hit query or a shadow ray.
+#[derive(Clone, Copy)]
+struct LevelRay {
+    orig: V3,
+    dir: V3,
+    bound: f32,
+    shadow: bool,
+}
+
 /// Traces the primary rays `(origin, direction)` and returns one colour per ray.
+///
+/// Each level takes two intersector batches: the first with every ray's nearest leaves, the
+/// second with the rest of its candidates, bounded by the first batch's nearest hit (shadow
+/// rays already blocked are done). The union of both holds every triangle a single unbounded
+/// gathering would have listed that can matter, so the hits are the same.
 pub fn trace_rays(
     scene: &PreparedScene,
     isect: &dyn Intersector,
@@ -151,39 +174,62 @@ pub fn trace_rays(
     }
     tree.stats.primary_rays = primary.len() as u64;
     let mut shadows: Vec<ShadowRay> = Vec::new();
-    let mut batch = Batch::default();
+    let mut rays: Vec<LevelRay> = Vec::new();
+    let (mut first, mut rest) = (Batch::default(), Batch::default());
+    let mut pending: Vec<Pending> = Vec::new();
+    let mut pending_ranges: Vec<Range<usize>> = Vec::new();
+    let mut found: Vec<Option<Hit>> = Vec::new();
 
     while !level.is_empty() || !shadows.is_empty() {
-        batch.clear();
-        for &n in &level {
-            let node = &tree.nodes[n];
-            batch.add_ray(scene, node.orig, node.dir, NO_BOUND, false);
+        rays.clear();
+        rays.extend(level.iter().map(|&n| LevelRay {
+            orig: tree.nodes[n].orig,
+            dir: tree.nodes[n].dir,
+            bound: NO_BOUND,
+            shadow: false,
+        }));
+        rays.extend(shadows.iter().map(|s| LevelRay {
+            orig: s.orig,
+            dir: s.dir,
+            bound: s.bound,
+            shadow: true,
+        }));
+
+        first.clear();
+        pending.clear();
+        pending_ranges.clear();
+        for ray in &rays {
+            let start = pending.len();
+            first.add_nearest(scene, ray, &mut pending);
+            pending_ranges.push(start..pending.len());
         }
-        for s in &shadows {
-            batch.add_ray(scene, s.orig, s.dir, s.bound, true);
+        first.run(isect, &mut tree.stats);
+        found.clear();
+        found.extend((0..rays.len()).map(|k| first.closest(k, rays[k].bound)));
+
+        rest.clear();
+        for (k, ray) in rays.iter().enumerate() {
+            if ray.shadow && found[k].is_some() {
+                rest.add_nothing();
+            } else {
+                let bound = remaining_bound(found[k], ray.bound);
+                rest.add_rest(scene, ray, bound, &pending[pending_ranges[k].clone()]);
+            }
         }
-        if !batch.queries.is_empty() {
-            batch
-                .results
-                .resize(batch.queries.len(), MtResult::default());
-            isect.intersect_batch(&batch.queries, &mut batch.results);
-            tree.stats.batches += 1;
-            tree.stats.mt_queries += batch.queries.len() as u64;
+        rest.run(isect, &mut tree.stats);
+        for (k, ray) in rays.iter().enumerate() {
+            found[k] = nearer(found[k], rest.closest(k, ray.bound));
         }
 
         let mut next_level = Vec::new();
         let mut next_shadows = Vec::new();
-        for (k, &n) in level.iter().enumerate() {
-            let r = batch.ranges[k].clone();
-            if let Some(hit) =
-                closest_hit(&batch.candidates[r.clone()], &batch.results[r], NO_BOUND)
-            {
-                tree.shade_hit(n, &hit, &mut next_level, &mut next_shadows);
+        for (&n, hit) in level.iter().zip(&found) {
+            if let Some(hit) = hit {
+                tree.shade_hit(n, hit, &mut next_level, &mut next_shadows);
             }
         }
-        for (k, s) in shadows.iter().enumerate() {
-            let r = batch.ranges[level.len() + k].clone();
-            tree.visible[s.slot] = !occluded(&batch.results[r], s.bound);
+        for (s, hit) in shadows.iter().zip(&found[level.len()..]) {
+            tree.visible[s.slot] = hit.is_none();
         }
         level = next_level;
         shadows = next_shadows;
@@ -191,7 +237,7 @@ pub fn trace_rays(
     (tree.colours(), tree.stats)
 }
 
-/// One level's queries: per ray a range of candidate triangles and their queries.
+/// One intersector batch: per ray a range of candidate triangles and their queries.
 #[derive(Default)]
 struct Batch {
     candidates: Vec<u32>,
@@ -208,19 +254,39 @@ impl Batch {
         self.results.clear();
     }
 
-    fn add_ray(&mut self, scene: &PreparedScene, orig: V3, dir: V3, bound: f32, shadow: bool) {
+    /// The ray's nearest leaves (the first pass); its unvisited subtrees go to `pending`.
+    fn add_nearest(&mut self, scene: &PreparedScene, ray: &LevelRay, pending: &mut Vec<Pending>) {
         let start = self.candidates.len();
-        let ray = BoxRay::new(orig, dir, bound);
-        if shadow {
-            scene.bvh.candidates(
-                &ray,
-                |t| scene.casts_shadow[t as usize],
-                &mut self.candidates,
-            );
-        } else {
-            scene.bvh.candidates(&ray, |_| true, &mut self.candidates);
-        }
-        let (o, d) = (orig.to_array(), dir.to_array());
+        scene.bvh.nearest_candidates(
+            &BoxRay::new(ray.orig, ray.dir, ray.bound),
+            |t| scene.tests(ray, t),
+            FIRST_PASS_CANDIDATES,
+            &mut self.candidates,
+            pending,
+        );
+        self.add_queries(scene, ray, start);
+    }
+
+    /// The ray's other candidates up to `bound`, from the first pass' `pending` subtrees.
+    fn add_rest(&mut self, scene: &PreparedScene, ray: &LevelRay, bound: f32, pending: &[Pending]) {
+        let start = self.candidates.len();
+        scene.bvh.remaining_candidates(
+            &BoxRay::new(ray.orig, ray.dir, bound),
+            |t| scene.tests(ray, t),
+            pending,
+            &mut self.candidates,
+        );
+        self.add_queries(scene, ray, start);
+    }
+
+    fn add_nothing(&mut self) {
+        let end = self.candidates.len();
+        self.ranges.push(end..end);
+    }
+
+    /// Queries for the candidates from `start` on, as the ray's range.
+    fn add_queries(&mut self, scene: &PreparedScene, ray: &LevelRay, start: usize) {
+        let (o, d) = (ray.orig.to_array(), ray.dir.to_array());
         self.queries
             .extend(self.candidates[start..].iter().map(|&t| {
                 let [v0, v1, v2] = scene.world.triangles[t as usize].verts;
@@ -233,6 +299,22 @@ impl Batch {
                 }
             }));
         self.ranges.push(start..self.candidates.len());
+    }
+
+    fn run(&mut self, isect: &dyn Intersector, stats: &mut TraceStats) {
+        if self.queries.is_empty() {
+            return;
+        }
+        self.results.resize(self.queries.len(), MtResult::default());
+        isect.intersect_batch(&self.queries, &mut self.results);
+        stats.batches += 1;
+        stats.mt_queries += self.queries.len() as u64;
+    }
+
+    /// The nearest counting hit of ray `k` in this batch.
+    fn closest(&self, k: usize, bound: f32) -> Option<Hit> {
+        let r = self.ranges[k].clone();
+        closest_hit(&self.candidates[r.clone()], &self.results[r], bound)
     }
 }
 
@@ -275,7 +357,7 @@ impl RayTree<'_> {
     fn shade_hit(
         &mut self,
         n: usize,
-        hit: &crate::hit::Hit,
+        hit: &Hit,
         next: &mut Vec<usize>,
         shadows: &mut Vec<ShadowRay>,
     ) {
