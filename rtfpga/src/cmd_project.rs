@@ -6,7 +6,9 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args as ClapArgs, ValueEnum};
-use sim::projection::{self, Board, Calibration, Design, Frontend, Role, Setup, Traversal, Workload, Workloads};
+use sim::projection::{
+    self, Board, Calibration, Design, Frontend, Role, Setup, Traversal, Workload, Workloads,
+};
 use sw_renderer::scene::Scene;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -84,12 +86,21 @@ pub fn run(a: Args) -> Result<()> {
     }
     let design = design(&a)?;
     if !a.thesis_scenes.is_dir() {
-        bail!("thesis scenes: {} is not a directory (set --thesis-scenes)", a.thesis_scenes.display());
+        bail!(
+            "thesis scenes: {} is not a directory (set --thesis-scenes)",
+            a.thesis_scenes.display()
+        );
     }
     let mut workloads = Workloads::new(&a.thesis_scenes);
     let quick = a.quick;
     let calibration = projection::calibrate(&mut workloads, |m| {
-        !quick || ["Simple_plane_scene", "Simple_plane2_scene", "Utah_teapot_scene"].contains(&m.scene)
+        !quick
+            || [
+                "Simple_plane_scene",
+                "Simple_plane2_scene",
+                "Utah_teapot_scene",
+            ]
+            .contains(&m.scene)
     })
     .context("calibrating the model on the thesis' measurements")?;
     if a.calibration {
@@ -115,14 +126,24 @@ fn design(a: &Args) -> Result<Design> {
     let frontend = match a.design {
         DesignKind::Thesis => {
             if a.format != "fp32" {
-                bail!("--format {}: the thesis design is the fp32 HLS unit", a.format);
+                bail!(
+                    "--format {}: the thesis design is the fp32 HLS unit",
+                    a.format
+                );
             }
-            Frontend::Thesis { units: a.lanes, cycles_per_test: a.cycles_per_test.unwrap_or(THESIS_CYCLES_PER_TEST) }
+            Frontend::Thesis {
+                units: a.lanes,
+                cycles_per_test: a.cycles_per_test.unwrap_or(THESIS_CYCLES_PER_TEST),
+            }
         }
         DesignKind::Stream => {
             hw_model::lookup(&a.format)?;
-            let latency = hdl::mt::latency(&a.format, a.depth)
-                .with_context(|| format!("pipeline latency of format {} at depth {}", a.format, a.depth))?;
+            let latency = hdl::mt::latency(&a.format, a.depth).with_context(|| {
+                format!(
+                    "pipeline latency of format {} at depth {}",
+                    a.format, a.depth
+                )
+            })?;
             Frontend::Stream {
                 lanes: a.lanes,
                 cycles_per_test: a.cycles_per_test.unwrap_or(1.0),
@@ -133,7 +154,11 @@ fn design(a: &Args) -> Result<Design> {
             }
         }
     };
-    let d = Design { frontend, traversal, fpl_mhz: a.fpl_mhz };
+    let d = Design {
+        frontend,
+        traversal,
+        fpl_mhz: a.fpl_mhz,
+    };
     d.validate()?;
     Ok(d)
 }
@@ -142,15 +167,29 @@ fn print_projection(w: &Workload, d: &Design, b: &Board) -> Result<()> {
     let p = projection::project(w, d, b)?;
     let arm = b.arm_only_s(w, Traversal::BruteForce);
     println!("scene: {} at {}x{}", w.scene, w.width, w.height);
-    println!("design: {:?}, traversal {:?}, f_PL {} MHz", d.frontend, d.traversal, d.fpl_mhz);
-    println!("rays: {} (primary {}, reflection {}, refraction {}, shadow {}); tests: {}",
-        w.rays(), w.primary_rays, w.reflection_rays, w.refraction_rays, w.shadow_rays, p.tests);
+    println!(
+        "design: {:?}, traversal {:?}, f_PL {} MHz",
+        d.frontend, d.traversal, d.fpl_mhz
+    );
+    println!(
+        "rays: {} (primary {}, reflection {}, refraction {}, shadow {}); tests: {}",
+        w.rays(),
+        w.primary_rays,
+        w.reflection_rays,
+        w.refraction_rays,
+        w.shadow_rays,
+        p.tests
+    );
     println!("\n| term | seconds |\n|---|---|");
     println!("| ARM | {:.4} |", p.arm_s);
     println!("| bus (AXI4-Lite) | {:.4} |", p.bus_s);
     println!("| accelerator | {:.4} |", p.accel_s);
     println!("| total | {:.4} |", p.total_s());
-    println!("\narm_software_s={arm:.4} total_s={:.4} speedup_vs_arm={:.2}", p.total_s(), arm / p.total_s());
+    println!(
+        "\narm_software_s={arm:.4} total_s={:.4} speedup_vs_arm={:.2}",
+        p.total_s(),
+        arm / p.total_s()
+    );
     Ok(())
 }
 
@@ -158,22 +197,46 @@ fn print_calibration(c: &Calibration) {
     let b = &c.board;
     println!("fitted constants (4, from the 4 `fit` rows; all other rows are held-out checks):");
     println!("  ARM per ray (non-MT work)  {:.1} ns", b.arm_ray_ns);
-    println!("  ARM per MT test            {:.1} ns ({:.1} cycles at 667 MHz)", b.arm_test_ns, b.arm_test_ns * projection::ARM_MHZ / 1e3);
+    println!(
+        "  ARM per MT test            {:.1} ns ({:.1} cycles at 667 MHz)",
+        b.arm_test_ns,
+        b.arm_test_ns * projection::ARM_MHZ / 1e3
+    );
     println!("  AXI4-Lite access, fixed    {:.1} ns", b.access_fixed_ns);
-    println!("  AXI4-Lite access, fabric   {:.2} cycles ({:.0} ns at 100 MHz, {:.0} ns at 214 MHz)",
-        b.access_pl_cycles, b.access_ns(100.0), b.access_ns(214.0));
+    println!(
+        "  AXI4-Lite access, fabric   {:.2} cycles ({:.0} ns at 100 MHz, {:.0} ns at 214 MHz)",
+        b.access_pl_cycles,
+        b.access_ns(100.0),
+        b.access_ns(214.0)
+    );
     println!("\n| measurement | source | scene | size | setup | role | measured s | modelled s | error % |");
     println!("|---|---|---|---|---|---|---|---|---|");
     for r in &c.rows {
         let m = &r.measurement;
         let setup = match m.setup {
             Setup::Arm => "ARM 667 MHz".to_string(),
-            Setup::Accelerator { fpl_mhz, units, latency } => {
-                format!("{units}× HLS {}–{} cyc @ {fpl_mhz} MHz", latency.0, latency.1)
+            Setup::Accelerator {
+                fpl_mhz,
+                units,
+                latency,
+            } => {
+                format!(
+                    "{units}× HLS {}–{} cyc @ {fpl_mhz} MHz",
+                    latency.0, latency.1
+                )
             }
         };
         let role = if m.role == Role::Fit { "fit" } else { "check" };
-        println!("| {} | {} | {} | {}x{} | {setup} | {role} | {} | {:.3} | {:+.1} |",
-            m.label, m.source, m.scene, m.width, m.height, m.seconds, r.modelled_s, r.error_pct());
+        println!(
+            "| {} | {} | {} | {}x{} | {setup} | {role} | {} | {:.3} | {:+.1} |",
+            m.label,
+            m.source,
+            m.scene,
+            m.width,
+            m.height,
+            m.seconds,
+            r.modelled_s,
+            r.error_pct()
+        );
     }
 }

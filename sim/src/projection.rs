@@ -8,7 +8,10 @@ pub mod calibration;
 pub mod cost;
 pub mod workload;
 
-pub use calibration::{calibrate, Calibration, CalibrationRow, Measurement, Role, Setup, Workloads, THESIS_MEASUREMENTS};
+pub use calibration::{
+    calibrate, Calibration, CalibrationRow, Measurement, Role, Setup, Workloads,
+    THESIS_MEASUREMENTS,
+};
 pub use cost::{project, Board, Breakdown, Design, Frontend, ARM_MHZ};
 pub use workload::{Traversal, Workload};
 

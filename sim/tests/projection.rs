@@ -10,10 +10,11 @@ use std::sync::OnceLock;
 
 use proptest::prelude::*;
 use sim::projection::{
-    calibrate, project, Board, Calibration, Design, Frontend, Role, Setup, Traversal, Workload, Workloads,
+    calibrate, project, Board, Calibration, Design, Frontend, Role, Setup, Traversal, Workload,
+    Workloads,
 };
-use sw_renderer::render::{render, RenderOptions};
 use sw_renderer::intersect::F32Intersector;
+use sw_renderer::render::{render, RenderOptions};
 use sw_renderer::scene::Scene;
 
 const THESIS_SCENES: &str = "../../shared/scenes/thesis";
@@ -23,28 +24,52 @@ fn calibration() -> &'static Calibration {
     CAL.get_or_init(|| {
         let mut workloads = Workloads::new(Path::new(THESIS_SCENES));
         calibrate(&mut workloads, |m| {
-            ["Simple_plane_scene", "Simple_plane2_scene", "Utah_teapot_scene"].contains(&m.scene)
+            [
+                "Simple_plane_scene",
+                "Simple_plane2_scene",
+                "Utah_teapot_scene",
+            ]
+            .contains(&m.scene)
         })
         .expect("calibration on the thesis scenes")
     })
 }
 
 fn row<'a>(c: &'a Calibration, label: &str) -> &'a sim::projection::CalibrationRow {
-    c.rows.iter().find(|r| r.measurement.label == label).unwrap_or_else(|| panic!("no row {label}"))
+    c.rows
+        .iter()
+        .find(|r| r.measurement.label == label)
+        .unwrap_or_else(|| panic!("no row {label}"))
 }
 
 #[test]
 fn fit_reproduces_its_four_measurements_and_checks_hold_within_25_percent() {
     let c = calibration();
-    let fits: Vec<_> = c.rows.iter().filter(|r| r.measurement.role == Role::Fit).collect();
+    let fits: Vec<_> = c
+        .rows
+        .iter()
+        .filter(|r| r.measurement.role == Role::Fit)
+        .collect();
     assert_eq!(fits.len(), 4, "4 constants from 4 measurements");
     for r in &fits {
-        assert!(r.error_pct().abs() < 1e-3, "{:?}: {:.4}%", r.measurement, r.error_pct());
+        assert!(
+            r.error_pct().abs() < 1e-3,
+            "{:?}: {:.4}%",
+            r.measurement,
+            r.error_pct()
+        );
     }
-    let checks: Vec<_> = c.rows.iter().filter(|r| r.measurement.role == Role::Check).collect();
+    let checks: Vec<_> = c
+        .rows
+        .iter()
+        .filter(|r| r.measurement.role == Role::Check)
+        .collect();
     assert!(checks.len() >= 15, "held-out checks: {}", checks.len());
     // Runs 3 and 4 are the thesis' own contradiction (see the next test): left out here.
-    for r in checks.iter().filter(|r| !["Run 3", "Run 4"].contains(&r.measurement.label)) {
+    for r in checks
+        .iter()
+        .filter(|r| !["Run 3", "Run 4"].contains(&r.measurement.label))
+    {
         assert!(
             r.error_pct().abs() <= 25.0,
             "{} ({}, {} {}x{}): measured {} s, modelled {:.3} s ({:+.1}%)",
@@ -65,7 +90,11 @@ fn fit_reproduces_its_four_measurements_and_checks_hold_within_25_percent() {
             .iter()
             .find(|r| r.measurement.label == label && r.measurement.height == height)
             .expect("row");
-        assert!(r.error_pct().abs() < bound, "{label} {height}p: {:+.2}%", r.error_pct());
+        assert!(
+            r.error_pct().abs() < bound,
+            "{label} {height}p: {:+.2}%",
+            r.error_pct()
+        );
     }
 }
 
@@ -75,8 +104,18 @@ fn runs_3_and_6_contradict_each_other_in_the_thesis_data() {
     // latency can match both; the model sides with Runs 5, 6 and 7.
     let c = calibration();
     let (r3, r6) = (row(c, "Run 3"), row(c, "Run 6"));
-    let (Setup::Accelerator { fpl_mhz: f3, latency: l3, .. }, Setup::Accelerator { fpl_mhz: f6, latency: l6, .. }) =
-        (r3.measurement.setup, r6.measurement.setup)
+    let (
+        Setup::Accelerator {
+            fpl_mhz: f3,
+            latency: l3,
+            ..
+        },
+        Setup::Accelerator {
+            fpl_mhz: f6,
+            latency: l6,
+            ..
+        },
+    ) = (r3.measurement.setup, r6.measurement.setup)
     else {
         panic!("Runs 3 and 6 are accelerator runs");
     };
@@ -92,7 +131,10 @@ fn fitted_constants_are_physically_plausible() {
     let b = calibration().board;
     for mhz in [100.0, 214.0] {
         let ns = b.access_ns(mhz);
-        assert!((10.0..=500.0).contains(&ns), "AXI-Lite access at {mhz} MHz: {ns} ns");
+        assert!(
+            (10.0..=500.0).contains(&ns),
+            "AXI-Lite access at {mhz} MHz: {ns} ns"
+        );
     }
     assert!(b.access_fixed_ns >= 0.0, "{b:?}");
     assert!((1.0..=100.0).contains(&b.access_pl_cycles), "{b:?}");
@@ -108,12 +150,27 @@ fn thesis_design_matches_the_hand_written_equation() {
     let c = calibration();
     let b = c.board;
     let mut workloads = Workloads::new(Path::new(THESIS_SCENES));
-    let w = workloads.get("Simple_plane_scene", 1920, 1080).unwrap().clone();
-    let d = Design { frontend: Frontend::Thesis { units: 1, cycles_per_test: 71.0 }, traversal: Traversal::BruteForce, fpl_mhz: 100.0 };
+    let w = workloads
+        .get("Simple_plane_scene", 1920, 1080)
+        .unwrap()
+        .clone();
+    let d = Design {
+        frontend: Frontend::Thesis {
+            units: 1,
+            cycles_per_test: 71.0,
+        },
+        traversal: Traversal::BruteForce,
+        fpl_mhz: 100.0,
+    };
     let p = project(&w, &d, &b).unwrap();
     let access = (b.access_fixed_ns + b.access_pl_cycles * 10.0) * 1e-9;
-    let expected = w.rays() as f64 * b.arm_ray_ns * 1e-9 + w.brute_force_tests() as f64 * (20.5 * access + 710e-9);
-    assert!((p.total_s() / expected - 1.0).abs() < 1e-12, "{} vs {expected}", p.total_s());
+    let expected = w.rays() as f64 * b.arm_ray_ns * 1e-9
+        + w.brute_force_tests() as f64 * (20.5 * access + 710e-9);
+    assert!(
+        (p.total_s() / expected - 1.0).abs() < 1e-12,
+        "{} vs {expected}",
+        p.total_s()
+    );
     assert_eq!(p.tests, 4_250_044);
 }
 
@@ -143,9 +200,17 @@ fn ray_counts_agree_with_the_image() {
     let scene = Scene::load(&format!("{THESIS_SCENES}/Simple_plane_scene")).unwrap();
     let (w, h) = (320, 180);
     let workload = Workload::measure(&scene, w, h).unwrap();
-    let image = render(&scene, &F32Intersector, &RenderOptions { width: Some(w), height: Some(h), ..Default::default() })
-        .unwrap()
-        .image;
+    let image = render(
+        &scene,
+        &F32Intersector,
+        &RenderOptions {
+            width: Some(w),
+            height: Some(h),
+            ..Default::default()
+        },
+    )
+    .unwrap()
+    .image;
     let bg = sw_renderer::shade::to_rgb8(sw_renderer::math::V3::from(scene.options.background));
     let covered = image.pixels().filter(|p| p.0 != bg).count() as u64;
     assert_eq!(workload.primary_rays, u64::from(w * h));
@@ -174,21 +239,28 @@ fn board() -> impl Strategy<Value = Board> {
 }
 
 fn workload() -> impl Strategy<Value = Workload> {
-    (1u64..5_000_000, 0u64..3_000_000, 1u64..20_000, 1u64..50_000_000, 1u64..5000).prop_map(
-        |(primary, shadow, triangles, bvh_tests, batches)| Workload {
-            scene: "random".into(),
-            width: 1,
-            height: 1,
-            primary_rays: primary,
-            reflection_rays: primary / 3,
-            refraction_rays: primary / 5,
-            shadow_rays: shadow,
-            triangles,
-            shadow_casting_triangles: triangles / 2,
-            bvh_tests,
-            batches,
-        },
+    (
+        1u64..5_000_000,
+        0u64..3_000_000,
+        1u64..20_000,
+        1u64..50_000_000,
+        1u64..5000,
     )
+        .prop_map(
+            |(primary, shadow, triangles, bvh_tests, batches)| Workload {
+                scene: "random".into(),
+                width: 1,
+                height: 1,
+                primary_rays: primary,
+                reflection_rays: primary / 3,
+                refraction_rays: primary / 5,
+                shadow_rays: shadow,
+                triangles,
+                shadow_casting_triangles: triangles / 2,
+                bvh_tests,
+                batches,
+            },
+        )
 }
 
 fn frontend(units: u32, stream: bool, cycles: f64, latency: u32) -> Frontend {
@@ -202,7 +274,10 @@ fn frontend(units: u32, stream: bool, cycles: f64, latency: u32) -> Frontend {
             pack_arm_cycles: 40.0,
         }
     } else {
-        Frontend::Thesis { units, cycles_per_test: cycles }
+        Frontend::Thesis {
+            units,
+            cycles_per_test: cycles,
+        }
     }
 }
 
@@ -243,7 +318,12 @@ proptest! {
 
 #[test]
 fn bad_designs_are_rejected_with_a_clear_error() {
-    let b = Board { arm_ray_ns: 500.0, arm_test_ns: 125.0, access_fixed_ns: 80.0, access_pl_cycles: 15.0 };
+    let b = Board {
+        arm_ray_ns: 500.0,
+        arm_test_ns: 125.0,
+        access_fixed_ns: 80.0,
+        access_pl_cycles: 15.0,
+    };
     let w = Workload {
         scene: "s".into(),
         width: 1,
@@ -273,11 +353,29 @@ fn bad_designs_are_rejected_with_a_clear_error() {
         (stream(1, 5, 0.8), 100.0, "5 HP ports"),
         (stream(1, 1, 0.0), 100.0, "DMA efficiency 0"),
         (stream(1, 1, 1.5), 100.0, "DMA efficiency 1.5"),
-        (Frontend::Thesis { units: 0, cycles_per_test: 71.0 }, 100.0, "0 accelerators"),
-        (Frontend::Thesis { units: 1, cycles_per_test: 0.0 }, 100.0, "cycles per test 0"),
+        (
+            Frontend::Thesis {
+                units: 0,
+                cycles_per_test: 71.0,
+            },
+            100.0,
+            "0 accelerators",
+        ),
+        (
+            Frontend::Thesis {
+                units: 1,
+                cycles_per_test: 0.0,
+            },
+            100.0,
+            "cycles per test 0",
+        ),
     ];
     for (frontend, fpl_mhz, expected) in cases {
-        let d = Design { frontend, traversal: Traversal::Bvh, fpl_mhz };
+        let d = Design {
+            frontend,
+            traversal: Traversal::Bvh,
+            fpl_mhz,
+        };
         let err = project(&w, &d, &b).expect_err(expected).to_string();
         assert!(err.contains(expected), "`{err}` should name `{expected}`");
     }
@@ -286,6 +384,12 @@ fn bad_designs_are_rejected_with_a_clear_error() {
 #[test]
 fn missing_thesis_scene_names_the_directory() {
     let mut workloads = Workloads::new(Path::new("/nonexistent/thesis"));
-    let err = workloads.get("Simple_plane_scene", 64, 36).expect_err("no such directory").to_string();
-    assert!(err.contains("/nonexistent/thesis/Simple_plane_scene"), "{err}");
+    let err = workloads
+        .get("Simple_plane_scene", 64, 36)
+        .expect_err("no such directory")
+        .to_string();
+    assert!(
+        err.contains("/nonexistent/thesis/Simple_plane_scene"),
+        "{err}"
+    );
 }

@@ -30,7 +30,11 @@ pub enum Setup {
     Arm,
     /// `units` HLS accelerators at `fpl_mhz` whose latency the HLS report gives as
     /// `latency` = (min, max) cycles; a call takes on average the midpoint (see the docs).
-    Accelerator { fpl_mhz: f64, units: u32, latency: (f64, f64) },
+    Accelerator {
+        fpl_mhz: f64,
+        units: u32,
+        latency: (f64, f64),
+    },
 }
 
 /// One published frame time.
@@ -58,8 +62,23 @@ const RUN5: (f64, f64) = (25.0, 85.0);
 const RUN6: (f64, f64) = (30.0, 106.0);
 const RUN7: (f64, f64) = (74.0, 259.0);
 
-const fn arm(scene: &'static str, width: u32, height: u32, seconds: f64, role: Role) -> Measurement {
-    Measurement { label: "ARM software", source: "Table 4.5", scene, width, height, setup: Setup::Arm, seconds, role }
+const fn arm(
+    scene: &'static str,
+    width: u32,
+    height: u32,
+    seconds: f64,
+    role: Role,
+) -> Measurement {
+    Measurement {
+        label: "ARM software",
+        source: "Table 4.5",
+        scene,
+        width,
+        height,
+        setup: Setup::Arm,
+        seconds,
+        role,
+    }
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -81,7 +100,11 @@ const fn hw(
         scene,
         width,
         height,
-        setup: Setup::Accelerator { fpl_mhz, units, latency },
+        setup: Setup::Accelerator {
+            fpl_mhz,
+            units,
+            latency,
+        },
         seconds,
         role,
     }
@@ -105,21 +128,171 @@ pub const THESIS_MEASUREMENTS: &[Measurement] = &[
     arm("Glasses_point_scene", 1280, 720, 989.516, Role::Check),
     arm("All_materials_scene", 1920, 1080, 50479.0, Role::Check),
     arm("All_materials_scene", 1280, 720, 36723.0, Role::Check),
-    hw("Run 1", "Table 4.7", SP, 1080, 100.0, 1, RUN1, 23.94, Role::Fit),
-    hw("Run 7", "Table 4.7", SP, 1080, 214.0, 1, RUN7, 17.36, Role::Fit),
-    hw("Run 2", "Table 4.7", SP, 1080, 100.0, 1, RUN2, 26.87, Role::Check),
-    hw("Run 3", "Table 4.7", SP, 1080, 250.0, 1, RUN1, 21.95, Role::Check),
-    hw("Run 4", "Table 4.7", SP, 1080, 250.0, 1, RUN2, 23.17, Role::Check),
-    hw("Run 5", "Table 4.7", SP, 1080, 250.0, 1, RUN5, 15.33, Role::Check),
-    hw("Run 6", "Table 4.7", SP, 1080, 250.0, 1, RUN6, 14.66, Role::Check),
-    hw("HW baseline", "Table 4.6", SP, 1080, 100.0, 1, RUN1, 24.0236, Role::Check),
-    hw("HW baseline", "Table 4.6", SP, 720, 100.0, 1, RUN1, 10.71, Role::Check),
-    hw("HW baseline", "Table 4.6", SP2, 1080, 100.0, 1, RUN1, 23.9776, Role::Check),
-    hw("HW baseline", "Table 4.6", SP2, 720, 100.0, 1, RUN1, 10.69, Role::Check),
-    hw("x2", "Table 4.15", SP, 1080, 187.0, 2, RUN7, 17.03, Role::Check),
-    hw("x2", "Table 4.15", SP, 1080, 100.0, 2, RUN1, 24.70, Role::Check),
-    hw("x4", "Table 4.15", SP, 1080, 100.0, 4, RUN1, 21.46, Role::Check),
-    hw("x8", "Table 4.15", SP, 1080, 100.0, 8, RUN1, 26.81, Role::Check),
+    hw(
+        "Run 1",
+        "Table 4.7",
+        SP,
+        1080,
+        100.0,
+        1,
+        RUN1,
+        23.94,
+        Role::Fit,
+    ),
+    hw(
+        "Run 7",
+        "Table 4.7",
+        SP,
+        1080,
+        214.0,
+        1,
+        RUN7,
+        17.36,
+        Role::Fit,
+    ),
+    hw(
+        "Run 2",
+        "Table 4.7",
+        SP,
+        1080,
+        100.0,
+        1,
+        RUN2,
+        26.87,
+        Role::Check,
+    ),
+    hw(
+        "Run 3",
+        "Table 4.7",
+        SP,
+        1080,
+        250.0,
+        1,
+        RUN1,
+        21.95,
+        Role::Check,
+    ),
+    hw(
+        "Run 4",
+        "Table 4.7",
+        SP,
+        1080,
+        250.0,
+        1,
+        RUN2,
+        23.17,
+        Role::Check,
+    ),
+    hw(
+        "Run 5",
+        "Table 4.7",
+        SP,
+        1080,
+        250.0,
+        1,
+        RUN5,
+        15.33,
+        Role::Check,
+    ),
+    hw(
+        "Run 6",
+        "Table 4.7",
+        SP,
+        1080,
+        250.0,
+        1,
+        RUN6,
+        14.66,
+        Role::Check,
+    ),
+    hw(
+        "HW baseline",
+        "Table 4.6",
+        SP,
+        1080,
+        100.0,
+        1,
+        RUN1,
+        24.0236,
+        Role::Check,
+    ),
+    hw(
+        "HW baseline",
+        "Table 4.6",
+        SP,
+        720,
+        100.0,
+        1,
+        RUN1,
+        10.71,
+        Role::Check,
+    ),
+    hw(
+        "HW baseline",
+        "Table 4.6",
+        SP2,
+        1080,
+        100.0,
+        1,
+        RUN1,
+        23.9776,
+        Role::Check,
+    ),
+    hw(
+        "HW baseline",
+        "Table 4.6",
+        SP2,
+        720,
+        100.0,
+        1,
+        RUN1,
+        10.69,
+        Role::Check,
+    ),
+    hw(
+        "x2",
+        "Table 4.15",
+        SP,
+        1080,
+        187.0,
+        2,
+        RUN7,
+        17.03,
+        Role::Check,
+    ),
+    hw(
+        "x2",
+        "Table 4.15",
+        SP,
+        1080,
+        100.0,
+        2,
+        RUN1,
+        24.70,
+        Role::Check,
+    ),
+    hw(
+        "x4",
+        "Table 4.15",
+        SP,
+        1080,
+        100.0,
+        4,
+        RUN1,
+        21.46,
+        Role::Check,
+    ),
+    hw(
+        "x8",
+        "Table 4.15",
+        SP,
+        1080,
+        100.0,
+        8,
+        RUN1,
+        26.81,
+        Role::Check,
+    ),
 ];
 
 /// Workloads of the thesis scenes, rendered once each.
@@ -131,16 +304,25 @@ pub struct Workloads {
 impl Workloads {
     /// `root` holds the thesis scene directories (`/work/shared/scenes/thesis`).
     pub fn new(root: &Path) -> Workloads {
-        Workloads { root: root.to_path_buf(), cache: HashMap::new() }
+        Workloads {
+            root: root.to_path_buf(),
+            cache: HashMap::new(),
+        }
     }
 
-    pub fn get(&mut self, scene: &str, width: u32, height: u32) -> Result<&Workload, ProjectionError> {
+    pub fn get(
+        &mut self,
+        scene: &str,
+        width: u32,
+        height: u32,
+    ) -> Result<&Workload, ProjectionError> {
         let key = (scene.to_string(), width, height);
         if !self.cache.contains_key(&key) {
             let dir = self.root.join(scene);
             let loaded = Scene::load(&dir.to_string_lossy())
                 .map_err(|e| ProjectionError::Scene(format!("{}: {e}", dir.display())))?;
-            self.cache.insert(key.clone(), Workload::measure(&loaded, width, height)?);
+            self.cache
+                .insert(key.clone(), Workload::measure(&loaded, width, height)?);
         }
         Ok(&self.cache[&key])
     }
@@ -150,9 +332,16 @@ impl Workloads {
 pub fn modelled_s(m: &Measurement, w: &Workload, b: &Board) -> Result<f64, ProjectionError> {
     match m.setup {
         Setup::Arm => Ok(b.arm_only_s(w, Traversal::BruteForce)),
-        Setup::Accelerator { fpl_mhz, units, latency } => {
+        Setup::Accelerator {
+            fpl_mhz,
+            units,
+            latency,
+        } => {
             let design = Design {
-                frontend: Frontend::Thesis { units, cycles_per_test: (latency.0 + latency.1) / 2.0 },
+                frontend: Frontend::Thesis {
+                    units,
+                    cycles_per_test: (latency.0 + latency.1) / 2.0,
+                },
                 traversal: Traversal::BruteForce,
                 fpl_mhz,
             };
@@ -186,22 +375,43 @@ pub fn calibrate(
     workloads: &mut Workloads,
     include: impl Fn(&Measurement) -> bool,
 ) -> Result<Calibration, ProjectionError> {
-    let fits: Vec<&Measurement> = THESIS_MEASUREMENTS.iter().filter(|m| m.role == Role::Fit).collect();
+    let fits: Vec<&Measurement> = THESIS_MEASUREMENTS
+        .iter()
+        .filter(|m| m.role == Role::Fit)
+        .collect();
     let (arm_fits, hw_fits): (Vec<&Measurement>, Vec<&Measurement>) =
         fits.iter().partition(|m| m.setup == Setup::Arm);
-    let mut board = Board { arm_ray_ns: 0.0, arm_test_ns: 0.0, access_fixed_ns: 0.0, access_pl_cycles: 0.0 };
-    let [ray, test] = fit_pair(workloads, &arm_fits, |p| Board { arm_ray_ns: p[0], arm_test_ns: p[1], ..board })?;
+    let mut board = Board {
+        arm_ray_ns: 0.0,
+        arm_test_ns: 0.0,
+        access_fixed_ns: 0.0,
+        access_pl_cycles: 0.0,
+    };
+    let [ray, test] = fit_pair(workloads, &arm_fits, |p| Board {
+        arm_ray_ns: p[0],
+        arm_test_ns: p[1],
+        ..board
+    })?;
     board.arm_ray_ns = ray;
     board.arm_test_ns = test;
-    let [fixed, cycles] =
-        fit_pair(workloads, &hw_fits, |p| Board { access_fixed_ns: p[0], access_pl_cycles: p[1], ..board })?;
+    let [fixed, cycles] = fit_pair(workloads, &hw_fits, |p| Board {
+        access_fixed_ns: p[0],
+        access_pl_cycles: p[1],
+        ..board
+    })?;
     board.access_fixed_ns = fixed;
     board.access_pl_cycles = cycles;
 
     let mut rows = Vec::new();
-    for m in THESIS_MEASUREMENTS.iter().filter(|m| m.role == Role::Fit || include(m)) {
+    for m in THESIS_MEASUREMENTS
+        .iter()
+        .filter(|m| m.role == Role::Fit || include(m))
+    {
         let w = workloads.get(m.scene, m.width, m.height)?;
-        rows.push(CalibrationRow { measurement: *m, modelled_s: modelled_s(m, w, &board)? });
+        rows.push(CalibrationRow {
+            measurement: *m,
+            modelled_s: modelled_s(m, w, &board)?,
+        });
     }
     Ok(Calibration { board, rows })
 }
@@ -215,7 +425,10 @@ fn fit_pair(
     with: impl Fn([f64; 2]) -> Board,
 ) -> Result<[f64; 2], ProjectionError> {
     let [m0, m1] = fits else {
-        return Err(ProjectionError::Fit(format!("expected 2 measurements to fit 2 constants, got {}", fits.len())));
+        return Err(ProjectionError::Fit(format!(
+            "expected 2 measurements to fit 2 constants, got {}",
+            fits.len()
+        )));
     };
     let w0 = workloads.get(m0.scene, m0.width, m0.height)?.clone();
     let w1 = workloads.get(m1.scene, m1.width, m1.height)?.clone();
@@ -226,7 +439,12 @@ fn fit_pair(
     let base = eval([0.0, 0.0])?;
     let e0 = eval([1.0, 0.0])?;
     let e1 = eval([0.0, 1.0])?;
-    let (a, b, c, d) = (e0[0] - base[0], e1[0] - base[0], e0[1] - base[1], e1[1] - base[1]);
+    let (a, b, c, d) = (
+        e0[0] - base[0],
+        e1[0] - base[0],
+        e0[1] - base[1],
+        e1[1] - base[1],
+    );
     let (r0, r1) = (m0.seconds - base[0], m1.seconds - base[1]);
     let det = a * d - b * c;
     if det.abs() < 1e-12 * (a.abs() + b.abs()) * (c.abs() + d.abs()) {

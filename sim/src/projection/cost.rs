@@ -99,11 +99,16 @@ impl Design {
             if x.is_finite() && x > 0.0 {
                 Ok(())
             } else {
-                Err(ProjectionError::Invalid(format!("{what} {x}: expected a positive number")))
+                Err(ProjectionError::Invalid(format!(
+                    "{what} {x}: expected a positive number"
+                )))
             }
         };
         match self.frontend {
-            Frontend::Thesis { units, cycles_per_test } => {
+            Frontend::Thesis {
+                units,
+                cycles_per_test,
+            } => {
                 if units == 0 {
                     return Err(ProjectionError::Invalid(
                         "0 accelerators: expected at least 1".into(),
@@ -111,9 +116,18 @@ impl Design {
                 }
                 positive("cycles per test", cycles_per_test)
             }
-            Frontend::Stream { lanes, cycles_per_test, hp_ports, dma_efficiency, pack_arm_cycles, .. } => {
+            Frontend::Stream {
+                lanes,
+                cycles_per_test,
+                hp_ports,
+                dma_efficiency,
+                pack_arm_cycles,
+                ..
+            } => {
                 if lanes == 0 {
-                    return Err(ProjectionError::Invalid("0 lanes: expected at least 1".into()));
+                    return Err(ProjectionError::Invalid(
+                        "0 lanes: expected at least 1".into(),
+                    ));
                 }
                 if !(1..=4).contains(&hp_ports) {
                     return Err(ProjectionError::Invalid(format!(
@@ -163,7 +177,10 @@ pub fn project(w: &Workload, d: &Design, b: &Board) -> Result<Breakdown, Project
     let cycle_s = 1e-6 / d.fpl_mhz;
     let access_s = b.access_ns(d.fpl_mhz) * 1e-9;
     Ok(match d.frontend {
-        Frontend::Thesis { units, cycles_per_test } => {
+        Frontend::Thesis {
+            units,
+            cycles_per_test,
+        } => {
             // While one unit computes, the driver sets up the other units' calls.
             let hidden = f64::from(units - 1) * SETUP_ACCESSES * access_s;
             let wait = (cycles_per_test * cycle_s - hidden).max(0.0);
@@ -176,8 +193,16 @@ pub fn project(w: &Workload, d: &Design, b: &Board) -> Result<Breakdown, Project
                 accel_s: n * wait,
             }
         }
-        Frontend::Stream { lanes, cycles_per_test, pipeline_latency, hp_ports, dma_efficiency, pack_arm_cycles } => {
-            let bytes_per_s = f64::from(hp_ports) * HP_PORT_BYTES_PER_CYCLE * dma_efficiency / cycle_s;
+        Frontend::Stream {
+            lanes,
+            cycles_per_test,
+            pipeline_latency,
+            hp_ports,
+            dma_efficiency,
+            pack_arm_cycles,
+        } => {
+            let bytes_per_s =
+                f64::from(hp_ports) * HP_PORT_BYTES_PER_CYCLE * dma_efficiency / cycle_s;
             // Read and write channels run in parallel; the slower of them and the lanes sets the pace.
             let streaming = (n * QUERY_BYTES / bytes_per_s)
                 .max(n * RESULT_BYTES / bytes_per_s)
