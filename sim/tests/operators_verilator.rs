@@ -1,21 +1,24 @@
-//! The rust-hdl float operators, Verilated, streamed one vector per cycle (II = 1) and checked
-//! bit for bit against `hw_model`, at 0 and at the maximum number of pipeline stages.
-//! Default run: 50k vectors per case, fp32 multiply and fp16 add. The ≥1M-vector run:
+//! The rust-hdl operators, Verilated, streamed one vector per cycle (II = 1) and checked bit
+//! for bit against `hw_model`, at 0 and at the maximum number of pipeline stages.
+//! Default run: 50k vectors per case, fp32 multiply, fp16 add and fx32_16_rnd_sat multiply.
+//! The ≥1M-vector run over every operator of fp32, fp16 and fx32_16_rnd_sat:
 //! `cargo test --release -p sim --test operators_verilator -- --ignored`.
 
-use hdl::formats::{fp16, fp32};
+use hdl::formats::{fp16, fp32, fx32_16_rnd_sat};
 use hdl::operator::Operator;
 use hw_model::Format;
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use rust_hdl::prelude::*;
 use sim::{build, run_pipelined, BuildOptions, ModelSpec};
 
-/// Random operand pairs of a float format: half uniformly random bit patterns, half pairs of
-/// close magnitudes (cancellation in add/sub, ties in rounding) with random signs.
+/// Random operand pairs: half uniformly random bit patterns, half pairs of close values
+/// (cancellation in add/sub, ties in rounding) with random signs.
 fn vectors(format: Format, n: usize, seed: u64) -> Vec<[u64; 2]> {
     let width = format.width();
-    let Format::Float { man, .. } = format else {
-        panic!("float formats only")
+    // Bits that make "close" operands: the fraction field of a float, the low half of a fixed.
+    let man = match format {
+        Format::Float { man, .. } => man,
+        Format::Fixed { .. } => width / 2,
     };
     let mask = (1u64 << width) - 1;
     let mut rng = StdRng::seed_from_u64(seed);
@@ -131,12 +134,25 @@ macro_rules! check_format {
                 s($fmt::Recip::max_stages()),
                 r / 1e6
             );
+            check::<$fmt::ToF32>(
+                concat!(stringify!($fmt), " to_f32"),
+                s($fmt::ToF32::max_stages()),
+                &v,
+                |a, _| u64::from(f.to_f32(a).to_bits()),
+            );
+            let fp32_bits = vectors(fp32::FORMAT, v.len(), 0xf32);
+            check::<$fmt::FromF32>(
+                concat!(stringify!($fmt), " from_f32"),
+                s($fmt::FromF32::max_stages()),
+                &fp32_bits,
+                |a, _| f.from_f32(f32::from_bits(a as u32)),
+            );
         }
     }};
 }
 
-/// fp32 multiply and fp16 add at 0 and max stages (four Verilator builds, cached after the
-/// first run); the ignored test below covers every operator of both formats.
+/// fp32 multiply, fp16 add and a fixed-point multiply at 0 and max stages (six Verilator
+/// builds, cached after the first run); the ignored test below covers every operator.
 #[test]
 fn fp32_mul_and_fp16_add_match_the_model() {
     for stages in [0, usize::MAX] {
@@ -146,13 +162,17 @@ fn fp32_mul_and_fp16_add_match_the_model() {
         let f = fp16::FORMAT;
         let s = stages.min(fp16::Add::max_stages());
         check::<fp16::Add>("fp16 add", s, &vectors(f, 50_000, 2), |a, b| f.add(a, b));
+        let f = fx32_16_rnd_sat::FORMAT;
+        let s = stages.min(fx32_16_rnd_sat::Mul::max_stages());
+        check::<fx32_16_rnd_sat::Mul>("fx32_16_rnd_sat mul", s, &vectors(f, 50_000, 3), |a, b| f.mul(a, b));
     }
 }
 
 /// `cargo test --release -p sim --test operators_verilator -- --ignored`
 #[test]
 #[ignore]
-fn all_float_operators_match_the_model_on_1m_vectors() {
+fn all_operators_match_the_model_on_1m_vectors() {
     check_format!(fp32, 1 << 20);
     check_format!(fp16, 1 << 20);
+    check_format!(fx32_16_rnd_sat, 1 << 20);
 }
