@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Installs the system tools the project drives: Verilator (co-simulation), Yosys (resource
-# reports), Icarus Verilog (a second compiler check). Debian/Ubuntu, run as root or with sudo.
+# reports), Icarus Verilog (a second compiler check), Tcl (checks of the Vivado scripts). Debian/Ubuntu, run as root or with sudo.
 set -euo pipefail
 need=()
 command -v verilator >/dev/null 2>&1 || need+=(verilator)
 command -v yosys >/dev/null 2>&1 || need+=(yosys)
 command -v iverilog >/dev/null 2>&1 || need+=(iverilog)
 command -v g++ >/dev/null 2>&1 || need+=(g++)
+command -v tclsh >/dev/null 2>&1 || need+=(tcl)
 command -v make >/dev/null 2>&1 || need+=(make)
 if [ ${#need[@]} -eq 0 ]; then
   exit 0
