@@ -1,7 +1,13 @@
 //! Verilator co-simulation: the model builder and cache, the FFI to Verilated models, and
 //! helpers that drive them.
 
+pub mod accel_model;
+pub mod axil_master;
+pub mod cosim_error;
 pub mod error;
+pub mod hw_intersector;
+pub mod stream_driver;
+pub mod trace;
 pub mod projection;
 pub mod verilator;
 
