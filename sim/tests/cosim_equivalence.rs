@@ -1,0 +1,57 @@
+//! fp16 and the thesis' ap_fixed<32,16>: the Verilated accelerator answers 100% of the
+//! queries of real renders exactly like `hw_model::mt_model` — a trace recorded from the
+//! renders, written to a file, read back and replayed into both, for two pipeline depths and
+//! two lane counts per format. Four model builds (~1–2 min each the first time, then cached).
+
+use hdl::top::TopConfig;
+use hw_model::MtQuery;
+use sim::hw_intersector::{HwIntersector, Mode};
+use sim::trace::{first_difference, read_trace, replay, write_trace, Recorder};
+use sw_renderer::intersect::F32Intersector;
+use sw_renderer::model_engine::ModelIntersector;
+use sw_renderer::render::{render, RenderOptions};
+use sw_renderer::scene::Scene;
+
+/// The queries of two built-in scenes rendered at 40×22, through a trace file.
+fn recorded_queries() -> Vec<MtQuery> {
+    let rec = Recorder::new(&F32Intersector);
+    let opts = RenderOptions { width: Some(40), height: Some(22), ..RenderOptions::default() };
+    let mut expected = 0;
+    for name in ["simple_plane", "glasses"] {
+        expected += render(&Scene::load(name).unwrap(), &rec, &opts).unwrap().stats.trace.mt_queries;
+    }
+    let queries = rec.into_queries();
+    assert_eq!(queries.len() as u64, expected);
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("renders.trace");
+    write_trace(&path, &queries).unwrap();
+    read_trace(&path).unwrap()
+}
+
+fn check(format: &str, configs: [(usize, usize); 2], queries: &[MtQuery]) {
+    let model = ModelIntersector { format: hw_model::lookup(format).unwrap() };
+    let want = replay(&model, queries, &|_| {});
+    for (depth, lanes) in configs {
+        let hw = HwIntersector::new(&TopConfig::new(format, depth, lanes), Mode::Stream).unwrap();
+        let got = replay(&hw, queries, &|_| {});
+        assert!(hw.take_error().is_none());
+        assert_eq!(hw.stats().tests, queries.len() as u64);
+        if let Some(d) = first_difference(&got, &want) {
+            panic!("{format} d{depth} l{lanes}: hardware vs model differ at {d}");
+        }
+        println!("{format} d{depth} l{lanes}: {} queries identical, {:.0} tests/s per core", queries.len(), hw.stats().tests_per_sec());
+    }
+    assert!(want.iter().filter(|r| r.hit).count() > queries.len() / 50, "too few hits to mean anything");
+}
+
+#[test]
+fn fp16_hardware_equals_the_model_on_real_render_queries() {
+    let max = hdl::mt::max_depth("fp16").unwrap();
+    check("fp16", [(0, 1), (max.min(2), 2)], &recorded_queries());
+}
+
+#[test]
+fn fixed_32_16_hardware_equals_the_model_on_real_render_queries() {
+    let max = hdl::mt::max_depth("fx32_16").unwrap();
+    check("fx32_16", [(0, 2), (max.min(2), 1)], &recorded_queries());
+}
