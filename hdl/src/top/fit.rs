@@ -95,13 +95,6 @@ pub fn synthesize_top(config: &TopConfig, options: &SynthOptions) -> Result<Synt
     Ok(synthesize(&top_verilog(config)?, wrapper::TOP, options)?)
 }
 
-/// Synthesises `config`'s format and depth with 1 and 2 lanes and estimates the lanes that fit.
-pub fn lanes_that_fit(config: &TopConfig, options: &SynthOptions, device: &Device) -> Result<LaneFit, FitError> {
-    let at = |lanes| -> Result<Usage, FitError> {
-        Ok(Usage::of(&synthesize_top(&TopConfig::new(&config.format, config.depth, lanes), options)?))
-    };
-    Ok(fit_from(at(1)?, at(2)?, device))
-}
 
 #[cfg(test)]
 mod tests {

@@ -136,6 +136,15 @@ mod tests {
     }
 
     #[test]
+    fn the_result_fifo_covers_every_latency() {
+        for name in crate::formats::NAMES {
+            let max = crate::mt::max_depth(name).unwrap();
+            let worst = (0..=max).map(|d| crate::mt::latency(name, d).unwrap()).max().unwrap();
+            assert!(worst + 2 <= stream::FIFO_DEPTH, "{name}: latency {worst} leaves the FIFO short of full rate");
+        }
+    }
+
+    #[test]
     fn every_hardware_format_has_an_accelerator() {
         for name in crate::formats::NAMES {
             // Cheapest configuration: depth 0, one lane.

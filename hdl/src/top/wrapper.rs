@@ -189,7 +189,7 @@ mod tests {
         assert!(out.contains("endmodule // rtfpga_core\n"), "{out}");
         assert!(out.contains("module rtfpga_core$a$b(x);"), "{out}");
         assert!(out.contains("module topper(x);"), "{out}");
-        assert!(!out.contains("module top"), "{out}");
+        assert!(!out.contains("module top(") && !out.contains("module top$"), "{out}");
     }
 
     #[test]
