@@ -191,7 +191,7 @@ fn latency_table_answers_every_format_and_rejects_unknown_ones() {
             .collect();
         assert_eq!(latencies[0], 0, "{name}: a combinational lane");
         assert!(
-            latencies.windows(2).all(|w| w[0] < w[1] || w[0] == w[1]),
+            latencies.windows(2).all(|w| w[0] <= w[1]),
             "{name}: {latencies:?}"
         );
         assert_eq!(
@@ -251,8 +251,8 @@ fn latency_table() {
 #[ignore]
 fn lane_resources() {
     use hdl::synth::{synthesize, SynthOptions, SynthReport};
-    let lanes: [(&str, fn(usize) -> String); 2] = [
-        (fp32::NAME, fp32::mt_lane_verilog),
+    let lanes = [
+        (fp32::NAME, fp32::mt_lane_verilog as fn(usize) -> String),
         (fp16::NAME, fp16::mt_lane_verilog),
     ];
     println!("{}", SynthReport::markdown_header());

@@ -51,7 +51,7 @@ mod tests {
             uut.d.next = cycle.into();
             uut.clock.next = Clock { clk: false };
             assert!(simulate(&mut uut, 100));
-            let want = cycle.checked_sub(cycles as u64).unwrap_or(0);
+            let want = cycle.saturating_sub(cycles as u64);
             assert_eq!(uut.q.val().to_u64(), want, "delay {cycles}, cycle {cycle}");
             uut.clock.next = Clock { clk: true };
             assert!(simulate(&mut uut, 100));
