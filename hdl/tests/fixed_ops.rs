@@ -14,7 +14,9 @@ use rand::{rngs::StdRng, Rng, SeedableRng};
 
 /// (int, frac) of a fixed format.
 fn layout(format: Format) -> (u32, u32) {
-    let Format::Fixed { int, frac, .. } = format else { panic!("fixed formats only") };
+    let Format::Fixed { int, frac, .. } = format else {
+        panic!("fixed formats only")
+    };
     (int, frac)
 }
 
@@ -34,13 +36,33 @@ fn edge_values(format: Format) -> Vec<u64> {
     let half = one / 2;
     let root = 1i64 << ((w - 1 + frac) / 2); // root² ≈ 2·max: products just past the range
     let mut v = vec![
-        0, 1, 2, 3, max, max - 1, max / 2 + 1, one, one + 1, one - 1, half, half + 1, half - 1,
-        3 * half, 5, root, root - 1, root + 1, 1 << (w - 2),
+        0,
+        1,
+        2,
+        3,
+        max,
+        max - 1,
+        max / 2 + 1,
+        one,
+        one + 1,
+        one - 1,
+        half,
+        half + 1,
+        half - 1,
+        3 * half,
+        5,
+        root,
+        root - 1,
+        root + 1,
+        1 << (w - 2),
     ];
     if 2 * frac + 1 < w - 1 {
         v.push(1 << (2 * frac + 1));
     }
-    let mut all: Vec<u64> = v.iter().flat_map(|&x| [pattern(format, x), pattern(format, -x)]).collect();
+    let mut all: Vec<u64> = v
+        .iter()
+        .flat_map(|&x| [pattern(format, x), pattern(format, -x)])
+        .collect();
     all.push(pattern(format, -max - 1)); // min
     all.sort_unstable();
     all.dedup();
@@ -53,11 +75,15 @@ fn vectors(format: Format, random: usize, seed: u64) -> Vec<(u64, u64)> {
     let (_, frac) = layout(format);
     let w = format.width();
     let edges = edge_values(format);
-    let mut v: Vec<(u64, u64)> = edges.iter().flat_map(|&a| edges.iter().map(move |&b| (a, b))).collect();
+    let mut v: Vec<(u64, u64)> = edges
+        .iter()
+        .flat_map(|&a| edges.iter().map(move |&b| (a, b)))
+        .collect();
     let mut rng = StdRng::seed_from_u64(seed);
     let any = |rng: &mut StdRng| pattern(format, rng.gen::<i64>());
     let small = |rng: &mut StdRng| pattern(format, rng.gen_range(-(4i64 << frac)..(4i64 << frac)));
-    let near_limit = |rng: &mut StdRng| pattern(format, (1i64 << (w - 1)) - rng.gen_range(0..(1i64 << frac)));
+    let near_limit =
+        |rng: &mut StdRng| pattern(format, (1i64 << (w - 1)) - rng.gen_range(0..(1i64 << frac)));
     for i in 0..random {
         let pair = match i % 4 {
             0 => (any(&mut rng), any(&mut rng)),
@@ -83,8 +109,15 @@ fn format_value(format: Format, bits: u64) -> i64 {
 fn singles(format: Format, random: usize, seed: u64) -> Vec<(u64, u64)> {
     let edges = edge_values(format);
     let pairs = vectors(format, random, seed);
-    let randoms = pairs[edges.len() * edges.len()..].iter().flat_map(|&(a, b)| [a, b]);
-    edges.iter().copied().chain(randoms).map(|a| (a, 0)).collect()
+    let randoms = pairs[edges.len() * edges.len()..]
+        .iter()
+        .flat_map(|&(a, b)| [a, b]);
+    edges
+        .iter()
+        .copied()
+        .chain(randoms)
+        .map(|a| (a, 0))
+        .collect()
 }
 
 /// fp32 inputs for the conversion to `format`: NaNs, ±Inf, zeros, subnormals, huge and tiny
@@ -133,7 +166,9 @@ fn fp32_inputs(format: Format, random: usize, seed: u64) -> Vec<(u64, u64)> {
     }
     for _ in 0..random {
         let exponent = rng.gen_range(127 - frac as i32 - 30..=127 + int as i32 + 30) as u32;
-        x.push(f32::from_bits((rng.gen::<u32>() & 0x807f_ffff) | (exponent << 23)));
+        x.push(f32::from_bits(
+            (rng.gen::<u32>() & 0x807f_ffff) | (exponent << 23),
+        ));
     }
     x.into_iter().map(|f| (f.to_bits() as u64, 0)).collect()
 }
@@ -146,7 +181,10 @@ fn check<T: Operator>(what: &str, vectors: &[(u64, u64)], model: impl Fn(u64, u6
         let out = simulate_operator::<T>(stages, vectors);
         for (&(a, b), &y) in vectors.iter().zip(&out) {
             let want = model(a, b);
-            assert_eq!(y, want, "{what} stages={stages}: a={a:#x} b={b:#x} gave {y:#x}, model {want:#x}");
+            assert_eq!(
+                y, want,
+                "{what} stages={stages}: a={a:#x} b={b:#x} gave {y:#x}, model {want:#x}"
+            );
         }
     }
 }
@@ -218,14 +256,37 @@ fixed_tests!(
 fn every_catalogue_fixed_format_has_operators() {
     for entry in hw_model::catalogue() {
         if let Format::Fixed { frac, .. } = entry.format {
-            assert!(formats::NAMES.contains(&entry.name), "{} has no operators", entry.name);
+            assert!(
+                formats::NAMES.contains(&entry.name),
+                "{} has no operators",
+                entry.name
+            );
             let max = formats::max_stages(entry.name, Op::Recip).unwrap();
-            assert_eq!(max, 2 * frac as usize + 2, "{}: one recip cut a quotient bit", entry.name);
+            assert_eq!(
+                max,
+                2 * frac as usize + 3,
+                "{}: recip has a cut per division row and 3 more",
+                entry.name
+            );
             let rtl = formats::rtl(entry.name, Op::FromF32, 1).unwrap();
-            assert_eq!((rtl.a_width, rtl.b_width, rtl.y_width, rtl.latency), (32, 0, entry.format.width() as usize, 1));
+            assert_eq!(
+                (rtl.a_width, rtl.b_width, rtl.y_width, rtl.latency),
+                (32, 0, entry.format.width() as usize, 1)
+            );
             let rtl = formats::rtl(entry.name, Op::Lt, 0).unwrap();
-            assert_eq!((rtl.a_width, rtl.b_width, rtl.y_width), (entry.format.width() as usize, entry.format.width() as usize, 1));
-            let too_many = formats::rtl(entry.name, Op::Mul, formats::max_stages(entry.name, Op::Mul).unwrap() + 1);
+            assert_eq!(
+                (rtl.a_width, rtl.b_width, rtl.y_width),
+                (
+                    entry.format.width() as usize,
+                    entry.format.width() as usize,
+                    1
+                )
+            );
+            let too_many = formats::rtl(
+                entry.name,
+                Op::Mul,
+                formats::max_stages(entry.name, Op::Mul).unwrap() + 1,
+            );
             assert!(matches!(too_many, Err(OperatorError::TooManyStages { .. })));
         }
     }
@@ -236,10 +297,22 @@ fn every_catalogue_fixed_format_has_operators() {
 fn fx32_16_mul_synthesises_onto_dsp_slices() {
     for stages in [0, formats::fx32_16::max_stages(Op::Mul)] {
         let rtl = formats::fx32_16::rtl(Op::Mul, stages).unwrap();
-        let r = synthesize(&rtl.verilog, TOP, &SynthOptions::default()).expect("yosys synth_xilinx");
-        eprintln!("fx32_16 mul stages={stages}: {} LUT {} FF {} DSP48E1 {} CARRY4", r.lut, r.ff, r.dsp48e1, r.carry4);
-        assert!((1..=4).contains(&r.dsp48e1), "fx32_16 mul uses {} DSP48E1", r.dsp48e1);
-        assert!(r.lut < 400, "fx32_16 mul uses {} LUTs: the multiplier went into fabric", r.lut);
+        let r =
+            synthesize(&rtl.verilog, TOP, &SynthOptions::default()).expect("yosys synth_xilinx");
+        eprintln!(
+            "fx32_16 mul stages={stages}: {} LUT {} FF {} DSP48E1 {} CARRY4",
+            r.lut, r.ff, r.dsp48e1, r.carry4
+        );
+        assert!(
+            (1..=4).contains(&r.dsp48e1),
+            "fx32_16 mul uses {} DSP48E1",
+            r.dsp48e1
+        );
+        assert!(
+            r.lut < 400,
+            "fx32_16 mul uses {} LUTs: the multiplier went into fabric",
+            r.lut
+        );
     }
 }
 
@@ -254,8 +327,12 @@ fn synthesis_table() {
             let max = formats::max_stages(format, op).unwrap();
             for stages in [0, max] {
                 let rtl = formats::rtl(format, op, stages).unwrap();
-                let r = synthesize(&rtl.verilog, TOP, &SynthOptions::default()).expect("yosys synth_xilinx");
-                println!("| {format} | {op} | {stages} | {} | {} | {} | {} | {} |", r.lut, r.ff, r.dsp48e1, r.carry4, r.logic_depth);
+                let r = synthesize(&rtl.verilog, TOP, &SynthOptions::default())
+                    .expect("yosys synth_xilinx");
+                println!(
+                    "| {format} | {op} | {stages} | {} | {} | {} | {} | {} |",
+                    r.lut, r.ff, r.dsp48e1, r.carry4, r.logic_depth
+                );
             }
         }
     }

@@ -52,7 +52,9 @@ impl<const W: usize, const W1: usize, const SAT: bool, const SUB: bool> FixedAdd
     }
 }
 
-impl<const W: usize, const W1: usize, const SAT: bool, const SUB: bool> Logic for FixedAdd<W, W1, SAT, SUB> {
+impl<const W: usize, const W1: usize, const SAT: bool, const SUB: bool> Logic
+    for FixedAdd<W, W1, SAT, SUB>
+{
     #[hdl_gen]
     fn update(&mut self) {
         // Sign-extend both operands by one bit: the exact sum or difference fits.

@@ -5,7 +5,10 @@
 //! shift by k + 25 puts it over 25 guard bits: above them the magnitude, then the round bit,
 //! then the sticky bits. k is clamped to [−25, W]: below, the magnitude is 0 and only the
 //! sticky bit is set; above, the low W bits are 0 and the value is out of range, as it is
-//! for any larger k. `SignedRound` quantises, `Fit` applies the overflow mode.
+//! for any larger k. A magnitude ≥ 2^W is out of range whatever its sign, and only its low
+//! W bits matter to Wrap, so it is kept as those bits plus bit W = "≥ 2^W": the rounding
+//! and the overflow logic stay W+3 bits wide. `SignedRound` quantises, `Fit` applies the
+//! overflow mode.
 //! Cut points (max_stages() = 2): 0. after the alignment shift; 1. after quantisation.
 //!
 //! `ToF32`: |x| is normalized (leading one to the top) and rounded once, RNE, by the float
@@ -25,9 +28,16 @@ use crate::pipe::{placement, Pipe};
 const GUARD: usize = 25;
 
 /// fp32 → fixed. W: the format's width, F its fraction bits; L = W + 49 (the aligned
-/// significand); K = W + 25 (the signed magnitude); RND: round to nearest; SAT: saturate.
+/// significand); K = W + 3 (the signed magnitude); RND: round to nearest; SAT: saturate.
 #[derive(LogicBlock)]
-pub struct FixedFromF32<const W: usize, const F: usize, const L: usize, const K: usize, const RND: bool, const SAT: bool> {
+pub struct FixedFromF32<
+    const W: usize,
+    const F: usize,
+    const L: usize,
+    const K: usize,
+    const RND: bool,
+    const SAT: bool,
+> {
     pub clock: Signal<In, Clock>,
     pub a: Signal<In, Bits<32>>,
     pub y: Signal<Out, Bits<W>>,
@@ -53,14 +63,23 @@ pub struct FixedFromF32<const W: usize, const F: usize, const L: usize, const K:
     guard: Constant<Bits<8>>,
     round_bit: Constant<Bits<L>>,
     sticky_bits: Constant<Bits<L>>,
+    overflow_shift: Constant<Bits<8>>,
+    low_bits: Constant<Bits<K>>,
+    overflow_bit: Constant<Bits<K>>,
     no_amount: Constant<Bits<10>>,
     zero: Constant<Bits<W>>,
     max: Constant<Bits<W>>,
     min: Constant<Bits<W>>,
 }
 
-impl<const W: usize, const F: usize, const L: usize, const K: usize, const RND: bool, const SAT: bool>
-    FixedFromF32<W, F, L, K, RND, SAT>
+impl<
+        const W: usize,
+        const F: usize,
+        const L: usize,
+        const K: usize,
+        const RND: bool,
+        const SAT: bool,
+    > FixedFromF32<W, F, L, K, RND, SAT>
 {
     pub const CUTS: usize = 2;
 
@@ -70,7 +89,7 @@ impl<const W: usize, const F: usize, const L: usize, const K: usize, const RND: 
 
     pub fn new(stages: usize) -> Self {
         assert!(
-            L == W + 24 + GUARD && K == W + GUARD && F < W && W <= 64,
+            L == W + 24 + GUARD && K == W + 3 && F < W && W <= 64,
             "FixedFromF32: inconsistent widths"
         );
         let cut = placement(stages, Self::CUTS);
@@ -101,6 +120,9 @@ impl<const W: usize, const F: usize, const L: usize, const K: usize, const RND: 
             guard: Constant::new(GUARD.to_bits()),
             round_bit: Constant::new(Bits::<L>::from(1) << (GUARD - 1) as u64),
             sticky_bits: Constant::new((Bits::<L>::from(1) << (GUARD - 1) as u64) - 1),
+            overflow_shift: Constant::new((W + GUARD).to_bits()),
+            low_bits: Constant::new(Bits::<K>::mask() >> (K - W) as u64),
+            overflow_bit: Constant::new(Bits::<K>::from(1) << W as u64),
             no_amount: Constant::new(0.into()),
             zero: Constant::new(Bits::<W>::default()),
             max: Constant::new(Bits::<W>::mask() >> 1),
@@ -109,8 +131,14 @@ impl<const W: usize, const F: usize, const L: usize, const K: usize, const RND: 
     }
 }
 
-impl<const W: usize, const F: usize, const L: usize, const K: usize, const RND: bool, const SAT: bool> Logic
-    for FixedFromF32<W, F, L, K, RND, SAT>
+impl<
+        const W: usize,
+        const F: usize,
+        const L: usize,
+        const K: usize,
+        const RND: bool,
+        const SAT: bool,
+    > Logic for FixedFromF32<W, F, L, K, RND, SAT>
 {
     #[hdl_gen]
     fn update(&mut self) {
@@ -131,7 +159,13 @@ impl<const W: usize, const F: usize, const L: usize, const K: usize, const RND: 
         self.negative.clock.next = self.clock.val();
         self.nan.clock.next = self.clock.val();
         self.inf.clock.next = self.clock.val();
-        self.magnitude.d.next = bit_cast::<K, L>(self.aligned.val() >> self.guard.val());
+        self.magnitude.d.next =
+            bit_cast::<K, L>(self.aligned.val() >> self.guard.val()) & self.low_bits.val();
+        if (self.aligned.val() >> self.overflow_shift.val()).any() {
+            self.magnitude.d.next = (bit_cast::<K, L>(self.aligned.val() >> self.guard.val())
+                & self.low_bits.val())
+                | self.overflow_bit.val();
+        }
         self.round.d.next = (self.aligned.val() & self.round_bit.val()).any();
         self.sticky.d.next = (self.aligned.val() & self.sticky_bits.val()).any();
         self.negative.d.next = self.unpack.sign.val();
@@ -207,7 +241,10 @@ impl<const W: usize, const F: usize, const G: usize> FixedToF32<W, F, G> {
     }
 
     pub fn new(stages: usize) -> Self {
-        assert!(G == W + GUARD && F < W && W <= 64, "FixedToF32: inconsistent widths");
+        assert!(
+            G == W + GUARD && F < W && W <= 64,
+            "FixedToF32: inconsistent widths"
+        );
         let cut = placement(stages, Self::CUTS);
         Self {
             clock: Default::default(),

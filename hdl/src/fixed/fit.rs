@@ -20,7 +20,10 @@ pub struct Fit<const K: usize, const W: usize, const SAT: bool> {
 
 impl<const K: usize, const W: usize, const SAT: bool> Default for Fit<K, W, SAT> {
     fn default() -> Self {
-        assert!(K >= W && K < 256, "Fit<{K}, {W}>: the value must be at least as wide as the format");
+        assert!(
+            K >= W && K < 256,
+            "Fit<{K}, {W}>: the value must be at least as wide as the format"
+        );
         Self {
             v: Default::default(),
             y: Default::default(),

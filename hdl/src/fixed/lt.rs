@@ -42,7 +42,8 @@ impl<const W: usize> Logic for FixedLt<W> {
     fn update(&mut self) {
         // Flipping the sign bit maps two's complement order onto unsigned order.
         self.result.clock.next = self.clock.val();
-        self.result.d.next = (self.a.val() ^ self.sign_bit.val()) < (self.b.val() ^ self.sign_bit.val());
+        self.result.d.next =
+            (self.a.val() ^ self.sign_bit.val()) < (self.b.val() ^ self.sign_bit.val());
         self.y.next = self.result.q.val();
     }
 }

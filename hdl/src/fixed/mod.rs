@@ -37,20 +37,21 @@ macro_rules! fixed_format {
             };
             const RND: bool = matches!(hw_model::Quant::$quant, hw_model::Quant::Rnd);
             const SAT: bool = matches!(hw_model::Overflow::$overflow, hw_model::Overflow::Sat);
+            /// Recip's signed quotient: ±2^(2F) and every W-bit value fit.
+            const RECIP_SIGNED: usize = if 2 * $f + 2 > $i + $f {
+                2 * $f + 2
+            } else {
+                $i + $f
+            };
             // Width parameters, in the order the operators take them (see their docs).
             pub type Add = FixedAdd<{ $i + $f }, { $i + $f + 1 }, SAT, false>;
             pub type Sub = FixedAdd<{ $i + $f }, { $i + $f + 1 }, SAT, true>;
             pub type Mul = FixedMul<{ $i + $f }, $f, { 2 * ($i + $f) }, RND, SAT>;
-            pub type Recip = FixedRecip<
-                { $i + $f },
-                $f,
-                { 2 * $f + 1 },
-                { if 2 * $f + 2 > $i + $f { 2 * $f + 2 } else { $i + $f } },
-                RND,
-                SAT,
-            >;
+            pub type Recip =
+                FixedRecip<{ $i + $f }, $f, { 2 * $f + 1 }, { RECIP_SIGNED }, RND, SAT>;
             pub type Lt = FixedLt<{ $i + $f }>;
-            pub type FromF32 = FixedFromF32<{ $i + $f }, $f, { $i + $f + 49 }, { $i + $f + 25 }, RND, SAT>;
+            pub type FromF32 =
+                FixedFromF32<{ $i + $f }, $f, { $i + $f + 49 }, { $i + $f + 3 }, RND, SAT>;
             pub type ToF32 = FixedToF32<{ $i + $f }, $f, { $i + $f + 25 }>;
             $crate::formats::operator_table!();
         }

@@ -5,8 +5,10 @@
 //! signed product is a_u·b_u − 2^W·(a_sign·b_u + b_sign·a_u) modulo 2^2W; the correction
 //! (a W-bit sum) is formed next to the multiplier and subtracted from its upper half.
 //!
-//! Cut points (max_stages() = 3): 0. the operands and the correction (DSP input registers);
-//! 1. the unsigned product (DSP output register); 2. the quantised product, before saturation.
+//! Cut points (max_stages() = 4): 0. the operands and the correction (DSP input registers);
+//! 1. the unsigned product (DSP output register); 2. the signed product; 3. the quantised
+//! product, before saturation. The correction and the rounding are two 2W-bit carry chains,
+//! so they are kept apart.
 
 use rust_hdl::prelude::*;
 
@@ -16,7 +18,13 @@ use crate::pipe::{placement, Pipe};
 
 /// W: the format's width, F its fraction bits, P = 2W; RND: round to nearest; SAT: saturate.
 #[derive(LogicBlock)]
-pub struct FixedMul<const W: usize, const F: usize, const P: usize, const RND: bool, const SAT: bool> {
+pub struct FixedMul<
+    const W: usize,
+    const F: usize,
+    const P: usize,
+    const RND: bool,
+    const SAT: bool,
+> {
     pub clock: Signal<In, Clock>,
     pub a: Signal<In, Bits<W>>,
     pub b: Signal<In, Bits<W>>,
@@ -29,7 +37,7 @@ pub struct FixedMul<const W: usize, const F: usize, const P: usize, const RND: b
     product: Pipe<Bits<P>>,
     product_correction: Pipe<Bits<W>>,
     /// The signed product (`signed` would be a Verilog keyword).
-    exact: Signal<Local, Bits<P>>,
+    exact: Pipe<Bits<P>>,
     floor: Signal<Local, Bits<P>>,
     quantised: Pipe<Bits<P>>,
     fit: Fit<P, W, SAT>,
@@ -43,15 +51,20 @@ pub struct FixedMul<const W: usize, const F: usize, const P: usize, const RND: b
     zero: Constant<Bits<W>>,
 }
 
-impl<const W: usize, const F: usize, const P: usize, const RND: bool, const SAT: bool> FixedMul<W, F, P, RND, SAT> {
-    pub const CUTS: usize = 3;
+impl<const W: usize, const F: usize, const P: usize, const RND: bool, const SAT: bool>
+    FixedMul<W, F, P, RND, SAT>
+{
+    pub const CUTS: usize = 4;
 
     pub fn max_stages() -> usize {
         Self::CUTS
     }
 
     pub fn new(stages: usize) -> Self {
-        assert!(P == 2 * W && F >= 1 && F < W, "FixedMul: inconsistent widths");
+        assert!(
+            P == 2 * W && F >= 1 && F < W,
+            "FixedMul: inconsistent widths"
+        );
         let cut = placement(stages, Self::CUTS);
         Self {
             clock: Default::default(),
@@ -65,9 +78,9 @@ impl<const W: usize, const F: usize, const P: usize, const RND: bool, const SAT:
             multiplier: Default::default(),
             product: Pipe::new(cut[1]),
             product_correction: Pipe::new(cut[1]),
-            exact: Default::default(),
+            exact: Pipe::new(cut[2]),
             floor: Default::default(),
-            quantised: Pipe::new(cut[2]),
+            quantised: Pipe::new(cut[3]),
             fit: Default::default(),
             nearest: Constant::new(RND),
             sign_shift: Constant::new((W - 1).to_bits()),
@@ -108,17 +121,19 @@ impl<const W: usize, const F: usize, const P: usize, const RND: bool, const SAT:
         self.product_correction.clock.next = self.clock.val();
         self.product.d.next = self.multiplier.p.val();
         self.product_correction.d.next = self.operand_correction.q.val();
-        self.exact.next =
-            self.product.q.val() - (bit_cast::<P, W>(self.product_correction.q.val()) << self.width.val());
-        // Arithmetic shift right by F (floor), plus the first dropped bit when rounding.
-        self.floor.next = self.exact.val() >> self.frac.val();
-        if (self.exact.val() >> self.product_sign_shift.val()).any() {
-            self.floor.next = (self.exact.val() >> self.frac.val()) | self.extension.val();
-        }
         // Cut 2.
+        self.exact.clock.next = self.clock.val();
+        self.exact.d.next = self.product.q.val()
+            - (bit_cast::<P, W>(self.product_correction.q.val()) << self.width.val());
+        // Arithmetic shift right by F (floor), plus the first dropped bit when rounding.
+        self.floor.next = self.exact.q.val() >> self.frac.val();
+        if (self.exact.q.val() >> self.product_sign_shift.val()).any() {
+            self.floor.next = (self.exact.q.val() >> self.frac.val()) | self.extension.val();
+        }
+        // Cut 3.
         self.quantised.clock.next = self.clock.val();
-        self.quantised.d.next =
-            self.floor.val() + (self.nearest.val() & (self.exact.val() & self.round_bit.val()).any());
+        self.quantised.d.next = self.floor.val()
+            + (self.nearest.val() & (self.exact.q.val() & self.round_bit.val()).any());
         self.fit.v.next = self.quantised.q.val();
         self.y.next = self.fit.y.val();
     }

@@ -7,9 +7,10 @@
 //! other bits. The remainder then tells where the fraction rem/|X| lies: ≥ 1/2 when
 //! 2·rem ≥ |X|, and is exactly 0 or 1/2 otherwise; `SignedRound` applies the mode to the sign.
 //!
-//! Cut points (max_stages() = 2F + 2): 0. after taking |X|; i+1. after division row i
-//! (i < 2F); 2F+1. after quantisation, before saturation. At max_stages every
-//! register-to-register path holds one row (a W-bit subtract and a mux).
+//! Cut points (max_stages() = 2F + 3): 0. after taking |X|; i+1. after division row i
+//! (i < 2F); 2F+1. after comparing 2·rem with |X|; 2F+2. after quantisation, before
+//! saturation. At max_stages every register-to-register path holds about one row's logic
+//! (a W-bit subtract and a mux).
 
 use rust_hdl::prelude::*;
 
@@ -21,7 +22,14 @@ use crate::pipe::{chain, placement, Pipe};
 /// W: the format's width, F its fraction bits; Q = 2F+1 (quotient bits);
 /// K = max(2F+2, W) (the signed quotient); RND: round to nearest; SAT: saturate.
 #[derive(LogicBlock)]
-pub struct FixedRecip<const W: usize, const F: usize, const Q: usize, const K: usize, const RND: bool, const SAT: bool> {
+pub struct FixedRecip<
+    const W: usize,
+    const F: usize,
+    const Q: usize,
+    const K: usize,
+    const RND: bool,
+    const SAT: bool,
+> {
     pub clock: Signal<In, Clock>,
     pub a: Signal<In, Bits<W>>,
     pub y: Signal<Out, Bits<W>>,
@@ -44,6 +52,11 @@ pub struct FixedRecip<const W: usize, const F: usize, const Q: usize, const K: u
     quotient_negative: Signal<Local, Bit>,
     quotient_zero: Signal<Local, Bit>,
     doubled: Signal<Local, Bits<W>>,
+    decided_magnitude: Pipe<Bits<K>>,
+    decided_round: Pipe<Bit>,
+    decided_sticky: Pipe<Bit>,
+    decided_negative: Pipe<Bit>,
+    decided_zero: Pipe<Bit>,
     rounder: SignedRound<K, RND>,
     rounded: Pipe<Bits<K>>,
     rounded_zero: Pipe<Bit>,
@@ -57,10 +70,16 @@ pub struct FixedRecip<const W: usize, const F: usize, const Q: usize, const K: u
     max: Constant<Bits<W>>,
 }
 
-impl<const W: usize, const F: usize, const Q: usize, const K: usize, const RND: bool, const SAT: bool>
-    FixedRecip<W, F, Q, K, RND, SAT>
+impl<
+        const W: usize,
+        const F: usize,
+        const Q: usize,
+        const K: usize,
+        const RND: bool,
+        const SAT: bool,
+    > FixedRecip<W, F, Q, K, RND, SAT>
 {
-    pub const CUTS: usize = 2 * F + 2;
+    pub const CUTS: usize = 2 * F + 3;
 
     pub fn max_stages() -> usize {
         Self::CUTS
@@ -96,9 +115,14 @@ impl<const W: usize, const F: usize, const Q: usize, const K: usize, const RND: 
             quotient_negative: Default::default(),
             quotient_zero: Default::default(),
             doubled: Default::default(),
+            decided_magnitude: Pipe::new(cut[2 * F + 1]),
+            decided_round: Pipe::new(cut[2 * F + 1]),
+            decided_sticky: Pipe::new(cut[2 * F + 1]),
+            decided_negative: Pipe::new(cut[2 * F + 1]),
+            decided_zero: Pipe::new(cut[2 * F + 1]),
             rounder: Default::default(),
-            rounded: Pipe::new(cut[2 * F + 1]),
-            rounded_zero: Pipe::new(cut[2 * F + 1]),
+            rounded: Pipe::new(cut[2 * F + 2]),
+            rounded_zero: Pipe::new(cut[2 * F + 2]),
             fit: Default::default(),
             sign_shift: Constant::new((W - 1).to_bits()),
             zero: Constant::new(Bits::<W>::default()),
@@ -111,8 +135,14 @@ impl<const W: usize, const F: usize, const Q: usize, const K: usize, const RND: 
     }
 }
 
-impl<const W: usize, const F: usize, const Q: usize, const K: usize, const RND: bool, const SAT: bool> Logic
-    for FixedRecip<W, F, Q, K, RND, SAT>
+impl<
+        const W: usize,
+        const F: usize,
+        const Q: usize,
+        const K: usize,
+        const RND: bool,
+        const SAT: bool,
+    > Logic for FixedRecip<W, F, Q, K, RND, SAT>
 {
     #[hdl_gen]
     fn update(&mut self) {
@@ -170,15 +200,27 @@ impl<const W: usize, const F: usize, const Q: usize, const K: usize, const RND: 
         }
         // rem < |X| ≤ 2^(W-1), so 2·rem fits in W bits.
         self.doubled.next = self.remainder.val() << 1;
-        self.rounder.negative.next = self.quotient_negative.val();
-        self.rounder.magnitude.next = bit_cast::<K, Q>(self.quotient.val());
-        self.rounder.round.next = self.doubled.val() >= self.divisor.val();
-        self.rounder.sticky.next = self.remainder.val().any() & (self.doubled.val() != self.divisor.val());
         // Cut 2F+1.
+        self.decided_magnitude.clock.next = self.clock.val();
+        self.decided_round.clock.next = self.clock.val();
+        self.decided_sticky.clock.next = self.clock.val();
+        self.decided_negative.clock.next = self.clock.val();
+        self.decided_zero.clock.next = self.clock.val();
+        self.decided_magnitude.d.next = bit_cast::<K, Q>(self.quotient.val());
+        self.decided_round.d.next = self.doubled.val() >= self.divisor.val();
+        self.decided_sticky.d.next =
+            self.remainder.val().any() & (self.doubled.val() != self.divisor.val());
+        self.decided_negative.d.next = self.quotient_negative.val();
+        self.decided_zero.d.next = self.quotient_zero.val();
+        self.rounder.negative.next = self.decided_negative.q.val();
+        self.rounder.magnitude.next = self.decided_magnitude.q.val();
+        self.rounder.round.next = self.decided_round.q.val();
+        self.rounder.sticky.next = self.decided_sticky.q.val();
+        // Cut 2F+2.
         self.rounded.clock.next = self.clock.val();
         self.rounded_zero.clock.next = self.clock.val();
         self.rounded.d.next = self.rounder.value.val();
-        self.rounded_zero.d.next = self.quotient_zero.val();
+        self.rounded_zero.d.next = self.decided_zero.q.val();
         self.fit.v.next = self.rounded.q.val();
         if self.rounded_zero.q.val() {
             self.y.next = self.max.val();
