@@ -2,9 +2,9 @@
 //! compile, yosys Xilinx synthesis, and the committed copies under generated-verilog/ being
 //! current.
 
-use hdl::generate::{default_configs, generate, VERILOG_FILE};
+use hdl::generate::VERILOG_FILE;
 use hdl::top::{top_verilog, TopConfig};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::Command;
 
 /// Verilator warnings waived for the top, on top of `hdl::verilog::VERILATOR_WAIVERS`
@@ -68,4 +68,32 @@ fn fp16_two_lanes_passes_verilator_and_icarus() {
 #[test]
 fn bf16_depth_zero_passes_verilator_and_icarus() {
     lint(&TopConfig::new("bf16", 0, 1), DEPTH0_WAIVERS);
+}
+
+/// The stream front end alone (2 lanes) through yosys: its result FIFO maps to block RAM,
+/// 4 RAMB18 a lane (97-bit results in 3, the 32-bit control word in 1).
+#[test]
+fn stream_front_end_fifo_maps_to_block_ram() {
+    use hdl::top::stream::StreamFrontEnd;
+    use rust_hdl::prelude::*;
+    let verilog = hdl::top::with_build_stack(|| {
+        let mut front = StreamFrontEnd::new(2, 11);
+        front.connect_all();
+        generate_verilog(&front)
+    });
+    let r = hdl::synth::synthesize(&verilog, "top", &hdl::synth::SynthOptions::default()).unwrap();
+    let usage = hdl::top::fit::Usage::of(&r);
+    assert_eq!(usage.bram18, 8, "{:?}", r.cells);
+    assert_eq!(r.dsp48e1, 0);
+}
+
+/// The whole accelerator through yosys' synth_xilinx (minutes on 2 cores):
+/// `cargo test --release -p hdl --test top_verilog -- --ignored`.
+#[test]
+#[ignore]
+fn fp32_accelerator_synthesises_for_xc7() {
+    let r = hdl::top::fit::synthesize_top(&TopConfig::new("fp32", 1, 1), &hdl::synth::SynthOptions::default()).unwrap();
+    println!("{}\n{}", hdl::synth::SynthReport::markdown_header(), r.markdown_row("fp32_d1_l1"));
+    assert!(r.dsp48e1 > 0 && r.lut > 0 && r.ff > 0, "{:?}", r.cells);
+    assert_eq!(hdl::top::fit::Usage::of(&r).bram18, 4, "{:?}", r.cells);
 }

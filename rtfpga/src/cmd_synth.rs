@@ -5,7 +5,7 @@ use anyhow::Result;
 use clap::Args as ClapArgs;
 
 use crate::engine::HwConfig;
-use hdl::top::fit::{lanes_that_fit, synthesize_top, LaneFit, XC7Z020};
+use hdl::top::fit::{fit_from, synthesize_top, LaneFit, Usage, XC7Z020};
 use hdl::operator::Op;
 use hdl::synth::{synthesize, SynthOptions, SynthReport};
 use hdl::top::TopConfig;
@@ -41,7 +41,18 @@ pub fn run(a: Args) -> Result<()> {
     let config = TopConfig::new(&a.hw.format, a.hw.depth, a.hw.lanes);
     config.validate()?;
     let report = synthesize_top(&config, &options)?;
-    let fit = if a.no_fit { None } else { Some(lanes_that_fit(&config, &options, &XC7Z020)?) };
+    let fit = if a.no_fit {
+        None
+    } else {
+        // The fit needs the 1- and 2-lane designs; reuse the report when it is one of them.
+        let at = |lanes: usize| -> Result<Usage> {
+            if lanes == config.lanes {
+                return Ok(Usage::of(&report));
+            }
+            Ok(Usage::of(&synthesize_top(&TopConfig { lanes, ..config.clone() }, &options)?))
+        };
+        Some(fit_from(at(1)?, at(2)?, &XC7Z020))
+    };
     print(&config.dir_name(), &report, config.lane_latency()?, fit, a.json)
 }
 
