@@ -359,3 +359,11 @@ fn system(config: &TopConfig, seed: u64) {
 fn fp32_two_lanes_register_and_stream_modes_match_the_model() {
     system(&TopConfig::new("fp32", 1, 2), 0x7e57);
 }
+
+/// Another format and lane count (a second Verilator build, about a minute):
+/// `cargo test --release -p hdl --test top_system -- --ignored`.
+#[test]
+#[ignore]
+fn fp16_three_lanes_register_and_stream_modes_match_the_model() {
+    system(&TopConfig::new("fp16", 2, 3), 0xf16);
+}
