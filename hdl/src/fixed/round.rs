@@ -18,6 +18,9 @@ pub struct SignedRound<const K: usize, const RND: bool> {
     /// The quantised value, two's complement.
     pub value: Signal<Out, Bits<K>>,
     increment: Signal<Local, Bit>,
+    /// 1 − increment, as its own 1-bit signal: written inline as `!increment` inside the
+    /// K-bit sum, Verilog widens the operand to K bits before inverting it (−1, not 1).
+    keep: Signal<Local, Bit>,
     nearest: Constant<Bit>,
 }
 
@@ -30,6 +33,7 @@ impl<const K: usize, const RND: bool> Default for SignedRound<K, RND> {
             sticky: Default::default(),
             value: Default::default(),
             increment: Default::default(),
+            keep: Default::default(),
             nearest: Constant::new(RND),
         }
     }
@@ -47,8 +51,9 @@ impl<const K: usize, const RND: bool> Logic for SignedRound<K, RND> {
         } else {
             self.increment.next = self.negative.val() & (self.round.val() | self.sticky.val());
         }
+        self.keep.next = !self.increment.val();
         if self.negative.val() {
-            self.value.next = !self.magnitude.val() + !self.increment.val();
+            self.value.next = !self.magnitude.val() + self.keep.val();
         } else {
             self.value.next = self.magnitude.val() + self.increment.val();
         }
