@@ -2,6 +2,8 @@
 //! queries of real renders exactly like `hw_model::mt_model` — a trace recorded from the
 //! renders, written to a file, read back and replayed into both, for two pipeline depths and
 //! two lane counts per format. Four model builds (~1–2 min each the first time, then cached).
+//! Depth 0 (combinational lanes) is not covered: there the stream front end loses the last
+//! result of a batch and shifts the others by one beat — see `depth_0_stream_keeps_every_result`.
 
 use hdl::top::TopConfig;
 use hw_model::MtQuery;
@@ -34,7 +36,9 @@ fn check(format: &str, configs: [(usize, usize); 2], queries: &[MtQuery]) {
     for (depth, lanes) in configs {
         let hw = HwIntersector::new(&TopConfig::new(format, depth, lanes), Mode::Stream).unwrap();
         let got = replay(&hw, queries, &|_| {});
-        assert!(hw.take_error().is_none());
+        if let Some(e) = hw.take_error() {
+            panic!("{format} d{depth} l{lanes}: {e}");
+        }
         assert_eq!(hw.stats().tests, queries.len() as u64);
         if let Some(d) = first_difference(&got, &want) {
             panic!("{format} d{depth} l{lanes}: hardware vs model differ at {d}");
@@ -47,11 +51,22 @@ fn check(format: &str, configs: [(usize, usize); 2], queries: &[MtQuery]) {
 #[test]
 fn fp16_hardware_equals_the_model_on_real_render_queries() {
     let max = hdl::mt::max_depth("fp16").unwrap();
-    check("fp16", [(0, 1), (max.min(2), 2)], &recorded_queries());
+    check("fp16", [(1, 1), (max.min(2), 2)], &recorded_queries());
 }
 
 #[test]
 fn fixed_32_16_hardware_equals_the_model_on_real_render_queries() {
     let max = hdl::mt::max_depth("fx32_16").unwrap();
-    check("fx32_16", [(0, 2), (max.min(2), 1)], &recorded_queries());
+    check("fx32_16", [(1, 2), (max.min(2), 1)], &recorded_queries());
+}
+
+/// Known hardware bug, reported to the HDL owner: with depth-0 (latency-0) lanes the stream
+/// front end drops the first result (its FIFO slot is not reserved yet when the result
+/// arrives in the accept cycle), so results shift by one beat and the last never comes; the
+/// driver times out instead of hanging. Run: `cargo test --release -p sim --test
+/// cosim_equivalence -- --ignored depth_0`.
+#[test]
+#[ignore = "hardware bug at depth 0: the stream front end loses a result"]
+fn depth_0_stream_keeps_every_result() {
+    check("fp16", [(0, 1), (0, 2)], &recorded_queries());
 }
