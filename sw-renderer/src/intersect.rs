@@ -7,8 +7,6 @@
 
 pub use hw_model::mt::{MtQuery, MtResult};
 
-use crate::math::V3;
-
 /// Anything that answers batches of ray-triangle tests.
 pub trait Intersector: Send + Sync {
     /// A short name for reports, e.g. "f32", "model fp16", "hw fp32 d3 l4".
@@ -27,26 +25,14 @@ pub const DET_EPSILON: f32 = 1e-8;
 /// `if (fabs(det) < eps) …; if (u < 0 || u > 1) …; if (v < 0 || u + v > 1) …` so NaNs fall
 /// through them exactly as there; a hit also needs t > 0. t, u, v are returned on a miss too.
 #[inline]
-// The rejections stay in the C++ form on purpose: their NaN behaviour is the specification.
-#[allow(clippy::nonminimal_bool, clippy::manual_range_contains)]
 pub fn mt_f32(q: &MtQuery) -> MtResult {
-    let orig = V3::from_array(q.orig);
-    let dir = V3::from_array(q.dir);
-    let v0 = V3::from_array(q.v0);
-    let e1 = V3::from_array(q.v1) - v0;
-    let e2 = V3::from_array(q.v2) - v0;
-    let p = dir.cross(e2);
-    let det = e1.dot(p);
-    let inv = 1.0 / det;
-    let s = orig - v0;
-    let u = s.dot(p) * inv;
-    let qv = s.cross(e1);
-    let v = dir.dot(qv) * inv;
-    let t = e2.dot(qv) * inv;
-    let parallel = det < DET_EPSILON && det > -DET_EPSILON;
-    let hit = !parallel && !(u < 0.0 || u > 1.0) && !(v < 0.0 || u + v > 1.0) && t > 0.0;
-    MtResult { hit, t, u, v }
+    let mut r = [MtResult::default()];
+    mt_lanes::<1>(std::slice::from_ref(q), &mut r);
+    r[0]
 }
+
+/// Queries per step of [`F32Intersector`]: eight lanes fill two SSE or one AVX register.
+const LANES: usize = 8;
 
 /// The software reference intersector: [`mt_f32`] on every query.
 #[derive(Clone, Copy, Debug, Default)]
@@ -59,9 +45,99 @@ impl Intersector for F32Intersector {
 
     fn intersect_batch(&self, queries: &[MtQuery], results: &mut [MtResult]) {
         assert_eq!(queries.len(), results.len(), "one result slot per query");
-        for (q, r) in queries.iter().zip(results.iter_mut()) {
+        let mut q = queries.chunks_exact(LANES);
+        let mut r = results.chunks_exact_mut(LANES);
+        for (q, r) in (&mut q).zip(&mut r) {
+            mt_lanes::<LANES>(q, r);
+        }
+        for (q, r) in q.remainder().iter().zip(r.into_remainder()) {
             *r = mt_f32(q);
         }
+    }
+}
+
+/// `N` independent 3-vectors, one per lane: written per component so that the compiler turns
+/// every operation into one vector instruction. Each lane computes exactly what
+/// [`crate::math::V3`] does.
+#[derive(Clone, Copy)]
+struct Lanes<const N: usize> {
+    x: [f32; N],
+    y: [f32; N],
+    z: [f32; N],
+}
+
+#[inline(always)]
+fn lanewise<const N: usize>(a: [f32; N], b: [f32; N], f: impl Fn(f32, f32) -> f32) -> [f32; N] {
+    std::array::from_fn(|i| f(a[i], b[i]))
+}
+
+impl<const N: usize> Lanes<N> {
+    #[inline(always)]
+    fn load(queries: &[MtQuery], field: impl Fn(&MtQuery) -> &[f32; 3]) -> Lanes<N> {
+        Lanes {
+            x: std::array::from_fn(|i| field(&queries[i])[0]),
+            y: std::array::from_fn(|i| field(&queries[i])[1]),
+            z: std::array::from_fn(|i| field(&queries[i])[2]),
+        }
+    }
+
+    #[inline(always)]
+    fn sub(self, o: Lanes<N>) -> Lanes<N> {
+        Lanes {
+            x: lanewise(self.x, o.x, |a, b| a - b),
+            y: lanewise(self.y, o.y, |a, b| a - b),
+            z: lanewise(self.z, o.z, |a, b| a - b),
+        }
+    }
+
+    /// As [`crate::math::V3::dot`]: `x·x' + y·y'` then `+ z·z'`.
+    #[inline(always)]
+    fn dot(self, o: Lanes<N>) -> [f32; N] {
+        std::array::from_fn(|i| self.x[i] * o.x[i] + self.y[i] * o.y[i] + self.z[i] * o.z[i])
+    }
+
+    /// As [`crate::math::V3::cross`].
+    #[inline(always)]
+    fn cross(self, o: Lanes<N>) -> Lanes<N> {
+        Lanes {
+            x: std::array::from_fn(|i| self.y[i] * o.z[i] - self.z[i] * o.y[i]),
+            y: std::array::from_fn(|i| self.z[i] * o.x[i] - self.x[i] * o.z[i]),
+            z: std::array::from_fn(|i| self.x[i] * o.y[i] - self.y[i] * o.x[i]),
+        }
+    }
+}
+
+/// The Möller-Trumbore test of [`mt_f32`] on `N` queries at once (`queries.len() == N`).
+#[inline(always)]
+// The rejections stay in the C++ form on purpose: their NaN behaviour is the specification
+// (non-short-circuit `&`/`|` evaluate the same comparisons, without branches).
+#[allow(clippy::nonminimal_bool, clippy::manual_range_contains)]
+fn mt_lanes<const N: usize>(queries: &[MtQuery], results: &mut [MtResult]) {
+    let orig = Lanes::<N>::load(queries, |q| &q.orig);
+    let dir = Lanes::<N>::load(queries, |q| &q.dir);
+    let v0 = Lanes::<N>::load(queries, |q| &q.v0);
+    let e1 = Lanes::<N>::load(queries, |q| &q.v1).sub(v0);
+    let e2 = Lanes::<N>::load(queries, |q| &q.v2).sub(v0);
+    let p = dir.cross(e2);
+    let det = e1.dot(p);
+    let inv = det.map(|d| 1.0 / d);
+    let s = orig.sub(v0);
+    let u = lanewise(s.dot(p), inv, |a, b| a * b);
+    let qv = s.cross(e1);
+    let v = lanewise(dir.dot(qv), inv, |a, b| a * b);
+    let t = lanewise(e2.dot(qv), inv, |a, b| a * b);
+    for (i, r) in results.iter_mut().enumerate().take(N) {
+        let parallel = (det[i] < DET_EPSILON) & (det[i] > -DET_EPSILON);
+        let hit = !parallel
+            & !((u[i] < 0.0) | (u[i] > 1.0))
+            & !((v[i] < 0.0) | (u[i] + v[i] > 1.0))
+            & (t[i] > 0.0);
+        *r = MtResult {
+            hit,
+            t: t[i],
+            u: u[i],
+            v: v[i],
+        };
     }
 }
 
@@ -112,6 +188,77 @@ mod tests {
         // A NaN origin makes u, v, t NaN: the u/v rejections do not fire, t > 0 is false.
         let r = mt_f32(&query([f32::NAN, 0.25, 1.0], [0.0, 0.0, -1.0]));
         assert!(r.u.is_nan() && !r.hit);
+    }
+
+    /// The test written with the renderer's `V3` arithmetic, query by query.
+    #[allow(clippy::nonminimal_bool, clippy::manual_range_contains)]
+    fn mt_v3(q: &MtQuery) -> MtResult {
+        use crate::math::V3;
+        let (orig, dir, v0) = (
+            V3::from_array(q.orig),
+            V3::from_array(q.dir),
+            V3::from_array(q.v0),
+        );
+        let e1 = V3::from_array(q.v1) - v0;
+        let e2 = V3::from_array(q.v2) - v0;
+        let p = dir.cross(e2);
+        let det = e1.dot(p);
+        let inv = 1.0 / det;
+        let s = orig - v0;
+        let u = s.dot(p) * inv;
+        let qv = s.cross(e1);
+        let v = dir.dot(qv) * inv;
+        let t = e2.dot(qv) * inv;
+        let parallel = det < DET_EPSILON && det > -DET_EPSILON;
+        let hit = !parallel && !(u < 0.0 || u > 1.0) && !(v < 0.0 || u + v > 1.0) && t > 0.0;
+        MtResult { hit, t, u, v }
+    }
+
+    #[test]
+    fn lanes_equal_the_v3_arithmetic_bit_for_bit() {
+        use rand::rngs::StdRng;
+        use rand::{Rng, SeedableRng};
+        let mut rng = StdRng::seed_from_u64(7);
+        let mut p = |scale: f32| std::array::from_fn(|_| rng.gen_range(-scale..scale));
+        // Random rays, every other one aimed inside its triangle; some degenerate (NaN, zero
+        // direction, flat triangle).
+        let mut queries: Vec<MtQuery> = (0..10_003)
+            .map(|i| {
+                let (orig, v0, v1, v2) = (p(3.0), p(1.0), p(1.0), p(1.0));
+                let (a, b) = (p(0.5)[0].abs(), p(0.5)[0].abs());
+                let dir = if i % 2 == 0 {
+                    std::array::from_fn(|k| {
+                        v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]) - orig[k]
+                    })
+                } else {
+                    p(1.0)
+                };
+                MtQuery {
+                    orig,
+                    dir,
+                    v0,
+                    v1,
+                    v2,
+                }
+            })
+            .collect();
+        queries[5].orig[0] = f32::NAN;
+        queries[9].dir = [0.0; 3];
+        queries[17].v2 = queries[17].v1;
+        let mut got = vec![MtResult::default(); queries.len()];
+        F32Intersector.intersect_batch(&queries, &mut got);
+        let bits = |r: &MtResult| (r.hit, r.t.to_bits(), r.u.to_bits(), r.v.to_bits());
+        let mut hits = 0;
+        for (q, g) in queries.iter().zip(&got) {
+            let want = mt_v3(q);
+            assert!(
+                bits(g) == bits(&want) || (g.t.is_nan() && want.t.is_nan() && g.hit == want.hit),
+                "{q:?}: {g:?} vs {want:?}"
+            );
+            assert_eq!(bits(&mt_f32(q)), bits(g));
+            hits += usize::from(g.hit);
+        }
+        assert!(hits > 3000, "{hits} hits");
     }
 
     #[test]

@@ -4,8 +4,8 @@
 //! is unrolled into a ray tree built breadth first: level 0 holds the primary rays; every hit
 //! of a level adds its shadow rays (one per light) and its secondary rays (reflection, Fresnel
 //! reflection and refraction) to the next level. Each level goes through the BVH to candidate
-//! Möller-Trumbore queries and through the intersector in ONE batch, then is reduced to the
-//! reference's hits. Colours are finally evaluated bottom-up with the reference's arithmetic,
+//! Möller-Trumbore queries and through the intersector in two batches (nearest leaves, then
+//! the rest bounded by the nearest hit so far), then is reduced to the reference's hits. Colours are finally evaluated bottom-up with the reference's arithmetic,
 //! so every pixel gets exactly the bits the recursive C++ computed.
 
 use std::ops::{AddAssign, Range};
@@ -133,7 +133,7 @@ enum SecondaryKind {
 
 /// Candidates the first pass gathers per ray (nearest leaves first): enough that it usually
 /// holds the ray's hit, which then bounds the second pass.
-const FIRST_PASS_CANDIDATES: usize = 4;
+const FIRST_PASS_CANDIDATES: usize = 8;
 
 /// A ray of one level: a castRay's closest-hit query or a shadow ray.
 #[derive(Clone, Copy)]

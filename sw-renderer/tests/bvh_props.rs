@@ -4,7 +4,7 @@
 
 use proptest::prelude::*;
 use sw_renderer::bvh::{BoxRay, Bvh};
-use sw_renderer::hit::{closest_hit, occluded, Hit, NO_BOUND};
+use sw_renderer::hit::{closest_hit, nearer, occluded, remaining_bound, Hit, NO_BOUND};
 use sw_renderer::intersect::{mt_f32, MtQuery};
 use sw_renderer::math::V3;
 use sw_renderer::world::WorldTriangle;
@@ -75,6 +75,45 @@ fn gathered(
         .map(|&t| mt_f32(&query(orig, dir, &tris[t as usize])))
         .collect();
     (cands, results)
+}
+
+/// The renderer's two passes: the nearest leaves (at least `enough` candidates), then the rest
+/// bounded by the first pass' nearest hit (nothing more for a shadow ray already blocked).
+fn two_pass(
+    bvh: &Bvh,
+    tris: &[WorldTriangle],
+    (orig, dir, bound): (V3, V3, f32),
+    skip: &[bool],
+    enough: usize,
+    shadow: bool,
+) -> Option<Hit> {
+    let keep = |t: u32| !skip[tris[t as usize].object as usize];
+    let test = |cands: &[u32]| -> Vec<_> {
+        cands
+            .iter()
+            .map(|&t| mt_f32(&query(orig, dir, &tris[t as usize])))
+            .collect()
+    };
+    let (mut first, mut pending) = (Vec::new(), Vec::new());
+    bvh.nearest_candidates(
+        &BoxRay::new(orig, dir, bound),
+        keep,
+        enough,
+        &mut first,
+        &mut pending,
+    );
+    let found = closest_hit(&first, &test(&first), bound);
+    if shadow && found.is_some() {
+        return found;
+    }
+    let mut rest = Vec::new();
+    let ray = BoxRay::new(orig, dir, remaining_bound(found, bound));
+    bvh.remaining_candidates(&ray, keep, &pending, &mut rest);
+    assert!(
+        rest.iter().all(|t| !first.contains(t)),
+        "a triangle gathered twice"
+    );
+    nearer(found, closest_hit(&rest, &test(&rest), bound))
 }
 
 fn v3() -> impl Strategy<Value = V3> {
@@ -201,6 +240,28 @@ proptest! {
             let (o, d) = make_ray(&tris, params);
             let (_, results) = gathered(&bvh, &tris, o, d, bound, &skip);
             prop_assert_eq!(occluded(&results, bound), brute_force(&tris, o, d, bound, &skip).is_some());
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    #[test]
+    fn two_pass_closest_hit_equals_brute_force(
+        tris in mesh(),
+        skip in prop::collection::vec(prop::bool::ANY, 8),
+        enough in 1usize..12,
+        rays in prop::collection::vec((ray_params(), prop::option::of(0.0f32..25.0)), 24),
+    ) {
+        let bvh = Bvh::build(&tris);
+        for (params, bound) in rays {
+            let bound = bound.unwrap_or(NO_BOUND);
+            let (o, d) = make_ray(&tris, params);
+            let want = brute_force(&tris, o, d, bound, &skip);
+            assert_same(two_pass(&bvh, &tris, (o, d, bound), &skip, enough, false), want)?;
+            let blocked = two_pass(&bvh, &tris, (o, d, bound), &skip, enough, true).is_some();
+            prop_assert_eq!(blocked, want.is_some());
         }
     }
 }
