@@ -14,7 +14,11 @@ pub const CONFIG_FILE: &str = "config.json";
 
 /// The configurations committed under generated-verilog/ (`make verilog`).
 pub fn default_configs() -> Vec<TopConfig> {
-    vec![TopConfig::new("fp32", 1, 1), TopConfig::new("fp32", 1, 4), TopConfig::new("fp16", 1, 1)]
+    vec![
+        TopConfig::new("fp32", 1, 1),
+        TopConfig::new("fp32", 1, 4),
+        TopConfig::new("fp16", 1, 1),
+    ]
 }
 
 /// What config.json records about a generated accelerator.
@@ -81,7 +85,10 @@ pub fn generate(config: &TopConfig) -> Result<Generated, TopError> {
 impl Generated {
     /// The text of file `name`.
     pub fn file(&self, name: &str) -> Option<&str> {
-        self.files.iter().find(|(n, _)| n == name).map(|(_, t)| t.as_str())
+        self.files
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, t)| t.as_str())
     }
 
     /// Writes every file into `dir` (created if missing).

@@ -21,14 +21,22 @@ fn committed_configurations_are_current() {
         .collect();
     expected.sort();
     present.sort();
-    assert_eq!(present, expected, "generated-verilog/ folders differ from the defaults: run `make verilog`");
+    assert_eq!(
+        present, expected,
+        "generated-verilog/ folders differ from the defaults: run `make verilog`"
+    );
     for config in default_configs() {
         let generated = generate(&config).unwrap();
         let dir = root.join(config.dir_name());
         for (name, text) in &generated.files {
             let path = dir.join(name);
-            let committed = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-            assert!(committed == *text, "{} is stale: run `make verilog`", path.display());
+            let committed = std::fs::read_to_string(&path)
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            assert!(
+                committed == *text,
+                "{} is stale: run `make verilog`",
+                path.display()
+            );
         }
     }
 }
@@ -40,17 +48,37 @@ fn config_json_describes_the_verilog() {
     let json: serde_json::Value = serde_json::from_str(g.file(CONFIG_FILE).unwrap()).unwrap();
     assert_eq!(json["format"], "fp16");
     assert_eq!(json["lanes"], 3);
-    assert_eq!(json["lane_latency"].as_u64().unwrap() as usize, hdl::mt::latency("fp16", 1).unwrap());
-    assert_eq!(json["config_word"].as_u64().unwrap() as u32, config.config_word().unwrap().pack());
+    assert_eq!(
+        json["lane_latency"].as_u64().unwrap() as usize,
+        hdl::mt::latency("fp16", 1).unwrap()
+    );
+    assert_eq!(
+        json["config_word"].as_u64().unwrap() as u32,
+        config.config_word().unwrap().pack()
+    );
     let verilog = g.file(VERILOG_FILE).unwrap();
     for port in json["ports"].as_array().unwrap() {
-        let (name, width) = (port["name"].as_str().unwrap(), port["width"].as_u64().unwrap());
-        let decl = if width > 1 { format!("wire [{}:0] {name}", width - 1) } else { format!("wire {name}") };
+        let (name, width) = (
+            port["name"].as_str().unwrap(),
+            port["width"].as_u64().unwrap(),
+        );
+        let decl = if width > 1 {
+            format!("wire [{}:0] {name}", width - 1)
+        } else {
+            format!("wire {name}")
+        };
         assert!(verilog.contains(&decl), "rtfpga_top lacks `{decl}`");
     }
     assert!(verilog.contains("module rtfpga_top ("));
-    assert!(!verilog.contains("module top"), "the body's modules are renamed");
-    for name in [hdl::cgen::HEADER_FILE, hdl::cgen::DRIVER_HEADER_FILE, hdl::cgen::DRIVER_SOURCE_FILE] {
+    assert!(
+        !verilog.contains("module top"),
+        "the body's modules are renamed"
+    );
+    for name in [
+        hdl::cgen::HEADER_FILE,
+        hdl::cgen::DRIVER_HEADER_FILE,
+        hdl::cgen::DRIVER_SOURCE_FILE,
+    ] {
         assert!(g.file(name).is_some_and(|t| !t.is_empty()), "{name}");
     }
 }

@@ -38,16 +38,33 @@ fn layout(ports: &[sim::verilator::Port]) -> Vec<(String, usize, usize)> {
 /// `__SYM__interrupt`. Every other port keeps its `rtfpga_top` name.
 fn harness(lanes: usize) -> String {
     let ports = hdl::top::wrapper::ports(lanes);
-    let outer = |name: &str| if name == "interrupt" { "irq".to_string() } else { name.to_string() };
+    let outer = |name: &str| {
+        if name == "interrupt" {
+            "irq".to_string()
+        } else {
+            name.to_string()
+        }
+    };
     let decls: Vec<String> = ports
         .iter()
         .map(|p| {
-            let dir = if p.direction == hdl::top::wrapper::Direction::Input { "input" } else { "output" };
-            let range = if p.width > 1 { format!("[{}:0] ", p.width - 1) } else { String::new() };
+            let dir = if p.direction == hdl::top::wrapper::Direction::Input {
+                "input"
+            } else {
+                "output"
+            };
+            let range = if p.width > 1 {
+                format!("[{}:0] ", p.width - 1)
+            } else {
+                String::new()
+            };
             format!("    {dir} wire {range}{}", outer(&p.name))
         })
         .collect();
-    let pins: Vec<String> = ports.iter().map(|p| format!(".{}({})", p.name, outer(&p.name))).collect();
+    let pins: Vec<String> = ports
+        .iter()
+        .map(|p| format!(".{}({})", p.name, outer(&p.name)))
+        .collect();
     format!(
         "module rtfpga_tb (\n{}\n);\n    rtfpga_top dut ({});\nendmodule\n",
         decls.join(",\n"),
@@ -58,7 +75,11 @@ fn harness(lanes: usize) -> String {
 impl Top {
     fn new(config: &TopConfig) -> Self {
         let spec = ModelSpec {
-            verilog: format!("{}\n{}", harness(config.lanes), top_verilog(config).unwrap()),
+            verilog: format!(
+                "{}\n{}",
+                harness(config.lanes),
+                top_verilog(config).unwrap()
+            ),
             top: "rtfpga_tb".into(),
             ports: None,
             clock: Some("ap_clk".into()),
@@ -83,7 +104,10 @@ impl Top {
     }
 
     fn slot(at: &[(String, usize, usize)], name: &str) -> (usize, usize) {
-        let (_, o, w) = at.iter().find(|(n, ..)| n == name).unwrap_or_else(|| panic!("no port {name}"));
+        let (_, o, w) = at
+            .iter()
+            .find(|(n, ..)| n == name)
+            .unwrap_or_else(|| panic!("no port {name}"));
         (*o, *w)
     }
 
@@ -153,7 +177,10 @@ impl Top {
             }
             if self.get("s_axi_control_rvalid") == 1 {
                 self.set("s_axi_control_rready", 0);
-                return (self.get("s_axi_control_rdata"), self.get("s_axi_control_rresp"));
+                return (
+                    self.get("s_axi_control_rdata"),
+                    self.get("s_axi_control_rresp"),
+                );
             }
         }
         panic!("AXI-Lite read of {addr:#x} got no response");
@@ -163,7 +190,13 @@ impl Top {
 /// Random queries, about half of them aimed through their triangle (hits).
 fn queries(n: usize, seed: u64) -> Vec<MtQuery> {
     let mut rng = StdRng::seed_from_u64(seed);
-    let mut p = || [rng.gen_range(-4.0f32..4.0), rng.gen_range(-4.0f32..4.0), rng.gen_range(-4.0f32..4.0)];
+    let mut p = || {
+        [
+            rng.gen_range(-4.0f32..4.0),
+            rng.gen_range(-4.0f32..4.0),
+            rng.gen_range(-4.0f32..4.0),
+        ]
+    };
     (0..n)
         .map(|i| {
             let (orig, v0, v1, v2, other) = (p(), p(), p(), p(), p());
@@ -173,7 +206,13 @@ fn queries(n: usize, seed: u64) -> Vec<MtQuery> {
             } else {
                 other
             };
-            MtQuery { orig, dir: std::array::from_fn(|k| target[k] - orig[k]), v0, v1, v2 }
+            MtQuery {
+                orig,
+                dir: std::array::from_fn(|k| target[k] - orig[k]),
+                v0,
+                v1,
+                v2,
+            }
         })
         .collect()
 }
@@ -183,18 +222,27 @@ fn model(config: &TopConfig, q: &MtQuery) -> MtResult {
 }
 
 fn assert_same(what: &str, got: MtResult, want: MtResult) {
-    assert!(got.same_bits(&want), "{what}: hardware {got:?}, model {want:?}");
+    assert!(
+        got.same_bits(&want),
+        "{what}: hardware {got:?}, model {want:?}"
+    );
 }
 
 fn register_mode(top: &mut Top, config: &TopConfig, qs: &[MtQuery]) {
     assert_eq!(top.read(regmap::ID), (regmap::ID_VALUE, regmap::RESP_OKAY));
-    assert_eq!(top.read(regmap::CONFIG).0, config.config_word().unwrap().pack());
+    assert_eq!(
+        top.read(regmap::CONFIG).0,
+        config.config_word().unwrap().pack()
+    );
     let mut hits = 0;
     for (i, q) in qs.iter().enumerate() {
         for (off, word) in regmap::OPERANDS.iter().zip(query_words(q)) {
             assert_eq!(top.write(*off, word), regmap::RESP_OKAY);
         }
-        assert_eq!(top.write(regmap::CONTROL, regmap::AP_START), regmap::RESP_OKAY);
+        assert_eq!(
+            top.write(regmap::CONTROL, regmap::AP_START),
+            regmap::RESP_OKAY
+        );
         let mut polls = 0;
         while top.read(regmap::CONTROL).0 & regmap::AP_DONE == 0 {
             polls += 1;
@@ -209,13 +257,24 @@ fn register_mode(top: &mut Top, config: &TopConfig, qs: &[MtQuery]) {
         hits += got.hit as usize;
         assert_same(&format!("register mode, query {i}"), got, model(config, q));
     }
-    assert!(hits > 0 && hits < qs.len(), "{hits} hits of {}: no coverage", qs.len());
+    assert!(
+        hits > 0 && hits < qs.len(),
+        "{hits} hits of {}: no coverage",
+        qs.len()
+    );
 }
 
 /// Streams `qs` (`lanes` per beat; every 7th lane slot left invalid) with random input gaps
 /// and output back-pressure (`ready_percent`), optionally holding `m_axis_tready` low for the
 /// first `stall` cycles. Checks every result and returns the cycles taken.
-fn stream(top: &mut Top, config: &TopConfig, qs: &[MtQuery], ready_percent: u32, stall: usize, seed: u64) -> usize {
+fn stream(
+    top: &mut Top,
+    config: &TopConfig,
+    qs: &[MtQuery],
+    ready_percent: u32,
+    stall: usize,
+    seed: u64,
+) -> usize {
     let lanes = config.lanes;
     let mut rng = StdRng::seed_from_u64(seed);
     // Beats: per lane Some(query index) or None (invalid slot).
@@ -257,7 +316,10 @@ fn stream(top: &mut Top, config: &TopConfig, qs: &[MtQuery], ready_percent: u32,
     let mut max_accepted_while_stalled = 0;
     while received < beats.len() {
         cycles += 1;
-        assert!(cycles < 100 * beats.len() + stall + 10_000, "stream stuck: {sent} sent, {received} received");
+        assert!(
+            cycles < 100 * beats.len() + stall + 10_000,
+            "stream stuck: {sent} sent, {received} received"
+        );
         let offer = sent < beats.len() && rng.gen_range(0..100) < 90;
         if offer {
             top.set_words("s_axis_tdata", &beat_words(sent));
@@ -291,17 +353,29 @@ fn stream(top: &mut Top, config: &TopConfig, qs: &[MtQuery], ready_percent: u32,
                         };
                         assert_same(&what, got, model(config, &qs[i]));
                     }
-                    None => assert_eq!(w[0] & (FLAG_VALID | FLAG_HIT), 0, "{what}: invalid slot flags"),
+                    None => assert_eq!(
+                        w[0] & (FLAG_VALID | FLAG_HIT),
+                        0,
+                        "{what}: invalid slot flags"
+                    ),
                 }
             }
-            assert_eq!(top.get("m_axis_tlast"), (b + 1 == beats.len()) as u32, "beat {b}: tlast");
+            assert_eq!(
+                top.get("m_axis_tlast"),
+                (b + 1 == beats.len()) as u32,
+                "beat {b}: tlast"
+            );
             received += 1;
         }
     }
     top.set("s_axis_tvalid", 0);
     top.set("m_axis_tready", 0);
     if stall > 0 {
-        assert_eq!(max_accepted_while_stalled, FIFO_DEPTH.min(beats.len()), "beats taken while the output stalled");
+        assert_eq!(
+            max_accepted_while_stalled,
+            FIFO_DEPTH.min(beats.len()),
+            "beats taken while the output stalled"
+        );
     }
     cycles
 }
@@ -347,7 +421,11 @@ fn system(config: &TopConfig, seed: u64) {
     register_mode(&mut top, config, &queries(12, seed));
     let qs = queries(700 * config.lanes, seed + 1);
     let cycles = stream(&mut top, config, &qs, 70, 0, seed + 2);
-    println!("{}: {} queries in {cycles} cycles with 90 % input / 70 % output duty", config.dir_name(), qs.len());
+    println!(
+        "{}: {} queries in {cycles} cycles with 90 % input / 70 % output duty",
+        config.dir_name(),
+        qs.len()
+    );
     // Output held off until the FIFO is full: exactly FIFO_DEPTH beats are taken, none lost.
     stream(&mut top, config, &qs, 50, FIFO_DEPTH + 200, seed + 3);
     // Register mode still works after streaming.

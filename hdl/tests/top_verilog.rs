@@ -28,12 +28,22 @@ fn temp_verilog(text: &str) -> (tempfile::TempDir, PathBuf) {
 }
 
 fn run(cmd: &mut Command, what: &str) {
-    let out = cmd.output().unwrap_or_else(|e| panic!("{what}: cannot run: {e} (make setup installs the tools)"));
+    let out = cmd
+        .output()
+        .unwrap_or_else(|e| panic!("{what}: cannot run: {e} (make setup installs the tools)"));
     assert!(
         out.status.success(),
         "{what} failed:\n{}\n{}",
-        String::from_utf8_lossy(&out.stdout).lines().take(60).collect::<Vec<_>>().join("\n"),
-        String::from_utf8_lossy(&out.stderr).lines().take(60).collect::<Vec<_>>().join("\n")
+        String::from_utf8_lossy(&out.stdout)
+            .lines()
+            .take(60)
+            .collect::<Vec<_>>()
+            .join("\n"),
+        String::from_utf8_lossy(&out.stderr)
+            .lines()
+            .take(60)
+            .collect::<Vec<_>>()
+            .join("\n")
     );
 }
 
@@ -50,7 +60,10 @@ fn lint(config: &TopConfig, extra_waivers: &[&str]) {
     );
     let out = path.with_extension("vvp");
     run(
-        Command::new("iverilog").args(["-g2012", "-s", "rtfpga_top", "-o"]).arg(&out).arg(&path),
+        Command::new("iverilog")
+            .args(["-g2012", "-s", "rtfpga_top", "-o"])
+            .arg(&out)
+            .arg(&path),
         &format!("iverilog of {}", config.dir_name()),
     );
 }
@@ -92,8 +105,16 @@ fn stream_front_end_fifo_maps_to_block_ram() {
 #[test]
 #[ignore]
 fn fp32_accelerator_synthesises_for_xc7() {
-    let r = hdl::top::fit::synthesize_top(&TopConfig::new("fp32", 1, 1), &hdl::synth::SynthOptions::default()).unwrap();
-    println!("{}\n{}", hdl::synth::SynthReport::markdown_header(), r.markdown_row("fp32_d1_l1"));
+    let r = hdl::top::fit::synthesize_top(
+        &TopConfig::new("fp32", 1, 1),
+        &hdl::synth::SynthOptions::default(),
+    )
+    .unwrap();
+    println!(
+        "{}\n{}",
+        hdl::synth::SynthReport::markdown_header(),
+        r.markdown_row("fp32_d1_l1")
+    );
     assert!(r.dsp48e1 > 0 && r.lut > 0 && r.ff > 0, "{:?}", r.cells);
     assert_eq!(hdl::top::fit::Usage::of(&r).bram18, 4, "{:?}", r.cells);
 }

@@ -5,9 +5,9 @@ use anyhow::Result;
 use clap::Args as ClapArgs;
 
 use crate::engine::HwConfig;
-use hdl::top::fit::{fit_from, synthesize_top, LaneFit, Usage, XC7Z020};
 use hdl::operator::Op;
 use hdl::synth::{synthesize, SynthOptions, SynthReport};
+use hdl::top::fit::{fit_from, synthesize_top, LaneFit, Usage, XC7Z020};
 use hdl::top::TopConfig;
 
 #[derive(ClapArgs)]
@@ -49,16 +49,35 @@ pub fn run(a: Args) -> Result<()> {
             if lanes == config.lanes {
                 return Ok(Usage::of(&report));
             }
-            Ok(Usage::of(&synthesize_top(&TopConfig { lanes, ..config.clone() }, &options)?))
+            Ok(Usage::of(&synthesize_top(
+                &TopConfig {
+                    lanes,
+                    ..config.clone()
+                },
+                &options,
+            )?))
         };
         Some(fit_from(at(1)?, at(2)?, &XC7Z020))
     };
-    print(&config.dir_name(), &report, config.lane_latency()?, fit, a.json)
+    print(
+        &config.dir_name(),
+        &report,
+        config.lane_latency()?,
+        fit,
+        a.json,
+    )
 }
 
-fn print(label: &str, report: &SynthReport, latency: usize, fit: Option<LaneFit>, json: bool) -> Result<()> {
+fn print(
+    label: &str,
+    report: &SynthReport,
+    latency: usize,
+    fit: Option<LaneFit>,
+    json: bool,
+) -> Result<()> {
     if json {
-        let v = serde_json::json!({"design": label, "latency": latency, "report": report, "fit": fit});
+        let v =
+            serde_json::json!({"design": label, "latency": latency, "report": report, "fit": fit});
         println!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(());
     }
@@ -70,7 +89,10 @@ fn print(label: &str, report: &SynthReport, latency: usize, fit: Option<LaneFit>
             "per lane: {} LUT, {} FF, {} DSP48E1, {} RAMB18; fixed part: {} LUT, {} FF, {} DSP48E1, {} RAMB18",
             f.per_lane.lut, f.per_lane.ff, f.per_lane.dsp48e1, f.per_lane.bram18, f.fixed.lut, f.fixed.ff, f.fixed.dsp48e1, f.fixed.bram18
         );
-        println!("lanes that fit an {}: {} (limited by {})", f.device, f.lanes, f.limit);
+        println!(
+            "lanes that fit an {}: {} (limited by {})",
+            f.device, f.lanes, f.limit
+        );
     }
     Ok(())
 }

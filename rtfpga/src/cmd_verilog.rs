@@ -23,12 +23,22 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<()> {
     let jobs: Vec<(TopConfig, PathBuf)> = if a.defaults {
-        default_configs().into_iter().map(|c| { let dir = a.out.join(c.dir_name()); (c, dir) }).collect()
+        default_configs()
+            .into_iter()
+            .map(|c| {
+                let dir = a.out.join(c.dir_name());
+                (c, dir)
+            })
+            .collect()
     } else {
-        vec![(TopConfig::new(&a.hw.format, a.hw.depth, a.hw.lanes), a.out.clone())]
+        vec![(
+            TopConfig::new(&a.hw.format, a.hw.depth, a.hw.lanes),
+            a.out.clone(),
+        )]
     };
     for (config, dir) in jobs {
-        let generated = generate(&config).with_context(|| format!("configuration {}", config.dir_name()))?;
+        let generated =
+            generate(&config).with_context(|| format!("configuration {}", config.dir_name()))?;
         generated.write_to(&dir)?;
         let s = &generated.summary;
         println!(

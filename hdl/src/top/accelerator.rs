@@ -13,9 +13,9 @@
 macro_rules! accelerator {
     ($lane:ty) => {
         use rust_hdl::prelude::*;
+        use $crate::axil::{AxiLiteSlave, AxiLiteSlavePort};
         #[allow(unused_imports)]
         use $crate::mt::Lane as _;
-        use $crate::axil::{AxiLiteSlave, AxiLiteSlavePort};
         use $crate::regmap::OPERAND_COUNT;
         use $crate::top::stream::{StreamFrontEnd, IN_LANE_BITS, OUT_LANE_BITS, QUERY_BITS};
 

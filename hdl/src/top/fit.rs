@@ -18,7 +18,13 @@ pub struct Device {
 }
 
 /// The ZedBoard's Zynq-7020 (DS190): 53,200 LUTs, 106,400 FFs, 220 DSP48E1, 140 RAMB36.
-pub const XC7Z020: Device = Device { name: "XC7Z020", lut: 53_200, ff: 106_400, dsp48e1: 220, bram18: 280 };
+pub const XC7Z020: Device = Device {
+    name: "XC7Z020",
+    lut: 53_200,
+    ff: 106_400,
+    dsp48e1: 220,
+    bram18: 280,
+};
 
 /// What a design uses of the resources a [`Device`] lists.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
@@ -79,7 +85,13 @@ pub fn fit_from(one: Usage, two: Usage, device: &Device) -> LaneFit {
         .map(|&(name, budget, fixed, lane)| (name, budget.saturating_sub(fixed) / lane))
         .min_by_key(|&(_, n)| n)
         .unwrap_or(("nothing", u64::MAX));
-    LaneFit { device: device.name, per_lane, fixed, lanes, limit }
+    LaneFit {
+        device: device.name,
+        per_lane,
+        fixed,
+        lanes,
+        limit,
+    }
 }
 
 #[derive(Debug, thiserror::Error)]
@@ -95,18 +107,43 @@ pub fn synthesize_top(config: &TopConfig, options: &SynthOptions) -> Result<Synt
     Ok(synthesize(&top_verilog(config)?, wrapper::TOP, options)?)
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn the_scarcest_resource_sets_the_lane_count() {
-        let one = Usage { lut: 3000, ff: 4000, dsp48e1: 20, bram18: 6 };
-        let two = Usage { lut: 5000, ff: 7000, dsp48e1: 38, bram18: 10 };
+        let one = Usage {
+            lut: 3000,
+            ff: 4000,
+            dsp48e1: 20,
+            bram18: 6,
+        };
+        let two = Usage {
+            lut: 5000,
+            ff: 7000,
+            dsp48e1: 38,
+            bram18: 10,
+        };
         let f = fit_from(one, two, &XC7Z020);
-        assert_eq!(f.per_lane, Usage { lut: 2000, ff: 3000, dsp48e1: 18, bram18: 4 });
-        assert_eq!(f.fixed, Usage { lut: 1000, ff: 1000, dsp48e1: 2, bram18: 2 });
+        assert_eq!(
+            f.per_lane,
+            Usage {
+                lut: 2000,
+                ff: 3000,
+                dsp48e1: 18,
+                bram18: 4
+            }
+        );
+        assert_eq!(
+            f.fixed,
+            Usage {
+                lut: 1000,
+                ff: 1000,
+                dsp48e1: 2,
+                bram18: 2
+            }
+        );
         // DSP: (220 - 2) / 18 = 12; LUT: 52200 / 2000 = 26; FF: 35; BRAM: 278 / 4 = 69.
         assert_eq!((f.lanes, f.limit), (12, "DSP48E1"));
         let lut_bound = fit_from(one, Usage { lut: 33_000, ..two }, &XC7Z020);

@@ -36,12 +36,20 @@ pub enum TopError {
     #[error("lanes = {0}: at most {MAX_LANES} (the stream beat is 512 bits a lane; Vivado takes 4096-bit tdata at most)")]
     TooManyLanes(usize),
     #[error("depth = {depth}: format {format} has pipeline registers for depth 0 to {max}")]
-    DepthTooLarge { format: String, depth: usize, max: usize },
+    DepthTooLarge {
+        format: String,
+        depth: usize,
+        max: usize,
+    },
 }
 
 impl TopConfig {
     pub fn new(format: &str, depth: usize, lanes: usize) -> Self {
-        TopConfig { format: format.to_string(), depth, lanes }
+        TopConfig {
+            format: format.to_string(),
+            depth,
+            lanes,
+        }
     }
 
     /// Checks the configuration without building anything.
@@ -57,7 +65,11 @@ impl TopConfig {
             return Err(TopError::TooManyLanes(self.lanes));
         }
         if self.depth > max {
-            return Err(TopError::DepthTooLarge { format: self.format.clone(), depth: self.depth, max });
+            return Err(TopError::DepthTooLarge {
+                format: self.format.clone(),
+                depth: self.depth,
+                max,
+            });
         }
         Ok(())
     }
@@ -75,7 +87,11 @@ impl TopConfig {
             .iter()
             .position(|f| f.name == self.format)
             .expect("every hardware format is in the catalogue");
-        Ok(ConfigWord { format_code: format_code as u8, depth: self.depth as u8, lanes: self.lanes as u8 })
+        Ok(ConfigWord {
+            format_code: format_code as u8,
+            depth: self.depth as u8,
+            lanes: self.lanes as u8,
+        })
     }
 
     /// Folder name of the configuration under generated-verilog/, e.g. `fp32_d1_l4`.
@@ -103,9 +119,11 @@ pub fn with_build_stack<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'stati
 pub fn top_verilog(config: &TopConfig) -> Result<String, TopError> {
     let word = config.config_word()?.pack();
     let (format, depth, lanes) = (config.format.clone(), config.depth, config.lanes);
-    let body = with_build_stack(move || accelerator::body_verilog(&format, depth, lanes, word)).ok_or_else(|| {
-        TopError::UnknownFormat { format: config.format.clone(), known: crate::formats::NAMES.join(", ") }
-    })?;
+    let body = with_build_stack(move || accelerator::body_verilog(&format, depth, lanes, word))
+        .ok_or_else(|| TopError::UnknownFormat {
+            format: config.format.clone(),
+            known: crate::formats::NAMES.join(", "),
+        })?;
     Ok(wrapper::top_verilog(&body, config.lanes))
 }
 
@@ -116,9 +134,18 @@ mod tests {
     #[test]
     fn impossible_configurations_are_refused_by_name() {
         let e = TopConfig::new("fp33", 1, 1).validate().unwrap_err();
-        assert!(e.to_string().contains("fp33") && e.to_string().contains("fp32"), "{e}");
-        assert_eq!(TopConfig::new("fp32", 1, 0).validate(), Err(TopError::NoLanes));
-        assert_eq!(TopConfig::new("fp32", 1, 9).validate(), Err(TopError::TooManyLanes(9)));
+        assert!(
+            e.to_string().contains("fp33") && e.to_string().contains("fp32"),
+            "{e}"
+        );
+        assert_eq!(
+            TopConfig::new("fp32", 1, 0).validate(),
+            Err(TopError::NoLanes)
+        );
+        assert_eq!(
+            TopConfig::new("fp32", 1, 9).validate(),
+            Err(TopError::TooManyLanes(9))
+        );
         let max = crate::mt::max_depth("fp32").unwrap();
         assert!(matches!(
             TopConfig::new("fp32", max + 1, 1).validate(),
@@ -139,8 +166,14 @@ mod tests {
     fn the_result_fifo_covers_every_latency() {
         for name in crate::formats::NAMES {
             let max = crate::mt::max_depth(name).unwrap();
-            let worst = (0..=max).map(|d| crate::mt::latency(name, d).unwrap()).max().unwrap();
-            assert!(worst + 2 <= stream::FIFO_DEPTH, "{name}: latency {worst} leaves the FIFO short of full rate");
+            let worst = (0..=max)
+                .map(|d| crate::mt::latency(name, d).unwrap())
+                .max()
+                .unwrap();
+            assert!(
+                worst + 2 <= stream::FIFO_DEPTH,
+                "{name}: latency {worst} leaves the FIFO short of full rate"
+            );
         }
     }
 
@@ -148,7 +181,10 @@ mod tests {
     fn every_hardware_format_has_an_accelerator() {
         for name in crate::formats::NAMES {
             // Cheapest configuration: depth 0, one lane.
-            assert!(with_build_stack(move || accelerator::body_verilog(name, 0, 1, 0)).is_some(), "{name}");
+            assert!(
+                with_build_stack(move || accelerator::body_verilog(name, 0, 1, 0)).is_some(),
+                "{name}"
+            );
         }
     }
 }

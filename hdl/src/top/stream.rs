@@ -114,7 +114,10 @@ impl StreamFrontEnd {
     /// A front end for `lanes` lanes whose results appear `latency` cycles after their queries.
     pub fn new(lanes: usize, latency: usize) -> Self {
         assert!(lanes >= 1, "at least one lane");
-        assert!(latency < 1 << TIMER_BITS, "latency {latency} exceeds the counters");
+        assert!(
+            latency < 1 << TIMER_BITS,
+            "latency {latency} exceeds the counters"
+        );
         Self {
             clock: Default::default(),
             reset_n: Default::default(),
@@ -177,7 +180,17 @@ fn per_lane<T: Default>(lanes: usize) -> Vec<T> {
 impl Logic for StreamFrontEnd {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, acc_ptr, res_ptr, rd_ptr, head_valid, warm, reg_pending, reg_timer);
+        dff_setup!(
+            self,
+            clock,
+            acc_ptr,
+            res_ptr,
+            rd_ptr,
+            head_valid,
+            warm,
+            reg_pending,
+            reg_timer
+        );
 
         // Register mode: lane 0 takes the slave's operands on `reg_start`; the result is at
         // lane 0's outputs exactly `latency` cycles later.
@@ -186,7 +199,8 @@ impl Logic for StreamFrontEnd {
         self.reg_query.next = 0.into();
         for k in 0..OPERAND_COUNT {
             self.word.next = self.reg_operands[k].val();
-            self.reg_query.next = (self.reg_query.val() >> 32) | (bit_cast::<QUERY_BITS, 32>(self.word.val()) << 448);
+            self.reg_query.next =
+                (self.reg_query.val() >> 32) | (bit_cast::<QUERY_BITS, 32>(self.word.val()) << 448);
         }
         self.reg_active.next = self.reg_pending.q.val() | self.reg_start.val();
         self.reg_now.next = self.reg_timer.q.val();
@@ -244,7 +258,8 @@ impl Logic for StreamFrontEnd {
             self.side_ram[i].write_clock.next = self.clock.val();
             self.side_ram[i].read_clock.next = self.clock.val();
             self.side_ram[i].write_enable.next = self.accept.val();
-            self.side_ram[i].write_address.next = self.acc_ptr.q.val().get_bits::<FIFO_ADDR_BITS>(0);
+            self.side_ram[i].write_address.next =
+                self.acc_ptr.q.val().get_bits::<FIFO_ADDR_BITS>(0);
             // The control word (bits 480.. = QUERY_BITS) keeps valid and tag; bit 1 carries
             // this beat's tlast.
             self.side_in.next = self.s_tdata[i].val().get_bits::<32>(480) & self.ctrl_keep.val();
@@ -257,13 +272,16 @@ impl Logic for StreamFrontEnd {
             self.result_ram[i].write_clock.next = self.clock.val();
             self.result_ram[i].read_clock.next = self.clock.val();
             self.result_ram[i].write_enable.next = self.stream_result.val();
-            self.result_ram[i].write_address.next = self.res_ptr.q.val().get_bits::<FIFO_ADDR_BITS>(0);
+            self.result_ram[i].write_address.next =
+                self.res_ptr.q.val().get_bits::<FIFO_ADDR_BITS>(0);
             self.word.next = self.lane_v[i].val();
             self.result_in.next = bit_cast::<RESULT_BITS, 32>(self.word.val());
             self.word.next = self.lane_u[i].val();
-            self.result_in.next = (self.result_in.val() << 32) | bit_cast::<RESULT_BITS, 32>(self.word.val());
+            self.result_in.next =
+                (self.result_in.val() << 32) | bit_cast::<RESULT_BITS, 32>(self.word.val());
             self.word.next = self.lane_t[i].val();
-            self.result_in.next = (self.result_in.val() << 32) | bit_cast::<RESULT_BITS, 32>(self.word.val());
+            self.result_in.next =
+                (self.result_in.val() << 32) | bit_cast::<RESULT_BITS, 32>(self.word.val());
             self.result_in.next = self.result_in.val() << 1;
             if self.lane_hit[i].val() {
                 self.result_in.next = self.result_in.val() | self.result_hit.val();
