@@ -1,9 +1,11 @@
 //! Engine selection shared by the subcommands that render: which `Intersector` answers the
 //! renderer's ray-triangle queries.
 
-use anyhow::{bail, Result};
+use anyhow::Result;
 use clap::{Args as ClapArgs, ValueEnum};
-use sw_renderer::intersect::{F32Intersector, Intersector};
+use hdl::top::TopConfig;
+use sim::hw_intersector::{HwIntersector, Mode};
+use sw_renderer::intersect::{F32Intersector, Intersector, MtQuery, MtResult};
 use sw_renderer::model_engine::ModelIntersector;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -34,6 +36,31 @@ pub fn make(kind: EngineKind, hw: &HwConfig) -> Result<Box<dyn Intersector>> {
     Ok(match kind {
         EngineKind::F32 => Box::new(F32Intersector),
         EngineKind::Model => Box::new(ModelIntersector { format: hw_model::lookup(&hw.format)? }),
-        EngineKind::Hw => bail!("the hardware engine is not available yet: co-simulation is issue 5"),
+        EngineKind::Hw => Box::new(FailFast(HwIntersector::new(&hw.top_config(), Mode::Stream)?)),
     })
+}
+
+impl HwConfig {
+    pub fn top_config(&self) -> TopConfig {
+        TopConfig::new(&self.format, self.depth, self.lanes)
+    }
+}
+
+/// The hardware engine for commands that only see an `Intersector`: a simulation error
+/// (which the trait cannot return) ends the process with the error instead of letting the
+/// render finish with misses in its place.
+struct FailFast(HwIntersector);
+
+impl Intersector for FailFast {
+    fn name(&self) -> String {
+        self.0.name()
+    }
+
+    fn intersect_batch(&self, queries: &[MtQuery], results: &mut [MtResult]) {
+        self.0.intersect_batch(queries, results);
+        if let Some(e) = self.0.take_error() {
+            eprintln!("error: hardware co-simulation ({}): {e}", self.0.name());
+            std::process::exit(1);
+        }
+    }
 }

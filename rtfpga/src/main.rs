@@ -5,12 +5,14 @@
 mod engine;
 mod cmd_bench;
 mod cmd_compare;
+mod cmd_cosim;
 mod cmd_formats;
 mod cmd_golden;
 mod cmd_project;
 mod cmd_render;
 mod cmd_synth;
 mod cmd_verilog;
+mod cmd_trace;
 
 use clap::{Parser, Subcommand};
 
@@ -35,6 +37,10 @@ enum Command {
     Golden(cmd_golden::Args),
     /// Projected ZedBoard frame time of an accelerator design; --calibration: the model vs the thesis.
     Project(cmd_project::Args),
+    /// Render through the Verilated accelerator; tests, cycles, lane utilisation, speed, PSNR vs software.
+    Cosim(cmd_cosim::Args),
+    /// Record a render's ray-triangle queries to a trace file, or replay one into model/hardware.
+    Trace(cmd_trace::Args),
     /// Generate the accelerator's Verilog (rtfpga_top.v), C header/driver and config.json.
     Verilog(cmd_verilog::Args),
     /// yosys resources and logic depth of the accelerator or one operator; lanes that fit.
@@ -52,6 +58,8 @@ fn main() -> std::process::ExitCode {
         Command::Synth(a) => cmd_synth::run(a),
         Command::Bench(a) => cmd_bench::run(a),
         Command::Project(a) => cmd_project::run(a),
+        Command::Cosim(a) => cmd_cosim::run(a),
+        Command::Trace(a) => cmd_trace::run(a),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,
