@@ -23,19 +23,29 @@ pub enum GoldenError {
     #[error(transparent)]
     Render(#[from] RenderError),
     #[error("cannot write {path}: {source}")]
-    Io { path: String, source: std::io::Error },
+    Io {
+        path: String,
+        source: std::io::Error,
+    },
 }
 
 /// Render built-in scene `name` as its golden image.
 pub fn render_builtin(name: &str) -> Result<RgbImage, GoldenError> {
     let scene = Scene::load(name)?;
-    let opts = RenderOptions { width: Some(WIDTH), height: Some(HEIGHT), ..Default::default() };
+    let opts = RenderOptions {
+        width: Some(WIDTH),
+        height: Some(HEIGHT),
+        ..Default::default()
+    };
     Ok(render(&scene, &F32Intersector, &opts)?.image)
 }
 
 /// Write every golden image and `manifest.toml` into `dir`.
 pub fn write_all(dir: &Path) -> Result<(), GoldenError> {
-    let io = |path: &Path, source| GoldenError::Io { path: path.display().to_string(), source };
+    let io = |path: &Path, source| GoldenError::Io {
+        path: path.display().to_string(),
+        source,
+    };
     std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
     let mut manifest = format!(
         "# Golden images of scenes/: engine f32 (the reference renderer), {WIDTH}x{HEIGHT}.\n\

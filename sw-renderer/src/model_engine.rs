@@ -13,7 +13,10 @@ pub struct ModelIntersector {
 impl Intersector for ModelIntersector {
     /// "model fp16" for catalogue formats, else the generic spelling ("model e6m9").
     fn name(&self) -> String {
-        let label = catalogue().iter().find(|n| n.format == self.format).map(|n| n.name.to_string());
+        let label = catalogue()
+            .iter()
+            .find(|n| n.format == self.format)
+            .map(|n| n.name.to_string());
         format!("model {}", label.unwrap_or_else(|| self.format.to_string()))
     }
 
@@ -45,8 +48,15 @@ mod tests {
         let mut p = || [grid(r, 64.0, 8), grid(r, 64.0, 8), grid(r, 64.0, 8)];
         let (orig, v0, v1, v2) = (p(), p(), p(), p());
         let (a, b) = (grid(r, 1.0, 4).abs() - 0.125, grid(r, 1.0, 4).abs() - 0.125);
-        let dir = std::array::from_fn(|k| v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]) - orig[k]);
-        MtQuery { orig, dir, v0, v1, v2 }
+        let dir =
+            std::array::from_fn(|k| v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]) - orig[k]);
+        MtQuery {
+            orig,
+            dir,
+            v0,
+            v1,
+            v2,
+        }
     }
 
     #[test]
@@ -56,7 +66,9 @@ mod tests {
         let mut want = vec![MtResult::default(); queries.len()];
         let mut got = want.clone();
         F32Intersector.intersect_batch(&queries, &mut want);
-        let model = ModelIntersector { format: hw_model::lookup("fp32").unwrap() };
+        let model = ModelIntersector {
+            format: hw_model::lookup("fp32").unwrap(),
+        };
         model.intersect_batch(&queries, &mut got);
         let same = |x: f32, y: f32| x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan());
         for ((q, g), w) in queries.iter().zip(&got).zip(&want) {
@@ -66,7 +78,10 @@ mod tests {
             );
         }
         let hits = want.iter().filter(|w| w.hit).count();
-        assert!(hits > 10_000, "only {hits} hits: the generator no longer aims at triangles");
+        assert!(
+            hits > 10_000,
+            "only {hits} hits: the generator no longer aims at triangles"
+        );
         assert_eq!(model.name(), "model fp32");
     }
 
@@ -76,12 +91,19 @@ mod tests {
         let queries: Vec<MtQuery> = (0..1_000).map(|_| grid_query(&mut r)).collect();
         let mut fp32 = vec![MtResult::default(); queries.len()];
         let mut bf16 = fp32.clone();
-        ModelIntersector { format: hw_model::lookup("fp32").unwrap() }.intersect_batch(&queries, &mut fp32);
-        let narrow = ModelIntersector { format: hw_model::lookup("bf16").unwrap() };
+        ModelIntersector {
+            format: hw_model::lookup("fp32").unwrap(),
+        }
+        .intersect_batch(&queries, &mut fp32);
+        let narrow = ModelIntersector {
+            format: hw_model::lookup("bf16").unwrap(),
+        };
         narrow.intersect_batch(&queries, &mut bf16);
         assert!(fp32.iter().zip(&bf16).filter(|(a, b)| a.t != b.t).count() > 100);
         assert_eq!(narrow.name(), "model bf16");
-        let custom = ModelIntersector { format: hw_model::lookup("e6m9").unwrap() };
+        let custom = ModelIntersector {
+            format: hw_model::lookup("e6m9").unwrap(),
+        };
         assert_eq!(custom.name(), "model e6m9");
     }
 }
