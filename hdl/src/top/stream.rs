@@ -231,10 +231,9 @@ impl Logic for StreamFrontEnd {
 
         // Results of stream beats arrive in order on lane 0's valid_out (the register-mode
         // result is told apart by its timer); each fills the oldest reserved slot.
-        // A result needs a beat accepted earlier or, at latency 0, in this very cycle.
         self.stream_result.next = self.lane_valid_out.val()
             & !self.reg_done.val()
-            & ((self.res_ptr.q.val() != self.acc_ptr.q.val()) | self.accept.val())
+            & (self.res_ptr.q.val() != self.acc_ptr.q.val())
             & (self.warm.q.val() == 0);
         if self.stream_result.val() {
             self.res_ptr.d.next = self.res_ptr.q.val() + 1;
