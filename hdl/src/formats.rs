@@ -95,68 +95,39 @@ crate::fixed::fixed_format!(fx32_16_rnd_sat, int = 16, frac = 16, Rnd, Sat);
 crate::fixed::fixed_format!(fx32_20, int = 20, frac = 12, Trn, Wrap);
 crate::fixed::fixed_format!(fx32_20_rnd_sat, int = 20, frac = 12, Rnd, Sat);
 
-/// Names of the formats that have rust-hdl operators.
-pub const NAMES: &[&str] = &[
-    fp32::NAME,
-    fp24::NAME,
-    bf16::NAME,
-    fp16::NAME,
-    fx16_10::NAME,
-    fx16_10_rnd_sat::NAME,
-    fx16_13::NAME,
-    fx16_13_rnd_sat::NAME,
-    fx21_12::NAME,
-    fx21_12_rnd_sat::NAME,
-    fx25_10::NAME,
-    fx25_10_rnd_sat::NAME,
-    fx32_16::NAME,
-    fx32_16_rnd_sat::NAME,
-    fx32_20::NAME,
-    fx32_20_rnd_sat::NAME,
-];
+/// Calls `$callback!(fp32, fp24, …)` with every catalogue format that has rust-hdl
+/// operators: the one list that the dispatch below and the accelerator tops expand.
+macro_rules! with_formats {
+    ($callback:ident) => {
+        $callback!(
+            fp32, fp24, bf16, fp16, fx16_10, fx16_10_rnd_sat, fx16_13, fx16_13_rnd_sat, fx21_12, fx21_12_rnd_sat,
+            fx25_10, fx25_10_rnd_sat, fx32_16, fx32_16_rnd_sat, fx32_20, fx32_20_rnd_sat,
+        );
+    };
+}
+pub(crate) use with_formats;
 
-/// Verilog of `op` in the catalogue format `format` with `stages` pipeline registers.
-pub fn rtl(format: &str, op: crate::operator::Op, stages: usize) -> Result<crate::verilog::OperatorRtl, crate::operator::OperatorError> {
-    match format {
-        fp32::NAME => fp32::rtl(op, stages),
-        fp24::NAME => fp24::rtl(op, stages),
-        bf16::NAME => bf16::rtl(op, stages),
-        fp16::NAME => fp16::rtl(op, stages),
-        fx16_10::NAME => fx16_10::rtl(op, stages),
-        fx16_10_rnd_sat::NAME => fx16_10_rnd_sat::rtl(op, stages),
-        fx16_13::NAME => fx16_13::rtl(op, stages),
-        fx16_13_rnd_sat::NAME => fx16_13_rnd_sat::rtl(op, stages),
-        fx21_12::NAME => fx21_12::rtl(op, stages),
-        fx21_12_rnd_sat::NAME => fx21_12_rnd_sat::rtl(op, stages),
-        fx25_10::NAME => fx25_10::rtl(op, stages),
-        fx25_10_rnd_sat::NAME => fx25_10_rnd_sat::rtl(op, stages),
-        fx32_16::NAME => fx32_16::rtl(op, stages),
-        fx32_16_rnd_sat::NAME => fx32_16_rnd_sat::rtl(op, stages),
-        fx32_20::NAME => fx32_20::rtl(op, stages),
-        fx32_20_rnd_sat::NAME => fx32_20_rnd_sat::rtl(op, stages),
-        _ => Err(crate::operator::OperatorError::UnknownFormat(format.to_string())),
-    }
+macro_rules! dispatch {
+    ($($name:ident),* $(,)?) => {
+        /// Names of the formats that have rust-hdl operators.
+        pub const NAMES: &[&str] = &[$($name::NAME),*];
+
+        /// Verilog of `op` in the catalogue format `format` with `stages` pipeline registers.
+        pub fn rtl(format: &str, op: crate::operator::Op, stages: usize) -> Result<crate::verilog::OperatorRtl, crate::operator::OperatorError> {
+            match format {
+                $($name::NAME => $name::rtl(op, stages),)*
+                _ => Err(crate::operator::OperatorError::UnknownFormat(format.to_string())),
+            }
+        }
+
+        /// Maximum pipeline stages of `op` in the catalogue format `format`.
+        pub fn max_stages(format: &str, op: crate::operator::Op) -> Result<usize, crate::operator::OperatorError> {
+            Ok(match format {
+                $($name::NAME => $name::max_stages(op),)*
+                _ => return Err(crate::operator::OperatorError::UnknownFormat(format.to_string())),
+            })
+        }
+    };
 }
 
-/// Maximum pipeline stages of `op` in the catalogue format `format`.
-pub fn max_stages(format: &str, op: crate::operator::Op) -> Result<usize, crate::operator::OperatorError> {
-    Ok(match format {
-        fp32::NAME => fp32::max_stages(op),
-        fp24::NAME => fp24::max_stages(op),
-        bf16::NAME => bf16::max_stages(op),
-        fp16::NAME => fp16::max_stages(op),
-        fx16_10::NAME => fx16_10::max_stages(op),
-        fx16_10_rnd_sat::NAME => fx16_10_rnd_sat::max_stages(op),
-        fx16_13::NAME => fx16_13::max_stages(op),
-        fx16_13_rnd_sat::NAME => fx16_13_rnd_sat::max_stages(op),
-        fx21_12::NAME => fx21_12::max_stages(op),
-        fx21_12_rnd_sat::NAME => fx21_12_rnd_sat::max_stages(op),
-        fx25_10::NAME => fx25_10::max_stages(op),
-        fx25_10_rnd_sat::NAME => fx25_10_rnd_sat::max_stages(op),
-        fx32_16::NAME => fx32_16::max_stages(op),
-        fx32_16_rnd_sat::NAME => fx32_16_rnd_sat::max_stages(op),
-        fx32_20::NAME => fx32_20::max_stages(op),
-        fx32_20_rnd_sat::NAME => fx32_20_rnd_sat::max_stages(op),
-        _ => return Err(crate::operator::OperatorError::UnknownFormat(format.to_string())),
-    })
-}
+with_formats!(dispatch);

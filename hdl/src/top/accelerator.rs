@@ -212,21 +212,4 @@ macro_rules! per_format {
     };
 }
 
-per_format!(
-    fp32,
-    fp24,
-    bf16,
-    fp16,
-    fx16_10,
-    fx16_10_rnd_sat,
-    fx16_13,
-    fx16_13_rnd_sat,
-    fx21_12,
-    fx21_12_rnd_sat,
-    fx25_10,
-    fx25_10_rnd_sat,
-    fx32_16,
-    fx32_16_rnd_sat,
-    fx32_20,
-    fx32_20_rnd_sat,
-);
+crate::formats::with_formats!(per_format);
