@@ -5,56 +5,12 @@
 use proptest::prelude::*;
 use sw_renderer::bvh::{BoxRay, Bvh};
 use sw_renderer::hit::{closest_hit, nearer, occluded, remaining_bound, Hit, NO_BOUND};
-use sw_renderer::intersect::{mt_f32, MtQuery};
+use sw_renderer::intersect::mt_f32;
 use sw_renderer::math::V3;
 use sw_renderer::world::WorldTriangle;
 
-fn query(orig: V3, dir: V3, t: &WorldTriangle) -> MtQuery {
-    MtQuery {
-        orig: orig.to_array(),
-        dir: dir.to_array(),
-        v0: t.verts[0].to_array(),
-        v1: t.verts[1].to_array(),
-        v2: t.verts[2].to_array(),
-    }
-}
-
-/// The reference's `trace`, literally: objects in order, triangles in order.
-fn brute_force(
-    tris: &[WorldTriangle],
-    orig: V3,
-    dir: V3,
-    bound: f32,
-    skip: &[bool],
-) -> Option<Hit> {
-    let mut isect_t = bound;
-    let mut best = None;
-    let objects = tris.iter().map(|t| t.object).max().map_or(0, |m| m + 1);
-    for k in 0..objects {
-        let mut t_near = f32::MAX;
-        let mut found = None;
-        for (i, tri) in tris.iter().enumerate().filter(|(_, t)| t.object == k) {
-            let r = mt_f32(&query(orig, dir, tri));
-            if r.hit && r.t < t_near {
-                t_near = r.t;
-                found = Some(Hit {
-                    triangle: i as u32,
-                    t: r.t,
-                    u: r.u,
-                    v: r.v,
-                });
-            }
-        }
-        if found.is_some() && t_near < isect_t {
-            if skip[k as usize] {
-                continue;
-            }
-            best = found;
-            isect_t = t_near;
-        }
-    }
-    best
-}
+mod common;
+use common::{brute_force_trace, query};
 
 fn gathered(
     bvh: &Bvh,
@@ -210,7 +166,7 @@ proptest! {
         for params in rays {
             let (o, d) = make_ray(&tris, params);
             let (cands, results) = gathered(&bvh, &tris, o, d, NO_BOUND, &no_skip);
-            assert_same(closest_hit(&cands, &results, NO_BOUND), brute_force(&tris, o, d, NO_BOUND, &no_skip))?;
+            assert_same(closest_hit(&cands, &results, NO_BOUND), brute_force_trace(&tris, o, d, NO_BOUND, |k| no_skip[k]))?;
         }
     }
 
@@ -224,7 +180,7 @@ proptest! {
         for (params, bound) in rays {
             let (o, d) = make_ray(&tris, params);
             let (cands, results) = gathered(&bvh, &tris, o, d, bound, &no_skip);
-            assert_same(closest_hit(&cands, &results, bound), brute_force(&tris, o, d, bound, &no_skip))?;
+            assert_same(closest_hit(&cands, &results, bound), brute_force_trace(&tris, o, d, bound, |k| no_skip[k]))?;
         }
     }
 
@@ -239,7 +195,7 @@ proptest! {
             let bound = bound.unwrap_or(NO_BOUND);
             let (o, d) = make_ray(&tris, params);
             let (_, results) = gathered(&bvh, &tris, o, d, bound, &skip);
-            prop_assert_eq!(occluded(&results, bound), brute_force(&tris, o, d, bound, &skip).is_some());
+            prop_assert_eq!(occluded(&results, bound), brute_force_trace(&tris, o, d, bound, |k| skip[k]).is_some());
         }
     }
 }
@@ -258,7 +214,7 @@ proptest! {
         for (params, bound) in rays {
             let bound = bound.unwrap_or(NO_BOUND);
             let (o, d) = make_ray(&tris, params);
-            let want = brute_force(&tris, o, d, bound, &skip);
+            let want = brute_force_trace(&tris, o, d, bound, |k| skip[k]);
             assert_same(two_pass(&bvh, &tris, (o, d, bound), &skip, enough, false), want)?;
             let blocked = two_pass(&bvh, &tris, (o, d, bound), &skip, enough, true).is_some();
             prop_assert_eq!(blocked, want.is_some());

@@ -11,7 +11,7 @@ use image::{Rgb, RgbImage};
 use sw_renderer::camera::{fov_scale, Camera};
 use sw_renderer::compare::{compare, diff_heatmap, psnr, CompareError};
 use sw_renderer::hit::{Hit, NO_BOUND};
-use sw_renderer::intersect::{mt_f32, F32Intersector, Intersector, MtQuery, MtResult};
+use sw_renderer::intersect::{F32Intersector, Intersector, MtQuery, MtResult};
 use sw_renderer::math::V3;
 use sw_renderer::render::{render, RenderOptions};
 use sw_renderer::scene::{
@@ -22,6 +22,9 @@ use sw_renderer::shade::{
     reflect, refract, to_rgb8, LightTerm, PreparedLight,
 };
 use sw_renderer::world::World;
+
+mod common;
+use common::brute_force_trace;
 
 // ---------------------------------------------------------------- scene building
 
@@ -403,46 +406,11 @@ fn phong_highlight_peaks_where_the_reflection_meets_the_eye() {
 
 // ---------------------------------------------------------------- against the recursive reference
 
-/// The reference's `trace`: every object, every triangle, per object then across objects.
+/// The reference's `trace` over the world; shadow rays pass through transparent objects.
 fn ref_trace(world: &World, orig: V3, dir: V3, bound: f32, shadow: bool) -> Option<Hit> {
-    let mut isect_t = bound;
-    let mut best = None;
-    for (k, m) in world.materials.iter().enumerate() {
-        let mut t_near = f32::MAX;
-        let mut found = None;
-        for (i, tri) in world
-            .triangles
-            .iter()
-            .enumerate()
-            .filter(|(_, t)| t.object as usize == k)
-        {
-            let q = MtQuery {
-                orig: orig.to_array(),
-                dir: dir.to_array(),
-                v0: tri.verts[0].to_array(),
-                v1: tri.verts[1].to_array(),
-                v2: tri.verts[2].to_array(),
-            };
-            let r = mt_f32(&q);
-            if r.hit && r.t < t_near {
-                t_near = r.t;
-                found = Some(Hit {
-                    triangle: i as u32,
-                    t: r.t,
-                    u: r.u,
-                    v: r.v,
-                });
-            }
-        }
-        if found.is_some() && t_near < isect_t {
-            if shadow && m.kind == MaterialKind::ReflectionRefraction {
-                continue;
-            }
-            best = found;
-            isect_t = t_near;
-        }
-    }
-    best
+    brute_force_trace(&world.triangles, orig, dir, bound, |k| {
+        shadow && world.materials[k].kind == MaterialKind::ReflectionRefraction
+    })
 }
 
 /// The reference's recursive `castRay`.
