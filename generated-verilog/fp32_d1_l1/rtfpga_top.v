@@ -571,7 +571,7 @@ module rtfpga_core$front(clock,reset_n,s_tdata$0,s_tvalid,s_tready,s_tlast,m_tda
         if (warm$q != 32'h0) begin
             warm$d = warm$q - 32'h1;
         end
-        stream_result = lane_valid_out & ~reg_done & (res_ptr$q != acc_ptr$q) & (warm$q == 32'h0);
+        stream_result = lane_valid_out & ~reg_done & (warm$q == 32'h0);
         if (stream_result) begin
             res_ptr$d = res_ptr$q + 32'h1;
         end

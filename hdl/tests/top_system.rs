@@ -445,3 +445,9 @@ fn fp32_two_lanes_register_and_stream_modes_match_the_model() {
 fn fp16_three_lanes_register_and_stream_modes_match_the_model() {
     system(&TopConfig::new("fp16", 2, 3), 0xf16);
 }
+
+/// Depth 0: the lanes are combinational, so a result appears in the cycle its beat is taken.
+#[test]
+fn bf16_depth_zero_register_and_stream_modes_match_the_model() {
+    system(&TopConfig::new("bf16", 0, 1), 0xb16);
+}

@@ -2,8 +2,8 @@
 //! queries of real renders exactly like `hw_model::mt_model` — a trace recorded from the
 //! renders, written to a file, read back and replayed into both, for two pipeline depths and
 //! two lane counts per format. Four model builds (~1–2 min each the first time, then cached).
-//! Depth 0 (combinational lanes) is not covered: there the stream front end loses the last
-//! result of a batch and shifts the others by one beat — see `depth_0_stream_keeps_every_result`.
+//! Depth 0 (combinational lanes, a result in its beat's accept cycle) is covered by
+//! `depth_0_stream_keeps_every_result`.
 
 use hdl::top::TopConfig;
 use hw_model::MtQuery;
@@ -60,13 +60,9 @@ fn fixed_32_16_hardware_equals_the_model_on_real_render_queries() {
     check("fx32_16", [(1, 2), (max.min(2), 1)], &recorded_queries());
 }
 
-/// Known hardware bug, reported to the HDL owner: with depth-0 (latency-0) lanes the stream
-/// front end drops the first result (its FIFO slot is not reserved yet when the result
-/// arrives in the accept cycle), so results shift by one beat and the last never comes; the
-/// driver times out instead of hanging. Run: `cargo test --release -p sim --test
-/// cosim_equivalence -- --ignored depth_0`.
+/// Depth 0 (combinational lanes): a result arrives in its beat's accept cycle; the stream
+/// front end must still keep every result, in order.
 #[test]
-#[ignore = "hardware bug at depth 0: the stream front end loses a result"]
 fn depth_0_stream_keeps_every_result() {
     check("fp16", [(0, 1), (0, 2)], &recorded_queries());
 }

@@ -230,11 +230,13 @@ impl Logic for StreamFrontEnd {
         }
 
         // Results of stream beats arrive in order on lane 0's valid_out (the register-mode
-        // result is told apart by its timer); each fills the oldest reserved slot.
-        self.stream_result.next = self.lane_valid_out.val()
-            & !self.reg_done.val()
-            & (self.res_ptr.q.val() != self.acc_ptr.q.val())
-            & (self.warm.q.val() == 0);
+        // result is told apart by its timer); each fills the oldest reserved slot. Once warm,
+        // a lane's valid_out comes only from an accepted beat or `reg_start`, so no pointer
+        // test is needed: at latency 0 the result arrives in its beat's accept cycle, before
+        // `acc_ptr` counts it, and testing `accept` here would close a combinational loop
+        // through `lane_valid_in` in Verilator's view.
+        self.stream_result.next =
+            self.lane_valid_out.val() & !self.reg_done.val() & (self.warm.q.val() == 0);
         if self.stream_result.val() {
             self.res_ptr.d.next = self.res_ptr.q.val() + 1;
         }
