@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use clap::{Args as ClapArgs, ValueEnum};
 use sim::accel_model::VcdWindow;
+use sim::axil_master::Completion;
 use sim::hw_intersector::{HwIntersector, Mode};
 use sw_renderer::compare;
 use sw_renderer::intersect::{F32Intersector, Intersector};
@@ -18,8 +19,10 @@ use crate::engine::HwConfig;
 pub enum ModeArg {
     /// AXI4-Stream batches, every lane busy.
     Stream,
-    /// The thesis' AXI4-Lite register sequence per test (lane 0).
+    /// The thesis' AXI4-Lite register sequence per test (lane 0), polling ap_done.
     Register,
+    /// The register sequence, waiting for the interrupt instead of polling.
+    RegisterIrq,
 }
 
 #[derive(ClapArgs)]
@@ -57,13 +60,18 @@ pub fn run(a: Args) -> Result<()> {
     let config = a.hw.top_config();
     let mode = match a.mode {
         ModeArg::Stream => Mode::Stream,
-        ModeArg::Register => Mode::Register,
+        ModeArg::Register => Mode::Register(Completion::Poll),
+        ModeArg::RegisterIrq => Mode::Register(Completion::Interrupt),
     };
     let hw = match &a.vcd {
         Some(path) => HwIntersector::with_vcd(
             &config,
             mode,
-            VcdWindow { path: path.clone(), from: a.vcd_from, cycles: a.vcd_cycles },
+            VcdWindow {
+                path: path.clone(),
+                from: a.vcd_from,
+                cycles: a.vcd_cycles,
+            },
         )?,
         None => HwIntersector::new(&config, mode)?,
     };
@@ -71,17 +79,33 @@ pub fn run(a: Args) -> Result<()> {
     println!(
         "model {} ({}, {:.1} s)",
         hw.name(),
-        if built.model.cached { "cached" } else { "built" },
+        if built.model.cached {
+            "cached"
+        } else {
+            "built"
+        },
         built.build_time.as_secs_f64()
     );
-    let opts = RenderOptions { width: a.width, height: a.height, progress: !a.quiet, ..Default::default() };
+    let opts = RenderOptions {
+        width: a.width,
+        height: a.height,
+        progress: !a.quiet,
+        ..Default::default()
+    };
     let out = render(&scene, &hw, &opts)?;
     hw.close_vcd();
     if let Some(e) = hw.take_error() {
         return Err(e).context(format!("co-simulating {}", hw.name()));
     }
     save_png(&out.image, &a.out).with_context(|| format!("writing {}", a.out.display()))?;
-    let sw = render(&scene, &F32Intersector, &RenderOptions { progress: false, ..opts })?;
+    let sw = render(
+        &scene,
+        &F32Intersector,
+        &RenderOptions {
+            progress: false,
+            ..opts
+        },
+    )?;
     let diff = compare::compare(&out.image, &sw.image)?;
 
     let s = hw.stats();
@@ -108,10 +132,22 @@ pub fn run(a: Args) -> Result<()> {
         s.tests as f64 / wall.max(1e-9)
     );
     if let Some(path) = &a.vcd {
-        println!("vcd={} (cycles {}..{})", path.display(), a.vcd_from, a.vcd_from + a.vcd_cycles);
+        println!(
+            "vcd={} (cycles {}..{})",
+            path.display(),
+            a.vcd_from,
+            a.vcd_from + a.vcd_cycles
+        );
     }
-    println!("differing_pixels={} max_abs_error={}", diff.differing_pixels, diff.max_abs_error);
-    let psnr = if diff.psnr_db.is_infinite() { "inf".to_string() } else { format!("{:.4}", diff.psnr_db) };
+    println!(
+        "differing_pixels={} max_abs_error={}",
+        diff.differing_pixels, diff.max_abs_error
+    );
+    let psnr = if diff.psnr_db.is_infinite() {
+        "inf".to_string()
+    } else {
+        format!("{:.4}", diff.psnr_db)
+    };
     println!("psnr_db={psnr}");
     Ok(())
 }

@@ -38,33 +38,60 @@ fn built() -> &'static Mutex<HashMap<ModelKey, Arc<TopModel>>> {
 /// build per configuration and process; the builder's disk cache spans processes. Builds are
 /// serialised: each one already uses every core.
 pub fn top_model(config: &TopConfig, trace: bool) -> Result<Arc<TopModel>, CosimError> {
-    top_model_with(config, &BuildOptions { trace, ..BuildOptions::default() })
+    top_model_with(
+        config,
+        &BuildOptions {
+            trace,
+            ..BuildOptions::default()
+        },
+    )
 }
 
 /// [`top_model`] with explicit build options (tool names, cache directory, PATH).
-pub fn top_model_with(config: &TopConfig, options: &BuildOptions) -> Result<Arc<TopModel>, CosimError> {
+pub fn top_model_with(
+    config: &TopConfig,
+    options: &BuildOptions,
+) -> Result<Arc<TopModel>, CosimError> {
     config.validate()?;
-    let key = (config.format.clone(), config.depth, config.lanes, options.trace);
+    let key = (
+        config.format.clone(),
+        config.depth,
+        config.lanes,
+        options.trace,
+    );
     // Only builds with the default tools and cache are shared; others are one-offs.
-    let shared = format!("{options:?}") == format!("{:?}", BuildOptions { trace: options.trace, ..BuildOptions::default() });
-    let mut cache = built().lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    let shared = format!("{options:?}")
+        == format!(
+            "{:?}",
+            BuildOptions {
+                trace: options.trace,
+                ..BuildOptions::default()
+            }
+        );
+    let mut cache = built()
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
     if let Some(m) = cache.get(&key).filter(|_| shared) {
         return Ok(m.clone());
     }
     let start = Instant::now();
-    let top_ports = wrapper::ports(config.lanes);
-    let ports: Vec<Port> = top_ports
+    let ports: Vec<Port> = wrapper::ports(config.lanes)
         .iter()
         .map(|p| {
             let dir = match p.direction {
                 wrapper::Direction::Input => Direction::Input,
                 wrapper::Direction::Output => Direction::Output,
             };
-            Port::new(harness_name(&p.name), dir, p.width as u32)
+            Port::new(p.name.clone(), dir, p.width as u32)
         })
         .collect();
-    let verilog = format!("{}\n{}", harness(&top_ports), hdl::top::top_verilog(config)?);
-    let spec = ModelSpec { verilog, top: HARNESS.to_string(), ports: Some(ports), clock: Some("ap_clk".into()) };
+    let verilog = hdl::top::top_verilog(config)?;
+    let spec = ModelSpec {
+        verilog,
+        top: TOP.to_string(),
+        ports: Some(ports),
+        clock: Some("ap_clk".into()),
+    };
     let model = build(&spec, options)?;
     let top = Arc::new(TopModel {
         config: config.clone(),
@@ -76,30 +103,6 @@ pub fn top_model_with(config: &TopConfig, options: &BuildOptions) -> Result<Arc<
         cache.insert(key, top.clone());
     }
     Ok(top)
-}
-
-/// The pass-through module simulated around `rtfpga_top`.
-const HARNESS: &str = "rtfpga_cosim";
-
-/// The harness' name of a `rtfpga_top` port: Verilator renames a port called `interrupt` (a
-/// word it reserves) to `__SYM__interrupt`, which the builder's shim does not know yet, so the
-/// harness calls it `irq`; every other port keeps its name.
-fn harness_name(name: &str) -> String {
-    if name == "interrupt" { "irq".into() } else { name.into() }
-}
-
-/// Verilog of the harness around `rtfpga_top` with ports `top_ports`.
-fn harness(top_ports: &[wrapper::TopPort]) -> String {
-    let decls: Vec<String> = top_ports
-        .iter()
-        .map(|p| {
-            let dir = if p.direction == wrapper::Direction::Input { "input " } else { "output" };
-            let range = if p.width > 1 { format!("[{}:0] ", p.width - 1) } else { String::new() };
-            format!("    {dir} wire {range}{}", harness_name(&p.name))
-        })
-        .collect();
-    let pins: Vec<String> = top_ports.iter().map(|p| format!(".{}({})", p.name, harness_name(&p.name))).collect();
-    format!("module {HARNESS} (\n{}\n);\n    {TOP} dut ({});\nendmodule\n", decls.join(",\n"), pins.join(", "))
 }
 
 /// The 1-bit and narrow inputs of `rtfpga_top` the drivers set.
@@ -162,7 +165,7 @@ const OUT_NAMES: [(Out, &str); 12] = [
     (Out::RValid, "s_axi_control_rvalid"),
     (Out::RData, "s_axi_control_rdata"),
     (Out::RResp, "s_axi_control_rresp"),
-    (Out::Interrupt, "irq"),
+    (Out::Interrupt, "interrupt"),
     (Out::STReady, "s_axis_tready"),
     (Out::MTValid, "m_axis_tvalid"),
     (Out::MTLast, "m_axis_tlast"),
@@ -183,10 +186,13 @@ fn offset(ports: &[Port], name: &str, width: Option<u32>) -> Result<usize, SimEr
     for p in ports {
         if p.name == name {
             return match width {
-                Some(w) if w != p.width => {
-                    Err(SimError::Interface(format!("port `{name}` is {} bits wide, expected {w}", p.width)))
-                }
-                None if p.width > 32 => Err(SimError::Interface(format!("port `{name}` is wider than 32 bits"))),
+                Some(w) if w != p.width => Err(SimError::Interface(format!(
+                    "port `{name}` is {} bits wide, expected {w}",
+                    p.width
+                ))),
+                None if p.width > 32 => Err(SimError::Interface(format!(
+                    "port `{name}` is wider than 32 bits"
+                ))),
                 _ => Ok(at),
             };
         }
@@ -210,8 +216,16 @@ impl Layout {
         Ok(Layout {
             inputs,
             outputs,
-            s_tdata: offset(&iface.inputs, "s_axis_tdata", Some((IN_LANE_BITS * lanes) as u32))?,
-            m_tdata: offset(&iface.outputs, "m_axis_tdata", Some((OUT_LANE_BITS * lanes) as u32))?,
+            s_tdata: offset(
+                &iface.inputs,
+                "s_axis_tdata",
+                Some((IN_LANE_BITS * lanes) as u32),
+            )?,
+            m_tdata: offset(
+                &iface.outputs,
+                "m_axis_tdata",
+                Some((OUT_LANE_BITS * lanes) as u32),
+            )?,
         })
     }
 }

@@ -21,15 +21,17 @@ use sw_renderer::intersect::Intersector;
 pub enum Mode {
     /// AXI4-Stream batches, one query per lane per cycle.
     Stream,
-    /// The thesis' register sequence per query over AXI4-Lite (lane 0, polling ap_done).
-    Register,
+    /// The thesis' register sequence per query over AXI4-Lite (lane 0), finishing each test by
+    /// polling ap_done or by waiting for the interrupt.
+    Register(Completion),
 }
 
 impl std::fmt::Display for Mode {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(match self {
             Mode::Stream => "stream",
-            Mode::Register => "register",
+            Mode::Register(Completion::Poll) => "register",
+            Mode::Register(Completion::Interrupt) => "register-irq",
         })
     }
 }
@@ -74,6 +76,15 @@ impl HwStats {
     }
 }
 
+/// How the register-mode bus master of an instance finishes a test.
+fn completion(mode: Mode) -> Completion {
+    match mode {
+        Mode::Register(c) => c,
+        // Stream instances never use their bus master.
+        Mode::Stream => Completion::Poll,
+    }
+}
+
 struct Shared {
     pool: Vec<(Accel, AxiLiteMaster)>,
     stats: HwStats,
@@ -106,11 +117,18 @@ impl HwIntersector {
             first.record_vcd(w)?;
         }
         let shared = Shared {
-            pool: vec![(first, AxiLiteMaster::new(Completion::Poll))],
-            stats: HwStats { instances: 1, ..HwStats::default() },
+            pool: vec![(first, AxiLiteMaster::new(completion(mode)))],
+            stats: HwStats {
+                instances: 1,
+                ..HwStats::default()
+            },
             error: None,
         };
-        Ok(HwIntersector { top, mode, shared: Mutex::new(shared) })
+        Ok(HwIntersector {
+            top,
+            mode,
+            shared: Mutex::new(shared),
+        })
     }
 
     pub fn config(&self) -> &TopConfig {
@@ -142,7 +160,9 @@ impl HwIntersector {
     }
 
     fn lock(&self) -> std::sync::MutexGuard<'_, Shared> {
-        self.shared.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+        self.shared
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner())
     }
 
     /// Runs one batch on an instance taken from the pool.
@@ -159,15 +179,17 @@ impl HwIntersector {
             None => {
                 let accel = Accel::new(&self.top)?;
                 self.lock().stats.instances += 1;
-                (accel, AxiLiteMaster::new(Completion::Poll))
+                (accel, AxiLiteMaster::new(completion(self.mode)))
             }
         };
         let start = Instant::now();
         let cycles_before = accel.cycles();
         // (tests, transactions) of this batch.
         let outcome = match self.mode {
-            Mode::Stream => stream_batch(&mut accel, queries, results, &mut || true).map(|s| s.beats),
-            Mode::Register => {
+            Mode::Stream => {
+                stream_batch(&mut accel, queries, results, &mut || true).map(|s| s.beats)
+            }
+            Mode::Register(_) => {
                 let before = bus.stats.transactions();
                 let mut run = || -> Result<(), CosimError> {
                     for (q, r) in queries.iter().zip(results.iter_mut()) {

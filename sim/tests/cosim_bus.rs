@@ -27,13 +27,26 @@ fn queries(n: usize, seed: u64) -> Vec<MtQuery> {
         .map(|i| {
             if i % 10 == 9 {
                 let mut bits = || [0; 3].map(|_| f32::from_bits(rng.gen()));
-                return MtQuery { orig: bits(), dir: bits(), v0: bits(), v1: bits(), v2: bits() };
+                return MtQuery {
+                    orig: bits(),
+                    dir: bits(),
+                    v0: bits(),
+                    v1: bits(),
+                    v2: bits(),
+                };
             }
             let mut p = |r: f32| [0; 3].map(|_| rng.gen_range(-r..r));
             let (v0, v1, v2, orig) = (p(2.0), p(2.0), p(2.0), p(8.0));
             let (a, b) = (rng.gen_range(-0.3..1.0f32), rng.gen_range(-0.3..1.0f32));
-            let dir = [0, 1, 2].map(|k| v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]) - orig[k]);
-            MtQuery { orig, dir, v0, v1, v2 }
+            let dir =
+                [0, 1, 2].map(|k| v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]) - orig[k]);
+            MtQuery {
+                orig,
+                dir,
+                v0,
+                v1,
+                v2,
+            }
         })
         .collect()
 }
@@ -42,7 +55,10 @@ fn assert_model_exact(format: &str, qs: &[MtQuery], got: &[MtResult]) {
     let f = hw_model::lookup(format).unwrap();
     for (i, (q, g)) in qs.iter().zip(got).enumerate() {
         let want = mt_model(&f, q);
-        assert!(g.same_bits(&want), "query {i} {q:?}: hardware {g:?}, model {want:?}");
+        assert!(
+            g.same_bits(&want),
+            "query {i} {q:?}: hardware {g:?}, model {want:?}"
+        );
     }
     let hits = got.iter().filter(|r| r.hit).count();
     assert!(hits > qs.len() / 5, "only {hits} hits of {}", qs.len());
@@ -56,25 +72,44 @@ fn register_and_stream_modes_agree_with_the_model() {
 
     let mut poll = AxiLiteMaster::new(Completion::Poll);
     assert_eq!(poll.read(&mut accel, regmap::ID).unwrap(), regmap::ID_VALUE);
-    assert_eq!(poll.read(&mut accel, regmap::CONFIG).unwrap(), config().config_word().unwrap().pack());
+    assert_eq!(
+        poll.read(&mut accel, regmap::CONFIG).unwrap(),
+        config().config_word().unwrap().pack()
+    );
     let before = poll.stats;
-    let by_poll: Vec<MtResult> = qs[..150].iter().map(|q| poll.test(&mut accel, q).unwrap()).collect();
+    let by_poll: Vec<MtResult> = qs[..150]
+        .iter()
+        .map(|q| poll.test(&mut accel, q).unwrap())
+        .collect();
     let per_test = (poll.stats.cycles - before.cycles) as f64 / 150.0;
     let transactions = (poll.stats.transactions() - before.transactions()) as f64 / 150.0;
     // 15 operands + ap_start + ≥1 poll + 4 results; each transaction takes ≥ 2 cycles.
-    assert!(transactions >= 21.0 && per_test >= 2.0 * transactions, "{transactions} {per_test}");
+    assert!(
+        transactions >= 21.0 && per_test >= 2.0 * transactions,
+        "{transactions} {per_test}"
+    );
     println!("register mode (poll): {per_test:.1} cycles, {transactions:.1} transactions per test");
 
     let mut irq = AxiLiteMaster::new(Completion::Interrupt);
-    let by_irq: Vec<MtResult> = qs[150..].iter().map(|q| irq.test(&mut accel, q).unwrap()).collect();
-    assert_eq!(irq.stats.writes, 2 + 150 * 17, "GIE, IER once; 15 operands, ap_start, ISR ack per test");
+    let by_irq: Vec<MtResult> = qs[150..]
+        .iter()
+        .map(|q| irq.test(&mut accel, q).unwrap())
+        .collect();
+    assert_eq!(
+        irq.stats.writes,
+        2 + 150 * 17,
+        "GIE, IER once; 15 operands, ap_start, ISR ack per test"
+    );
     assert_eq!(irq.stats.reads, 150 * 4);
 
     let mut streamed = vec![MtResult::default(); qs.len()];
     let s = stream_batch(&mut accel, &qs, &mut streamed, &mut || true).unwrap();
     assert_eq!((s.tests, s.beats, s.input_stalls), (300, 300, 0));
     // One beat per cycle after the pipeline fills: latency + FIFO + handshakes on top.
-    assert!(s.cycles >= 300 && s.cycles <= 300 + top.lane_latency as u64 + 8, "{s:?}");
+    assert!(
+        s.cycles >= 300 && s.cycles <= 300 + top.lane_latency as u64 + 8,
+        "{s:?}"
+    );
 
     let registers: Vec<MtResult> = by_poll.into_iter().chain(by_irq).collect();
     for (i, (r, s)) in registers.iter().zip(&streamed).enumerate() {
@@ -106,17 +141,27 @@ fn bus_errors_are_reported_not_ignored() {
     let top = top_model(&config(), false).unwrap();
     let mut accel = Accel::new(&top).unwrap();
     let mut bus = AxiLiteMaster::new(Completion::Poll);
-    assert_eq!(bus.write_resp(&mut accel, 0x4C, 1).unwrap(), regmap::RESP_SLVERR);
+    assert_eq!(
+        bus.write_resp(&mut accel, 0x4C, 1).unwrap(),
+        regmap::RESP_SLVERR
+    );
     let e = bus.write(&mut accel, regmap::T, 1).unwrap_err().to_string();
-    assert!(e.contains("AXI4-Lite protocol") && e.contains("0x54"), "{e}");
+    assert!(
+        e.contains("AXI4-Lite protocol") && e.contains("0x54"),
+        "{e}"
+    );
     let e = bus.read(&mut accel, 0x7C).unwrap_err().to_string();
     assert!(e.contains("read of 0x7c"), "{e}");
 }
 
 #[test]
-fn intersector_counts_its_work_in_both_modes() {
+fn intersector_counts_its_work_in_every_mode() {
     let qs = queries(500, 4);
-    for mode in [Mode::Stream, Mode::Register] {
+    for mode in [
+        Mode::Stream,
+        Mode::Register(Completion::Poll),
+        Mode::Register(Completion::Interrupt),
+    ] {
         let hw = HwIntersector::new(&config(), mode).unwrap();
         let mut got = vec![MtResult::default(); qs.len()];
         hw.intersect_batch(&qs, &mut got);
@@ -127,7 +172,19 @@ fn intersector_counts_its_work_in_both_modes() {
         assert_eq!(s.lane_cycles, s.cycles);
         match mode {
             Mode::Stream => assert!(s.lane_utilisation() > 0.8 && s.transactions == 500, "{s:?}"),
-            Mode::Register => assert!(s.cycles_per_test() > 40.0 && s.transactions >= 500 * 21, "{s:?}"),
+            Mode::Register(Completion::Poll) => {
+                assert!(
+                    s.cycles_per_test() > 40.0 && s.transactions >= 500 * 21,
+                    "{s:?}"
+                )
+            }
+            // 15 operands, ap_start, ISR acknowledge, 4 result reads per test; GIE and IER once.
+            Mode::Register(Completion::Interrupt) => {
+                assert!(
+                    s.cycles_per_test() > 40.0 && s.transactions == 500 * 21 + 2,
+                    "{s:?}"
+                )
+            }
         }
         assert_eq!(hw.name(), format!("hw fp32 d1 l1 {mode}"));
     }
@@ -136,18 +193,29 @@ fn intersector_counts_its_work_in_both_modes() {
 #[test]
 fn missing_tools_and_broken_builds_are_clear_errors() {
     let empty = tempfile::tempdir().unwrap();
-    let no_tools = BuildOptions { search_path: Some(empty.path().into()), ..BuildOptions::default() };
-    let e = top_model_with(&config(), &no_tools).err().expect("no verilator on an empty PATH").to_string();
+    let no_tools = BuildOptions {
+        search_path: Some(empty.path().into()),
+        ..BuildOptions::default()
+    };
+    let e = top_model_with(&config(), &no_tools)
+        .err()
+        .expect("no verilator on an empty PATH")
+        .to_string();
     assert!(e.contains("verilator not found"), "{e}");
 
     let broken = BuildOptions {
         verilator_args: vec!["--no-such-verilator-option".into()],
         ..BuildOptions::default()
     };
-    let e = top_model_with(&config(), &broken).err().expect("a bad option must fail the build");
+    let e = top_model_with(&config(), &broken)
+        .err()
+        .expect("a bad option must fail the build");
     assert!(matches!(e, CosimError::Sim(_)), "{e}");
     assert!(e.to_string().contains("verilator failed"), "{e}");
 
-    let e = top_model(&TopConfig::new("fp33", 1, 1), false).err().unwrap().to_string();
+    let e = top_model(&TopConfig::new("fp33", 1, 1), false)
+        .err()
+        .unwrap()
+        .to_string();
     assert!(e.contains("fp33"), "{e}");
 }

@@ -353,3 +353,29 @@ fn invalid_verilog_is_an_error_with_verilators_message() {
         "{err}"
     );
 }
+
+/// Ports named after words Verilator reserves (`delete` a C++ keyword, `interrupt` a common
+/// word) are renamed `__SYM__…` in its C++; the shim follows.
+const RESERVED: &str = "module reserved(input wire [7:0] delete, input wire [7:0] x, output wire interrupt, output wire [7:0] y);\n\
+                        assign interrupt = delete == x;\n  assign y = delete + x;\nendmodule\n";
+
+#[test]
+fn ports_named_like_reserved_words_work() {
+    let spec = ModelSpec {
+        verilog: RESERVED.into(),
+        top: "reserved".into(),
+        ports: None,
+        clock: None,
+    };
+    let model = build(&spec, &BuildOptions::default()).unwrap();
+    let mut sim = model.instantiate();
+    let mut out = [0u32; 2];
+    for (delete, x) in [(3u32, 3u32), (200, 100), (0, 255)] {
+        sim.eval(&[delete, x], &mut out).unwrap();
+        assert_eq!(
+            out,
+            [u32::from(delete == x), (delete + x) & 0xFF],
+            "delete={delete} x={x}"
+        );
+    }
+}

@@ -1,6 +1,8 @@
 //! Turning Verilog into a loadable shared object: `verilator --cc`, then the C++ compiler.
 
 use super::cache;
+use super::interface::Interface;
+use super::shim;
 use super::toolchain::{run, Toolchain};
 use crate::SimError;
 use std::path::{Path, PathBuf};
@@ -143,14 +145,14 @@ pub fn verilator_args(top: &str, trace: bool, extra: &[String]) -> Vec<String> {
     args
 }
 
-/// Builds `dir/model.so` from `verilog` and the shim source `shim`.
+/// Builds `dir/model.so` from `verilog` and the shim for `iface`.
 pub fn model(
     tc: &Toolchain,
     runtime_lib: &Path,
     dir: &Path,
     verilog: &str,
     verilator_args: &[String],
-    shim: &str,
+    iface: &Interface,
     trace: bool,
 ) -> Result<(), SimError> {
     let v_path = dir.join("top.v");
@@ -160,6 +162,11 @@ pub fn model(
     cmd.args(verilator_args).arg("-Mdir").arg(&obj).arg(&v_path);
     run(cmd, "verilator", "verilating the design")?;
 
+    // The shim names the ports as Verilator did, reserved words renamed included.
+    let header_path = obj.join("Vmodel.h");
+    let header =
+        std::fs::read_to_string(&header_path).map_err(|e| SimError::io(&header_path, e))?;
+    let shim = shim::generate(iface, &shim::renamed_ports(&header, iface));
     let shim_path = obj.join("rtfpga_shim.cpp");
     std::fs::write(&shim_path, shim).map_err(|e| SimError::io(&shim_path, e))?;
     let mut jobs = Vec::new();

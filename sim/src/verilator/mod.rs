@@ -93,7 +93,9 @@ pub fn build(spec: &ModelSpec, options: &BuildOptions) -> Result<Model, SimError
         None => parse_ports(&spec.verilog, &spec.top)?,
     };
     let iface = Interface::new(&ports, spec.clock.as_deref())?;
-    let shim_src = shim::generate(&iface);
+    // The key takes the shim as if no port were renamed: Verilator's renaming follows from
+    // the Verilog and its version, which the key holds too.
+    let shim_src = shim::generate(&iface, &Default::default());
     let args = compile::verilator_args(&spec.top, options.trace, &options.verilator_args);
     let root = options.cache_dir.clone().unwrap_or_else(default_cache_dir);
     let key = cache::key(&[
@@ -115,7 +117,7 @@ pub fn build(spec: &ModelSpec, options: &BuildOptions) -> Result<Model, SimError
                 tmp,
                 &spec.verilog,
                 &args,
-                &shim_src,
+                &iface,
                 options.trace,
             )
         })?

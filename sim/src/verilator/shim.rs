@@ -8,6 +8,7 @@
 
 use super::interface::Interface;
 use super::ports::Port;
+use std::collections::HashSet;
 use std::fmt::Write;
 
 /// Version of the C ABI below; checked when a model is loaded.
@@ -43,6 +44,38 @@ pub fn cpp_name(verilog_name: &str) -> String {
     out
 }
 
+/// The prefix Verilator puts before a port whose name is a word it reserves (C++ keywords and
+/// common words such as `interrupt`; its warning SYMRSVDWORD says so).
+const RESERVED_PREFIX: &str = "__SYM__";
+
+/// Ports Verilator renamed with [`RESERVED_PREFIX`], read from the model header `Vmodel.h`
+/// it wrote (its list of reserved words changes between versions, so the header is the truth).
+pub fn renamed_ports(header: &str, iface: &Interface) -> HashSet<String> {
+    let clock = iface.clock.iter();
+    let names = iface
+        .inputs
+        .iter()
+        .chain(&iface.outputs)
+        .map(|p| &p.name)
+        .chain(clock);
+    names
+        .filter(|name| {
+            let member = format!("(&{RESERVED_PREFIX}{},", cpp_name(name));
+            header.contains(&member)
+        })
+        .cloned()
+        .collect()
+}
+
+/// The model's member for Verilog port `name`, given the ports Verilator renamed.
+fn member(name: &str, renamed: &HashSet<String>) -> String {
+    if renamed.contains(name) {
+        format!("{RESERVED_PREFIX}{}", cpp_name(name))
+    } else {
+        cpp_name(name)
+    }
+}
+
 fn mask(bits: u32) -> String {
     if bits == 32 {
         "0xFFFFFFFFu".into()
@@ -52,8 +85,8 @@ fn mask(bits: u32) -> String {
 }
 
 /// Statements copying packed words at `buf[offset..]` into input port `p`.
-fn set_input(code: &mut String, p: &Port, offset: usize) {
-    let m = cpp_name(&p.name);
+fn set_input(code: &mut String, p: &Port, offset: usize, renamed: &HashSet<String>) {
+    let m = member(&p.name, renamed);
     let top_bits = (p.width - 1) % 32 + 1;
     match p.words() {
         1 => writeln!(code, "    m->{m} = in[{offset}] & {};", mask(top_bits)),
@@ -81,8 +114,8 @@ fn set_input(code: &mut String, p: &Port, offset: usize) {
 }
 
 /// Statements copying output port `p` into packed words at `buf[offset..]`.
-fn get_output(code: &mut String, p: &Port, offset: usize) {
-    let m = cpp_name(&p.name);
+fn get_output(code: &mut String, p: &Port, offset: usize, renamed: &HashSet<String>) {
+    let m = member(&p.name, renamed);
     match p.words() {
         1 => writeln!(code, "    out[{offset}] = (uint32_t)m->{m};").unwrap(),
         2 => {
@@ -97,24 +130,25 @@ fn get_output(code: &mut String, p: &Port, offset: usize) {
     }
 }
 
-/// The C++ source of the shim for `iface`.
-pub fn generate(iface: &Interface) -> String {
+/// The C++ source of the shim for `iface`, whose ports in `renamed` Verilator prefixed with
+/// [`RESERVED_PREFIX`] (see [`renamed_ports`]).
+pub fn generate(iface: &Interface, renamed: &HashSet<String>) -> String {
     let mut set = String::new();
     let mut offset = 0;
     for p in &iface.inputs {
-        set_input(&mut set, p, offset);
+        set_input(&mut set, p, offset, renamed);
         offset += p.words();
     }
     let mut get = String::new();
     offset = 0;
     for p in &iface.outputs {
-        get_output(&mut get, p, offset);
+        get_output(&mut get, p, offset, renamed);
         offset += p.words();
     }
     let (clock_low, clock_high) = match &iface.clock {
         Some(c) => (
-            format!("m->{} = 0;", cpp_name(c)),
-            format!("m->{} = 1;", cpp_name(c)),
+            format!("m->{} = 0;", member(c, renamed)),
+            format!("m->{} = 1;", member(c, renamed)),
         ),
         None => (String::new(), String::new()),
     };
@@ -251,6 +285,24 @@ mod tests {
         assert_eq!(cpp_name("ap_clk"), "ap_clk");
         assert_eq!(cpp_name("a__b"), "a___05Fb");
         assert_eq!(cpp_name("\\odd.name"), "odd__02Ename");
+    }
+
+    #[test]
+    fn reserved_ports_are_found_in_the_header() {
+        use crate::verilator::{Direction, Port};
+        let ports = [
+            Port::new("clk", Direction::Input, 1),
+            Port::new("interrupt", Direction::Output, 1),
+            Port::new("a$b", Direction::Input, 8),
+        ];
+        let iface = Interface::new(&ports, Some("clk")).unwrap();
+        let header = "    VL_IN8(&clk,0,0);\n    VL_OUT8(&__SYM__interrupt,0,0);\n    VL_IN8(&a__024b,7,0);\n";
+        let renamed = renamed_ports(header, &iface);
+        assert_eq!(renamed, HashSet::from(["interrupt".to_string()]));
+        let shim = generate(&iface, &renamed);
+        assert!(shim.contains("(uint32_t)m->__SYM__interrupt;"), "{shim}");
+        assert!(shim.contains("m->a__024b = in[0]"), "{shim}");
+        assert!(shim.contains("m->clk = 1;"), "{shim}");
     }
 
     #[test]
