@@ -124,9 +124,10 @@ pub fn run(a: Args) -> Result<()> {
         s.instances
     );
     println!(
-        "sim_cycles_per_s={:.0} tests_per_s={:.0} (per core, simulator time {:.2} s) wall_s={:.2} wall_tests_per_s={:.0}",
+        "sim_cycles_per_s={:.0} tests_per_s={:.0} (per core: simulator CPU time {:.2} s, simulator wall time {:.2} s) wall_s={:.2} wall_tests_per_s={:.0}",
         s.cycles_per_sec(),
         s.tests_per_sec(),
+        s.sim_cpu_time.as_secs_f64(),
         s.sim_time.as_secs_f64(),
         wall,
         s.tests as f64 / wall.max(1e-9)

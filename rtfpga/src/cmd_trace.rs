@@ -117,11 +117,13 @@ fn replay_trace(a: ReplayArgs) -> Result<()> {
     }
     let s = hw.stats();
     println!(
-        "cycles={} lane_utilisation={:.4} sim_cycles_per_s={:.0} tests_per_s={:.0} (per core)",
+        "cycles={} lane_utilisation={:.4} sim_cycles_per_s={:.0} tests_per_s={:.0} (per core: simulator CPU time {:.2} s, wall time {:.2} s)",
         s.cycles,
         s.lane_utilisation(),
         s.cycles_per_sec(),
-        s.tests_per_sec()
+        s.tests_per_sec(),
+        s.sim_cpu_time.as_secs_f64(),
+        s.sim_time.as_secs_f64()
     );
     if let Some(want) = want {
         match first_difference(&got, &want) {

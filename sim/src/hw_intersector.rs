@@ -51,6 +51,9 @@ pub struct HwStats {
     pub transactions: u64,
     /// Wall time spent inside the simulator, summed over threads.
     pub sim_time: Duration,
+    /// CPU time the simulating threads ran for it (zero where the OS does not say): unlike
+    /// the wall time, it does not grow when other processes share the cores.
+    pub sim_cpu_time: Duration,
     /// Simulated instances (threads that used the hardware).
     pub instances: usize,
 }
@@ -61,19 +64,57 @@ impl HwStats {
         self.busy_lane_cycles as f64 / self.lane_cycles.max(1) as f64
     }
 
-    /// Simulated clock cycles per second of simulator time (per core).
-    pub fn cycles_per_sec(&self) -> f64 {
-        self.cycles as f64 / self.sim_time.as_secs_f64().max(1e-9)
+    /// Seconds one core spent simulating: the CPU time, or the wall time where it is unknown.
+    pub fn core_seconds(&self) -> f64 {
+        let t = if self.sim_cpu_time.is_zero() {
+            self.sim_time
+        } else {
+            self.sim_cpu_time
+        };
+        t.as_secs_f64().max(1e-9)
     }
 
-    /// Tests per second of simulator time (per core).
+    /// Simulated clock cycles per second of one core.
+    pub fn cycles_per_sec(&self) -> f64 {
+        self.cycles as f64 / self.core_seconds()
+    }
+
+    /// Tests per second of one core.
     pub fn tests_per_sec(&self) -> f64 {
-        self.tests as f64 / self.sim_time.as_secs_f64().max(1e-9)
+        self.tests as f64 / self.core_seconds()
     }
 
     pub fn cycles_per_test(&self) -> f64 {
         self.cycles as f64 / self.tests.max(1) as f64
     }
+}
+
+/// CPU time the calling thread has run so far (`CLOCK_THREAD_CPUTIME_ID`, exact to the
+/// nanosecond); `None` where it cannot be read.
+#[cfg(all(target_os = "linux", target_pointer_width = "64"))]
+fn thread_cpu_time() -> Option<Duration> {
+    /// `struct timespec` of 64-bit Linux.
+    #[repr(C)]
+    struct Timespec {
+        tv_sec: i64,
+        tv_nsec: i64,
+    }
+    extern "C" {
+        fn clock_gettime(clock: i32, time: *mut Timespec) -> i32;
+    }
+    const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
+    let mut t = Timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `t` is a valid, writable timespec; libc (linked by std) fills it or fails.
+    let ok = unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut t) } == 0;
+    ok.then(|| Duration::new(t.tv_sec as u64, t.tv_nsec as u32))
+}
+
+#[cfg(not(all(target_os = "linux", target_pointer_width = "64")))]
+fn thread_cpu_time() -> Option<Duration> {
+    None
 }
 
 /// How the register-mode bus master of an instance finishes a test.
@@ -183,6 +224,7 @@ impl HwIntersector {
             }
         };
         let start = Instant::now();
+        let cpu_start = thread_cpu_time();
         let cycles_before = accel.cycles();
         // (tests, transactions) of this batch.
         let outcome = match self.mode {
@@ -201,8 +243,12 @@ impl HwIntersector {
             }
         };
         let elapsed = start.elapsed();
+        let cpu = cpu_start
+            .zip(thread_cpu_time())
+            .map_or(Duration::ZERO, |(a, b)| b.saturating_sub(a));
         let mut shared = self.lock();
         shared.stats.sim_time += elapsed;
+        shared.stats.sim_cpu_time += cpu;
         let transactions = outcome?;
         let cycles = accel.cycles() - cycles_before;
         let s = &mut shared.stats;

@@ -170,6 +170,12 @@ fn intersector_counts_its_work_in_every_mode() {
         let s = hw.stats();
         assert_eq!((s.tests, s.busy_lane_cycles), (500, 500));
         assert_eq!(s.lane_cycles, s.cycles);
+        // Linux tells the simulating thread's CPU time; it cannot exceed the batches' wall time.
+        assert!(
+            !s.sim_cpu_time.is_zero()
+                && s.sim_cpu_time <= s.sim_time + std::time::Duration::from_millis(5),
+            "{s:?}"
+        );
         match mode {
             Mode::Stream => assert!(s.lane_utilisation() > 0.8 && s.transactions == 500, "{s:?}"),
             Mode::Register(Completion::Poll) => {
