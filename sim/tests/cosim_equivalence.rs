@@ -1,9 +1,8 @@
 //! fp16 and the thesis' ap_fixed<32,16>: the Verilated accelerator answers 100% of the
 //! queries of real renders exactly like `hw_model::mt_model` — a trace recorded from the
 //! renders, written to a file, read back and replayed into both, for two pipeline depths and
-//! two lane counts per format. Four model builds (~1–2 min each the first time, then cached).
-//! Depth 0 (combinational lanes, a result in its beat's accept cycle) is covered by
-//! `depth_0_stream_keeps_every_result`.
+//! two lane counts per format, plus depth 0 (combinational lanes: a result comes in its beat's
+//! accept cycle) for fp16. Six model builds (~1–2 min each the first time, then cached).
 
 use hdl::top::TopConfig;
 use hw_model::MtQuery;
