@@ -38,6 +38,11 @@ golden: build
 verilog: build
 	$(RTFPGA) verilog --defaults --out generated-verilog
 
+# Design-space sweep of sweeps/default.toml into sweep-out/ (about 25 min on 2 cores; a re-run
+# reuses the cached syntheses): results.md/csv/json, plots/, grids/. docs/sweep.md reports it.
+sweep: build
+	$(RTFPGA) sweep --config sweeps/default.toml --out sweep-out
+
 bench: build
 	$(CARGO) bench -p sw-renderer
 

@@ -11,6 +11,7 @@ mod cmd_golden;
 mod cmd_project;
 mod cmd_render;
 mod cmd_synth;
+mod cmd_sweep;
 mod cmd_verilog;
 mod cmd_trace;
 
@@ -45,6 +46,12 @@ enum Command {
     Verilog(cmd_verilog::Args),
     /// yosys resources and logic depth of the accelerator or one operator; lanes that fit.
     Synth(cmd_synth::Args),
+    /// Design-space sweep (formats x depths x lanes): manifest, every job here, merge.
+    Sweep(cmd_sweep::Args),
+    /// Run one job of a sweep's manifest (prepare, quality/FORMAT, point/ID).
+    SweepJob(cmd_sweep::JobArgs),
+    /// Merge a sweep's job results into results.csv/json/md and the plots.
+    SweepMerge(cmd_sweep::MergeArgs),
 }
 
 fn main() -> std::process::ExitCode {
@@ -60,6 +67,9 @@ fn main() -> std::process::ExitCode {
         Command::Project(a) => cmd_project::run(a),
         Command::Cosim(a) => cmd_cosim::run(a),
         Command::Trace(a) => cmd_trace::run(a),
+        Command::Sweep(a) => cmd_sweep::run(a),
+        Command::SweepJob(a) => cmd_sweep::run_job(a),
+        Command::SweepMerge(a) => cmd_sweep::run_merge(a),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

@@ -7,6 +7,7 @@ pub mod cosim_error;
 pub mod error;
 pub mod hw_intersector;
 pub mod stream_driver;
+pub mod sweep;
 pub mod trace;
 pub mod projection;
 pub mod verilator;

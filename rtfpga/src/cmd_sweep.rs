@@ -1,0 +1,96 @@
+//! `rtfpga sweep`, `sweep-job`, `sweep-merge`: design-space sweeps (`sim::sweep`,
+//! docs/sweep.md). `sweep` writes the manifest and runs everything here; `sweep-job` runs one
+//! manifest line (GNU parallel, Slurm arrays); `sweep-merge` gathers the results.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use clap::Args as ClapArgs;
+use sim::sweep::{self, Job, Layout, LocalRun, Results};
+
+#[derive(ClapArgs)]
+pub struct Args {
+    /// Sweep configuration (see sweeps/default.toml).
+    #[arg(long)]
+    config: PathBuf,
+    /// Output directory (results, plots, grids, per-job files, the synthesis cache).
+    #[arg(long)]
+    out: PathBuf,
+    /// Jobs at once.
+    #[arg(long, default_value_t = 2)]
+    jobs: usize,
+    /// Only check the configuration and write manifest.json and jobs.txt.
+    #[arg(long)]
+    manifest_only: bool,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+#[derive(ClapArgs)]
+pub struct JobArgs {
+    #[arg(long)]
+    config: PathBuf,
+    #[arg(long)]
+    out: PathBuf,
+    /// `prepare`, `quality/FORMAT` or `point/ID` (manifest.json lists them).
+    #[arg(long)]
+    job: String,
+}
+
+#[derive(ClapArgs)]
+pub struct MergeArgs {
+    /// The sweep's output directory.
+    dir: PathBuf,
+}
+
+fn program() -> String {
+    std::env::current_exe().map_or_else(|_| "rtfpga".to_string(), |p| p.display().to_string())
+}
+
+pub fn run(a: Args) -> Result<()> {
+    let config = sweep::load(&a.config)?;
+    if a.manifest_only {
+        let manifest = sweep::manifest::manifest(&config, &a.out, &program());
+        sweep::manifest::write(&config, &manifest)?;
+        println!(
+            "{} points, {} jobs after `prepare`: {}",
+            config.points.len(),
+            manifest.jobs.len(),
+            Layout::new(&a.out).manifest().display()
+        );
+        return Ok(());
+    }
+    let opts = LocalRun { threads: a.jobs, progress: !a.quiet, program: program() };
+    let results = sweep::run_local(&config, &a.out, &opts)?;
+    summary(&results, &Layout::new(&a.out));
+    Ok(())
+}
+
+pub fn run_job(a: JobArgs) -> Result<()> {
+    let config = sweep::load(&a.config)?;
+    let job = Job::parse(&a.job, &config)?;
+    sweep::run_job(&config, &Layout::new(&a.out), &job).with_context(|| format!("job {}", a.job))
+}
+
+pub fn run_merge(a: MergeArgs) -> Result<()> {
+    let layout = Layout::new(&a.dir);
+    let results = sweep::merge(&layout)?;
+    summary(&results, &layout);
+    Ok(())
+}
+
+fn summary(results: &Results, layout: &Layout) {
+    println!(
+        "{} points merged: {}, {}, {}",
+        results.rows.len(),
+        layout.results("csv").display(),
+        layout.results("json").display(),
+        layout.results("md").display()
+    );
+    let hardware: Vec<_> =
+        results.quality.iter().filter(|q| !results.model_formats.contains(&q.format)).cloned().collect();
+    if let Some(q) = sweep::table::smallest_format_above(&hardware, 40.0) {
+        println!("smallest format with PSNR >= 40 dB on every scene: {} ({} bits)", q.format, q.bits);
+    }
+}

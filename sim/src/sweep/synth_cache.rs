@@ -1,0 +1,67 @@
+//! yosys results of the sweep's points, kept in the output directory so that a re-run only
+//! synthesises designs whose Verilog changed (the key is the Verilog's SHA-256).
+
+use std::time::Instant;
+
+use anyhow::Result;
+use hdl::synth::{synthesize, SynthOptions};
+use hdl::top::fit::Usage;
+use hdl::top::wrapper;
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+
+use super::layout::{read_json, write_json, Layout};
+
+/// What the sweep keeps of a yosys report.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SynthRecord {
+    /// LUTs as the device counts them (logic + shift registers + LUT RAM).
+    pub lut: u64,
+    pub ff: u64,
+    pub dsp48e1: u64,
+    pub carry4: u64,
+    /// RAMB18 halves.
+    pub bram18: u64,
+    pub logic_depth: u64,
+    /// yosys' wall time when it ran.
+    pub seconds: u64,
+    pub verilog_sha256: String,
+}
+
+impl SynthRecord {
+    pub fn usage(&self) -> Usage {
+        Usage { lut: self.lut, ff: self.ff, dsp48e1: self.dsp48e1, bram18: self.bram18 }
+    }
+}
+
+pub fn sha256_hex(text: &str) -> String {
+    Sha256::digest(text.as_bytes()).iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// The report of point `id` with Verilog `verilog`: from the cache when the Verilog is the
+/// same, else from yosys (then cached). Returns the record and whether it was cached.
+pub fn synthesize_cached(layout: &Layout, id: &str, verilog: &str) -> Result<(SynthRecord, bool)> {
+    let sha = sha256_hex(verilog);
+    let path = layout.synth_cache(id);
+    if path.exists() {
+        let cached: SynthRecord = read_json(&path)?;
+        if cached.verilog_sha256 == sha {
+            return Ok((cached, true));
+        }
+    }
+    let start = Instant::now();
+    let report = synthesize(verilog, wrapper::TOP, &SynthOptions::default())?;
+    let usage = Usage::of(&report);
+    let record = SynthRecord {
+        lut: usage.lut,
+        ff: usage.ff,
+        dsp48e1: usage.dsp48e1,
+        carry4: report.carry4,
+        bram18: usage.bram18,
+        logic_depth: report.logic_depth,
+        seconds: start.elapsed().as_secs(),
+        verilog_sha256: sha,
+    };
+    write_json(&path, &record)?;
+    Ok((record, false))
+}
