@@ -61,15 +61,15 @@ macro_rules! float_format {
             pub const WIDTH: usize = 1 + $e + $m;
             pub const FORMAT: hw_model::Format = hw_model::Format::Float { exp: $e, man: $m };
             // Width parameters, in the order the operators take them (see their docs):
-            // W = 1+E+M, S = M+1, S1 = M+2, X = E+2 (signed exponent), A = M+4, A1 = M+5.
-            pub type Add = FloatAdd<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $m + 2 }, { $e + 2 }, { $m + 4 }, { $m + 5 }, false>;
-            pub type Sub = FloatAdd<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $m + 2 }, { $e + 2 }, { $m + 4 }, { $m + 5 }, true>;
-            pub type Mul = FloatMul<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $m + 2 }, { 2 * $m + 2 }, { $e + 2 }>;
+            // W = 1+E+M, S = M+1, X = E+2 (signed exponent), A = M+4, A1 = M+5.
+            pub type Add = FloatAdd<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $e + 2 }, { $m + 4 }, { $m + 5 }, false>;
+            pub type Sub = FloatAdd<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $e + 2 }, { $m + 4 }, { $m + 5 }, true>;
+            pub type Mul = FloatMul<$e, $m, { 1 + $e + $m }, { $m + 1 }, { 2 * $m + 2 }, { $e + 2 }>;
             // Recip: R = M+2 (remainder), Q = M+3 (quotient bits).
-            pub type Recip = FloatRecip<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $m + 2 }, { $e + 2 }, { $m + 2 }, { $m + 3 }>;
+            pub type Recip = FloatRecip<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $e + 2 }, { $m + 2 }, { $m + 3 }>;
             pub type Lt = FloatLt<$e, $m, { 1 + $e + $m }, { $m + 1 }>;
             // FromF32: X = 10, the signed range of fp32's exponent.
-            pub type FromF32 = FloatFromF32<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $m + 2 }, 10>;
+            pub type FromF32 = FloatFromF32<$e, $m, { 1 + $e + $m }, { $m + 1 }, 10>;
             pub type ToF32 = FloatToF32<$e, $m, { 1 + $e + $m }, { $m + 1 }>;
             $crate::formats::operator_table!();
         }

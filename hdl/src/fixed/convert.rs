@@ -222,7 +222,7 @@ pub struct FixedToF32<const W: usize, const F: usize, const G: usize> {
     normal_sticky: Pipe<Bit>,
     normal_exp: Pipe<Bits<10>>,
     normal_category: Pipe<ResultClass>,
-    rounder: Round<8, 23, 32, 24, 25, 10>,
+    rounder: Round<8, 23, 32, 24, 10>,
     /// W-1: the sign bit's position, and where normalization puts the leading one.
     msb: Constant<Bits<8>>,
     guard: Constant<Bits<8>>,

@@ -1,7 +1,8 @@
 //! Conversions between fp32 and a float format with E ≤ 8, M ≤ 23: `FromF32` rounds (RNE,
 //! FTZ, overflow to Inf), `ToF32` is exact (subnormal inputs flush to ±0, NaN → canonical).
 //!
-//! Cut points (max_stages() = 1 each): FromF32: 0. before rounding; ToF32: 0. the output.
+//! Cut points: FromF32 (max_stages() = 2): 0. before rounding, 1. the result; ToF32
+//! (max_stages() = 1): 0. the result. One FromF32 register goes to the result.
 
 use rust_hdl::prelude::*;
 
@@ -9,9 +10,9 @@ use super::round::{ResultClass, Round};
 use super::unpack::Unpack;
 use crate::pipe::{placement, Pipe};
 
-/// fp32 → (E, M). W = 1+E+M; S = M+1; S1 = M+2; X = 10 (fp32's exponent range, signed).
+/// fp32 → (E, M). W = 1+E+M; S = M+1; X = 10 (fp32's exponent range, signed).
 #[derive(LogicBlock)]
-pub struct FloatFromF32<const E: usize, const M: usize, const W: usize, const S: usize, const S1: usize, const X: usize> {
+pub struct FloatFromF32<const E: usize, const M: usize, const W: usize, const S: usize, const X: usize> {
     pub clock: Signal<In, Clock>,
     pub a: Signal<In, Bits<32>>,
     pub y: Signal<Out, Bits<W>>,
@@ -22,17 +23,18 @@ pub struct FloatFromF32<const E: usize, const M: usize, const W: usize, const S:
     narrow_sticky: Pipe<Bit>,
     narrow_exp: Pipe<Bits<X>>,
     narrow_category: Pipe<ResultClass>,
-    rounder: Round<E, M, W, S, S1, X>,
+    rounder: Round<E, M, W, S, X>,
+    result: Pipe<Bits<W>>,
     dropped_bits: Constant<Bits<8>>,
     round_bit: Constant<Bits<24>>,
     sticky_bits: Constant<Bits<24>>,
     rebias: Constant<Bits<X>>,
 }
 
-impl<const E: usize, const M: usize, const W: usize, const S: usize, const S1: usize, const X: usize>
-    FloatFromF32<E, M, W, S, S1, X>
+impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: usize>
+    FloatFromF32<E, M, W, S, X>
 {
-    pub const CUTS: usize = 1;
+    pub const CUTS: usize = 2;
 
     pub fn max_stages() -> usize {
         Self::CUTS
@@ -55,6 +57,7 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const S1: u
             narrow_exp: Pipe::new(cut[0]),
             narrow_category: Pipe::new(cut[0]),
             rounder: Default::default(),
+            result: Pipe::new(cut[1]),
             dropped_bits: Constant::new((dropped as u64).into()),
             round_bit: Constant::new(round_bit.into()),
             sticky_bits: Constant::new(round_bit.saturating_sub(1).into()),
@@ -63,8 +66,8 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const S1: u
     }
 }
 
-impl<const E: usize, const M: usize, const W: usize, const S: usize, const S1: usize, const X: usize> Logic
-    for FloatFromF32<E, M, W, S, S1, X>
+impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: usize> Logic
+    for FloatFromF32<E, M, W, S, X>
 {
     #[hdl_gen]
     fn update(&mut self) {
@@ -88,12 +91,14 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const S1: u
         self.rounder.sig.next = self.narrow_sig.q.val();
         self.rounder.round.next = self.narrow_round.q.val();
         self.rounder.sticky.next = self.narrow_sticky.q.val();
-        self.y.next = self.rounder.y.val();
+        self.result.clock.next = self.clock.val();
+        self.result.d.next = self.rounder.y.val();
+        self.y.next = self.result.q.val();
     }
 }
 
-crate::impl_operator!(unary FloatFromF32<E, M, W, S, S1, X>,
-    [const E: usize, const M: usize, const W: usize, const S: usize, const S1: usize, const X: usize],
+crate::impl_operator!(unary FloatFromF32<E, M, W, S, X>,
+    [const E: usize, const M: usize, const W: usize, const S: usize, const X: usize],
     32, W, out = bits);
 
 /// (E, M) → fp32. W = 1+E+M; S = M+1.

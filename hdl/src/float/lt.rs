@@ -1,5 +1,9 @@
 //! Float comparison `y = a < b` (false if either is NaN, −0 == +0, subnormals are zeros).
 //!
+//! The magnitudes are compared in three parts side by side (the exponent and the two halves
+//! of the fraction) rather than as one (W−1)-bit compare, so the path is two short carry
+//! chains and a few LUTs instead of one long chain.
+//!
 //! Cut points (max_stages() = 1): 0. the output.
 
 use rust_hdl::prelude::*;
@@ -16,11 +20,19 @@ pub struct FloatLt<const E: usize, const M: usize, const W: usize, const S: usiz
     pub y: Signal<Out, Bit>,
     unpack_a: Unpack<E, M, W, S>,
     unpack_b: Unpack<E, M, W, S>,
-    magnitude_a: Signal<Local, Bits<W>>,
-    magnitude_b: Signal<Local, Bits<W>>,
+    frac_high_a: Signal<Local, Bits<W>>,
+    frac_high_b: Signal<Local, Bits<W>>,
+    frac_low_a: Signal<Local, Bits<W>>,
+    frac_low_b: Signal<Local, Bits<W>>,
+    frac_less: Signal<Local, Bit>,
+    frac_greater: Signal<Local, Bit>,
+    /// Equal, nonzero exponents: the fractions decide.
+    same_binade: Signal<Local, Bit>,
+    a_smaller: Signal<Local, Bit>,
+    b_smaller: Signal<Local, Bit>,
     result: Pipe<Bit>,
-    magnitude: Constant<Bits<W>>,
-    zero: Constant<Bits<W>>,
+    frac_high: Constant<Bits<W>>,
+    frac_low: Constant<Bits<W>>,
 }
 
 impl<const E: usize, const M: usize, const W: usize, const S: usize> FloatLt<E, M, W, S> {
@@ -39,11 +51,18 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize> FloatLt<E, 
             y: Default::default(),
             unpack_a: Default::default(),
             unpack_b: Default::default(),
-            magnitude_a: Default::default(),
-            magnitude_b: Default::default(),
+            frac_high_a: Default::default(),
+            frac_high_b: Default::default(),
+            frac_low_a: Default::default(),
+            frac_low_b: Default::default(),
+            frac_less: Default::default(),
+            frac_greater: Default::default(),
+            same_binade: Default::default(),
+            a_smaller: Default::default(),
+            b_smaller: Default::default(),
             result: Pipe::new(cut[0]),
-            magnitude: Constant::new(Bits::<W>::mask() >> 1),
-            zero: Constant::new(Bits::<W>::default()),
+            frac_high: Constant::new(((Bits::<W>::from(1) << M as u64) - 1) & !((Bits::<W>::from(1) << (M / 2) as u64) - 1)),
+            frac_low: Constant::new((Bits::<W>::from(1) << (M / 2) as u64) - 1),
         }
     }
 }
@@ -53,22 +72,24 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize> Logic for F
     fn update(&mut self) {
         self.unpack_a.x.next = self.a.val();
         self.unpack_b.x.next = self.b.val();
-        // Magnitudes order like the bit patterns without the sign; subnormals count as 0.
-        self.magnitude_a.next = self.a.val() & self.magnitude.val();
-        if self.unpack_a.zero.val() {
-            self.magnitude_a.next = self.zero.val();
-        }
-        self.magnitude_b.next = self.b.val() & self.magnitude.val();
-        if self.unpack_b.zero.val() {
-            self.magnitude_b.next = self.zero.val();
-        }
+        // Magnitudes order like the bit patterns without the sign; subnormals count as 0, so
+        // with equal exponents the fractions only decide when the exponent is not 0.
+        self.frac_high_a.next = self.a.val() & self.frac_high.val();
+        self.frac_high_b.next = self.b.val() & self.frac_high.val();
+        self.frac_low_a.next = self.a.val() & self.frac_low.val();
+        self.frac_low_b.next = self.b.val() & self.frac_low.val();
+        self.frac_less.next = (self.frac_high_a.val() < self.frac_high_b.val())
+            | ((self.frac_high_a.val() == self.frac_high_b.val()) & (self.frac_low_a.val() < self.frac_low_b.val()));
+        self.frac_greater.next = (self.frac_high_a.val() > self.frac_high_b.val())
+            | ((self.frac_high_a.val() == self.frac_high_b.val()) & (self.frac_low_a.val() > self.frac_low_b.val()));
+        self.same_binade.next = (self.unpack_a.exp.val() == self.unpack_b.exp.val()) & !self.unpack_a.zero.val();
+        self.a_smaller.next = (self.unpack_a.exp.val() < self.unpack_b.exp.val()) | (self.same_binade.val() & self.frac_less.val());
+        self.b_smaller.next = (self.unpack_a.exp.val() > self.unpack_b.exp.val()) | (self.same_binade.val() & self.frac_greater.val());
         self.result.clock.next = self.clock.val();
         self.result.d.next = !(self.unpack_a.nan.val() | self.unpack_b.nan.val())
-            & ((!self.unpack_a.sign.val() & !self.unpack_b.sign.val() & (self.magnitude_a.val() < self.magnitude_b.val()))
-                | (self.unpack_a.sign.val() & self.unpack_b.sign.val() & (self.magnitude_a.val() > self.magnitude_b.val()))
-                | (self.unpack_a.sign.val()
-                    & !self.unpack_b.sign.val()
-                    & (self.magnitude_a.val().any() | self.magnitude_b.val().any())));
+            & ((!self.unpack_a.sign.val() & !self.unpack_b.sign.val() & self.a_smaller.val())
+                | (self.unpack_a.sign.val() & self.unpack_b.sign.val() & self.b_smaller.val())
+                | (self.unpack_a.sign.val() & !self.unpack_b.sign.val() & !(self.unpack_a.zero.val() & self.unpack_b.zero.val())));
         self.y.next = self.result.q.val();
     }
 }

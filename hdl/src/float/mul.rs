@@ -1,10 +1,10 @@
 //! Float multiplication `y = a × b` (RNE, FTZ, see the SPEC in `hw_model::format`).
 //!
 //! Cut points (registers are spread over them by `pipe::placement`; max_stages() = 3):
-//!   0. after unpacking: operand significands, exponent sum, result category
-//!   1. after the significand multiplier (DSP output)
-//!   2. after normalization, before rounding and packing
-//! stages = 1 registers the multiplier output, 2 the operands and the normalized product.
+//!   0. after the significand multiplier (the DSP output register), exponent sum, category
+//!   1. after normalization, before rounding and packing
+//!   2. the result, after rounding and packing
+//! stages = 1 registers the normalized product, 2 the multiplier output and the result.
 
 use rust_hdl::prelude::*;
 
@@ -13,9 +13,9 @@ use super::unpack::Unpack;
 use crate::intmul::IntMul;
 use crate::pipe::{placement, Pipe};
 
-/// E, M: the format; W = 1+E+M; S = M+1; S1 = S+1; S2 = 2S; X = exponent width (≥ E+2).
+/// E, M: the format; W = 1+E+M; S = M+1; S2 = 2S; X = exponent width (≥ E+2).
 #[derive(LogicBlock)]
-pub struct FloatMul<const E: usize, const M: usize, const W: usize, const S: usize, const S1: usize, const S2: usize, const X: usize> {
+pub struct FloatMul<const E: usize, const M: usize, const W: usize, const S: usize, const S2: usize, const X: usize> {
     pub clock: Signal<In, Clock>,
     pub a: Signal<In, Bits<W>>,
     pub b: Signal<In, Bits<W>>,
@@ -24,10 +24,6 @@ pub struct FloatMul<const E: usize, const M: usize, const W: usize, const S: usi
     unpack_b: Unpack<E, M, W, S>,
     exp_sum: Signal<Local, Bits<X>>,
     category: Signal<Local, ResultClass>,
-    operand_a: Pipe<Bits<S>>,
-    operand_b: Pipe<Bits<S>>,
-    operand_exp: Pipe<Bits<X>>,
-    operand_class: Pipe<ResultClass>,
     multiplier: IntMul<S, S, S2>,
     product: Pipe<Bits<S2>>,
     product_exp: Pipe<Bits<X>>,
@@ -39,7 +35,8 @@ pub struct FloatMul<const E: usize, const M: usize, const W: usize, const S: usi
     normal_sticky: Pipe<Bit>,
     normal_exp: Pipe<Bits<X>>,
     normal_class: Pipe<ResultClass>,
-    rounder: Round<E, M, W, S, S1, X>,
+    rounder: Round<E, M, W, S, X>,
+    result: Pipe<Bits<W>>,
     bias: Constant<Bits<X>>,
     top_bit: Constant<Bits<S2>>,
     sig_width: Constant<Bits<8>>,
@@ -47,8 +44,8 @@ pub struct FloatMul<const E: usize, const M: usize, const W: usize, const S: usi
     sticky_bits: Constant<Bits<S2>>,
 }
 
-impl<const E: usize, const M: usize, const W: usize, const S: usize, const S1: usize, const S2: usize, const X: usize>
-    FloatMul<E, M, W, S, S1, S2, X>
+impl<const E: usize, const M: usize, const W: usize, const S: usize, const S2: usize, const X: usize>
+    FloatMul<E, M, W, S, S2, X>
 {
     pub const CUTS: usize = 3;
 
@@ -68,22 +65,19 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const S1: u
             unpack_b: Default::default(),
             exp_sum: Default::default(),
             category: Default::default(),
-            operand_a: Pipe::new(cut[0]),
-            operand_b: Pipe::new(cut[0]),
-            operand_exp: Pipe::new(cut[0]),
-            operand_class: Pipe::new(cut[0]),
             multiplier: Default::default(),
-            product: Pipe::new(cut[1]),
-            product_exp: Pipe::new(cut[1]),
-            product_class: Pipe::new(cut[1]),
+            product: Pipe::new(cut[0]),
+            product_exp: Pipe::new(cut[0]),
+            product_class: Pipe::new(cut[0]),
             product_top: Default::default(),
             product_normalized: Default::default(),
-            normal_sig: Pipe::new(cut[2]),
-            normal_round: Pipe::new(cut[2]),
-            normal_sticky: Pipe::new(cut[2]),
-            normal_exp: Pipe::new(cut[2]),
-            normal_class: Pipe::new(cut[2]),
+            normal_sig: Pipe::new(cut[1]),
+            normal_round: Pipe::new(cut[1]),
+            normal_sticky: Pipe::new(cut[1]),
+            normal_exp: Pipe::new(cut[1]),
+            normal_class: Pipe::new(cut[1]),
             rounder: Default::default(),
+            result: Pipe::new(cut[2]),
             bias: Constant::new(((1u64 << (E - 1)) - 1).into()),
             top_bit: Constant::new(Bits::<S2>::from(1) << (S2 - 1) as u64),
             sig_width: Constant::new(S.to_bits()),
@@ -93,8 +87,8 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const S1: u
     }
 }
 
-impl<const E: usize, const M: usize, const W: usize, const S: usize, const S1: usize, const S2: usize, const X: usize> Logic
-    for FloatMul<E, M, W, S, S1, S2, X>
+impl<const E: usize, const M: usize, const W: usize, const S: usize, const S2: usize, const X: usize> Logic
+    for FloatMul<E, M, W, S, S2, X>
 {
     #[hdl_gen]
     fn update(&mut self) {
@@ -110,24 +104,15 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const S1: u
             | (self.unpack_a.inf.val() & self.unpack_b.zero.val());
         self.category.next.inf = self.unpack_a.inf.val() | self.unpack_b.inf.val();
         self.category.next.zero = self.unpack_a.zero.val() | self.unpack_b.zero.val();
-        // Cut 0.
-        self.operand_a.clock.next = self.clock.val();
-        self.operand_b.clock.next = self.clock.val();
-        self.operand_exp.clock.next = self.clock.val();
-        self.operand_class.clock.next = self.clock.val();
-        self.operand_a.d.next = self.unpack_a.sig.val();
-        self.operand_b.d.next = self.unpack_b.sig.val();
-        self.operand_exp.d.next = self.exp_sum.val();
-        self.operand_class.d.next = self.category.val();
-        self.multiplier.a.next = self.operand_a.q.val();
-        self.multiplier.b.next = self.operand_b.q.val();
-        // Cut 1.
+        self.multiplier.a.next = self.unpack_a.sig.val();
+        self.multiplier.b.next = self.unpack_b.sig.val();
+        // Cut 0: synthesis packs these registers into the DSP slices.
         self.product.clock.next = self.clock.val();
         self.product_exp.clock.next = self.clock.val();
         self.product_class.clock.next = self.clock.val();
         self.product.d.next = self.multiplier.p.val();
-        self.product_exp.d.next = self.operand_exp.q.val();
-        self.product_class.d.next = self.operand_class.q.val();
+        self.product_exp.d.next = self.exp_sum.val();
+        self.product_class.d.next = self.category.val();
         // The product of two significands in [1, 2) is in [1, 4): bring its leading 1 to the top.
         self.product_top.next = (self.product.q.val() & self.top_bit.val()).any();
         if self.product_top.val() {
@@ -135,7 +120,7 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const S1: u
         } else {
             self.product_normalized.next = self.product.q.val() << 1;
         }
-        // Cut 2.
+        // Cut 1.
         self.normal_sig.clock.next = self.clock.val();
         self.normal_round.clock.next = self.clock.val();
         self.normal_sticky.clock.next = self.clock.val();
@@ -151,10 +136,13 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const S1: u
         self.rounder.sig.next = self.normal_sig.q.val();
         self.rounder.round.next = self.normal_round.q.val();
         self.rounder.sticky.next = self.normal_sticky.q.val();
-        self.y.next = self.rounder.y.val();
+        // Cut 2.
+        self.result.clock.next = self.clock.val();
+        self.result.d.next = self.rounder.y.val();
+        self.y.next = self.result.q.val();
     }
 }
 
-crate::impl_operator!(binary FloatMul<E, M, W, S, S1, S2, X>,
-    [const E: usize, const M: usize, const W: usize, const S: usize, const S1: usize, const S2: usize, const X: usize],
+crate::impl_operator!(binary FloatMul<E, M, W, S, S2, X>,
+    [const E: usize, const M: usize, const W: usize, const S: usize, const S2: usize, const X: usize],
     W, W, out = bits);

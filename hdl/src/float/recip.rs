@@ -5,9 +5,10 @@
 //! exact power of two), so the M+1 result bits, a round bit and the remainder as sticky bit
 //! give the correctly rounded result.
 //!
-//! Cut points (max_stages() = Q + 1 = M + 4): 0. after unpacking; i+1. after division row i.
-//! With max_stages every register-to-register path holds one row (an (M+2)-bit subtract and
-//! a mux); fewer stages are spread evenly over the rows.
+//! Cut points (max_stages() = Q + 3 = M + 6): 0. after unpacking; i+1. after division row i;
+//! Q+1. after picking the significand, round and sticky bits; Q+2. the result, after rounding
+//! and packing. With max_stages every register-to-register path holds one row (a carry-select
+//! compare and subtract of M+2 bits and a mux) or the rounding; fewer stages are spread evenly.
 
 use rust_hdl::prelude::*;
 
@@ -25,7 +26,17 @@ pub struct DivisionRow<const R: usize, const Q: usize> {
     pub remainder_out: Signal<Out, Bits<R>>,
     pub quotient_out: Signal<Out, Bits<Q>>,
     doubled: Signal<Local, Bits<R>>,
+    low_doubled: Signal<Local, Bits<R>>,
+    low_divisor: Signal<Local, Bits<R>>,
+    high_doubled: Signal<Local, Bits<R>>,
+    high_divisor: Signal<Local, Bits<R>>,
+    low_difference: Signal<Local, Bits<R>>,
+    high_difference: Signal<Local, Bits<R>>,
+    fits: Signal<Local, Bit>,
     one: Constant<Bits<Q>>,
+    half: Constant<Bits<8>>,
+    low_mask: Constant<Bits<R>>,
+    borrow: Constant<Bits<R>>,
 }
 
 impl<const R: usize, const Q: usize> Default for DivisionRow<R, Q> {
@@ -37,7 +48,17 @@ impl<const R: usize, const Q: usize> Default for DivisionRow<R, Q> {
             remainder_out: Default::default(),
             quotient_out: Default::default(),
             doubled: Default::default(),
+            low_doubled: Default::default(),
+            low_divisor: Default::default(),
+            high_doubled: Default::default(),
+            high_divisor: Default::default(),
+            low_difference: Default::default(),
+            high_difference: Default::default(),
+            fits: Default::default(),
             one: Constant::new(1.into()),
+            half: Constant::new((R / 2).to_bits()),
+            low_mask: Constant::new((Bits::<R>::from(1) << (R / 2) as u64) - 1),
+            borrow: Constant::new(1.into()),
         }
     }
 }
@@ -47,8 +68,22 @@ impl<const R: usize, const Q: usize> Logic for DivisionRow<R, Q> {
     fn update(&mut self) {
         // The remainder is below the divisor (< 2^(R-1)), so doubling it never overflows.
         self.doubled.next = self.remainder_in.val() << 1;
-        if self.doubled.val() >= self.divisor.val() {
-            self.remainder_out.next = self.doubled.val() - self.divisor.val();
+        // Compare and subtract in two halves side by side (carry select): the high half's
+        // difference is taken with and without the low half's borrow.
+        self.low_doubled.next = self.doubled.val() & self.low_mask.val();
+        self.low_divisor.next = self.divisor.val() & self.low_mask.val();
+        self.high_doubled.next = self.doubled.val() >> self.half.val();
+        self.high_divisor.next = self.divisor.val() >> self.half.val();
+        self.fits.next = (self.high_doubled.val() > self.high_divisor.val())
+            | ((self.high_doubled.val() == self.high_divisor.val()) & (self.low_doubled.val() >= self.low_divisor.val()));
+        self.low_difference.next = (self.low_doubled.val() - self.low_divisor.val()) & self.low_mask.val();
+        if self.low_doubled.val() >= self.low_divisor.val() {
+            self.high_difference.next = self.high_doubled.val() - self.high_divisor.val();
+        } else {
+            self.high_difference.next = self.high_doubled.val() - self.high_divisor.val() - self.borrow.val();
+        }
+        if self.fits.val() {
+            self.remainder_out.next = (self.high_difference.val() << self.half.val()) | self.low_difference.val();
             self.quotient_out.next = (self.quotient_in.val() << 1) | self.one.val();
         } else {
             self.remainder_out.next = self.doubled.val();
@@ -57,7 +92,7 @@ impl<const R: usize, const Q: usize> Logic for DivisionRow<R, Q> {
     }
 }
 
-/// E, M: the format; W = 1+E+M; S = M+1; S1 = M+2; X = exponent width (≥ E+2);
+/// E, M: the format; W = 1+E+M; S = M+1; X = exponent width (≥ E+2);
 /// R = M+2 (remainder); Q = M+3 (quotient bits = rows).
 #[derive(LogicBlock)]
 pub struct FloatRecip<
@@ -65,7 +100,6 @@ pub struct FloatRecip<
     const M: usize,
     const W: usize,
     const S: usize,
-    const S1: usize,
     const X: usize,
     const R: usize,
     const Q: usize,
@@ -89,7 +123,13 @@ pub struct FloatRecip<
     quotient_exp: Signal<Local, Bits<X>>,
     quotient_category: Signal<Local, ResultClass>,
     exact_power: Signal<Local, Bit>,
-    rounder: Round<E, M, W, S, S1, X>,
+    rounding_sig: Pipe<Bits<S>>,
+    rounding_round: Pipe<Bit>,
+    rounding_sticky: Pipe<Bit>,
+    rounding_exp: Pipe<Bits<X>>,
+    rounding_category: Pipe<ResultClass>,
+    rounder: Round<E, M, W, S, X>,
+    result: Pipe<Bits<W>>,
     exp_base: Constant<Bits<X>>,
     first_remainder: Constant<Bits<R>>,
     no_quotient: Constant<Bits<Q>>,
@@ -102,13 +142,12 @@ impl<
         const M: usize,
         const W: usize,
         const S: usize,
-        const S1: usize,
         const X: usize,
         const R: usize,
         const Q: usize,
-    > FloatRecip<E, M, W, S, S1, X, R, Q>
+    > FloatRecip<E, M, W, S, X, R, Q>
 {
-    pub const CUTS: usize = Q + 1;
+    pub const CUTS: usize = Q + 3;
 
     pub fn max_stages() -> usize {
         Self::CUTS
@@ -117,7 +156,7 @@ impl<
     pub fn new(stages: usize) -> Self {
         assert!(R == M + 2 && Q == M + 3 && X >= E + 2, "FloatRecip: inconsistent widths");
         let cut = placement(stages, Self::CUTS);
-        let rows = &cut[1..];
+        let rows = &cut[1..=Q];
         let bias = (1u64 << (E - 1)) - 1;
         Self {
             clock: Default::default(),
@@ -139,7 +178,13 @@ impl<
             quotient_exp: Default::default(),
             quotient_category: Default::default(),
             exact_power: Default::default(),
+            rounding_sig: Pipe::new(cut[Q + 1]),
+            rounding_round: Pipe::new(cut[Q + 1]),
+            rounding_sticky: Pipe::new(cut[Q + 1]),
+            rounding_exp: Pipe::new(cut[Q + 1]),
+            rounding_category: Pipe::new(cut[Q + 1]),
             rounder: Default::default(),
+            result: Pipe::new(cut[Q + 2]),
             // 1/(sig·2^(e−bias)) = (2/sig)·2^(bias−e−1): biased exponent 2·bias − 1 − e.
             exp_base: Constant::new((2 * bias - 1).into()),
             // The part of 2^(2M+2) above the first quotient bit, 2^(M+2).
@@ -156,11 +201,10 @@ impl<
         const M: usize,
         const W: usize,
         const S: usize,
-        const S1: usize,
         const X: usize,
         const R: usize,
         const Q: usize,
-    > Logic for FloatRecip<E, M, W, S, S1, X, R, Q>
+    > Logic for FloatRecip<E, M, W, S, X, R, Q>
 {
     #[hdl_gen]
     fn update(&mut self) {
@@ -206,20 +250,34 @@ impl<
         }
         // The quotient is in (2^(M+1), 2^(M+2)) except for sig = 1.0 (exactly 2^(M+2)).
         self.exact_power.next = (self.quotient.val() & self.quotient_top.val()).any();
+        // Cut Q + 1.
+        self.rounding_sig.clock.next = self.clock.val();
+        self.rounding_round.clock.next = self.clock.val();
+        self.rounding_sticky.clock.next = self.clock.val();
+        self.rounding_exp.clock.next = self.clock.val();
+        self.rounding_category.clock.next = self.clock.val();
         if self.exact_power.val() {
-            self.rounder.sig.next = bit_cast::<S, Q>(self.quotient.val() >> 2);
+            self.rounding_sig.d.next = bit_cast::<S, Q>(self.quotient.val() >> 2);
         } else {
-            self.rounder.sig.next = bit_cast::<S, Q>(self.quotient.val() >> 1);
+            self.rounding_sig.d.next = bit_cast::<S, Q>(self.quotient.val() >> 1);
         }
-        self.rounder.round.next = (self.quotient.val() & self.one.val()).any();
-        self.rounder.sticky.next = self.remainder.val().any();
-        self.rounder.exp.next = self.quotient_exp.val() + self.exact_power.val();
-        self.rounder.category.next = self.quotient_category.val();
-        self.y.next = self.rounder.y.val();
+        self.rounding_round.d.next = (self.quotient.val() & self.one.val()).any();
+        self.rounding_sticky.d.next = self.remainder.val().any();
+        self.rounding_exp.d.next = self.quotient_exp.val() + self.exact_power.val();
+        self.rounding_category.d.next = self.quotient_category.val();
+        self.rounder.sig.next = self.rounding_sig.q.val();
+        self.rounder.round.next = self.rounding_round.q.val();
+        self.rounder.sticky.next = self.rounding_sticky.q.val();
+        self.rounder.exp.next = self.rounding_exp.q.val();
+        self.rounder.category.next = self.rounding_category.q.val();
+        // Cut Q + 2.
+        self.result.clock.next = self.clock.val();
+        self.result.d.next = self.rounder.y.val();
+        self.y.next = self.result.q.val();
     }
 }
 
-crate::impl_operator!(unary FloatRecip<E, M, W, S, S1, X, R, Q>,
-    [const E: usize, const M: usize, const W: usize, const S: usize, const S1: usize, const X: usize,
+crate::impl_operator!(unary FloatRecip<E, M, W, S, X, R, Q>,
+    [const E: usize, const M: usize, const W: usize, const S: usize, const X: usize,
      const R: usize, const Q: usize],
     W, W, out = bits);
