@@ -123,9 +123,15 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
     assert!(e.contains("fx16_10_d1_l2") && e.contains("missing"), "{e}");
 }
 
+/// Where the bad configs pretend to live: the repository's sweeps/, so that the default
+/// thesis_scenes (relative to the file) is found.
+fn bad_path() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../sweeps/bad.toml")
+}
+
 /// The error of `text` (a tiny config with one change).
 fn rejection(text: &str) -> ConfigError {
-    sweep::parse(text, Path::new("sweeps/bad.toml")).expect_err(text)
+    sweep::parse(text, &bad_path()).expect_err(text)
 }
 
 fn with(key_line: &str) -> String {
@@ -139,12 +145,12 @@ fn with(key_line: &str) -> String {
 #[test]
 fn bad_configurations_are_rejected_with_file_line_and_key() {
     // The tiny config itself is fine.
-    sweep::parse(TINY, Path::new("sweeps/tiny.toml")).unwrap();
+    sweep::parse(TINY, &bad_path()).unwrap();
 
     let e = rejection(&with(r#"formats = ["fp32", "fp33"]"#));
-    assert_eq!((e.file.as_str(), e.line, e.key.as_str()), ("sweeps/bad.toml", 2, "formats"));
+    assert_eq!((e.file.as_str(), e.line, e.key.as_str()), (bad_path().to_str().unwrap(), 2, "formats"));
     assert!(e.message.contains("unknown format `fp33`") && e.message.contains("fp16"), "{e}");
-    assert!(e.to_string().starts_with("sweeps/bad.toml:2: `formats`:"), "{e}");
+    assert!(e.to_string().ends_with(&format!("bad.toml:2: `formats`: {}", e.message)), "{e}");
 
     let e = rejection(&with("lanes = [1, 0]"));
     assert_eq!((e.line, e.key.as_str()), (4, "lanes"));
@@ -182,6 +188,12 @@ fn bad_configurations_are_rejected_with_file_line_and_key() {
     assert_eq!(e.key, "synth.formats");
     let e = rejection(&format!("{TINY}\nmodel_formats = [\"e0m0x\"]\n"));
     assert_eq!(e.key, "model_formats");
+
+    let e = rejection(&format!("{TINY}\n[projection]\nthesis_scenes = \"nowhere\"\n"));
+    assert_eq!((e.line, e.key.as_str()), (10, "projection.thesis_scenes"));
+    assert!(e.message.contains("nowhere"), "{e}");
+    let e = rejection(&format!("{TINY}\n[projection]\nhp_ports = 7\n"));
+    assert!(e.key == "projection" && e.message.contains("HP ports"), "{e}");
 
     // Unknown keys and type errors are syntax errors with their line.
     let e = rejection(&format!("{TINY}\ncolour = true\n"));

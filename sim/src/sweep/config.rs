@@ -9,6 +9,7 @@ use sw_renderer::scene::{builtin, Scene};
 use toml::Spanned;
 
 use super::point::Point;
+use super::projection::stream_design;
 
 /// What a sweep does at each of its points; `stages = [...]` in the file picks a subset.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
@@ -151,8 +152,7 @@ struct RawConfig {
     synth: RawSynth,
     #[serde(default)]
     cosim: RawCosim,
-    #[serde(default)]
-    projection: RawProjection,
+    projection: Option<Spanned<RawProjection>>,
 }
 
 /// Which points to synthesise: the product of these subsets (each defaults to everything).
@@ -180,7 +180,7 @@ struct RawProjection {
     scene: Option<String>,
     width: Option<u32>,
     height: Option<u32>,
-    fpl_mhz: Option<Spanned<f64>>,
+    fpl_mhz: Option<f64>,
     hp_ports: Option<u32>,
     dma_efficiency: Option<f64>,
     pack_cycles: Option<f64>,
@@ -198,6 +198,10 @@ impl Source<'_> {
             .matches('\n')
             .count()
             + 1;
+        self.err_line(line, key, message)
+    }
+
+    fn err_line(&self, line: usize, key: &str, message: impl Into<String>) -> ConfigError {
         ConfigError {
             file: self.file.clone(),
             line,
@@ -298,7 +302,7 @@ pub fn parse(text: &str, path: &Path) -> Result<SweepConfig, ConfigError> {
 
     let synth_points = synth_selection(&src, &raw.synth, &points)?;
     let (cosim_points, cosim_scenes) = cosim_selection(&src, &raw.cosim, &points, &scenes)?;
-    let projection = projection_settings(&src, raw.projection, &base)?;
+    let projection = projection_settings(&src, &raw.projection, &base, &stages, &points[0])?;
     Ok(SweepConfig {
         path: std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf()),
         formats,
@@ -490,25 +494,47 @@ fn cosim_selection(
 }
 
 /// Defaults: the thesis' Simple plane at 1080p, one HP port at 80 % and 40 ARM cycles per
-/// query (the defaults of `rtfpga project`), fabric at 100 MHz.
-fn projection_settings(src: &Source, raw: RawProjection, base: &Path) -> Result<ProjectionSettings, ConfigError> {
-    let thesis_scenes = match &raw.thesis_scenes {
+/// query (the defaults of `rtfpga project`), fabric at 100 MHz. Checked when the projection
+/// stage runs: the thesis scenes must be there and the design must be one the model takes.
+fn projection_settings(
+    src: &Source,
+    raw: &Option<Spanned<RawProjection>>,
+    base: &Path,
+    stages: &[Stage],
+    first: &Point,
+) -> Result<ProjectionSettings, ConfigError> {
+    let default = RawProjection::default();
+    let r = raw.as_ref().map_or(&default, Spanned::get_ref);
+    // Errors point at the [projection] table, or the file's first line when it is absent.
+    let err = |key: &str, message: String| match raw {
+        Some(t) => src.err(t, key, message),
+        None => src.err_line(1, key, message),
+    };
+    let thesis_scenes = match &r.thesis_scenes {
         Some(p) => base.join(p.get_ref()),
         None => base.join("../../shared/scenes/thesis"),
     };
-    if let Some(f) = &raw.fpl_mhz {
-        if !(f.get_ref().is_finite() && *f.get_ref() > 0.0) {
-            return Err(src.err(f, "projection.fpl_mhz", "expected a positive clock in MHz"));
-        }
-    }
-    Ok(ProjectionSettings {
+    let settings = ProjectionSettings {
         thesis_scenes,
-        scene: raw.scene.unwrap_or_else(|| "Simple_plane_scene".into()),
-        width: raw.width.unwrap_or(1920),
-        height: raw.height.unwrap_or(1080),
-        fpl_mhz: raw.fpl_mhz.map_or(100.0, |f| *f.get_ref()),
-        hp_ports: raw.hp_ports.unwrap_or(1),
-        dma_efficiency: raw.dma_efficiency.unwrap_or(0.8),
-        pack_cycles: raw.pack_cycles.unwrap_or(40.0),
-    })
+        scene: r.scene.clone().unwrap_or_else(|| "Simple_plane_scene".into()),
+        width: r.width.unwrap_or(1920),
+        height: r.height.unwrap_or(1080),
+        fpl_mhz: r.fpl_mhz.unwrap_or(100.0),
+        hp_ports: r.hp_ports.unwrap_or(1),
+        dma_efficiency: r.dma_efficiency.unwrap_or(0.8),
+        pack_cycles: r.pack_cycles.unwrap_or(40.0),
+    };
+    if !stages.contains(&Stage::Projection) {
+        return Ok(settings);
+    }
+    let scene_dir = settings.thesis_scenes.join(&settings.scene);
+    if !scene_dir.is_dir() {
+        return Err(err("projection.thesis_scenes", format!(
+            "{} is not a directory: expected the thesis' scene directories (set thesis_scenes, relative to this file, and scene)",
+            scene_dir.display()
+        )));
+    }
+    let latency = hdl::mt::latency(&first.format, first.depth).map_err(|e| err("projection", e.to_string()))?;
+    stream_design(&settings, first, latency, 1.0 / first.lanes as f64).map_err(|e| err("projection", format!("{e:#}")))?;
+    Ok(settings)
 }

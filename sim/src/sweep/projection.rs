@@ -41,29 +41,29 @@ impl Projector {
         self.board.arm_only_s(&self.workload, Traversal::BruteForce)
     }
 
-    pub fn design(&self, point: &Point, latency: usize, cycles_per_test: f64) -> Result<Design> {
-        let s = &self.settings;
-        let d = Design {
-            frontend: Frontend::Stream {
-                lanes: u32::try_from(point.lanes)?,
-                // The frontend's cycles are per lane: a lane takes a query every
-                // `lanes × cycles per test` cycles of the whole accelerator.
-                cycles_per_test: cycles_per_test * point.lanes as f64,
-                pipeline_latency: u32::try_from(latency)?,
-                hp_ports: s.hp_ports,
-                dma_efficiency: s.dma_efficiency,
-                pack_arm_cycles: s.pack_cycles,
-            },
-            traversal: Traversal::Bvh,
-            fpl_mhz: s.fpl_mhz,
-        };
-        d.validate()?;
-        Ok(d)
-    }
-
     pub fn project(&self, point: &Point, latency: usize, cycles_per_test: f64) -> Result<Projected> {
-        let design = self.design(point, latency, cycles_per_test)?;
+        let design = stream_design(&self.settings, point, latency, cycles_per_test)?;
         let frame_s = project(&self.workload, &design, &self.board)?.total_s();
         Ok(Projected { frame_s, speedup_vs_arm: self.arm_only_s() / frame_s })
     }
+}
+
+/// The stream design of `point` on the board `settings` describe, checked.
+pub fn stream_design(s: &ProjectionSettings, point: &Point, latency: usize, cycles_per_test: f64) -> Result<Design> {
+    let d = Design {
+        frontend: Frontend::Stream {
+            lanes: u32::try_from(point.lanes)?,
+            // The frontend's cycles are per lane: a lane takes a query every
+            // `lanes × cycles per test` cycles of the whole accelerator.
+            cycles_per_test: cycles_per_test * point.lanes as f64,
+            pipeline_latency: u32::try_from(latency)?,
+            hp_ports: s.hp_ports,
+            dma_efficiency: s.dma_efficiency,
+            pack_arm_cycles: s.pack_cycles,
+        },
+        traversal: Traversal::Bvh,
+        fpl_mhz: s.fpl_mhz,
+    };
+    d.validate()?;
+    Ok(d)
 }
