@@ -14,7 +14,7 @@ use sw_renderer::render::save_png;
 use crate::hw_intersector::{HwIntersector, Mode};
 
 use super::config::{Stage, SweepConfig};
-use super::layout::{write_json, Layout};
+use super::layout::{parent_dir, write_json, Layout};
 use super::point::Point;
 use super::render_job::render_scene;
 use super::synth_cache::{synthesize_cached, SynthRecord};
@@ -117,7 +117,9 @@ fn cosimulate(config: &SweepConfig, layout: &Layout, point: &Point) -> Result<Ve
             return Err(e).with_context(|| format!("co-simulating {} on {}", point.id(), scene.label));
         }
         let after = hw.stats();
-        save_png(&out.image, &layout.point_dir(&point.id()).join(format!("cosim_{}.png", scene.label)))?;
+        let png = layout.point_dir(&point.id()).join(format!("cosim_{}.png", scene.label));
+        parent_dir(&png)?;
+        save_png(&out.image, &png)?;
         let expected = render_scene(config, scene, &model)?;
         let diff = compare(&out.image, &expected.image)?;
         let tests = after.tests - before.tests;

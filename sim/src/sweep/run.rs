@@ -68,7 +68,8 @@ pub fn run_local(config: &SweepConfig, out: &Path, opts: &LocalRun) -> Result<Re
                 while let Some(job) = jobs.get(next.fetch_add(1, Ordering::SeqCst)) {
                     bar.set_message(job.id());
                     if let Err(e) = run_job(config, &layout, job) {
-                        bar.println(format!("job {} failed: {e:#}", job.id()));
+                        // Also without a terminal (a hidden bar prints nothing).
+                        bar.suspend(|| eprintln!("job {} failed: {e:#}", job.id()));
                         failures.lock().unwrap_or_else(|p| p.into_inner()).push(job.id());
                     }
                     bar.inc(1);
