@@ -33753,7 +33753,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$0(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -33806,7 +33811,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$1(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -33859,7 +33869,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$10(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -33912,7 +33927,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$11(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -33965,7 +33985,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$12(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -34018,7 +34043,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$2(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -34071,7 +34101,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$3(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -34124,7 +34159,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$4(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -34177,7 +34217,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$5(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -34230,7 +34275,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$6(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -34283,7 +34333,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$7(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -34336,7 +34391,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$8(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -34389,7 +34449,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$9(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;

@@ -38306,7 +38306,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$0(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -38359,7 +38364,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$1(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -38412,7 +38422,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$10(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -38465,7 +38480,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$11(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -38518,7 +38538,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$12(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -38571,7 +38596,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$13(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -38624,7 +38654,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$14(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -38677,7 +38712,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$15(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -38730,7 +38770,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$16(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -38783,7 +38828,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$17(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -38836,7 +38886,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$18(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -38889,7 +38944,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$19(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -38942,7 +39002,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$2(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -38995,7 +39060,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$20(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -39048,7 +39118,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$21(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -39101,7 +39176,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$22(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -39154,7 +39234,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$23(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -39207,7 +39292,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$24(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -39260,7 +39350,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$25(remainder_in,quotient_in,divisor
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -39313,7 +39408,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$3(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -39366,7 +39466,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$4(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -39419,7 +39524,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$5(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -39472,7 +39582,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$6(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -39525,7 +39640,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$7(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -39578,7 +39698,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$8(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;
@@ -39631,7 +39756,12 @@ module rtfpga_core$slots$0$lane$inv_det$rows$9(remainder_in,quotient_in,divisor,
         low_divisor = divisor & low_mask;
         high_doubled = doubled >> half;
         high_divisor = divisor >> half;
-        fits = (high_doubled > high_divisor) | ((high_doubled == high_divisor) & (low_doubled >= low_divisor));
+        if (low_doubled >= low_divisor) begin
+            fits = high_doubled >= high_divisor;
+        end
+        else begin
+            fits = high_doubled > high_divisor;
+        end
         low_difference = (low_doubled - low_divisor) & low_mask;
         if (low_doubled >= low_divisor) begin
             high_difference = high_doubled - high_divisor;

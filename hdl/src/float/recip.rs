@@ -74,8 +74,12 @@ impl<const R: usize, const Q: usize> Logic for DivisionRow<R, Q> {
         self.low_divisor.next = self.divisor.val() & self.low_mask.val();
         self.high_doubled.next = self.doubled.val() >> self.half.val();
         self.high_divisor.next = self.divisor.val() >> self.half.val();
-        self.fits.next = (self.high_doubled.val() > self.high_divisor.val())
-            | ((self.high_doubled.val() == self.high_divisor.val()) & (self.low_doubled.val() >= self.low_divisor.val()));
+        // doubled ≥ divisor: by the high halves, ≥ or > as the low half borrows or not.
+        if self.low_doubled.val() >= self.low_divisor.val() {
+            self.fits.next = self.high_doubled.val() >= self.high_divisor.val();
+        } else {
+            self.fits.next = self.high_doubled.val() > self.high_divisor.val();
+        }
         self.low_difference.next = (self.low_doubled.val() - self.low_divisor.val()) & self.low_mask.val();
         if self.low_doubled.val() >= self.low_divisor.val() {
             self.high_difference.next = self.high_doubled.val() - self.high_divisor.val();
