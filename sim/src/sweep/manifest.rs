@@ -9,7 +9,7 @@ use anyhow::{bail, Context, Result};
 use serde::{Deserialize, Serialize};
 
 use super::config::{SweepConfig, Stage};
-use super::layout::Layout;
+use super::layout::{write_json, Layout};
 
 /// One unit of work.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -127,14 +127,10 @@ pub fn manifest(config: &SweepConfig, out: &Path, program: &str) -> Manifest {
 /// reads) into the output directory.
 pub fn write(config: &SweepConfig, manifest: &Manifest) -> Result<()> {
     let layout = Layout::new(&manifest.out);
-    std::fs::create_dir_all(&manifest.out)
-        .with_context(|| format!("creating {}", manifest.out.display()))?;
-    let write = |path: PathBuf, text: String| {
-        std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))
-    };
-    write(layout.manifest(), serde_json::to_string_pretty(manifest)? + "\n")?;
+    write_json(&layout.manifest(), manifest)?;
     let lines: Vec<&str> = manifest.jobs.iter().map(|j| j.command.as_str()).collect();
-    write(layout.jobs_txt(), lines.join("\n") + "\n")?;
-    write(layout.config(), serde_json::to_string_pretty(config)? + "\n")?;
-    Ok(())
+    let jobs = layout.jobs_txt();
+    std::fs::write(&jobs, lines.join("\n") + "\n")
+        .with_context(|| format!("writing {}", jobs.display()))?;
+    write_json(&layout.config(), config)
 }

@@ -8,7 +8,7 @@ use hdl::top::fit::{fit_from, LaneFit, XC7Z020};
 
 use super::config::{Stage, SweepConfig};
 use super::hardware::PointResult;
-use super::layout::{read_json, Layout};
+use super::layout::{read_json, write_json, Layout};
 use super::plots;
 use super::projection::Projector;
 use super::quality::{Psnr, QualityResult};
@@ -102,7 +102,7 @@ pub fn merge(layout: &Layout) -> Result<Results> {
         image_size: format!("{}x{}", config.width, config.height),
     };
     table::write_csv(&results.rows, &layout.results("csv"))?;
-    table::write_json_results(&results, &layout.results("json"))?;
+    write_json(&layout.results("json"), &results)?;
     std::fs::write(layout.results("md"), table::markdown(&results)?)?;
     plots::write_all(&results, layout)?;
     Ok(results)

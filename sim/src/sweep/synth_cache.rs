@@ -34,7 +34,7 @@ impl SynthRecord {
     }
 }
 
-pub fn sha256_hex(text: &str) -> String {
+fn sha256_hex(text: &str) -> String {
     Sha256::digest(text.as_bytes()).iter().map(|b| format!("{b:02x}")).collect()
 }
 

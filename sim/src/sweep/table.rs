@@ -6,7 +6,7 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
 
-use super::layout::{parent_dir, write_json};
+use super::layout::parent_dir;
 use super::quality::{Psnr, QualityResult};
 
 /// Where a row's resources come from.
@@ -74,10 +74,6 @@ pub fn write_csv(rows: &[Row], path: &Path) -> Result<()> {
     }
     w.flush()?;
     Ok(())
-}
-
-pub fn write_json_results(results: &Results, path: &Path) -> Result<()> {
-    write_json(path, results)
 }
 
 fn opt<T: std::fmt::Display>(v: &Option<T>) -> String {
