@@ -130,6 +130,15 @@ fn bad_path() -> PathBuf {
 }
 
 /// The error of `text` (a tiny config with one change).
+#[test]
+fn synthesis_selection_is_the_product_of_its_subsets_plus_the_listed_points() {
+    let text = format!("{TINY}stages = [\"synth\"]\n[synth]\nlanes = [1]\npoints = [\"fp32_d1_l2\"]\n")
+        .replace("stages = [\"quality\", \"projection\"]\n", "");
+    let config = sweep::parse(&text, &bad_path()).unwrap();
+    let chosen: Vec<String> = config.points.iter().filter(|p| config.synthesises(p)).map(|p| p.id()).collect();
+    assert_eq!(chosen, ["fp32_d1_l1", "fp32_d1_l2", "fx16_10_d1_l1"]);
+}
+
 fn rejection(text: &str) -> ConfigError {
     sweep::parse(text, &bad_path()).expect_err(text)
 }
@@ -186,6 +195,9 @@ fn bad_configurations_are_rejected_with_file_line_and_key() {
     assert!(e.message.contains("fp32_d1_l1"), "lists the sweep's points: {e}");
     let e = rejection(&format!("{TINY}\n[synth]\nformats = [\"fp64\"]\n"));
     assert_eq!(e.key, "synth.formats");
+    let e = rejection(&format!("{TINY}\n[synth]\npoints = [\"fp32_d1_l1\", \"fp16_d1_l2\"]\n"));
+    assert_eq!((e.line, e.key.as_str()), (11, "synth.points"));
+    assert!(e.message.contains("`fp16_d1_l2`") && e.message.contains("fx16_10_d1_l2"), "{e}");
     let e = rejection(&format!("{TINY}\nmodel_formats = [\"e0m0x\"]\n"));
     assert_eq!(e.key, "model_formats");
 

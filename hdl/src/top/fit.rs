@@ -46,6 +46,26 @@ impl Usage {
             bram18: cells("RAMB18E1") + 2 * cells("RAMB36E1"),
         }
     }
+
+    /// `self − other` per resource, never below zero.
+    pub fn minus(self, other: Usage) -> Usage {
+        Usage {
+            lut: self.lut.saturating_sub(other.lut),
+            ff: self.ff.saturating_sub(other.ff),
+            dsp48e1: self.dsp48e1.saturating_sub(other.dsp48e1),
+            bram18: self.bram18.saturating_sub(other.bram18),
+        }
+    }
+
+    /// The usage of `fixed` plus `lanes` copies of `per_lane`.
+    pub fn with_lanes(fixed: Usage, per_lane: Usage, lanes: u64) -> Usage {
+        Usage {
+            lut: fixed.lut + lanes * per_lane.lut,
+            ff: fixed.ff + lanes * per_lane.ff,
+            dsp48e1: fixed.dsp48e1 + lanes * per_lane.dsp48e1,
+            bram18: fixed.bram18 + lanes * per_lane.bram18,
+        }
+    }
 }
 
 /// The lane estimate of one configuration.
@@ -61,18 +81,18 @@ pub struct LaneFit {
 
 /// Lanes that fit `device` given the 1-lane and 2-lane usages.
 pub fn fit_from(one: Usage, two: Usage, device: &Device) -> LaneFit {
-    let per_lane = Usage {
-        lut: two.lut.saturating_sub(one.lut),
-        ff: two.ff.saturating_sub(one.ff),
-        dsp48e1: two.dsp48e1.saturating_sub(one.dsp48e1),
-        bram18: two.bram18.saturating_sub(one.bram18),
-    };
-    let fixed = Usage {
-        lut: one.lut.saturating_sub(per_lane.lut),
-        ff: one.ff.saturating_sub(per_lane.ff),
-        dsp48e1: one.dsp48e1.saturating_sub(per_lane.dsp48e1),
-        bram18: one.bram18.saturating_sub(per_lane.bram18),
-    };
+    let per_lane = two.minus(one);
+    fit(one.minus(per_lane), per_lane, device)
+}
+
+/// Lanes that fit `device` given the 1-lane usage and a fixed part measured elsewhere (the
+/// same format's 1- and 2-lane pair at another depth): the rest of `one` is the lane.
+pub fn fit_with_fixed(one: Usage, fixed: Usage, device: &Device) -> LaneFit {
+    fit(fixed, one.minus(fixed), device)
+}
+
+/// Lanes of `per_lane` that fit `device` beside `fixed`, and the resource that limits them.
+fn fit(fixed: Usage, per_lane: Usage, device: &Device) -> LaneFit {
     let candidates = [
         ("LUT", device.lut, fixed.lut, per_lane.lut),
         ("FF", device.ff, fixed.ff, per_lane.ff),
@@ -148,5 +168,16 @@ mod tests {
         assert_eq!((f.lanes, f.limit), (12, "DSP48E1"));
         let lut_bound = fit_from(one, Usage { lut: 33_000, ..two }, &XC7Z020);
         assert_eq!((lut_bound.lanes, lut_bound.limit), (1, "LUT"));
+    }
+
+    #[test]
+    fn a_fixed_part_from_elsewhere_leaves_the_rest_to_the_lane() {
+        let one = Usage { lut: 9000, ff: 12_000, dsp48e1: 30, bram18: 6 };
+        let fixed = Usage { lut: 1000, ff: 2000, dsp48e1: 2, bram18: 2 };
+        let f = fit_with_fixed(one, fixed, &XC7Z020);
+        assert_eq!(f.per_lane, Usage { lut: 8000, ff: 10_000, dsp48e1: 28, bram18: 4 });
+        // LUT: 52200 / 8000 = 6; FF: 104400 / 10000 = 10; DSP: 218 / 28 = 7.
+        assert_eq!((f.lanes, f.limit), (6, "LUT"));
+        assert_eq!(Usage::with_lanes(f.fixed, f.per_lane, 1), one);
     }
 }

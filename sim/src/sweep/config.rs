@@ -155,13 +155,16 @@ struct RawConfig {
     projection: Option<Spanned<RawProjection>>,
 }
 
-/// Which points to synthesise: the product of these subsets (each defaults to everything).
+/// Which points to synthesise: the product of these subsets (each defaults to everything),
+/// plus the listed `points`.
 #[derive(Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawSynth {
     formats: Option<List<String>>,
     depths: Option<List<DepthSpec>>,
     lanes: Option<List<usize>>,
+    /// Point ids (`fp32_d1_l2`) synthesised as well.
+    points: Option<List<String>>,
 }
 
 #[derive(Default, Deserialize)]
@@ -446,7 +449,29 @@ fn synth_selection(src: &Source, raw: &RawSynth, points: &[Point]) -> Result<Vec
             selected.push(p.id());
         }
     }
+    for id in point_ids(src, &raw.points, points, "synth.points")? {
+        if !selected.contains(&id) {
+            selected.push(id);
+        }
+    }
     Ok(selected)
+}
+
+/// The ids of `list`, each checked to be a point of the sweep.
+fn point_ids(src: &Source, list: &Option<List<String>>, points: &[Point], key: &str) -> Result<Vec<String>, ConfigError> {
+    let mut ids = Vec::new();
+    for id in list.iter().flat_map(|l| l.get_ref()) {
+        if !points.iter().any(|p| &p.id() == id.get_ref()) {
+            let known: Vec<String> = points.iter().map(Point::id).collect();
+            return Err(src.err(id, key, format!(
+                "`{}` is not a point of this sweep: expected one of {}",
+                id.get_ref(),
+                known.join(", ")
+            )));
+        }
+        ids.push(id.get_ref().clone());
+    }
+    Ok(ids)
 }
 
 fn cosim_selection(
@@ -455,20 +480,7 @@ fn cosim_selection(
     points: &[Point],
     scenes: &[SceneSpec],
 ) -> Result<(Vec<String>, Vec<SceneSpec>), ConfigError> {
-    let mut ids = Vec::new();
-    if let Some(list) = &raw.points {
-        for id in list.get_ref() {
-            if !points.iter().any(|p| &p.id() == id.get_ref()) {
-                let known: Vec<String> = points.iter().map(Point::id).collect();
-                return Err(src.err(id, "cosim.points", format!(
-                    "`{}` is not a point of this sweep: expected one of {}",
-                    id.get_ref(),
-                    known.join(", ")
-                )));
-            }
-            ids.push(id.get_ref().clone());
-        }
-    }
+    let ids = point_ids(src, &raw.points, points, "cosim.points")?;
     let chosen = match &raw.scenes {
         None => scenes.to_vec(),
         Some(list) => {
