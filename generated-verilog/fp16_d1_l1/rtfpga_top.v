@@ -28437,10 +28437,18 @@ module rtfpga_core$slots$0$lane$inv_det(clock,a,y);
     
     // Constant declarations
     localparam  exp_base = 7'b11101;
-    localparam  first_remainder = 12'h200;
-    localparam  no_quotient = 13'b0;
-    localparam  quotient_top = 13'b1000000000000;
-    localparam  one = 13'b1;
+    localparam  d_shift = 8'h6;
+    localparam  b_shift = 8'h8;
+    localparam  r_shift = 8'h0;
+    localparam  c_shift = 8'he;
+    localparam  extra_shift = 8'h5;
+    localparam  check_shift = 8'hb;
+    localparam  hidden_bit = 11'b10000000000;
+    localparam  low_three = 11'b111;
+    localparam  one = 10'b1;
+    localparam  exact_sig = 11'b10000000000;
+    localparam  exp_one = 7'b1;
+    localparam  no_bit = 1'b0;
     
     // Stub signals
     reg  [15:0] unpack$x;
@@ -28450,290 +28458,99 @@ module rtfpga_core$slots$0$lane$inv_det(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
-    reg  operand_divisor$clock;
-    reg  [11:0] operand_divisor$d;
-    wire  [11:0] operand_divisor$q;
-    reg  operand_exp$clock;
-    reg  [6:0] operand_exp$d;
-    wire  [6:0] operand_exp$q;
-    reg  operand_category$clock;
-    reg  [3:0] operand_category$d;
-    wire  [3:0] operand_category$q;
-    reg  [11:0] rows$0$remainder_in;
-    reg  [12:0] rows$0$quotient_in;
-    reg  [11:0] rows$0$divisor;
-    wire  [11:0] rows$0$remainder_out;
-    wire  [12:0] rows$0$quotient_out;
-    reg  [11:0] rows$1$remainder_in;
-    reg  [12:0] rows$1$quotient_in;
-    reg  [11:0] rows$1$divisor;
-    wire  [11:0] rows$1$remainder_out;
-    wire  [12:0] rows$1$quotient_out;
-    reg  [11:0] rows$2$remainder_in;
-    reg  [12:0] rows$2$quotient_in;
-    reg  [11:0] rows$2$divisor;
-    wire  [11:0] rows$2$remainder_out;
-    wire  [12:0] rows$2$quotient_out;
-    reg  [11:0] rows$3$remainder_in;
-    reg  [12:0] rows$3$quotient_in;
-    reg  [11:0] rows$3$divisor;
-    wire  [11:0] rows$3$remainder_out;
-    wire  [12:0] rows$3$quotient_out;
-    reg  [11:0] rows$4$remainder_in;
-    reg  [12:0] rows$4$quotient_in;
-    reg  [11:0] rows$4$divisor;
-    wire  [11:0] rows$4$remainder_out;
-    wire  [12:0] rows$4$quotient_out;
-    reg  [11:0] rows$5$remainder_in;
-    reg  [12:0] rows$5$quotient_in;
-    reg  [11:0] rows$5$divisor;
-    wire  [11:0] rows$5$remainder_out;
-    wire  [12:0] rows$5$quotient_out;
-    reg  [11:0] rows$6$remainder_in;
-    reg  [12:0] rows$6$quotient_in;
-    reg  [11:0] rows$6$divisor;
-    wire  [11:0] rows$6$remainder_out;
-    wire  [12:0] rows$6$quotient_out;
-    reg  [11:0] rows$7$remainder_in;
-    reg  [12:0] rows$7$quotient_in;
-    reg  [11:0] rows$7$divisor;
-    wire  [11:0] rows$7$remainder_out;
-    wire  [12:0] rows$7$quotient_out;
-    reg  [11:0] rows$8$remainder_in;
-    reg  [12:0] rows$8$quotient_in;
-    reg  [11:0] rows$8$divisor;
-    wire  [11:0] rows$8$remainder_out;
-    wire  [12:0] rows$8$quotient_out;
-    reg  [11:0] rows$9$remainder_in;
-    reg  [12:0] rows$9$quotient_in;
-    reg  [11:0] rows$9$divisor;
-    wire  [11:0] rows$9$remainder_out;
-    wire  [12:0] rows$9$quotient_out;
-    reg  [11:0] rows$10$remainder_in;
-    reg  [12:0] rows$10$quotient_in;
-    reg  [11:0] rows$10$divisor;
-    wire  [11:0] rows$10$remainder_out;
-    wire  [12:0] rows$10$quotient_out;
-    reg  [11:0] rows$11$remainder_in;
-    reg  [12:0] rows$11$quotient_in;
-    reg  [11:0] rows$11$divisor;
-    wire  [11:0] rows$11$remainder_out;
-    wire  [12:0] rows$11$quotient_out;
-    reg  [11:0] rows$12$remainder_in;
-    reg  [12:0] rows$12$quotient_in;
-    reg  [11:0] rows$12$divisor;
-    wire  [11:0] rows$12$remainder_out;
-    wire  [12:0] rows$12$quotient_out;
-    reg  row_remainder$0$clock;
-    reg  [11:0] row_remainder$0$d;
-    wire  [11:0] row_remainder$0$q;
-    reg  row_remainder$1$clock;
-    reg  [11:0] row_remainder$1$d;
-    wire  [11:0] row_remainder$1$q;
-    reg  row_remainder$2$clock;
-    reg  [11:0] row_remainder$2$d;
-    wire  [11:0] row_remainder$2$q;
-    reg  row_remainder$3$clock;
-    reg  [11:0] row_remainder$3$d;
-    wire  [11:0] row_remainder$3$q;
-    reg  row_remainder$4$clock;
-    reg  [11:0] row_remainder$4$d;
-    wire  [11:0] row_remainder$4$q;
-    reg  row_remainder$5$clock;
-    reg  [11:0] row_remainder$5$d;
-    wire  [11:0] row_remainder$5$q;
-    reg  row_remainder$6$clock;
-    reg  [11:0] row_remainder$6$d;
-    wire  [11:0] row_remainder$6$q;
-    reg  row_remainder$7$clock;
-    reg  [11:0] row_remainder$7$d;
-    wire  [11:0] row_remainder$7$q;
-    reg  row_remainder$8$clock;
-    reg  [11:0] row_remainder$8$d;
-    wire  [11:0] row_remainder$8$q;
-    reg  row_remainder$9$clock;
-    reg  [11:0] row_remainder$9$d;
-    wire  [11:0] row_remainder$9$q;
-    reg  row_remainder$10$clock;
-    reg  [11:0] row_remainder$10$d;
-    wire  [11:0] row_remainder$10$q;
-    reg  row_remainder$11$clock;
-    reg  [11:0] row_remainder$11$d;
-    wire  [11:0] row_remainder$11$q;
-    reg  row_remainder$12$clock;
-    reg  [11:0] row_remainder$12$d;
-    wire  [11:0] row_remainder$12$q;
-    reg  row_quotient$0$clock;
-    reg  [12:0] row_quotient$0$d;
-    wire  [12:0] row_quotient$0$q;
-    reg  row_quotient$1$clock;
-    reg  [12:0] row_quotient$1$d;
-    wire  [12:0] row_quotient$1$q;
-    reg  row_quotient$2$clock;
-    reg  [12:0] row_quotient$2$d;
-    wire  [12:0] row_quotient$2$q;
-    reg  row_quotient$3$clock;
-    reg  [12:0] row_quotient$3$d;
-    wire  [12:0] row_quotient$3$q;
-    reg  row_quotient$4$clock;
-    reg  [12:0] row_quotient$4$d;
-    wire  [12:0] row_quotient$4$q;
-    reg  row_quotient$5$clock;
-    reg  [12:0] row_quotient$5$d;
-    wire  [12:0] row_quotient$5$q;
-    reg  row_quotient$6$clock;
-    reg  [12:0] row_quotient$6$d;
-    wire  [12:0] row_quotient$6$q;
-    reg  row_quotient$7$clock;
-    reg  [12:0] row_quotient$7$d;
-    wire  [12:0] row_quotient$7$q;
-    reg  row_quotient$8$clock;
-    reg  [12:0] row_quotient$8$d;
-    wire  [12:0] row_quotient$8$q;
-    reg  row_quotient$9$clock;
-    reg  [12:0] row_quotient$9$d;
-    wire  [12:0] row_quotient$9$q;
-    reg  row_quotient$10$clock;
-    reg  [12:0] row_quotient$10$d;
-    wire  [12:0] row_quotient$10$q;
-    reg  row_quotient$11$clock;
-    reg  [12:0] row_quotient$11$d;
-    wire  [12:0] row_quotient$11$q;
-    reg  row_quotient$12$clock;
-    reg  [12:0] row_quotient$12$d;
-    wire  [12:0] row_quotient$12$q;
-    reg  row_divisor$0$clock;
-    reg  [11:0] row_divisor$0$d;
-    wire  [11:0] row_divisor$0$q;
-    reg  row_divisor$1$clock;
-    reg  [11:0] row_divisor$1$d;
-    wire  [11:0] row_divisor$1$q;
-    reg  row_divisor$2$clock;
-    reg  [11:0] row_divisor$2$d;
-    wire  [11:0] row_divisor$2$q;
-    reg  row_divisor$3$clock;
-    reg  [11:0] row_divisor$3$d;
-    wire  [11:0] row_divisor$3$q;
-    reg  row_divisor$4$clock;
-    reg  [11:0] row_divisor$4$d;
-    wire  [11:0] row_divisor$4$q;
-    reg  row_divisor$5$clock;
-    reg  [11:0] row_divisor$5$d;
-    wire  [11:0] row_divisor$5$q;
-    reg  row_divisor$6$clock;
-    reg  [11:0] row_divisor$6$d;
-    wire  [11:0] row_divisor$6$q;
-    reg  row_divisor$7$clock;
-    reg  [11:0] row_divisor$7$d;
-    wire  [11:0] row_divisor$7$q;
-    reg  row_divisor$8$clock;
-    reg  [11:0] row_divisor$8$d;
-    wire  [11:0] row_divisor$8$q;
-    reg  row_divisor$9$clock;
-    reg  [11:0] row_divisor$9$d;
-    wire  [11:0] row_divisor$9$q;
-    reg  row_divisor$10$clock;
-    reg  [11:0] row_divisor$10$d;
-    wire  [11:0] row_divisor$10$q;
-    reg  row_divisor$11$clock;
-    reg  [11:0] row_divisor$11$d;
-    wire  [11:0] row_divisor$11$q;
-    reg  row_divisor$12$clock;
-    reg  [11:0] row_divisor$12$d;
-    wire  [11:0] row_divisor$12$q;
-    reg  row_exp$0$clock;
-    reg  [6:0] row_exp$0$d;
-    wire  [6:0] row_exp$0$q;
-    reg  row_exp$1$clock;
-    reg  [6:0] row_exp$1$d;
-    wire  [6:0] row_exp$1$q;
-    reg  row_exp$2$clock;
-    reg  [6:0] row_exp$2$d;
-    wire  [6:0] row_exp$2$q;
-    reg  row_exp$3$clock;
-    reg  [6:0] row_exp$3$d;
-    wire  [6:0] row_exp$3$q;
-    reg  row_exp$4$clock;
-    reg  [6:0] row_exp$4$d;
-    wire  [6:0] row_exp$4$q;
-    reg  row_exp$5$clock;
-    reg  [6:0] row_exp$5$d;
-    wire  [6:0] row_exp$5$q;
-    reg  row_exp$6$clock;
-    reg  [6:0] row_exp$6$d;
-    wire  [6:0] row_exp$6$q;
-    reg  row_exp$7$clock;
-    reg  [6:0] row_exp$7$d;
-    wire  [6:0] row_exp$7$q;
-    reg  row_exp$8$clock;
-    reg  [6:0] row_exp$8$d;
-    wire  [6:0] row_exp$8$q;
-    reg  row_exp$9$clock;
-    reg  [6:0] row_exp$9$d;
-    wire  [6:0] row_exp$9$q;
-    reg  row_exp$10$clock;
-    reg  [6:0] row_exp$10$d;
-    wire  [6:0] row_exp$10$q;
-    reg  row_exp$11$clock;
-    reg  [6:0] row_exp$11$d;
-    wire  [6:0] row_exp$11$q;
-    reg  row_exp$12$clock;
-    reg  [6:0] row_exp$12$d;
-    wire  [6:0] row_exp$12$q;
-    reg  row_category$0$clock;
-    reg  [3:0] row_category$0$d;
-    wire  [3:0] row_category$0$q;
-    reg  row_category$1$clock;
-    reg  [3:0] row_category$1$d;
-    wire  [3:0] row_category$1$q;
-    reg  row_category$2$clock;
-    reg  [3:0] row_category$2$d;
-    wire  [3:0] row_category$2$q;
-    reg  row_category$3$clock;
-    reg  [3:0] row_category$3$d;
-    wire  [3:0] row_category$3$q;
-    reg  row_category$4$clock;
-    reg  [3:0] row_category$4$d;
-    wire  [3:0] row_category$4$q;
-    reg  row_category$5$clock;
-    reg  [3:0] row_category$5$d;
-    wire  [3:0] row_category$5$q;
-    reg  row_category$6$clock;
-    reg  [3:0] row_category$6$d;
-    wire  [3:0] row_category$6$q;
-    reg  row_category$7$clock;
-    reg  [3:0] row_category$7$d;
-    wire  [3:0] row_category$7$q;
-    reg  row_category$8$clock;
-    reg  [3:0] row_category$8$d;
-    wire  [3:0] row_category$8$q;
-    reg  row_category$9$clock;
-    reg  [3:0] row_category$9$d;
-    wire  [3:0] row_category$9$q;
-    reg  row_category$10$clock;
-    reg  [3:0] row_category$10$d;
-    wire  [3:0] row_category$10$q;
-    reg  row_category$11$clock;
-    reg  [3:0] row_category$11$d;
-    wire  [3:0] row_category$11$q;
-    reg  row_category$12$clock;
-    reg  [3:0] row_category$12$d;
-    wire  [3:0] row_category$12$q;
-    reg  rounding_sig$clock;
-    reg  [10:0] rounding_sig$d;
-    wire  [10:0] rounding_sig$q;
-    reg  rounding_round$clock;
-    reg  rounding_round$d;
-    wire  rounding_round$q;
-    reg  rounding_sticky$clock;
-    reg  rounding_sticky$d;
-    wire  rounding_sticky$q;
-    reg  rounding_exp$clock;
-    reg  [6:0] rounding_exp$d;
-    wire  [6:0] rounding_exp$q;
-    reg  rounding_category$clock;
-    reg  [3:0] rounding_category$d;
-    wire  [3:0] rounding_category$q;
+    reg  [3:0] table_a$address;
+    wire  [14:0] table_a$data;
+    reg  [3:0] table_b$address;
+    wire  [13:0] table_b$data;
+    reg  [3:0] table_c$address;
+    wire  [9:0] table_c$data;
+    reg  [13:0] linear$a;
+    reg  [5:0] linear$b;
+    wire  [19:0] linear$p;
+    reg  [5:0] square$a;
+    reg  [5:0] square$b;
+    wire  [11:0] square$p;
+    reg  lookup_a$clock;
+    reg  [14:0] lookup_a$d;
+    wire  [14:0] lookup_a$q;
+    reg  lookup_c$clock;
+    reg  [9:0] lookup_c$d;
+    wire  [9:0] lookup_c$q;
+    reg  lookup_linear$clock;
+    reg  [19:0] lookup_linear$d;
+    wire  [19:0] lookup_linear$q;
+    reg  lookup_square$clock;
+    reg  [11:0] lookup_square$d;
+    wire  [11:0] lookup_square$q;
+    reg  lookup_sig$clock;
+    reg  [10:0] lookup_sig$d;
+    wire  [10:0] lookup_sig$q;
+    reg  lookup_exp$clock;
+    reg  [6:0] lookup_exp$d;
+    wire  [6:0] lookup_exp$q;
+    reg  lookup_exact$clock;
+    reg  lookup_exact$d;
+    wire  lookup_exact$q;
+    reg  lookup_category$clock;
+    reg  [3:0] lookup_category$d;
+    wire  [3:0] lookup_category$q;
+    reg  [9:0] quadratic$a;
+    reg  [11:0] quadratic$b;
+    wire  [21:0] quadratic$p;
+    reg  partial_sum$clock;
+    reg  [14:0] partial_sum$d;
+    wire  [14:0] partial_sum$q;
+    reg  partial_quadratic$clock;
+    reg  [21:0] partial_quadratic$d;
+    wire  [21:0] partial_quadratic$q;
+    reg  partial_sig$clock;
+    reg  [10:0] partial_sig$d;
+    wire  [10:0] partial_sig$q;
+    reg  partial_exp$clock;
+    reg  [6:0] partial_exp$d;
+    wire  [6:0] partial_exp$q;
+    reg  partial_exact$clock;
+    reg  partial_exact$d;
+    wire  partial_exact$q;
+    reg  partial_category$clock;
+    reg  [3:0] partial_category$d;
+    wire  [3:0] partial_category$q;
+    reg  candidate_frac$clock;
+    reg  [9:0] candidate_frac$d;
+    wire  [9:0] candidate_frac$q;
+    reg  candidate_sig$clock;
+    reg  [10:0] candidate_sig$d;
+    wire  [10:0] candidate_sig$q;
+    reg  candidate_exp$clock;
+    reg  [6:0] candidate_exp$d;
+    wire  [6:0] candidate_exp$q;
+    reg  candidate_exact$clock;
+    reg  candidate_exact$d;
+    wire  candidate_exact$q;
+    reg  candidate_category$clock;
+    reg  [3:0] candidate_category$d;
+    wire  [3:0] candidate_category$q;
+    reg  [10:0] check$a;
+    reg  [10:0] check$b;
+    wire  [21:0] check$p;
+    reg  decided_up$clock;
+    reg  decided_up$d;
+    wire  decided_up$q;
+    reg  decided_frac$clock;
+    reg  [9:0] decided_frac$d;
+    wire  [9:0] decided_frac$q;
+    reg  decided_frac_up$clock;
+    reg  [9:0] decided_frac_up$d;
+    wire  [9:0] decided_frac_up$q;
+    reg  decided_exp$clock;
+    reg  [6:0] decided_exp$d;
+    wire  [6:0] decided_exp$q;
+    reg  decided_exact$clock;
+    reg  decided_exact$d;
+    wire  decided_exact$q;
+    reg  decided_category$clock;
+    reg  [3:0] decided_category$d;
+    wire  [3:0] decided_category$q;
     reg  [3:0] rounder$category;
     reg  [6:0] rounder$exp;
     reg  [10:0] rounder$sig;
@@ -28746,11 +28563,10 @@ module rtfpga_core$slots$0$lane$inv_det(clock,a,y);
     
     // Local signals
     reg  [3:0] category;
-    reg  [11:0] remainder;
-    reg  [12:0] quotient;
-    reg  [6:0] quotient_exp;
-    reg  [3:0] quotient_category;
-    reg  exact_power;
+    reg  [3:0] index;
+    reg  [5:0] d;
+    reg  [14:0] sum;
+    reg  [2:0] check_top;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$inv_det$unpack unpack(
@@ -28762,461 +28578,162 @@ module rtfpga_core$slots$0$lane$inv_det(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
-    rtfpga_core$slots$0$lane$inv_det$operand_divisor operand_divisor(
-        .clock(operand_divisor$clock),
-        .d(operand_divisor$d),
-        .q(operand_divisor$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$operand_exp operand_exp(
-        .clock(operand_exp$clock),
-        .d(operand_exp$d),
-        .q(operand_exp$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$operand_category operand_category(
-        .clock(operand_category$clock),
-        .d(operand_category$d),
-        .q(operand_category$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$0 rows$0(
-        .remainder_in(rows$0$remainder_in),
-        .quotient_in(rows$0$quotient_in),
-        .divisor(rows$0$divisor),
-        .remainder_out(rows$0$remainder_out),
-        .quotient_out(rows$0$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$1 rows$1(
-        .remainder_in(rows$1$remainder_in),
-        .quotient_in(rows$1$quotient_in),
-        .divisor(rows$1$divisor),
-        .remainder_out(rows$1$remainder_out),
-        .quotient_out(rows$1$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$2 rows$2(
-        .remainder_in(rows$2$remainder_in),
-        .quotient_in(rows$2$quotient_in),
-        .divisor(rows$2$divisor),
-        .remainder_out(rows$2$remainder_out),
-        .quotient_out(rows$2$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$3 rows$3(
-        .remainder_in(rows$3$remainder_in),
-        .quotient_in(rows$3$quotient_in),
-        .divisor(rows$3$divisor),
-        .remainder_out(rows$3$remainder_out),
-        .quotient_out(rows$3$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$4 rows$4(
-        .remainder_in(rows$4$remainder_in),
-        .quotient_in(rows$4$quotient_in),
-        .divisor(rows$4$divisor),
-        .remainder_out(rows$4$remainder_out),
-        .quotient_out(rows$4$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$5 rows$5(
-        .remainder_in(rows$5$remainder_in),
-        .quotient_in(rows$5$quotient_in),
-        .divisor(rows$5$divisor),
-        .remainder_out(rows$5$remainder_out),
-        .quotient_out(rows$5$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$6 rows$6(
-        .remainder_in(rows$6$remainder_in),
-        .quotient_in(rows$6$quotient_in),
-        .divisor(rows$6$divisor),
-        .remainder_out(rows$6$remainder_out),
-        .quotient_out(rows$6$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$7 rows$7(
-        .remainder_in(rows$7$remainder_in),
-        .quotient_in(rows$7$quotient_in),
-        .divisor(rows$7$divisor),
-        .remainder_out(rows$7$remainder_out),
-        .quotient_out(rows$7$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$8 rows$8(
-        .remainder_in(rows$8$remainder_in),
-        .quotient_in(rows$8$quotient_in),
-        .divisor(rows$8$divisor),
-        .remainder_out(rows$8$remainder_out),
-        .quotient_out(rows$8$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$9 rows$9(
-        .remainder_in(rows$9$remainder_in),
-        .quotient_in(rows$9$quotient_in),
-        .divisor(rows$9$divisor),
-        .remainder_out(rows$9$remainder_out),
-        .quotient_out(rows$9$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$10 rows$10(
-        .remainder_in(rows$10$remainder_in),
-        .quotient_in(rows$10$quotient_in),
-        .divisor(rows$10$divisor),
-        .remainder_out(rows$10$remainder_out),
-        .quotient_out(rows$10$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$11 rows$11(
-        .remainder_in(rows$11$remainder_in),
-        .quotient_in(rows$11$quotient_in),
-        .divisor(rows$11$divisor),
-        .remainder_out(rows$11$remainder_out),
-        .quotient_out(rows$11$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$12 rows$12(
-        .remainder_in(rows$12$remainder_in),
-        .quotient_in(rows$12$quotient_in),
-        .divisor(rows$12$divisor),
-        .remainder_out(rows$12$remainder_out),
-        .quotient_out(rows$12$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$0 row_remainder$0(
-        .clock(row_remainder$0$clock),
-        .d(row_remainder$0$d),
-        .q(row_remainder$0$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$1 row_remainder$1(
-        .clock(row_remainder$1$clock),
-        .d(row_remainder$1$d),
-        .q(row_remainder$1$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$2 row_remainder$2(
-        .clock(row_remainder$2$clock),
-        .d(row_remainder$2$d),
-        .q(row_remainder$2$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$3 row_remainder$3(
-        .clock(row_remainder$3$clock),
-        .d(row_remainder$3$d),
-        .q(row_remainder$3$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$4 row_remainder$4(
-        .clock(row_remainder$4$clock),
-        .d(row_remainder$4$d),
-        .q(row_remainder$4$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$5 row_remainder$5(
-        .clock(row_remainder$5$clock),
-        .d(row_remainder$5$d),
-        .q(row_remainder$5$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$6 row_remainder$6(
-        .clock(row_remainder$6$clock),
-        .d(row_remainder$6$d),
-        .q(row_remainder$6$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$7 row_remainder$7(
-        .clock(row_remainder$7$clock),
-        .d(row_remainder$7$d),
-        .q(row_remainder$7$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$8 row_remainder$8(
-        .clock(row_remainder$8$clock),
-        .d(row_remainder$8$d),
-        .q(row_remainder$8$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$9 row_remainder$9(
-        .clock(row_remainder$9$clock),
-        .d(row_remainder$9$d),
-        .q(row_remainder$9$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$10 row_remainder$10(
-        .clock(row_remainder$10$clock),
-        .d(row_remainder$10$d),
-        .q(row_remainder$10$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$11 row_remainder$11(
-        .clock(row_remainder$11$clock),
-        .d(row_remainder$11$d),
-        .q(row_remainder$11$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$12 row_remainder$12(
-        .clock(row_remainder$12$clock),
-        .d(row_remainder$12$d),
-        .q(row_remainder$12$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$0 row_quotient$0(
-        .clock(row_quotient$0$clock),
-        .d(row_quotient$0$d),
-        .q(row_quotient$0$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$1 row_quotient$1(
-        .clock(row_quotient$1$clock),
-        .d(row_quotient$1$d),
-        .q(row_quotient$1$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$2 row_quotient$2(
-        .clock(row_quotient$2$clock),
-        .d(row_quotient$2$d),
-        .q(row_quotient$2$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$3 row_quotient$3(
-        .clock(row_quotient$3$clock),
-        .d(row_quotient$3$d),
-        .q(row_quotient$3$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$4 row_quotient$4(
-        .clock(row_quotient$4$clock),
-        .d(row_quotient$4$d),
-        .q(row_quotient$4$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$5 row_quotient$5(
-        .clock(row_quotient$5$clock),
-        .d(row_quotient$5$d),
-        .q(row_quotient$5$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$6 row_quotient$6(
-        .clock(row_quotient$6$clock),
-        .d(row_quotient$6$d),
-        .q(row_quotient$6$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$7 row_quotient$7(
-        .clock(row_quotient$7$clock),
-        .d(row_quotient$7$d),
-        .q(row_quotient$7$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$8 row_quotient$8(
-        .clock(row_quotient$8$clock),
-        .d(row_quotient$8$d),
-        .q(row_quotient$8$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$9 row_quotient$9(
-        .clock(row_quotient$9$clock),
-        .d(row_quotient$9$d),
-        .q(row_quotient$9$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$10 row_quotient$10(
-        .clock(row_quotient$10$clock),
-        .d(row_quotient$10$d),
-        .q(row_quotient$10$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$11 row_quotient$11(
-        .clock(row_quotient$11$clock),
-        .d(row_quotient$11$d),
-        .q(row_quotient$11$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$12 row_quotient$12(
-        .clock(row_quotient$12$clock),
-        .d(row_quotient$12$d),
-        .q(row_quotient$12$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$0 row_divisor$0(
-        .clock(row_divisor$0$clock),
-        .d(row_divisor$0$d),
-        .q(row_divisor$0$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$1 row_divisor$1(
-        .clock(row_divisor$1$clock),
-        .d(row_divisor$1$d),
-        .q(row_divisor$1$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$2 row_divisor$2(
-        .clock(row_divisor$2$clock),
-        .d(row_divisor$2$d),
-        .q(row_divisor$2$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$3 row_divisor$3(
-        .clock(row_divisor$3$clock),
-        .d(row_divisor$3$d),
-        .q(row_divisor$3$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$4 row_divisor$4(
-        .clock(row_divisor$4$clock),
-        .d(row_divisor$4$d),
-        .q(row_divisor$4$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$5 row_divisor$5(
-        .clock(row_divisor$5$clock),
-        .d(row_divisor$5$d),
-        .q(row_divisor$5$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$6 row_divisor$6(
-        .clock(row_divisor$6$clock),
-        .d(row_divisor$6$d),
-        .q(row_divisor$6$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$7 row_divisor$7(
-        .clock(row_divisor$7$clock),
-        .d(row_divisor$7$d),
-        .q(row_divisor$7$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$8 row_divisor$8(
-        .clock(row_divisor$8$clock),
-        .d(row_divisor$8$d),
-        .q(row_divisor$8$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$9 row_divisor$9(
-        .clock(row_divisor$9$clock),
-        .d(row_divisor$9$d),
-        .q(row_divisor$9$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$10 row_divisor$10(
-        .clock(row_divisor$10$clock),
-        .d(row_divisor$10$d),
-        .q(row_divisor$10$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$11 row_divisor$11(
-        .clock(row_divisor$11$clock),
-        .d(row_divisor$11$d),
-        .q(row_divisor$11$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$12 row_divisor$12(
-        .clock(row_divisor$12$clock),
-        .d(row_divisor$12$d),
-        .q(row_divisor$12$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$0 row_exp$0(
-        .clock(row_exp$0$clock),
-        .d(row_exp$0$d),
-        .q(row_exp$0$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$1 row_exp$1(
-        .clock(row_exp$1$clock),
-        .d(row_exp$1$d),
-        .q(row_exp$1$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$2 row_exp$2(
-        .clock(row_exp$2$clock),
-        .d(row_exp$2$d),
-        .q(row_exp$2$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$3 row_exp$3(
-        .clock(row_exp$3$clock),
-        .d(row_exp$3$d),
-        .q(row_exp$3$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$4 row_exp$4(
-        .clock(row_exp$4$clock),
-        .d(row_exp$4$d),
-        .q(row_exp$4$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$5 row_exp$5(
-        .clock(row_exp$5$clock),
-        .d(row_exp$5$d),
-        .q(row_exp$5$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$6 row_exp$6(
-        .clock(row_exp$6$clock),
-        .d(row_exp$6$d),
-        .q(row_exp$6$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$7 row_exp$7(
-        .clock(row_exp$7$clock),
-        .d(row_exp$7$d),
-        .q(row_exp$7$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$8 row_exp$8(
-        .clock(row_exp$8$clock),
-        .d(row_exp$8$d),
-        .q(row_exp$8$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$9 row_exp$9(
-        .clock(row_exp$9$clock),
-        .d(row_exp$9$d),
-        .q(row_exp$9$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$10 row_exp$10(
-        .clock(row_exp$10$clock),
-        .d(row_exp$10$d),
-        .q(row_exp$10$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$11 row_exp$11(
-        .clock(row_exp$11$clock),
-        .d(row_exp$11$d),
-        .q(row_exp$11$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$12 row_exp$12(
-        .clock(row_exp$12$clock),
-        .d(row_exp$12$d),
-        .q(row_exp$12$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$0 row_category$0(
-        .clock(row_category$0$clock),
-        .d(row_category$0$d),
-        .q(row_category$0$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$1 row_category$1(
-        .clock(row_category$1$clock),
-        .d(row_category$1$d),
-        .q(row_category$1$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$2 row_category$2(
-        .clock(row_category$2$clock),
-        .d(row_category$2$d),
-        .q(row_category$2$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$3 row_category$3(
-        .clock(row_category$3$clock),
-        .d(row_category$3$d),
-        .q(row_category$3$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$4 row_category$4(
-        .clock(row_category$4$clock),
-        .d(row_category$4$d),
-        .q(row_category$4$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$5 row_category$5(
-        .clock(row_category$5$clock),
-        .d(row_category$5$d),
-        .q(row_category$5$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$6 row_category$6(
-        .clock(row_category$6$clock),
-        .d(row_category$6$d),
-        .q(row_category$6$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$7 row_category$7(
-        .clock(row_category$7$clock),
-        .d(row_category$7$d),
-        .q(row_category$7$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$8 row_category$8(
-        .clock(row_category$8$clock),
-        .d(row_category$8$d),
-        .q(row_category$8$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$9 row_category$9(
-        .clock(row_category$9$clock),
-        .d(row_category$9$d),
-        .q(row_category$9$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$10 row_category$10(
-        .clock(row_category$10$clock),
-        .d(row_category$10$d),
-        .q(row_category$10$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$11 row_category$11(
-        .clock(row_category$11$clock),
-        .d(row_category$11$d),
-        .q(row_category$11$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$12 row_category$12(
-        .clock(row_category$12$clock),
-        .d(row_category$12$d),
-        .q(row_category$12$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rounding_sig rounding_sig(
-        .clock(rounding_sig$clock),
-        .d(rounding_sig$d),
-        .q(rounding_sig$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rounding_round rounding_round(
-        .clock(rounding_round$clock),
-        .d(rounding_round$d),
-        .q(rounding_round$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rounding_sticky rounding_sticky(
-        .clock(rounding_sticky$clock),
-        .d(rounding_sticky$d),
-        .q(rounding_sticky$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rounding_exp rounding_exp(
-        .clock(rounding_exp$clock),
-        .d(rounding_exp$d),
-        .q(rounding_exp$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rounding_category rounding_category(
-        .clock(rounding_category$clock),
-        .d(rounding_category$d),
-        .q(rounding_category$q)
+    rtfpga_core$slots$0$lane$inv_det$table_a table_a(
+        .address(table_a$address),
+        .data(table_a$data)
+    );
+    rtfpga_core$slots$0$lane$inv_det$table_b table_b(
+        .address(table_b$address),
+        .data(table_b$data)
+    );
+    rtfpga_core$slots$0$lane$inv_det$table_c table_c(
+        .address(table_c$address),
+        .data(table_c$data)
+    );
+    rtfpga_core$slots$0$lane$inv_det$linear linear(
+        .a(linear$a),
+        .b(linear$b),
+        .p(linear$p)
+    );
+    rtfpga_core$slots$0$lane$inv_det$square square(
+        .a(square$a),
+        .b(square$b),
+        .p(square$p)
+    );
+    rtfpga_core$slots$0$lane$inv_det$lookup_a lookup_a(
+        .clock(lookup_a$clock),
+        .d(lookup_a$d),
+        .q(lookup_a$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$lookup_c lookup_c(
+        .clock(lookup_c$clock),
+        .d(lookup_c$d),
+        .q(lookup_c$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$lookup_linear lookup_linear(
+        .clock(lookup_linear$clock),
+        .d(lookup_linear$d),
+        .q(lookup_linear$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$lookup_square lookup_square(
+        .clock(lookup_square$clock),
+        .d(lookup_square$d),
+        .q(lookup_square$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$lookup_sig lookup_sig(
+        .clock(lookup_sig$clock),
+        .d(lookup_sig$d),
+        .q(lookup_sig$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$lookup_exp lookup_exp(
+        .clock(lookup_exp$clock),
+        .d(lookup_exp$d),
+        .q(lookup_exp$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$lookup_exact lookup_exact(
+        .clock(lookup_exact$clock),
+        .d(lookup_exact$d),
+        .q(lookup_exact$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$lookup_category lookup_category(
+        .clock(lookup_category$clock),
+        .d(lookup_category$d),
+        .q(lookup_category$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$quadratic quadratic(
+        .a(quadratic$a),
+        .b(quadratic$b),
+        .p(quadratic$p)
+    );
+    rtfpga_core$slots$0$lane$inv_det$partial_sum partial_sum(
+        .clock(partial_sum$clock),
+        .d(partial_sum$d),
+        .q(partial_sum$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$partial_quadratic partial_quadratic(
+        .clock(partial_quadratic$clock),
+        .d(partial_quadratic$d),
+        .q(partial_quadratic$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$partial_sig partial_sig(
+        .clock(partial_sig$clock),
+        .d(partial_sig$d),
+        .q(partial_sig$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$partial_exp partial_exp(
+        .clock(partial_exp$clock),
+        .d(partial_exp$d),
+        .q(partial_exp$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$partial_exact partial_exact(
+        .clock(partial_exact$clock),
+        .d(partial_exact$d),
+        .q(partial_exact$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$partial_category partial_category(
+        .clock(partial_category$clock),
+        .d(partial_category$d),
+        .q(partial_category$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$candidate_frac candidate_frac(
+        .clock(candidate_frac$clock),
+        .d(candidate_frac$d),
+        .q(candidate_frac$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$candidate_sig candidate_sig(
+        .clock(candidate_sig$clock),
+        .d(candidate_sig$d),
+        .q(candidate_sig$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$candidate_exp candidate_exp(
+        .clock(candidate_exp$clock),
+        .d(candidate_exp$d),
+        .q(candidate_exp$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$candidate_exact candidate_exact(
+        .clock(candidate_exact$clock),
+        .d(candidate_exact$d),
+        .q(candidate_exact$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$candidate_category candidate_category(
+        .clock(candidate_category$clock),
+        .d(candidate_category$d),
+        .q(candidate_category$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$check check(
+        .a(check$a),
+        .b(check$b),
+        .p(check$p)
+    );
+    rtfpga_core$slots$0$lane$inv_det$decided_up decided_up(
+        .clock(decided_up$clock),
+        .d(decided_up$d),
+        .q(decided_up$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$decided_frac decided_frac(
+        .clock(decided_frac$clock),
+        .d(decided_frac$d),
+        .q(decided_frac$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$decided_frac_up decided_frac_up(
+        .clock(decided_frac_up$clock),
+        .d(decided_frac_up$d),
+        .q(decided_frac_up$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$decided_exp decided_exp(
+        .clock(decided_exp$clock),
+        .d(decided_exp$d),
+        .q(decided_exp$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$decided_exact decided_exact(
+        .clock(decided_exact$clock),
+        .d(decided_exact$d),
+        .q(decided_exact$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$decided_category decided_category(
+        .clock(decided_category$clock),
+        .d(decided_category$d),
+        .q(decided_category$q)
     );
     rtfpga_core$slots$0$lane$inv_det$rounder rounder(
         .category(rounder$category),
@@ -29239,254 +28756,85 @@ module rtfpga_core$slots$0$lane$inv_det(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$zero;
         category[(64'h3)+:(1)] = unpack$inf;
-        operand_divisor$clock = clock;
-        operand_exp$clock = clock;
-        operand_category$clock = clock;
-        operand_divisor$d = ((unpack$sig) & 12'hfff);
-        operand_exp$d = exp_base - ((unpack$exp) & 7'h7f);
-        operand_category$d = category;
-        rows$0$remainder_in = first_remainder;
-        rows$0$quotient_in = no_quotient;
-        rows$0$divisor = operand_divisor$q;
-        row_exp$0$d = operand_exp$q;
-        row_category$0$d = operand_category$q;
-        rows$1$remainder_in = row_remainder$0$q;
-        rows$1$quotient_in = row_quotient$0$q;
-        rows$1$divisor = row_divisor$0$q;
-        row_exp$1$d = row_exp$0$q;
-        row_category$1$d = row_category$0$q;
-        rows$2$remainder_in = row_remainder$1$q;
-        rows$2$quotient_in = row_quotient$1$q;
-        rows$2$divisor = row_divisor$1$q;
-        row_exp$2$d = row_exp$1$q;
-        row_category$2$d = row_category$1$q;
-        rows$3$remainder_in = row_remainder$2$q;
-        rows$3$quotient_in = row_quotient$2$q;
-        rows$3$divisor = row_divisor$2$q;
-        row_exp$3$d = row_exp$2$q;
-        row_category$3$d = row_category$2$q;
-        rows$4$remainder_in = row_remainder$3$q;
-        rows$4$quotient_in = row_quotient$3$q;
-        rows$4$divisor = row_divisor$3$q;
-        row_exp$4$d = row_exp$3$q;
-        row_category$4$d = row_category$3$q;
-        rows$5$remainder_in = row_remainder$4$q;
-        rows$5$quotient_in = row_quotient$4$q;
-        rows$5$divisor = row_divisor$4$q;
-        row_exp$5$d = row_exp$4$q;
-        row_category$5$d = row_category$4$q;
-        rows$6$remainder_in = row_remainder$5$q;
-        rows$6$quotient_in = row_quotient$5$q;
-        rows$6$divisor = row_divisor$5$q;
-        row_exp$6$d = row_exp$5$q;
-        row_category$6$d = row_category$5$q;
-        rows$7$remainder_in = row_remainder$6$q;
-        rows$7$quotient_in = row_quotient$6$q;
-        rows$7$divisor = row_divisor$6$q;
-        row_exp$7$d = row_exp$6$q;
-        row_category$7$d = row_category$6$q;
-        rows$8$remainder_in = row_remainder$7$q;
-        rows$8$quotient_in = row_quotient$7$q;
-        rows$8$divisor = row_divisor$7$q;
-        row_exp$8$d = row_exp$7$q;
-        row_category$8$d = row_category$7$q;
-        rows$9$remainder_in = row_remainder$8$q;
-        rows$9$quotient_in = row_quotient$8$q;
-        rows$9$divisor = row_divisor$8$q;
-        row_exp$9$d = row_exp$8$q;
-        row_category$9$d = row_category$8$q;
-        rows$10$remainder_in = row_remainder$9$q;
-        rows$10$quotient_in = row_quotient$9$q;
-        rows$10$divisor = row_divisor$9$q;
-        row_exp$10$d = row_exp$9$q;
-        row_category$10$d = row_category$9$q;
-        rows$11$remainder_in = row_remainder$10$q;
-        rows$11$quotient_in = row_quotient$10$q;
-        rows$11$divisor = row_divisor$10$q;
-        row_exp$11$d = row_exp$10$q;
-        row_category$11$d = row_category$10$q;
-        rows$12$remainder_in = row_remainder$11$q;
-        rows$12$quotient_in = row_quotient$11$q;
-        rows$12$divisor = row_divisor$11$q;
-        row_exp$12$d = row_exp$11$q;
-        row_category$12$d = row_category$11$q;
-        row_remainder$0$clock = clock;
-        row_quotient$0$clock = clock;
-        row_divisor$0$clock = clock;
-        row_exp$0$clock = clock;
-        row_category$0$clock = clock;
-        row_remainder$0$d = rows$0$remainder_out;
-        row_quotient$0$d = rows$0$quotient_out;
-        row_divisor$0$d = rows$0$divisor;
-        remainder = row_remainder$0$q;
-        quotient = row_quotient$0$q;
-        quotient_exp = row_exp$0$q;
-        quotient_category = row_category$0$q;
-        row_remainder$1$clock = clock;
-        row_quotient$1$clock = clock;
-        row_divisor$1$clock = clock;
-        row_exp$1$clock = clock;
-        row_category$1$clock = clock;
-        row_remainder$1$d = rows$1$remainder_out;
-        row_quotient$1$d = rows$1$quotient_out;
-        row_divisor$1$d = rows$1$divisor;
-        remainder = row_remainder$1$q;
-        quotient = row_quotient$1$q;
-        quotient_exp = row_exp$1$q;
-        quotient_category = row_category$1$q;
-        row_remainder$2$clock = clock;
-        row_quotient$2$clock = clock;
-        row_divisor$2$clock = clock;
-        row_exp$2$clock = clock;
-        row_category$2$clock = clock;
-        row_remainder$2$d = rows$2$remainder_out;
-        row_quotient$2$d = rows$2$quotient_out;
-        row_divisor$2$d = rows$2$divisor;
-        remainder = row_remainder$2$q;
-        quotient = row_quotient$2$q;
-        quotient_exp = row_exp$2$q;
-        quotient_category = row_category$2$q;
-        row_remainder$3$clock = clock;
-        row_quotient$3$clock = clock;
-        row_divisor$3$clock = clock;
-        row_exp$3$clock = clock;
-        row_category$3$clock = clock;
-        row_remainder$3$d = rows$3$remainder_out;
-        row_quotient$3$d = rows$3$quotient_out;
-        row_divisor$3$d = rows$3$divisor;
-        remainder = row_remainder$3$q;
-        quotient = row_quotient$3$q;
-        quotient_exp = row_exp$3$q;
-        quotient_category = row_category$3$q;
-        row_remainder$4$clock = clock;
-        row_quotient$4$clock = clock;
-        row_divisor$4$clock = clock;
-        row_exp$4$clock = clock;
-        row_category$4$clock = clock;
-        row_remainder$4$d = rows$4$remainder_out;
-        row_quotient$4$d = rows$4$quotient_out;
-        row_divisor$4$d = rows$4$divisor;
-        remainder = row_remainder$4$q;
-        quotient = row_quotient$4$q;
-        quotient_exp = row_exp$4$q;
-        quotient_category = row_category$4$q;
-        row_remainder$5$clock = clock;
-        row_quotient$5$clock = clock;
-        row_divisor$5$clock = clock;
-        row_exp$5$clock = clock;
-        row_category$5$clock = clock;
-        row_remainder$5$d = rows$5$remainder_out;
-        row_quotient$5$d = rows$5$quotient_out;
-        row_divisor$5$d = rows$5$divisor;
-        remainder = row_remainder$5$q;
-        quotient = row_quotient$5$q;
-        quotient_exp = row_exp$5$q;
-        quotient_category = row_category$5$q;
-        row_remainder$6$clock = clock;
-        row_quotient$6$clock = clock;
-        row_divisor$6$clock = clock;
-        row_exp$6$clock = clock;
-        row_category$6$clock = clock;
-        row_remainder$6$d = rows$6$remainder_out;
-        row_quotient$6$d = rows$6$quotient_out;
-        row_divisor$6$d = rows$6$divisor;
-        remainder = row_remainder$6$q;
-        quotient = row_quotient$6$q;
-        quotient_exp = row_exp$6$q;
-        quotient_category = row_category$6$q;
-        row_remainder$7$clock = clock;
-        row_quotient$7$clock = clock;
-        row_divisor$7$clock = clock;
-        row_exp$7$clock = clock;
-        row_category$7$clock = clock;
-        row_remainder$7$d = rows$7$remainder_out;
-        row_quotient$7$d = rows$7$quotient_out;
-        row_divisor$7$d = rows$7$divisor;
-        remainder = row_remainder$7$q;
-        quotient = row_quotient$7$q;
-        quotient_exp = row_exp$7$q;
-        quotient_category = row_category$7$q;
-        row_remainder$8$clock = clock;
-        row_quotient$8$clock = clock;
-        row_divisor$8$clock = clock;
-        row_exp$8$clock = clock;
-        row_category$8$clock = clock;
-        row_remainder$8$d = rows$8$remainder_out;
-        row_quotient$8$d = rows$8$quotient_out;
-        row_divisor$8$d = rows$8$divisor;
-        remainder = row_remainder$8$q;
-        quotient = row_quotient$8$q;
-        quotient_exp = row_exp$8$q;
-        quotient_category = row_category$8$q;
-        row_remainder$9$clock = clock;
-        row_quotient$9$clock = clock;
-        row_divisor$9$clock = clock;
-        row_exp$9$clock = clock;
-        row_category$9$clock = clock;
-        row_remainder$9$d = rows$9$remainder_out;
-        row_quotient$9$d = rows$9$quotient_out;
-        row_divisor$9$d = rows$9$divisor;
-        remainder = row_remainder$9$q;
-        quotient = row_quotient$9$q;
-        quotient_exp = row_exp$9$q;
-        quotient_category = row_category$9$q;
-        row_remainder$10$clock = clock;
-        row_quotient$10$clock = clock;
-        row_divisor$10$clock = clock;
-        row_exp$10$clock = clock;
-        row_category$10$clock = clock;
-        row_remainder$10$d = rows$10$remainder_out;
-        row_quotient$10$d = rows$10$quotient_out;
-        row_divisor$10$d = rows$10$divisor;
-        remainder = row_remainder$10$q;
-        quotient = row_quotient$10$q;
-        quotient_exp = row_exp$10$q;
-        quotient_category = row_category$10$q;
-        row_remainder$11$clock = clock;
-        row_quotient$11$clock = clock;
-        row_divisor$11$clock = clock;
-        row_exp$11$clock = clock;
-        row_category$11$clock = clock;
-        row_remainder$11$d = rows$11$remainder_out;
-        row_quotient$11$d = rows$11$quotient_out;
-        row_divisor$11$d = rows$11$divisor;
-        remainder = row_remainder$11$q;
-        quotient = row_quotient$11$q;
-        quotient_exp = row_exp$11$q;
-        quotient_category = row_category$11$q;
-        row_remainder$12$clock = clock;
-        row_quotient$12$clock = clock;
-        row_divisor$12$clock = clock;
-        row_exp$12$clock = clock;
-        row_category$12$clock = clock;
-        row_remainder$12$d = rows$12$remainder_out;
-        row_quotient$12$d = rows$12$quotient_out;
-        row_divisor$12$d = rows$12$divisor;
-        remainder = row_remainder$12$q;
-        quotient = row_quotient$12$q;
-        quotient_exp = row_exp$12$q;
-        quotient_category = row_category$12$q;
-        exact_power = |(quotient & quotient_top);
-        rounding_sig$clock = clock;
-        rounding_round$clock = clock;
-        rounding_sticky$clock = clock;
-        rounding_exp$clock = clock;
-        rounding_category$clock = clock;
-        if (exact_power) begin
-            rounding_sig$d = ((quotient >> 32'h2) & 11'h7ff);
+        index = ((unpack$sig >> d_shift) & 4'hf);
+        d = ((unpack$sig) & 6'h3f);
+        table_a$address = index;
+        table_b$address = index;
+        table_c$address = index;
+        linear$a = table_b$data;
+        linear$b = d;
+        square$a = d;
+        square$b = d;
+        lookup_a$clock = clock;
+        lookup_c$clock = clock;
+        lookup_linear$clock = clock;
+        lookup_square$clock = clock;
+        lookup_sig$clock = clock;
+        lookup_exp$clock = clock;
+        lookup_exact$clock = clock;
+        lookup_category$clock = clock;
+        lookup_a$d = table_a$data;
+        lookup_c$d = table_c$data;
+        lookup_linear$d = linear$p;
+        lookup_square$d = ((square$p >> r_shift) & 12'hfff);
+        lookup_sig$d = unpack$sig;
+        lookup_exp$d = exp_base - ((unpack$exp) & 7'h7f);
+        lookup_exact$d = unpack$sig == hidden_bit;
+        lookup_category$d = category;
+        quadratic$a = lookup_c$q;
+        quadratic$b = lookup_square$q;
+        partial_sum$clock = clock;
+        partial_quadratic$clock = clock;
+        partial_sig$clock = clock;
+        partial_exp$clock = clock;
+        partial_exact$clock = clock;
+        partial_category$clock = clock;
+        partial_sum$d = lookup_a$q - ((lookup_linear$q >> b_shift) & 15'h7fff);
+        partial_quadratic$d = quadratic$p;
+        partial_sig$d = lookup_sig$q;
+        partial_exp$d = lookup_exp$q;
+        partial_exact$d = lookup_exact$q;
+        partial_category$d = lookup_category$q;
+        sum = partial_sum$q + ((partial_quadratic$q >> c_shift) & 15'h7fff);
+        candidate_frac$clock = clock;
+        candidate_sig$clock = clock;
+        candidate_exp$clock = clock;
+        candidate_exact$clock = clock;
+        candidate_category$clock = clock;
+        candidate_frac$d = ((sum >> extra_shift) & 10'h3ff);
+        candidate_sig$d = partial_sig$q;
+        candidate_exp$d = partial_exp$q;
+        candidate_exact$d = partial_exact$q;
+        candidate_category$d = partial_category$q;
+        check$a = candidate_sig$q;
+        check$b = (((candidate_frac$q) & 11'h7ff) << 32'h1) | ((one) & 11'h7ff);
+        check_top = ((check$p >> check_shift) & 3'h7) + ((candidate_sig$q & low_three) & 3'h7);
+        decided_up$clock = clock;
+        decided_frac$clock = clock;
+        decided_frac_up$clock = clock;
+        decided_exp$clock = clock;
+        decided_exact$clock = clock;
+        decided_category$clock = clock;
+        decided_up$d = check_top[32'h2];
+        decided_frac$d = candidate_frac$q;
+        decided_frac_up$d = candidate_frac$q + one;
+        decided_exp$d = candidate_exp$q;
+        decided_exact$d = candidate_exact$q;
+        decided_category$d = candidate_category$q;
+        rounder$round = no_bit;
+        rounder$sticky = no_bit;
+        rounder$category = decided_category$q;
+        rounder$exp = decided_exp$q;
+        if (decided_exact$q) begin
+            rounder$sig = exact_sig;
+            rounder$exp = decided_exp$q + exp_one;
+        end
+        else if (decided_up$q) begin
+            rounder$sig = hidden_bit | ((decided_frac_up$q) & 11'h7ff);
         end
         else begin
-            rounding_sig$d = ((quotient >> 32'h1) & 11'h7ff);
+            rounder$sig = hidden_bit | ((decided_frac$q) & 11'h7ff);
         end
-        rounding_round$d = |(quotient & one);
-        rounding_sticky$d = |remainder;
-        rounding_exp$d = quotient_exp + exact_power;
-        rounding_category$d = quotient_category;
-        rounder$sig = rounding_sig$q;
-        rounder$round = rounding_round$q;
-        rounder$sticky = rounding_sticky$q;
-        rounder$exp = rounding_exp$q;
-        rounder$category = rounding_category$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
@@ -29495,7 +28843,7 @@ module rtfpga_core$slots$0$lane$inv_det(clock,a,y);
 endmodule // rtfpga_core$slots$0$lane$inv_det
 
 
-module rtfpga_core$slots$0$lane$inv_det$operand_category(clock,d,q);
+module rtfpga_core$slots$0$lane$inv_det$candidate_category(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -29503,7 +28851,7 @@ module rtfpga_core$slots$0$lane$inv_det$operand_category(clock,d,q);
     output reg  [3:0] q;
     
     // Constant declarations
-    localparam  registered = 1'b0;
+    localparam  registered = 1'b1;
     
     // Stub signals
     reg  [3:0] flop$d;
@@ -29511,7 +28859,7 @@ module rtfpga_core$slots$0$lane$inv_det$operand_category(clock,d,q);
     reg  flop$clock;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$operand_category$flop flop(
+    rtfpga_core$slots$0$lane$inv_det$candidate_category$flop flop(
         .d(flop$d),
         .q(flop$q),
         .clock(flop$clock)
@@ -29529,10 +28877,10 @@ module rtfpga_core$slots$0$lane$inv_det$operand_category(clock,d,q);
         end
     end
     
-endmodule // rtfpga_core$slots$0$lane$inv_det$operand_category
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_category
 
 
-module rtfpga_core$slots$0$lane$inv_det$operand_category$flop(d,q,clock);
+module rtfpga_core$slots$0$lane$inv_det$candidate_category$flop(d,q,clock);
     
     // Module arguments
     input wire  [3:0] d;
@@ -29548,26 +28896,26 @@ module rtfpga_core$slots$0$lane$inv_det$operand_category$flop(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$inv_det$operand_category$flop
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_category$flop
 
 
-module rtfpga_core$slots$0$lane$inv_det$operand_divisor(clock,d,q);
+module rtfpga_core$slots$0$lane$inv_det$candidate_exact(clock,d,q);
     
     // Module arguments
     input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
+    input wire  d;
+    output reg  q;
     
     // Constant declarations
-    localparam  registered = 1'b0;
+    localparam  registered = 1'b1;
     
     // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
+    reg  flop$d;
+    wire  flop$q;
     reg  flop$clock;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$operand_divisor$flop flop(
+    rtfpga_core$slots$0$lane$inv_det$candidate_exact$flop flop(
         .d(flop$d),
         .q(flop$q),
         .clock(flop$clock)
@@ -29585,29 +28933,29 @@ module rtfpga_core$slots$0$lane$inv_det$operand_divisor(clock,d,q);
         end
     end
     
-endmodule // rtfpga_core$slots$0$lane$inv_det$operand_divisor
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_exact
 
 
-module rtfpga_core$slots$0$lane$inv_det$operand_divisor$flop(d,q,clock);
+module rtfpga_core$slots$0$lane$inv_det$candidate_exact$flop(d,q,clock);
     
     // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
     
     // Update code (custom)
     initial begin
-       q = 12'h0;
+       q = 1'h0;
     end
     
     always @(posedge clock) begin
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$inv_det$operand_divisor$flop
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_exact$flop
 
 
-module rtfpga_core$slots$0$lane$inv_det$operand_exp(clock,d,q);
+module rtfpga_core$slots$0$lane$inv_det$candidate_exp(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -29615,7 +28963,7 @@ module rtfpga_core$slots$0$lane$inv_det$operand_exp(clock,d,q);
     output reg  [6:0] q;
     
     // Constant declarations
-    localparam  registered = 1'b0;
+    localparam  registered = 1'b1;
     
     // Stub signals
     reg  [6:0] flop$d;
@@ -29623,7 +28971,7 @@ module rtfpga_core$slots$0$lane$inv_det$operand_exp(clock,d,q);
     reg  flop$clock;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$operand_exp$flop flop(
+    rtfpga_core$slots$0$lane$inv_det$candidate_exp$flop flop(
         .d(flop$d),
         .q(flop$q),
         .clock(flop$clock)
@@ -29641,10 +28989,10 @@ module rtfpga_core$slots$0$lane$inv_det$operand_exp(clock,d,q);
         end
     end
     
-endmodule // rtfpga_core$slots$0$lane$inv_det$operand_exp
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_exp
 
 
-module rtfpga_core$slots$0$lane$inv_det$operand_exp$flop(d,q,clock);
+module rtfpga_core$slots$0$lane$inv_det$candidate_exp$flop(d,q,clock);
     
     // Module arguments
     input wire  [6:0] d;
@@ -29660,7 +29008,1275 @@ module rtfpga_core$slots$0$lane$inv_det$operand_exp$flop(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$inv_det$operand_exp$flop
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_exp$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$candidate_frac(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b1;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$candidate_frac$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_frac
+
+
+module rtfpga_core$slots$0$lane$inv_det$candidate_frac$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_frac$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$candidate_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b1;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$candidate_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_sig
+
+
+module rtfpga_core$slots$0$lane$inv_det$candidate_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_sig$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$check(a,b,p);
+    
+    // Module arguments
+    input wire  [10:0] a;
+    input wire  [10:0] b;
+    output reg  [21:0] p;
+    
+    // Update code (custom)
+    always @(*) p = {11'd0, a} * {11'd0, b};
+endmodule // rtfpga_core$slots$0$lane$inv_det$check
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$decided_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_category
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_category$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_exact(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$decided_exact$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_exact
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_exact$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_exact$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [6:0] d;
+    output reg  [6:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [6:0] flop$d;
+    wire  [6:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$decided_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_exp
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [6:0] d;
+    output reg  [6:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 7'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_exp$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_frac(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$decided_frac$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_frac
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_frac$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_frac$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_frac_up(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$decided_frac_up$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_frac_up
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_frac_up$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_frac_up$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_up(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$decided_up$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_up
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_up$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_up$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$linear(a,b,p);
+    
+    // Module arguments
+    input wire  [13:0] a;
+    input wire  [5:0] b;
+    output reg  [19:0] p;
+    
+    // Update code (custom)
+    always @(*) p = {6'd0, a} * {14'd0, b};
+endmodule // rtfpga_core$slots$0$lane$inv_det$linear
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_a(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [14:0] d;
+    output reg  [14:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [14:0] flop$d;
+    wire  [14:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$lookup_a$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_a
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_a$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [14:0] d;
+    output reg  [14:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 15'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_a$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_c(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$lookup_c$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_c
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_c$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_c$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$lookup_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_category
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_category$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_exact(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$lookup_exact$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_exact
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_exact$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_exact$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [6:0] d;
+    output reg  [6:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [6:0] flop$d;
+    wire  [6:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$lookup_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_exp
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [6:0] d;
+    output reg  [6:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 7'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_exp$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_linear(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [19:0] d;
+    output reg  [19:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [19:0] flop$d;
+    wire  [19:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$lookup_linear$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_linear
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_linear$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [19:0] d;
+    output reg  [19:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 20'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_linear$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$lookup_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_sig
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_sig$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_square(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [11:0] d;
+    output reg  [11:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [11:0] flop$d;
+    wire  [11:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$lookup_square$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_square
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_square$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [11:0] d;
+    output reg  [11:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 12'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_square$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$partial_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_category
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_category$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_exact(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$partial_exact$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_exact
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_exact$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_exact$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [6:0] d;
+    output reg  [6:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [6:0] flop$d;
+    wire  [6:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$partial_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_exp
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [6:0] d;
+    output reg  [6:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 7'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_exp$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_quadratic(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [21:0] d;
+    output reg  [21:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [21:0] flop$d;
+    wire  [21:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$partial_quadratic$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_quadratic
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_quadratic$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [21:0] d;
+    output reg  [21:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 22'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_quadratic$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$partial_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_sig
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_sig$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_sum(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [14:0] d;
+    output reg  [14:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [14:0] flop$d;
+    wire  [14:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$partial_sum$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_sum
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_sum$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [14:0] d;
+    output reg  [14:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 15'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_sum$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$quadratic(a,b,p);
+    
+    // Module arguments
+    input wire  [9:0] a;
+    input wire  [11:0] b;
+    output reg  [21:0] p;
+    
+    // Update code (custom)
+    always @(*) p = {12'd0, a} * {10'd0, b};
+endmodule // rtfpga_core$slots$0$lane$inv_det$quadratic
 
 
 module rtfpga_core$slots$0$lane$inv_det$result(clock,d,q);
@@ -29801,4678 +30417,109 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
 endmodule // rtfpga_core$slots$0$lane$inv_det$rounder
 
 
-module rtfpga_core$slots$0$lane$inv_det$rounding_category(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$rounding_category$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_category
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_category$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_category$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_exp(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [6:0] flop$d;
-    wire  [6:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$rounding_exp$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_exp
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_exp$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 7'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_exp$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_round(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  d;
-    output reg  q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  flop$d;
-    wire  flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$rounding_round$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_round
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_round$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_round$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_sig(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [10:0] d;
-    output reg  [10:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [10:0] flop$d;
-    wire  [10:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$rounding_sig$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_sig
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_sig$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [10:0] d;
-    output reg  [10:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 11'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_sig$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_sticky(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  d;
-    output reg  q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  flop$d;
-    wire  flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$rounding_sticky$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_sticky
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_sticky$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_sticky$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$0(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$0$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$0
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$0$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$0$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$1(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$1$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$1
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$1$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$1$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$10(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$10$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$10
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$10$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$10$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$11(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$11$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$11
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$11$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$11$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$12(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$12$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$12
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$12$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$12$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$2(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$2$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$2
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$2$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$2$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$3(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$3$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$3
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$3$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$3$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$4(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$4$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$4
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$4$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$4$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$5(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$5$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$5
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$5$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$5$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$6(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$6$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$6
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$6$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$6$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$7(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b1;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$7$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$7
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$7$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$7$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$8(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$8$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$8
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$8$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$8$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$9(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$9$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$9
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$9$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$9$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$0(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$0$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$0
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$0$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$0$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$1(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$1$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$1
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$1$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$1$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$10(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$10$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$10
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$10$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$10$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$11(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$11$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$11
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$11$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$11$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$12(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$12$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$12
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$12$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$12$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$2(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$2$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$2
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$2$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$2$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$3(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$3$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$3
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$3$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$3$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$4(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$4$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$4
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$4$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$4$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$5(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$5$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$5
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$5$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$5$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$6(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$6$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$6
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$6$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$6$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$7(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b1;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$7$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$7
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$7$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$7$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$8(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$8$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$8
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$8$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$8$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$9(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$9$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$9
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$9$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$9$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$0(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [6:0] flop$d;
-    wire  [6:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$0$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$0
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$0$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 7'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$0$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$1(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [6:0] flop$d;
-    wire  [6:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$1$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$1
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$1$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 7'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$1$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$10(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [6:0] flop$d;
-    wire  [6:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$10$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$10
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$10$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 7'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$10$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$11(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [6:0] flop$d;
-    wire  [6:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$11$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$11
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$11$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 7'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$11$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$12(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [6:0] flop$d;
-    wire  [6:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$12$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$12
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$12$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 7'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$12$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$2(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [6:0] flop$d;
-    wire  [6:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$2$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$2
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$2$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 7'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$2$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$3(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [6:0] flop$d;
-    wire  [6:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$3$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$3
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$3$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 7'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$3$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$4(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [6:0] flop$d;
-    wire  [6:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$4$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$4
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$4$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 7'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$4$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$5(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [6:0] flop$d;
-    wire  [6:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$5$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$5
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$5$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 7'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$5$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$6(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [6:0] flop$d;
-    wire  [6:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$6$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$6
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$6$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 7'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$6$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$7(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b1;
-    
-    // Stub signals
-    reg  [6:0] flop$d;
-    wire  [6:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$7$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$7
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$7$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 7'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$7$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$8(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [6:0] flop$d;
-    wire  [6:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$8$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$8
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$8$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 7'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$8$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$9(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [6:0] flop$d;
-    wire  [6:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$9$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$9
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$9$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 7'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$9$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$0(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [12:0] flop$d;
-    wire  [12:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$0$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$0
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$0$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 13'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$0$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$1(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [12:0] flop$d;
-    wire  [12:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$1$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$1
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$1$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 13'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$1$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$10(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [12:0] flop$d;
-    wire  [12:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$10$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$10
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$10$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 13'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$10$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$11(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [12:0] flop$d;
-    wire  [12:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$11$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$11
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$11$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 13'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$11$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$12(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [12:0] flop$d;
-    wire  [12:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$12$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$12
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$12$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 13'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$12$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$2(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [12:0] flop$d;
-    wire  [12:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$2$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$2
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$2$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 13'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$2$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$3(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [12:0] flop$d;
-    wire  [12:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$3$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$3
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$3$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 13'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$3$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$4(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [12:0] flop$d;
-    wire  [12:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$4$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$4
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$4$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 13'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$4$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$5(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [12:0] flop$d;
-    wire  [12:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$5$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$5
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$5$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 13'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$5$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$6(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [12:0] flop$d;
-    wire  [12:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$6$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$6
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$6$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 13'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$6$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$7(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b1;
-    
-    // Stub signals
-    reg  [12:0] flop$d;
-    wire  [12:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$7$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$7
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$7$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 13'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$7$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$8(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [12:0] flop$d;
-    wire  [12:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$8$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$8
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$8$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 13'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$8$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$9(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [12:0] flop$d;
-    wire  [12:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$9$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$9
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$9$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [12:0] d;
-    output reg  [12:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 13'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$9$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$0(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$0$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$0
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$0$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$0$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$1(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$1$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$1
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$1$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$1$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$10(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$10$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$10
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$10$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$10$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$11(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$11$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$11
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$11$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$11$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$12(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$12$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$12
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$12$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$12$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$2(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$2$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$2
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$2$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$2$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$3(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$3$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$3
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$3$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$3$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$4(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$4$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$4
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$4$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$4$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$5(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$5$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$5
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$5$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$5$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$6(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$6$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$6
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$6$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$6$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$7(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b1;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$7$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$7
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$7$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$7$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$8(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$8$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$8
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$8$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$8$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$9(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [11:0] flop$d;
-    wire  [11:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$9$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$9
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$9$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 12'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$9$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$0(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [11:0] remainder_in;
-    input wire  [12:0] quotient_in;
-    input wire  [11:0] divisor;
-    output reg  [11:0] remainder_out;
-    output reg  [12:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 13'b1;
-    localparam  half = 8'h6;
-    localparam  low_mask = 12'h3f;
-    localparam  borrow = 12'h1;
-    
-    // Local signals
-    reg  [11:0] doubled;
-    reg  [11:0] low_doubled;
-    reg  [11:0] low_divisor;
-    reg  [11:0] high_doubled;
-    reg  [11:0] high_divisor;
-    reg  [11:0] low_difference;
-    reg  [11:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$0
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$1(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [11:0] remainder_in;
-    input wire  [12:0] quotient_in;
-    input wire  [11:0] divisor;
-    output reg  [11:0] remainder_out;
-    output reg  [12:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 13'b1;
-    localparam  half = 8'h6;
-    localparam  low_mask = 12'h3f;
-    localparam  borrow = 12'h1;
-    
-    // Local signals
-    reg  [11:0] doubled;
-    reg  [11:0] low_doubled;
-    reg  [11:0] low_divisor;
-    reg  [11:0] high_doubled;
-    reg  [11:0] high_divisor;
-    reg  [11:0] low_difference;
-    reg  [11:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$1
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$10(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [11:0] remainder_in;
-    input wire  [12:0] quotient_in;
-    input wire  [11:0] divisor;
-    output reg  [11:0] remainder_out;
-    output reg  [12:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 13'b1;
-    localparam  half = 8'h6;
-    localparam  low_mask = 12'h3f;
-    localparam  borrow = 12'h1;
-    
-    // Local signals
-    reg  [11:0] doubled;
-    reg  [11:0] low_doubled;
-    reg  [11:0] low_divisor;
-    reg  [11:0] high_doubled;
-    reg  [11:0] high_divisor;
-    reg  [11:0] low_difference;
-    reg  [11:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$10
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$11(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [11:0] remainder_in;
-    input wire  [12:0] quotient_in;
-    input wire  [11:0] divisor;
-    output reg  [11:0] remainder_out;
-    output reg  [12:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 13'b1;
-    localparam  half = 8'h6;
-    localparam  low_mask = 12'h3f;
-    localparam  borrow = 12'h1;
-    
-    // Local signals
-    reg  [11:0] doubled;
-    reg  [11:0] low_doubled;
-    reg  [11:0] low_divisor;
-    reg  [11:0] high_doubled;
-    reg  [11:0] high_divisor;
-    reg  [11:0] low_difference;
-    reg  [11:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$11
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$12(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [11:0] remainder_in;
-    input wire  [12:0] quotient_in;
-    input wire  [11:0] divisor;
-    output reg  [11:0] remainder_out;
-    output reg  [12:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 13'b1;
-    localparam  half = 8'h6;
-    localparam  low_mask = 12'h3f;
-    localparam  borrow = 12'h1;
-    
-    // Local signals
-    reg  [11:0] doubled;
-    reg  [11:0] low_doubled;
-    reg  [11:0] low_divisor;
-    reg  [11:0] high_doubled;
-    reg  [11:0] high_divisor;
-    reg  [11:0] low_difference;
-    reg  [11:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$12
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$2(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [11:0] remainder_in;
-    input wire  [12:0] quotient_in;
-    input wire  [11:0] divisor;
-    output reg  [11:0] remainder_out;
-    output reg  [12:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 13'b1;
-    localparam  half = 8'h6;
-    localparam  low_mask = 12'h3f;
-    localparam  borrow = 12'h1;
-    
-    // Local signals
-    reg  [11:0] doubled;
-    reg  [11:0] low_doubled;
-    reg  [11:0] low_divisor;
-    reg  [11:0] high_doubled;
-    reg  [11:0] high_divisor;
-    reg  [11:0] low_difference;
-    reg  [11:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$2
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$3(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [11:0] remainder_in;
-    input wire  [12:0] quotient_in;
-    input wire  [11:0] divisor;
-    output reg  [11:0] remainder_out;
-    output reg  [12:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 13'b1;
-    localparam  half = 8'h6;
-    localparam  low_mask = 12'h3f;
-    localparam  borrow = 12'h1;
-    
-    // Local signals
-    reg  [11:0] doubled;
-    reg  [11:0] low_doubled;
-    reg  [11:0] low_divisor;
-    reg  [11:0] high_doubled;
-    reg  [11:0] high_divisor;
-    reg  [11:0] low_difference;
-    reg  [11:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$3
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$4(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [11:0] remainder_in;
-    input wire  [12:0] quotient_in;
-    input wire  [11:0] divisor;
-    output reg  [11:0] remainder_out;
-    output reg  [12:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 13'b1;
-    localparam  half = 8'h6;
-    localparam  low_mask = 12'h3f;
-    localparam  borrow = 12'h1;
-    
-    // Local signals
-    reg  [11:0] doubled;
-    reg  [11:0] low_doubled;
-    reg  [11:0] low_divisor;
-    reg  [11:0] high_doubled;
-    reg  [11:0] high_divisor;
-    reg  [11:0] low_difference;
-    reg  [11:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$4
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$5(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [11:0] remainder_in;
-    input wire  [12:0] quotient_in;
-    input wire  [11:0] divisor;
-    output reg  [11:0] remainder_out;
-    output reg  [12:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 13'b1;
-    localparam  half = 8'h6;
-    localparam  low_mask = 12'h3f;
-    localparam  borrow = 12'h1;
-    
-    // Local signals
-    reg  [11:0] doubled;
-    reg  [11:0] low_doubled;
-    reg  [11:0] low_divisor;
-    reg  [11:0] high_doubled;
-    reg  [11:0] high_divisor;
-    reg  [11:0] low_difference;
-    reg  [11:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$5
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$6(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [11:0] remainder_in;
-    input wire  [12:0] quotient_in;
-    input wire  [11:0] divisor;
-    output reg  [11:0] remainder_out;
-    output reg  [12:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 13'b1;
-    localparam  half = 8'h6;
-    localparam  low_mask = 12'h3f;
-    localparam  borrow = 12'h1;
-    
-    // Local signals
-    reg  [11:0] doubled;
-    reg  [11:0] low_doubled;
-    reg  [11:0] low_divisor;
-    reg  [11:0] high_doubled;
-    reg  [11:0] high_divisor;
-    reg  [11:0] low_difference;
-    reg  [11:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$6
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$7(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [11:0] remainder_in;
-    input wire  [12:0] quotient_in;
-    input wire  [11:0] divisor;
-    output reg  [11:0] remainder_out;
-    output reg  [12:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 13'b1;
-    localparam  half = 8'h6;
-    localparam  low_mask = 12'h3f;
-    localparam  borrow = 12'h1;
-    
-    // Local signals
-    reg  [11:0] doubled;
-    reg  [11:0] low_doubled;
-    reg  [11:0] low_divisor;
-    reg  [11:0] high_doubled;
-    reg  [11:0] high_divisor;
-    reg  [11:0] low_difference;
-    reg  [11:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$7
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$8(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [11:0] remainder_in;
-    input wire  [12:0] quotient_in;
-    input wire  [11:0] divisor;
-    output reg  [11:0] remainder_out;
-    output reg  [12:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 13'b1;
-    localparam  half = 8'h6;
-    localparam  low_mask = 12'h3f;
-    localparam  borrow = 12'h1;
-    
-    // Local signals
-    reg  [11:0] doubled;
-    reg  [11:0] low_doubled;
-    reg  [11:0] low_divisor;
-    reg  [11:0] high_doubled;
-    reg  [11:0] high_divisor;
-    reg  [11:0] low_difference;
-    reg  [11:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$8
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$9(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [11:0] remainder_in;
-    input wire  [12:0] quotient_in;
-    input wire  [11:0] divisor;
-    output reg  [11:0] remainder_out;
-    output reg  [12:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 13'b1;
-    localparam  half = 8'h6;
-    localparam  low_mask = 12'h3f;
-    localparam  borrow = 12'h1;
-    
-    // Local signals
-    reg  [11:0] doubled;
-    reg  [11:0] low_doubled;
-    reg  [11:0] low_divisor;
-    reg  [11:0] high_doubled;
-    reg  [11:0] high_divisor;
-    reg  [11:0] low_difference;
-    reg  [11:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$9
+module rtfpga_core$slots$0$lane$inv_det$square(a,b,p);
+    
+    // Module arguments
+    input wire  [5:0] a;
+    input wire  [5:0] b;
+    output reg  [11:0] p;
+    
+    // Update code (custom)
+    always @(*) p = {6'd0, a} * {6'd0, b};
+endmodule // rtfpga_core$slots$0$lane$inv_det$square
+
+
+module rtfpga_core$slots$0$lane$inv_det$table_a(address,data);
+    
+    // Module arguments
+    input wire  [3:0] address;
+    output reg  [14:0] data;
+    
+    // Update code (custom)
+    always @*
+    case (address)
+        4'h0: data = 15'b0;
+      4'h1: data = 15'b111000011110001;
+      4'h2: data = 15'b110001110001110;
+      4'h3: data = 15'b101011110010100;
+      4'h4: data = 15'b100110011001101;
+      4'h5: data = 15'b100001100001100;
+      4'h6: data = 15'b11101000101110;
+      4'h7: data = 15'b11001000010110;
+      4'h8: data = 15'b10101010101011;
+      4'h9: data = 15'b10001111010111;
+      4'ha: data = 15'b1110110001010;
+      4'hb: data = 15'b1011110110100;
+      4'hc: data = 15'b1001001001001;
+      4'hd: data = 15'b110100111110;
+      4'he: data = 15'b100010001000;
+      4'hf: data = 15'b10000100001;
+      default: data = 15'b0;
+    endcase
+            
+endmodule // rtfpga_core$slots$0$lane$inv_det$table_a
+
+
+module rtfpga_core$slots$0$lane$inv_det$table_b(address,data);
+    
+    // Module arguments
+    input wire  [3:0] address;
+    output reg  [13:0] data;
+    
+    // Update code (custom)
+    always @*
+    case (address)
+        4'h0: data = 14'b11111111100000;
+      4'h1: data = 14'b11100010011000;
+      4'h2: data = 14'b11001001111101;
+      4'h3: data = 14'b10110101010010;
+      4'h4: data = 14'b10100011101000;
+      4'h5: data = 14'b10010100011100;
+      4'h6: data = 14'b10000111010001;
+      4'h7: data = 14'b1111011110001;
+      4'h8: data = 14'b1110001101011;
+      4'h9: data = 14'b1101000110001;
+      4'ha: data = 14'b1100000111000;
+      4'hb: data = 14'b1011001110101;
+      4'hc: data = 14'b1010011100010;
+      4'hd: data = 14'b1001101111000;
+      4'he: data = 14'b1001000110010;
+      4'hf: data = 14'b1000100001010;
+      default: data = 14'b0;
+    endcase
+            
+endmodule // rtfpga_core$slots$0$lane$inv_det$table_b
+
+
+module rtfpga_core$slots$0$lane$inv_det$table_c(address,data);
+    
+    // Module arguments
+    input wire  [3:0] address;
+    output reg  [9:0] data;
+    
+    // Update code (custom)
+    always @*
+    case (address)
+        4'h0: data = 10'b1110101000;
+      4'h1: data = 10'b1100010000;
+      4'h2: data = 10'b1010011000;
+      4'h3: data = 10'b1000110111;
+      4'h4: data = 10'b111101000;
+      4'h5: data = 10'b110100111;
+      4'h6: data = 10'b101110001;
+      4'h7: data = 10'b101000100;
+      4'h8: data = 10'b100011110;
+      4'h9: data = 10'b11111101;
+      4'ha: data = 10'b11100010;
+      4'hb: data = 10'b11001010;
+      4'hc: data = 10'b10110101;
+      4'hd: data = 10'b10100100;
+      4'he: data = 10'b10010100;
+      4'hf: data = 10'b10000110;
+      default: data = 10'b0;
+    endcase
+            
+endmodule // rtfpga_core$slots$0$lane$inv_det$table_c
 
 
 module rtfpga_core$slots$0$lane$inv_det$unpack(x,sign,exp,sig,zero,inf,nan);

@@ -28453,10 +28453,18 @@ module rtfpga_core$slots$0$lane$inv_det(clock,a,y);
     
     // Constant declarations
     localparam  exp_base = 10'b11111101;
-    localparam  first_remainder = 25'h400000;
-    localparam  no_quotient = 26'h0;
-    localparam  quotient_top = 26'h2000000;
-    localparam  one = 26'h1;
+    localparam  d_shift = 8'hf;
+    localparam  b_shift = 8'h11;
+    localparam  r_shift = 8'hd;
+    localparam  c_shift = 8'h13;
+    localparam  extra_shift = 8'h5;
+    localparam  check_shift = 8'h18;
+    localparam  hidden_bit = 24'h800000;
+    localparam  low_three = 24'h7;
+    localparam  one = 23'h1;
+    localparam  exact_sig = 24'h800000;
+    localparam  exp_one = 10'b1;
+    localparam  no_bit = 1'b0;
     
     // Stub signals
     reg  [31:0] unpack$x;
@@ -28466,550 +28474,99 @@ module rtfpga_core$slots$0$lane$inv_det(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
-    reg  operand_divisor$clock;
-    reg  [24:0] operand_divisor$d;
-    wire  [24:0] operand_divisor$q;
-    reg  operand_exp$clock;
-    reg  [9:0] operand_exp$d;
-    wire  [9:0] operand_exp$q;
-    reg  operand_category$clock;
-    reg  [3:0] operand_category$d;
-    wire  [3:0] operand_category$q;
-    reg  [24:0] rows$0$remainder_in;
-    reg  [25:0] rows$0$quotient_in;
-    reg  [24:0] rows$0$divisor;
-    wire  [24:0] rows$0$remainder_out;
-    wire  [25:0] rows$0$quotient_out;
-    reg  [24:0] rows$1$remainder_in;
-    reg  [25:0] rows$1$quotient_in;
-    reg  [24:0] rows$1$divisor;
-    wire  [24:0] rows$1$remainder_out;
-    wire  [25:0] rows$1$quotient_out;
-    reg  [24:0] rows$2$remainder_in;
-    reg  [25:0] rows$2$quotient_in;
-    reg  [24:0] rows$2$divisor;
-    wire  [24:0] rows$2$remainder_out;
-    wire  [25:0] rows$2$quotient_out;
-    reg  [24:0] rows$3$remainder_in;
-    reg  [25:0] rows$3$quotient_in;
-    reg  [24:0] rows$3$divisor;
-    wire  [24:0] rows$3$remainder_out;
-    wire  [25:0] rows$3$quotient_out;
-    reg  [24:0] rows$4$remainder_in;
-    reg  [25:0] rows$4$quotient_in;
-    reg  [24:0] rows$4$divisor;
-    wire  [24:0] rows$4$remainder_out;
-    wire  [25:0] rows$4$quotient_out;
-    reg  [24:0] rows$5$remainder_in;
-    reg  [25:0] rows$5$quotient_in;
-    reg  [24:0] rows$5$divisor;
-    wire  [24:0] rows$5$remainder_out;
-    wire  [25:0] rows$5$quotient_out;
-    reg  [24:0] rows$6$remainder_in;
-    reg  [25:0] rows$6$quotient_in;
-    reg  [24:0] rows$6$divisor;
-    wire  [24:0] rows$6$remainder_out;
-    wire  [25:0] rows$6$quotient_out;
-    reg  [24:0] rows$7$remainder_in;
-    reg  [25:0] rows$7$quotient_in;
-    reg  [24:0] rows$7$divisor;
-    wire  [24:0] rows$7$remainder_out;
-    wire  [25:0] rows$7$quotient_out;
-    reg  [24:0] rows$8$remainder_in;
-    reg  [25:0] rows$8$quotient_in;
-    reg  [24:0] rows$8$divisor;
-    wire  [24:0] rows$8$remainder_out;
-    wire  [25:0] rows$8$quotient_out;
-    reg  [24:0] rows$9$remainder_in;
-    reg  [25:0] rows$9$quotient_in;
-    reg  [24:0] rows$9$divisor;
-    wire  [24:0] rows$9$remainder_out;
-    wire  [25:0] rows$9$quotient_out;
-    reg  [24:0] rows$10$remainder_in;
-    reg  [25:0] rows$10$quotient_in;
-    reg  [24:0] rows$10$divisor;
-    wire  [24:0] rows$10$remainder_out;
-    wire  [25:0] rows$10$quotient_out;
-    reg  [24:0] rows$11$remainder_in;
-    reg  [25:0] rows$11$quotient_in;
-    reg  [24:0] rows$11$divisor;
-    wire  [24:0] rows$11$remainder_out;
-    wire  [25:0] rows$11$quotient_out;
-    reg  [24:0] rows$12$remainder_in;
-    reg  [25:0] rows$12$quotient_in;
-    reg  [24:0] rows$12$divisor;
-    wire  [24:0] rows$12$remainder_out;
-    wire  [25:0] rows$12$quotient_out;
-    reg  [24:0] rows$13$remainder_in;
-    reg  [25:0] rows$13$quotient_in;
-    reg  [24:0] rows$13$divisor;
-    wire  [24:0] rows$13$remainder_out;
-    wire  [25:0] rows$13$quotient_out;
-    reg  [24:0] rows$14$remainder_in;
-    reg  [25:0] rows$14$quotient_in;
-    reg  [24:0] rows$14$divisor;
-    wire  [24:0] rows$14$remainder_out;
-    wire  [25:0] rows$14$quotient_out;
-    reg  [24:0] rows$15$remainder_in;
-    reg  [25:0] rows$15$quotient_in;
-    reg  [24:0] rows$15$divisor;
-    wire  [24:0] rows$15$remainder_out;
-    wire  [25:0] rows$15$quotient_out;
-    reg  [24:0] rows$16$remainder_in;
-    reg  [25:0] rows$16$quotient_in;
-    reg  [24:0] rows$16$divisor;
-    wire  [24:0] rows$16$remainder_out;
-    wire  [25:0] rows$16$quotient_out;
-    reg  [24:0] rows$17$remainder_in;
-    reg  [25:0] rows$17$quotient_in;
-    reg  [24:0] rows$17$divisor;
-    wire  [24:0] rows$17$remainder_out;
-    wire  [25:0] rows$17$quotient_out;
-    reg  [24:0] rows$18$remainder_in;
-    reg  [25:0] rows$18$quotient_in;
-    reg  [24:0] rows$18$divisor;
-    wire  [24:0] rows$18$remainder_out;
-    wire  [25:0] rows$18$quotient_out;
-    reg  [24:0] rows$19$remainder_in;
-    reg  [25:0] rows$19$quotient_in;
-    reg  [24:0] rows$19$divisor;
-    wire  [24:0] rows$19$remainder_out;
-    wire  [25:0] rows$19$quotient_out;
-    reg  [24:0] rows$20$remainder_in;
-    reg  [25:0] rows$20$quotient_in;
-    reg  [24:0] rows$20$divisor;
-    wire  [24:0] rows$20$remainder_out;
-    wire  [25:0] rows$20$quotient_out;
-    reg  [24:0] rows$21$remainder_in;
-    reg  [25:0] rows$21$quotient_in;
-    reg  [24:0] rows$21$divisor;
-    wire  [24:0] rows$21$remainder_out;
-    wire  [25:0] rows$21$quotient_out;
-    reg  [24:0] rows$22$remainder_in;
-    reg  [25:0] rows$22$quotient_in;
-    reg  [24:0] rows$22$divisor;
-    wire  [24:0] rows$22$remainder_out;
-    wire  [25:0] rows$22$quotient_out;
-    reg  [24:0] rows$23$remainder_in;
-    reg  [25:0] rows$23$quotient_in;
-    reg  [24:0] rows$23$divisor;
-    wire  [24:0] rows$23$remainder_out;
-    wire  [25:0] rows$23$quotient_out;
-    reg  [24:0] rows$24$remainder_in;
-    reg  [25:0] rows$24$quotient_in;
-    reg  [24:0] rows$24$divisor;
-    wire  [24:0] rows$24$remainder_out;
-    wire  [25:0] rows$24$quotient_out;
-    reg  [24:0] rows$25$remainder_in;
-    reg  [25:0] rows$25$quotient_in;
-    reg  [24:0] rows$25$divisor;
-    wire  [24:0] rows$25$remainder_out;
-    wire  [25:0] rows$25$quotient_out;
-    reg  row_remainder$0$clock;
-    reg  [24:0] row_remainder$0$d;
-    wire  [24:0] row_remainder$0$q;
-    reg  row_remainder$1$clock;
-    reg  [24:0] row_remainder$1$d;
-    wire  [24:0] row_remainder$1$q;
-    reg  row_remainder$2$clock;
-    reg  [24:0] row_remainder$2$d;
-    wire  [24:0] row_remainder$2$q;
-    reg  row_remainder$3$clock;
-    reg  [24:0] row_remainder$3$d;
-    wire  [24:0] row_remainder$3$q;
-    reg  row_remainder$4$clock;
-    reg  [24:0] row_remainder$4$d;
-    wire  [24:0] row_remainder$4$q;
-    reg  row_remainder$5$clock;
-    reg  [24:0] row_remainder$5$d;
-    wire  [24:0] row_remainder$5$q;
-    reg  row_remainder$6$clock;
-    reg  [24:0] row_remainder$6$d;
-    wire  [24:0] row_remainder$6$q;
-    reg  row_remainder$7$clock;
-    reg  [24:0] row_remainder$7$d;
-    wire  [24:0] row_remainder$7$q;
-    reg  row_remainder$8$clock;
-    reg  [24:0] row_remainder$8$d;
-    wire  [24:0] row_remainder$8$q;
-    reg  row_remainder$9$clock;
-    reg  [24:0] row_remainder$9$d;
-    wire  [24:0] row_remainder$9$q;
-    reg  row_remainder$10$clock;
-    reg  [24:0] row_remainder$10$d;
-    wire  [24:0] row_remainder$10$q;
-    reg  row_remainder$11$clock;
-    reg  [24:0] row_remainder$11$d;
-    wire  [24:0] row_remainder$11$q;
-    reg  row_remainder$12$clock;
-    reg  [24:0] row_remainder$12$d;
-    wire  [24:0] row_remainder$12$q;
-    reg  row_remainder$13$clock;
-    reg  [24:0] row_remainder$13$d;
-    wire  [24:0] row_remainder$13$q;
-    reg  row_remainder$14$clock;
-    reg  [24:0] row_remainder$14$d;
-    wire  [24:0] row_remainder$14$q;
-    reg  row_remainder$15$clock;
-    reg  [24:0] row_remainder$15$d;
-    wire  [24:0] row_remainder$15$q;
-    reg  row_remainder$16$clock;
-    reg  [24:0] row_remainder$16$d;
-    wire  [24:0] row_remainder$16$q;
-    reg  row_remainder$17$clock;
-    reg  [24:0] row_remainder$17$d;
-    wire  [24:0] row_remainder$17$q;
-    reg  row_remainder$18$clock;
-    reg  [24:0] row_remainder$18$d;
-    wire  [24:0] row_remainder$18$q;
-    reg  row_remainder$19$clock;
-    reg  [24:0] row_remainder$19$d;
-    wire  [24:0] row_remainder$19$q;
-    reg  row_remainder$20$clock;
-    reg  [24:0] row_remainder$20$d;
-    wire  [24:0] row_remainder$20$q;
-    reg  row_remainder$21$clock;
-    reg  [24:0] row_remainder$21$d;
-    wire  [24:0] row_remainder$21$q;
-    reg  row_remainder$22$clock;
-    reg  [24:0] row_remainder$22$d;
-    wire  [24:0] row_remainder$22$q;
-    reg  row_remainder$23$clock;
-    reg  [24:0] row_remainder$23$d;
-    wire  [24:0] row_remainder$23$q;
-    reg  row_remainder$24$clock;
-    reg  [24:0] row_remainder$24$d;
-    wire  [24:0] row_remainder$24$q;
-    reg  row_remainder$25$clock;
-    reg  [24:0] row_remainder$25$d;
-    wire  [24:0] row_remainder$25$q;
-    reg  row_quotient$0$clock;
-    reg  [25:0] row_quotient$0$d;
-    wire  [25:0] row_quotient$0$q;
-    reg  row_quotient$1$clock;
-    reg  [25:0] row_quotient$1$d;
-    wire  [25:0] row_quotient$1$q;
-    reg  row_quotient$2$clock;
-    reg  [25:0] row_quotient$2$d;
-    wire  [25:0] row_quotient$2$q;
-    reg  row_quotient$3$clock;
-    reg  [25:0] row_quotient$3$d;
-    wire  [25:0] row_quotient$3$q;
-    reg  row_quotient$4$clock;
-    reg  [25:0] row_quotient$4$d;
-    wire  [25:0] row_quotient$4$q;
-    reg  row_quotient$5$clock;
-    reg  [25:0] row_quotient$5$d;
-    wire  [25:0] row_quotient$5$q;
-    reg  row_quotient$6$clock;
-    reg  [25:0] row_quotient$6$d;
-    wire  [25:0] row_quotient$6$q;
-    reg  row_quotient$7$clock;
-    reg  [25:0] row_quotient$7$d;
-    wire  [25:0] row_quotient$7$q;
-    reg  row_quotient$8$clock;
-    reg  [25:0] row_quotient$8$d;
-    wire  [25:0] row_quotient$8$q;
-    reg  row_quotient$9$clock;
-    reg  [25:0] row_quotient$9$d;
-    wire  [25:0] row_quotient$9$q;
-    reg  row_quotient$10$clock;
-    reg  [25:0] row_quotient$10$d;
-    wire  [25:0] row_quotient$10$q;
-    reg  row_quotient$11$clock;
-    reg  [25:0] row_quotient$11$d;
-    wire  [25:0] row_quotient$11$q;
-    reg  row_quotient$12$clock;
-    reg  [25:0] row_quotient$12$d;
-    wire  [25:0] row_quotient$12$q;
-    reg  row_quotient$13$clock;
-    reg  [25:0] row_quotient$13$d;
-    wire  [25:0] row_quotient$13$q;
-    reg  row_quotient$14$clock;
-    reg  [25:0] row_quotient$14$d;
-    wire  [25:0] row_quotient$14$q;
-    reg  row_quotient$15$clock;
-    reg  [25:0] row_quotient$15$d;
-    wire  [25:0] row_quotient$15$q;
-    reg  row_quotient$16$clock;
-    reg  [25:0] row_quotient$16$d;
-    wire  [25:0] row_quotient$16$q;
-    reg  row_quotient$17$clock;
-    reg  [25:0] row_quotient$17$d;
-    wire  [25:0] row_quotient$17$q;
-    reg  row_quotient$18$clock;
-    reg  [25:0] row_quotient$18$d;
-    wire  [25:0] row_quotient$18$q;
-    reg  row_quotient$19$clock;
-    reg  [25:0] row_quotient$19$d;
-    wire  [25:0] row_quotient$19$q;
-    reg  row_quotient$20$clock;
-    reg  [25:0] row_quotient$20$d;
-    wire  [25:0] row_quotient$20$q;
-    reg  row_quotient$21$clock;
-    reg  [25:0] row_quotient$21$d;
-    wire  [25:0] row_quotient$21$q;
-    reg  row_quotient$22$clock;
-    reg  [25:0] row_quotient$22$d;
-    wire  [25:0] row_quotient$22$q;
-    reg  row_quotient$23$clock;
-    reg  [25:0] row_quotient$23$d;
-    wire  [25:0] row_quotient$23$q;
-    reg  row_quotient$24$clock;
-    reg  [25:0] row_quotient$24$d;
-    wire  [25:0] row_quotient$24$q;
-    reg  row_quotient$25$clock;
-    reg  [25:0] row_quotient$25$d;
-    wire  [25:0] row_quotient$25$q;
-    reg  row_divisor$0$clock;
-    reg  [24:0] row_divisor$0$d;
-    wire  [24:0] row_divisor$0$q;
-    reg  row_divisor$1$clock;
-    reg  [24:0] row_divisor$1$d;
-    wire  [24:0] row_divisor$1$q;
-    reg  row_divisor$2$clock;
-    reg  [24:0] row_divisor$2$d;
-    wire  [24:0] row_divisor$2$q;
-    reg  row_divisor$3$clock;
-    reg  [24:0] row_divisor$3$d;
-    wire  [24:0] row_divisor$3$q;
-    reg  row_divisor$4$clock;
-    reg  [24:0] row_divisor$4$d;
-    wire  [24:0] row_divisor$4$q;
-    reg  row_divisor$5$clock;
-    reg  [24:0] row_divisor$5$d;
-    wire  [24:0] row_divisor$5$q;
-    reg  row_divisor$6$clock;
-    reg  [24:0] row_divisor$6$d;
-    wire  [24:0] row_divisor$6$q;
-    reg  row_divisor$7$clock;
-    reg  [24:0] row_divisor$7$d;
-    wire  [24:0] row_divisor$7$q;
-    reg  row_divisor$8$clock;
-    reg  [24:0] row_divisor$8$d;
-    wire  [24:0] row_divisor$8$q;
-    reg  row_divisor$9$clock;
-    reg  [24:0] row_divisor$9$d;
-    wire  [24:0] row_divisor$9$q;
-    reg  row_divisor$10$clock;
-    reg  [24:0] row_divisor$10$d;
-    wire  [24:0] row_divisor$10$q;
-    reg  row_divisor$11$clock;
-    reg  [24:0] row_divisor$11$d;
-    wire  [24:0] row_divisor$11$q;
-    reg  row_divisor$12$clock;
-    reg  [24:0] row_divisor$12$d;
-    wire  [24:0] row_divisor$12$q;
-    reg  row_divisor$13$clock;
-    reg  [24:0] row_divisor$13$d;
-    wire  [24:0] row_divisor$13$q;
-    reg  row_divisor$14$clock;
-    reg  [24:0] row_divisor$14$d;
-    wire  [24:0] row_divisor$14$q;
-    reg  row_divisor$15$clock;
-    reg  [24:0] row_divisor$15$d;
-    wire  [24:0] row_divisor$15$q;
-    reg  row_divisor$16$clock;
-    reg  [24:0] row_divisor$16$d;
-    wire  [24:0] row_divisor$16$q;
-    reg  row_divisor$17$clock;
-    reg  [24:0] row_divisor$17$d;
-    wire  [24:0] row_divisor$17$q;
-    reg  row_divisor$18$clock;
-    reg  [24:0] row_divisor$18$d;
-    wire  [24:0] row_divisor$18$q;
-    reg  row_divisor$19$clock;
-    reg  [24:0] row_divisor$19$d;
-    wire  [24:0] row_divisor$19$q;
-    reg  row_divisor$20$clock;
-    reg  [24:0] row_divisor$20$d;
-    wire  [24:0] row_divisor$20$q;
-    reg  row_divisor$21$clock;
-    reg  [24:0] row_divisor$21$d;
-    wire  [24:0] row_divisor$21$q;
-    reg  row_divisor$22$clock;
-    reg  [24:0] row_divisor$22$d;
-    wire  [24:0] row_divisor$22$q;
-    reg  row_divisor$23$clock;
-    reg  [24:0] row_divisor$23$d;
-    wire  [24:0] row_divisor$23$q;
-    reg  row_divisor$24$clock;
-    reg  [24:0] row_divisor$24$d;
-    wire  [24:0] row_divisor$24$q;
-    reg  row_divisor$25$clock;
-    reg  [24:0] row_divisor$25$d;
-    wire  [24:0] row_divisor$25$q;
-    reg  row_exp$0$clock;
-    reg  [9:0] row_exp$0$d;
-    wire  [9:0] row_exp$0$q;
-    reg  row_exp$1$clock;
-    reg  [9:0] row_exp$1$d;
-    wire  [9:0] row_exp$1$q;
-    reg  row_exp$2$clock;
-    reg  [9:0] row_exp$2$d;
-    wire  [9:0] row_exp$2$q;
-    reg  row_exp$3$clock;
-    reg  [9:0] row_exp$3$d;
-    wire  [9:0] row_exp$3$q;
-    reg  row_exp$4$clock;
-    reg  [9:0] row_exp$4$d;
-    wire  [9:0] row_exp$4$q;
-    reg  row_exp$5$clock;
-    reg  [9:0] row_exp$5$d;
-    wire  [9:0] row_exp$5$q;
-    reg  row_exp$6$clock;
-    reg  [9:0] row_exp$6$d;
-    wire  [9:0] row_exp$6$q;
-    reg  row_exp$7$clock;
-    reg  [9:0] row_exp$7$d;
-    wire  [9:0] row_exp$7$q;
-    reg  row_exp$8$clock;
-    reg  [9:0] row_exp$8$d;
-    wire  [9:0] row_exp$8$q;
-    reg  row_exp$9$clock;
-    reg  [9:0] row_exp$9$d;
-    wire  [9:0] row_exp$9$q;
-    reg  row_exp$10$clock;
-    reg  [9:0] row_exp$10$d;
-    wire  [9:0] row_exp$10$q;
-    reg  row_exp$11$clock;
-    reg  [9:0] row_exp$11$d;
-    wire  [9:0] row_exp$11$q;
-    reg  row_exp$12$clock;
-    reg  [9:0] row_exp$12$d;
-    wire  [9:0] row_exp$12$q;
-    reg  row_exp$13$clock;
-    reg  [9:0] row_exp$13$d;
-    wire  [9:0] row_exp$13$q;
-    reg  row_exp$14$clock;
-    reg  [9:0] row_exp$14$d;
-    wire  [9:0] row_exp$14$q;
-    reg  row_exp$15$clock;
-    reg  [9:0] row_exp$15$d;
-    wire  [9:0] row_exp$15$q;
-    reg  row_exp$16$clock;
-    reg  [9:0] row_exp$16$d;
-    wire  [9:0] row_exp$16$q;
-    reg  row_exp$17$clock;
-    reg  [9:0] row_exp$17$d;
-    wire  [9:0] row_exp$17$q;
-    reg  row_exp$18$clock;
-    reg  [9:0] row_exp$18$d;
-    wire  [9:0] row_exp$18$q;
-    reg  row_exp$19$clock;
-    reg  [9:0] row_exp$19$d;
-    wire  [9:0] row_exp$19$q;
-    reg  row_exp$20$clock;
-    reg  [9:0] row_exp$20$d;
-    wire  [9:0] row_exp$20$q;
-    reg  row_exp$21$clock;
-    reg  [9:0] row_exp$21$d;
-    wire  [9:0] row_exp$21$q;
-    reg  row_exp$22$clock;
-    reg  [9:0] row_exp$22$d;
-    wire  [9:0] row_exp$22$q;
-    reg  row_exp$23$clock;
-    reg  [9:0] row_exp$23$d;
-    wire  [9:0] row_exp$23$q;
-    reg  row_exp$24$clock;
-    reg  [9:0] row_exp$24$d;
-    wire  [9:0] row_exp$24$q;
-    reg  row_exp$25$clock;
-    reg  [9:0] row_exp$25$d;
-    wire  [9:0] row_exp$25$q;
-    reg  row_category$0$clock;
-    reg  [3:0] row_category$0$d;
-    wire  [3:0] row_category$0$q;
-    reg  row_category$1$clock;
-    reg  [3:0] row_category$1$d;
-    wire  [3:0] row_category$1$q;
-    reg  row_category$2$clock;
-    reg  [3:0] row_category$2$d;
-    wire  [3:0] row_category$2$q;
-    reg  row_category$3$clock;
-    reg  [3:0] row_category$3$d;
-    wire  [3:0] row_category$3$q;
-    reg  row_category$4$clock;
-    reg  [3:0] row_category$4$d;
-    wire  [3:0] row_category$4$q;
-    reg  row_category$5$clock;
-    reg  [3:0] row_category$5$d;
-    wire  [3:0] row_category$5$q;
-    reg  row_category$6$clock;
-    reg  [3:0] row_category$6$d;
-    wire  [3:0] row_category$6$q;
-    reg  row_category$7$clock;
-    reg  [3:0] row_category$7$d;
-    wire  [3:0] row_category$7$q;
-    reg  row_category$8$clock;
-    reg  [3:0] row_category$8$d;
-    wire  [3:0] row_category$8$q;
-    reg  row_category$9$clock;
-    reg  [3:0] row_category$9$d;
-    wire  [3:0] row_category$9$q;
-    reg  row_category$10$clock;
-    reg  [3:0] row_category$10$d;
-    wire  [3:0] row_category$10$q;
-    reg  row_category$11$clock;
-    reg  [3:0] row_category$11$d;
-    wire  [3:0] row_category$11$q;
-    reg  row_category$12$clock;
-    reg  [3:0] row_category$12$d;
-    wire  [3:0] row_category$12$q;
-    reg  row_category$13$clock;
-    reg  [3:0] row_category$13$d;
-    wire  [3:0] row_category$13$q;
-    reg  row_category$14$clock;
-    reg  [3:0] row_category$14$d;
-    wire  [3:0] row_category$14$q;
-    reg  row_category$15$clock;
-    reg  [3:0] row_category$15$d;
-    wire  [3:0] row_category$15$q;
-    reg  row_category$16$clock;
-    reg  [3:0] row_category$16$d;
-    wire  [3:0] row_category$16$q;
-    reg  row_category$17$clock;
-    reg  [3:0] row_category$17$d;
-    wire  [3:0] row_category$17$q;
-    reg  row_category$18$clock;
-    reg  [3:0] row_category$18$d;
-    wire  [3:0] row_category$18$q;
-    reg  row_category$19$clock;
-    reg  [3:0] row_category$19$d;
-    wire  [3:0] row_category$19$q;
-    reg  row_category$20$clock;
-    reg  [3:0] row_category$20$d;
-    wire  [3:0] row_category$20$q;
-    reg  row_category$21$clock;
-    reg  [3:0] row_category$21$d;
-    wire  [3:0] row_category$21$q;
-    reg  row_category$22$clock;
-    reg  [3:0] row_category$22$d;
-    wire  [3:0] row_category$22$q;
-    reg  row_category$23$clock;
-    reg  [3:0] row_category$23$d;
-    wire  [3:0] row_category$23$q;
-    reg  row_category$24$clock;
-    reg  [3:0] row_category$24$d;
-    wire  [3:0] row_category$24$q;
-    reg  row_category$25$clock;
-    reg  [3:0] row_category$25$d;
-    wire  [3:0] row_category$25$q;
-    reg  rounding_sig$clock;
-    reg  [23:0] rounding_sig$d;
-    wire  [23:0] rounding_sig$q;
-    reg  rounding_round$clock;
-    reg  rounding_round$d;
-    wire  rounding_round$q;
-    reg  rounding_sticky$clock;
-    reg  rounding_sticky$d;
-    wire  rounding_sticky$q;
-    reg  rounding_exp$clock;
-    reg  [9:0] rounding_exp$d;
-    wire  [9:0] rounding_exp$q;
-    reg  rounding_category$clock;
-    reg  [3:0] rounding_category$d;
-    wire  [3:0] rounding_category$q;
+    reg  [7:0] table_a$address;
+    wire  [27:0] table_a$data;
+    reg  [7:0] table_b$address;
+    wire  [22:0] table_b$data;
+    reg  [7:0] table_c$address;
+    wire  [14:0] table_c$data;
+    reg  [22:0] linear$a;
+    reg  [14:0] linear$b;
+    wire  [37:0] linear$p;
+    reg  [14:0] square$a;
+    reg  [14:0] square$b;
+    wire  [29:0] square$p;
+    reg  lookup_a$clock;
+    reg  [27:0] lookup_a$d;
+    wire  [27:0] lookup_a$q;
+    reg  lookup_c$clock;
+    reg  [14:0] lookup_c$d;
+    wire  [14:0] lookup_c$q;
+    reg  lookup_linear$clock;
+    reg  [37:0] lookup_linear$d;
+    wire  [37:0] lookup_linear$q;
+    reg  lookup_square$clock;
+    reg  [16:0] lookup_square$d;
+    wire  [16:0] lookup_square$q;
+    reg  lookup_sig$clock;
+    reg  [23:0] lookup_sig$d;
+    wire  [23:0] lookup_sig$q;
+    reg  lookup_exp$clock;
+    reg  [9:0] lookup_exp$d;
+    wire  [9:0] lookup_exp$q;
+    reg  lookup_exact$clock;
+    reg  lookup_exact$d;
+    wire  lookup_exact$q;
+    reg  lookup_category$clock;
+    reg  [3:0] lookup_category$d;
+    wire  [3:0] lookup_category$q;
+    reg  [14:0] quadratic$a;
+    reg  [16:0] quadratic$b;
+    wire  [31:0] quadratic$p;
+    reg  partial_sum$clock;
+    reg  [27:0] partial_sum$d;
+    wire  [27:0] partial_sum$q;
+    reg  partial_quadratic$clock;
+    reg  [31:0] partial_quadratic$d;
+    wire  [31:0] partial_quadratic$q;
+    reg  partial_sig$clock;
+    reg  [23:0] partial_sig$d;
+    wire  [23:0] partial_sig$q;
+    reg  partial_exp$clock;
+    reg  [9:0] partial_exp$d;
+    wire  [9:0] partial_exp$q;
+    reg  partial_exact$clock;
+    reg  partial_exact$d;
+    wire  partial_exact$q;
+    reg  partial_category$clock;
+    reg  [3:0] partial_category$d;
+    wire  [3:0] partial_category$q;
+    reg  candidate_frac$clock;
+    reg  [22:0] candidate_frac$d;
+    wire  [22:0] candidate_frac$q;
+    reg  candidate_sig$clock;
+    reg  [23:0] candidate_sig$d;
+    wire  [23:0] candidate_sig$q;
+    reg  candidate_exp$clock;
+    reg  [9:0] candidate_exp$d;
+    wire  [9:0] candidate_exp$q;
+    reg  candidate_exact$clock;
+    reg  candidate_exact$d;
+    wire  candidate_exact$q;
+    reg  candidate_category$clock;
+    reg  [3:0] candidate_category$d;
+    wire  [3:0] candidate_category$q;
+    reg  [23:0] check$a;
+    reg  [23:0] check$b;
+    wire  [47:0] check$p;
+    reg  decided_up$clock;
+    reg  decided_up$d;
+    wire  decided_up$q;
+    reg  decided_frac$clock;
+    reg  [22:0] decided_frac$d;
+    wire  [22:0] decided_frac$q;
+    reg  decided_frac_up$clock;
+    reg  [22:0] decided_frac_up$d;
+    wire  [22:0] decided_frac_up$q;
+    reg  decided_exp$clock;
+    reg  [9:0] decided_exp$d;
+    wire  [9:0] decided_exp$q;
+    reg  decided_exact$clock;
+    reg  decided_exact$d;
+    wire  decided_exact$q;
+    reg  decided_category$clock;
+    reg  [3:0] decided_category$d;
+    wire  [3:0] decided_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [23:0] rounder$sig;
@@ -29022,11 +28579,10 @@ module rtfpga_core$slots$0$lane$inv_det(clock,a,y);
     
     // Local signals
     reg  [3:0] category;
-    reg  [24:0] remainder;
-    reg  [25:0] quotient;
-    reg  [9:0] quotient_exp;
-    reg  [3:0] quotient_category;
-    reg  exact_power;
+    reg  [7:0] index;
+    reg  [14:0] d;
+    reg  [27:0] sum;
+    reg  [2:0] check_top;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$inv_det$unpack unpack(
@@ -29038,877 +28594,162 @@ module rtfpga_core$slots$0$lane$inv_det(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
-    rtfpga_core$slots$0$lane$inv_det$operand_divisor operand_divisor(
-        .clock(operand_divisor$clock),
-        .d(operand_divisor$d),
-        .q(operand_divisor$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$operand_exp operand_exp(
-        .clock(operand_exp$clock),
-        .d(operand_exp$d),
-        .q(operand_exp$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$operand_category operand_category(
-        .clock(operand_category$clock),
-        .d(operand_category$d),
-        .q(operand_category$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$0 rows$0(
-        .remainder_in(rows$0$remainder_in),
-        .quotient_in(rows$0$quotient_in),
-        .divisor(rows$0$divisor),
-        .remainder_out(rows$0$remainder_out),
-        .quotient_out(rows$0$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$1 rows$1(
-        .remainder_in(rows$1$remainder_in),
-        .quotient_in(rows$1$quotient_in),
-        .divisor(rows$1$divisor),
-        .remainder_out(rows$1$remainder_out),
-        .quotient_out(rows$1$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$2 rows$2(
-        .remainder_in(rows$2$remainder_in),
-        .quotient_in(rows$2$quotient_in),
-        .divisor(rows$2$divisor),
-        .remainder_out(rows$2$remainder_out),
-        .quotient_out(rows$2$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$3 rows$3(
-        .remainder_in(rows$3$remainder_in),
-        .quotient_in(rows$3$quotient_in),
-        .divisor(rows$3$divisor),
-        .remainder_out(rows$3$remainder_out),
-        .quotient_out(rows$3$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$4 rows$4(
-        .remainder_in(rows$4$remainder_in),
-        .quotient_in(rows$4$quotient_in),
-        .divisor(rows$4$divisor),
-        .remainder_out(rows$4$remainder_out),
-        .quotient_out(rows$4$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$5 rows$5(
-        .remainder_in(rows$5$remainder_in),
-        .quotient_in(rows$5$quotient_in),
-        .divisor(rows$5$divisor),
-        .remainder_out(rows$5$remainder_out),
-        .quotient_out(rows$5$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$6 rows$6(
-        .remainder_in(rows$6$remainder_in),
-        .quotient_in(rows$6$quotient_in),
-        .divisor(rows$6$divisor),
-        .remainder_out(rows$6$remainder_out),
-        .quotient_out(rows$6$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$7 rows$7(
-        .remainder_in(rows$7$remainder_in),
-        .quotient_in(rows$7$quotient_in),
-        .divisor(rows$7$divisor),
-        .remainder_out(rows$7$remainder_out),
-        .quotient_out(rows$7$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$8 rows$8(
-        .remainder_in(rows$8$remainder_in),
-        .quotient_in(rows$8$quotient_in),
-        .divisor(rows$8$divisor),
-        .remainder_out(rows$8$remainder_out),
-        .quotient_out(rows$8$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$9 rows$9(
-        .remainder_in(rows$9$remainder_in),
-        .quotient_in(rows$9$quotient_in),
-        .divisor(rows$9$divisor),
-        .remainder_out(rows$9$remainder_out),
-        .quotient_out(rows$9$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$10 rows$10(
-        .remainder_in(rows$10$remainder_in),
-        .quotient_in(rows$10$quotient_in),
-        .divisor(rows$10$divisor),
-        .remainder_out(rows$10$remainder_out),
-        .quotient_out(rows$10$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$11 rows$11(
-        .remainder_in(rows$11$remainder_in),
-        .quotient_in(rows$11$quotient_in),
-        .divisor(rows$11$divisor),
-        .remainder_out(rows$11$remainder_out),
-        .quotient_out(rows$11$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$12 rows$12(
-        .remainder_in(rows$12$remainder_in),
-        .quotient_in(rows$12$quotient_in),
-        .divisor(rows$12$divisor),
-        .remainder_out(rows$12$remainder_out),
-        .quotient_out(rows$12$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$13 rows$13(
-        .remainder_in(rows$13$remainder_in),
-        .quotient_in(rows$13$quotient_in),
-        .divisor(rows$13$divisor),
-        .remainder_out(rows$13$remainder_out),
-        .quotient_out(rows$13$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$14 rows$14(
-        .remainder_in(rows$14$remainder_in),
-        .quotient_in(rows$14$quotient_in),
-        .divisor(rows$14$divisor),
-        .remainder_out(rows$14$remainder_out),
-        .quotient_out(rows$14$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$15 rows$15(
-        .remainder_in(rows$15$remainder_in),
-        .quotient_in(rows$15$quotient_in),
-        .divisor(rows$15$divisor),
-        .remainder_out(rows$15$remainder_out),
-        .quotient_out(rows$15$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$16 rows$16(
-        .remainder_in(rows$16$remainder_in),
-        .quotient_in(rows$16$quotient_in),
-        .divisor(rows$16$divisor),
-        .remainder_out(rows$16$remainder_out),
-        .quotient_out(rows$16$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$17 rows$17(
-        .remainder_in(rows$17$remainder_in),
-        .quotient_in(rows$17$quotient_in),
-        .divisor(rows$17$divisor),
-        .remainder_out(rows$17$remainder_out),
-        .quotient_out(rows$17$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$18 rows$18(
-        .remainder_in(rows$18$remainder_in),
-        .quotient_in(rows$18$quotient_in),
-        .divisor(rows$18$divisor),
-        .remainder_out(rows$18$remainder_out),
-        .quotient_out(rows$18$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$19 rows$19(
-        .remainder_in(rows$19$remainder_in),
-        .quotient_in(rows$19$quotient_in),
-        .divisor(rows$19$divisor),
-        .remainder_out(rows$19$remainder_out),
-        .quotient_out(rows$19$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$20 rows$20(
-        .remainder_in(rows$20$remainder_in),
-        .quotient_in(rows$20$quotient_in),
-        .divisor(rows$20$divisor),
-        .remainder_out(rows$20$remainder_out),
-        .quotient_out(rows$20$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$21 rows$21(
-        .remainder_in(rows$21$remainder_in),
-        .quotient_in(rows$21$quotient_in),
-        .divisor(rows$21$divisor),
-        .remainder_out(rows$21$remainder_out),
-        .quotient_out(rows$21$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$22 rows$22(
-        .remainder_in(rows$22$remainder_in),
-        .quotient_in(rows$22$quotient_in),
-        .divisor(rows$22$divisor),
-        .remainder_out(rows$22$remainder_out),
-        .quotient_out(rows$22$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$23 rows$23(
-        .remainder_in(rows$23$remainder_in),
-        .quotient_in(rows$23$quotient_in),
-        .divisor(rows$23$divisor),
-        .remainder_out(rows$23$remainder_out),
-        .quotient_out(rows$23$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$24 rows$24(
-        .remainder_in(rows$24$remainder_in),
-        .quotient_in(rows$24$quotient_in),
-        .divisor(rows$24$divisor),
-        .remainder_out(rows$24$remainder_out),
-        .quotient_out(rows$24$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rows$25 rows$25(
-        .remainder_in(rows$25$remainder_in),
-        .quotient_in(rows$25$quotient_in),
-        .divisor(rows$25$divisor),
-        .remainder_out(rows$25$remainder_out),
-        .quotient_out(rows$25$quotient_out)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$0 row_remainder$0(
-        .clock(row_remainder$0$clock),
-        .d(row_remainder$0$d),
-        .q(row_remainder$0$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$1 row_remainder$1(
-        .clock(row_remainder$1$clock),
-        .d(row_remainder$1$d),
-        .q(row_remainder$1$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$2 row_remainder$2(
-        .clock(row_remainder$2$clock),
-        .d(row_remainder$2$d),
-        .q(row_remainder$2$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$3 row_remainder$3(
-        .clock(row_remainder$3$clock),
-        .d(row_remainder$3$d),
-        .q(row_remainder$3$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$4 row_remainder$4(
-        .clock(row_remainder$4$clock),
-        .d(row_remainder$4$d),
-        .q(row_remainder$4$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$5 row_remainder$5(
-        .clock(row_remainder$5$clock),
-        .d(row_remainder$5$d),
-        .q(row_remainder$5$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$6 row_remainder$6(
-        .clock(row_remainder$6$clock),
-        .d(row_remainder$6$d),
-        .q(row_remainder$6$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$7 row_remainder$7(
-        .clock(row_remainder$7$clock),
-        .d(row_remainder$7$d),
-        .q(row_remainder$7$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$8 row_remainder$8(
-        .clock(row_remainder$8$clock),
-        .d(row_remainder$8$d),
-        .q(row_remainder$8$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$9 row_remainder$9(
-        .clock(row_remainder$9$clock),
-        .d(row_remainder$9$d),
-        .q(row_remainder$9$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$10 row_remainder$10(
-        .clock(row_remainder$10$clock),
-        .d(row_remainder$10$d),
-        .q(row_remainder$10$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$11 row_remainder$11(
-        .clock(row_remainder$11$clock),
-        .d(row_remainder$11$d),
-        .q(row_remainder$11$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$12 row_remainder$12(
-        .clock(row_remainder$12$clock),
-        .d(row_remainder$12$d),
-        .q(row_remainder$12$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$13 row_remainder$13(
-        .clock(row_remainder$13$clock),
-        .d(row_remainder$13$d),
-        .q(row_remainder$13$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$14 row_remainder$14(
-        .clock(row_remainder$14$clock),
-        .d(row_remainder$14$d),
-        .q(row_remainder$14$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$15 row_remainder$15(
-        .clock(row_remainder$15$clock),
-        .d(row_remainder$15$d),
-        .q(row_remainder$15$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$16 row_remainder$16(
-        .clock(row_remainder$16$clock),
-        .d(row_remainder$16$d),
-        .q(row_remainder$16$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$17 row_remainder$17(
-        .clock(row_remainder$17$clock),
-        .d(row_remainder$17$d),
-        .q(row_remainder$17$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$18 row_remainder$18(
-        .clock(row_remainder$18$clock),
-        .d(row_remainder$18$d),
-        .q(row_remainder$18$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$19 row_remainder$19(
-        .clock(row_remainder$19$clock),
-        .d(row_remainder$19$d),
-        .q(row_remainder$19$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$20 row_remainder$20(
-        .clock(row_remainder$20$clock),
-        .d(row_remainder$20$d),
-        .q(row_remainder$20$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$21 row_remainder$21(
-        .clock(row_remainder$21$clock),
-        .d(row_remainder$21$d),
-        .q(row_remainder$21$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$22 row_remainder$22(
-        .clock(row_remainder$22$clock),
-        .d(row_remainder$22$d),
-        .q(row_remainder$22$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$23 row_remainder$23(
-        .clock(row_remainder$23$clock),
-        .d(row_remainder$23$d),
-        .q(row_remainder$23$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$24 row_remainder$24(
-        .clock(row_remainder$24$clock),
-        .d(row_remainder$24$d),
-        .q(row_remainder$24$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$25 row_remainder$25(
-        .clock(row_remainder$25$clock),
-        .d(row_remainder$25$d),
-        .q(row_remainder$25$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$0 row_quotient$0(
-        .clock(row_quotient$0$clock),
-        .d(row_quotient$0$d),
-        .q(row_quotient$0$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$1 row_quotient$1(
-        .clock(row_quotient$1$clock),
-        .d(row_quotient$1$d),
-        .q(row_quotient$1$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$2 row_quotient$2(
-        .clock(row_quotient$2$clock),
-        .d(row_quotient$2$d),
-        .q(row_quotient$2$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$3 row_quotient$3(
-        .clock(row_quotient$3$clock),
-        .d(row_quotient$3$d),
-        .q(row_quotient$3$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$4 row_quotient$4(
-        .clock(row_quotient$4$clock),
-        .d(row_quotient$4$d),
-        .q(row_quotient$4$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$5 row_quotient$5(
-        .clock(row_quotient$5$clock),
-        .d(row_quotient$5$d),
-        .q(row_quotient$5$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$6 row_quotient$6(
-        .clock(row_quotient$6$clock),
-        .d(row_quotient$6$d),
-        .q(row_quotient$6$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$7 row_quotient$7(
-        .clock(row_quotient$7$clock),
-        .d(row_quotient$7$d),
-        .q(row_quotient$7$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$8 row_quotient$8(
-        .clock(row_quotient$8$clock),
-        .d(row_quotient$8$d),
-        .q(row_quotient$8$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$9 row_quotient$9(
-        .clock(row_quotient$9$clock),
-        .d(row_quotient$9$d),
-        .q(row_quotient$9$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$10 row_quotient$10(
-        .clock(row_quotient$10$clock),
-        .d(row_quotient$10$d),
-        .q(row_quotient$10$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$11 row_quotient$11(
-        .clock(row_quotient$11$clock),
-        .d(row_quotient$11$d),
-        .q(row_quotient$11$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$12 row_quotient$12(
-        .clock(row_quotient$12$clock),
-        .d(row_quotient$12$d),
-        .q(row_quotient$12$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$13 row_quotient$13(
-        .clock(row_quotient$13$clock),
-        .d(row_quotient$13$d),
-        .q(row_quotient$13$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$14 row_quotient$14(
-        .clock(row_quotient$14$clock),
-        .d(row_quotient$14$d),
-        .q(row_quotient$14$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$15 row_quotient$15(
-        .clock(row_quotient$15$clock),
-        .d(row_quotient$15$d),
-        .q(row_quotient$15$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$16 row_quotient$16(
-        .clock(row_quotient$16$clock),
-        .d(row_quotient$16$d),
-        .q(row_quotient$16$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$17 row_quotient$17(
-        .clock(row_quotient$17$clock),
-        .d(row_quotient$17$d),
-        .q(row_quotient$17$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$18 row_quotient$18(
-        .clock(row_quotient$18$clock),
-        .d(row_quotient$18$d),
-        .q(row_quotient$18$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$19 row_quotient$19(
-        .clock(row_quotient$19$clock),
-        .d(row_quotient$19$d),
-        .q(row_quotient$19$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$20 row_quotient$20(
-        .clock(row_quotient$20$clock),
-        .d(row_quotient$20$d),
-        .q(row_quotient$20$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$21 row_quotient$21(
-        .clock(row_quotient$21$clock),
-        .d(row_quotient$21$d),
-        .q(row_quotient$21$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$22 row_quotient$22(
-        .clock(row_quotient$22$clock),
-        .d(row_quotient$22$d),
-        .q(row_quotient$22$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$23 row_quotient$23(
-        .clock(row_quotient$23$clock),
-        .d(row_quotient$23$d),
-        .q(row_quotient$23$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$24 row_quotient$24(
-        .clock(row_quotient$24$clock),
-        .d(row_quotient$24$d),
-        .q(row_quotient$24$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$25 row_quotient$25(
-        .clock(row_quotient$25$clock),
-        .d(row_quotient$25$d),
-        .q(row_quotient$25$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$0 row_divisor$0(
-        .clock(row_divisor$0$clock),
-        .d(row_divisor$0$d),
-        .q(row_divisor$0$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$1 row_divisor$1(
-        .clock(row_divisor$1$clock),
-        .d(row_divisor$1$d),
-        .q(row_divisor$1$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$2 row_divisor$2(
-        .clock(row_divisor$2$clock),
-        .d(row_divisor$2$d),
-        .q(row_divisor$2$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$3 row_divisor$3(
-        .clock(row_divisor$3$clock),
-        .d(row_divisor$3$d),
-        .q(row_divisor$3$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$4 row_divisor$4(
-        .clock(row_divisor$4$clock),
-        .d(row_divisor$4$d),
-        .q(row_divisor$4$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$5 row_divisor$5(
-        .clock(row_divisor$5$clock),
-        .d(row_divisor$5$d),
-        .q(row_divisor$5$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$6 row_divisor$6(
-        .clock(row_divisor$6$clock),
-        .d(row_divisor$6$d),
-        .q(row_divisor$6$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$7 row_divisor$7(
-        .clock(row_divisor$7$clock),
-        .d(row_divisor$7$d),
-        .q(row_divisor$7$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$8 row_divisor$8(
-        .clock(row_divisor$8$clock),
-        .d(row_divisor$8$d),
-        .q(row_divisor$8$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$9 row_divisor$9(
-        .clock(row_divisor$9$clock),
-        .d(row_divisor$9$d),
-        .q(row_divisor$9$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$10 row_divisor$10(
-        .clock(row_divisor$10$clock),
-        .d(row_divisor$10$d),
-        .q(row_divisor$10$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$11 row_divisor$11(
-        .clock(row_divisor$11$clock),
-        .d(row_divisor$11$d),
-        .q(row_divisor$11$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$12 row_divisor$12(
-        .clock(row_divisor$12$clock),
-        .d(row_divisor$12$d),
-        .q(row_divisor$12$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$13 row_divisor$13(
-        .clock(row_divisor$13$clock),
-        .d(row_divisor$13$d),
-        .q(row_divisor$13$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$14 row_divisor$14(
-        .clock(row_divisor$14$clock),
-        .d(row_divisor$14$d),
-        .q(row_divisor$14$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$15 row_divisor$15(
-        .clock(row_divisor$15$clock),
-        .d(row_divisor$15$d),
-        .q(row_divisor$15$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$16 row_divisor$16(
-        .clock(row_divisor$16$clock),
-        .d(row_divisor$16$d),
-        .q(row_divisor$16$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$17 row_divisor$17(
-        .clock(row_divisor$17$clock),
-        .d(row_divisor$17$d),
-        .q(row_divisor$17$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$18 row_divisor$18(
-        .clock(row_divisor$18$clock),
-        .d(row_divisor$18$d),
-        .q(row_divisor$18$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$19 row_divisor$19(
-        .clock(row_divisor$19$clock),
-        .d(row_divisor$19$d),
-        .q(row_divisor$19$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$20 row_divisor$20(
-        .clock(row_divisor$20$clock),
-        .d(row_divisor$20$d),
-        .q(row_divisor$20$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$21 row_divisor$21(
-        .clock(row_divisor$21$clock),
-        .d(row_divisor$21$d),
-        .q(row_divisor$21$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$22 row_divisor$22(
-        .clock(row_divisor$22$clock),
-        .d(row_divisor$22$d),
-        .q(row_divisor$22$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$23 row_divisor$23(
-        .clock(row_divisor$23$clock),
-        .d(row_divisor$23$d),
-        .q(row_divisor$23$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$24 row_divisor$24(
-        .clock(row_divisor$24$clock),
-        .d(row_divisor$24$d),
-        .q(row_divisor$24$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$25 row_divisor$25(
-        .clock(row_divisor$25$clock),
-        .d(row_divisor$25$d),
-        .q(row_divisor$25$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$0 row_exp$0(
-        .clock(row_exp$0$clock),
-        .d(row_exp$0$d),
-        .q(row_exp$0$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$1 row_exp$1(
-        .clock(row_exp$1$clock),
-        .d(row_exp$1$d),
-        .q(row_exp$1$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$2 row_exp$2(
-        .clock(row_exp$2$clock),
-        .d(row_exp$2$d),
-        .q(row_exp$2$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$3 row_exp$3(
-        .clock(row_exp$3$clock),
-        .d(row_exp$3$d),
-        .q(row_exp$3$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$4 row_exp$4(
-        .clock(row_exp$4$clock),
-        .d(row_exp$4$d),
-        .q(row_exp$4$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$5 row_exp$5(
-        .clock(row_exp$5$clock),
-        .d(row_exp$5$d),
-        .q(row_exp$5$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$6 row_exp$6(
-        .clock(row_exp$6$clock),
-        .d(row_exp$6$d),
-        .q(row_exp$6$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$7 row_exp$7(
-        .clock(row_exp$7$clock),
-        .d(row_exp$7$d),
-        .q(row_exp$7$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$8 row_exp$8(
-        .clock(row_exp$8$clock),
-        .d(row_exp$8$d),
-        .q(row_exp$8$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$9 row_exp$9(
-        .clock(row_exp$9$clock),
-        .d(row_exp$9$d),
-        .q(row_exp$9$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$10 row_exp$10(
-        .clock(row_exp$10$clock),
-        .d(row_exp$10$d),
-        .q(row_exp$10$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$11 row_exp$11(
-        .clock(row_exp$11$clock),
-        .d(row_exp$11$d),
-        .q(row_exp$11$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$12 row_exp$12(
-        .clock(row_exp$12$clock),
-        .d(row_exp$12$d),
-        .q(row_exp$12$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$13 row_exp$13(
-        .clock(row_exp$13$clock),
-        .d(row_exp$13$d),
-        .q(row_exp$13$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$14 row_exp$14(
-        .clock(row_exp$14$clock),
-        .d(row_exp$14$d),
-        .q(row_exp$14$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$15 row_exp$15(
-        .clock(row_exp$15$clock),
-        .d(row_exp$15$d),
-        .q(row_exp$15$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$16 row_exp$16(
-        .clock(row_exp$16$clock),
-        .d(row_exp$16$d),
-        .q(row_exp$16$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$17 row_exp$17(
-        .clock(row_exp$17$clock),
-        .d(row_exp$17$d),
-        .q(row_exp$17$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$18 row_exp$18(
-        .clock(row_exp$18$clock),
-        .d(row_exp$18$d),
-        .q(row_exp$18$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$19 row_exp$19(
-        .clock(row_exp$19$clock),
-        .d(row_exp$19$d),
-        .q(row_exp$19$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$20 row_exp$20(
-        .clock(row_exp$20$clock),
-        .d(row_exp$20$d),
-        .q(row_exp$20$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$21 row_exp$21(
-        .clock(row_exp$21$clock),
-        .d(row_exp$21$d),
-        .q(row_exp$21$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$22 row_exp$22(
-        .clock(row_exp$22$clock),
-        .d(row_exp$22$d),
-        .q(row_exp$22$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$23 row_exp$23(
-        .clock(row_exp$23$clock),
-        .d(row_exp$23$d),
-        .q(row_exp$23$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$24 row_exp$24(
-        .clock(row_exp$24$clock),
-        .d(row_exp$24$d),
-        .q(row_exp$24$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_exp$25 row_exp$25(
-        .clock(row_exp$25$clock),
-        .d(row_exp$25$d),
-        .q(row_exp$25$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$0 row_category$0(
-        .clock(row_category$0$clock),
-        .d(row_category$0$d),
-        .q(row_category$0$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$1 row_category$1(
-        .clock(row_category$1$clock),
-        .d(row_category$1$d),
-        .q(row_category$1$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$2 row_category$2(
-        .clock(row_category$2$clock),
-        .d(row_category$2$d),
-        .q(row_category$2$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$3 row_category$3(
-        .clock(row_category$3$clock),
-        .d(row_category$3$d),
-        .q(row_category$3$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$4 row_category$4(
-        .clock(row_category$4$clock),
-        .d(row_category$4$d),
-        .q(row_category$4$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$5 row_category$5(
-        .clock(row_category$5$clock),
-        .d(row_category$5$d),
-        .q(row_category$5$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$6 row_category$6(
-        .clock(row_category$6$clock),
-        .d(row_category$6$d),
-        .q(row_category$6$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$7 row_category$7(
-        .clock(row_category$7$clock),
-        .d(row_category$7$d),
-        .q(row_category$7$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$8 row_category$8(
-        .clock(row_category$8$clock),
-        .d(row_category$8$d),
-        .q(row_category$8$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$9 row_category$9(
-        .clock(row_category$9$clock),
-        .d(row_category$9$d),
-        .q(row_category$9$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$10 row_category$10(
-        .clock(row_category$10$clock),
-        .d(row_category$10$d),
-        .q(row_category$10$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$11 row_category$11(
-        .clock(row_category$11$clock),
-        .d(row_category$11$d),
-        .q(row_category$11$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$12 row_category$12(
-        .clock(row_category$12$clock),
-        .d(row_category$12$d),
-        .q(row_category$12$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$13 row_category$13(
-        .clock(row_category$13$clock),
-        .d(row_category$13$d),
-        .q(row_category$13$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$14 row_category$14(
-        .clock(row_category$14$clock),
-        .d(row_category$14$d),
-        .q(row_category$14$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$15 row_category$15(
-        .clock(row_category$15$clock),
-        .d(row_category$15$d),
-        .q(row_category$15$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$16 row_category$16(
-        .clock(row_category$16$clock),
-        .d(row_category$16$d),
-        .q(row_category$16$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$17 row_category$17(
-        .clock(row_category$17$clock),
-        .d(row_category$17$d),
-        .q(row_category$17$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$18 row_category$18(
-        .clock(row_category$18$clock),
-        .d(row_category$18$d),
-        .q(row_category$18$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$19 row_category$19(
-        .clock(row_category$19$clock),
-        .d(row_category$19$d),
-        .q(row_category$19$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$20 row_category$20(
-        .clock(row_category$20$clock),
-        .d(row_category$20$d),
-        .q(row_category$20$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$21 row_category$21(
-        .clock(row_category$21$clock),
-        .d(row_category$21$d),
-        .q(row_category$21$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$22 row_category$22(
-        .clock(row_category$22$clock),
-        .d(row_category$22$d),
-        .q(row_category$22$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$23 row_category$23(
-        .clock(row_category$23$clock),
-        .d(row_category$23$d),
-        .q(row_category$23$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$24 row_category$24(
-        .clock(row_category$24$clock),
-        .d(row_category$24$d),
-        .q(row_category$24$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$row_category$25 row_category$25(
-        .clock(row_category$25$clock),
-        .d(row_category$25$d),
-        .q(row_category$25$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rounding_sig rounding_sig(
-        .clock(rounding_sig$clock),
-        .d(rounding_sig$d),
-        .q(rounding_sig$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rounding_round rounding_round(
-        .clock(rounding_round$clock),
-        .d(rounding_round$d),
-        .q(rounding_round$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rounding_sticky rounding_sticky(
-        .clock(rounding_sticky$clock),
-        .d(rounding_sticky$d),
-        .q(rounding_sticky$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rounding_exp rounding_exp(
-        .clock(rounding_exp$clock),
-        .d(rounding_exp$d),
-        .q(rounding_exp$q)
-    );
-    rtfpga_core$slots$0$lane$inv_det$rounding_category rounding_category(
-        .clock(rounding_category$clock),
-        .d(rounding_category$d),
-        .q(rounding_category$q)
+    rtfpga_core$slots$0$lane$inv_det$table_a table_a(
+        .address(table_a$address),
+        .data(table_a$data)
+    );
+    rtfpga_core$slots$0$lane$inv_det$table_b table_b(
+        .address(table_b$address),
+        .data(table_b$data)
+    );
+    rtfpga_core$slots$0$lane$inv_det$table_c table_c(
+        .address(table_c$address),
+        .data(table_c$data)
+    );
+    rtfpga_core$slots$0$lane$inv_det$linear linear(
+        .a(linear$a),
+        .b(linear$b),
+        .p(linear$p)
+    );
+    rtfpga_core$slots$0$lane$inv_det$square square(
+        .a(square$a),
+        .b(square$b),
+        .p(square$p)
+    );
+    rtfpga_core$slots$0$lane$inv_det$lookup_a lookup_a(
+        .clock(lookup_a$clock),
+        .d(lookup_a$d),
+        .q(lookup_a$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$lookup_c lookup_c(
+        .clock(lookup_c$clock),
+        .d(lookup_c$d),
+        .q(lookup_c$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$lookup_linear lookup_linear(
+        .clock(lookup_linear$clock),
+        .d(lookup_linear$d),
+        .q(lookup_linear$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$lookup_square lookup_square(
+        .clock(lookup_square$clock),
+        .d(lookup_square$d),
+        .q(lookup_square$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$lookup_sig lookup_sig(
+        .clock(lookup_sig$clock),
+        .d(lookup_sig$d),
+        .q(lookup_sig$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$lookup_exp lookup_exp(
+        .clock(lookup_exp$clock),
+        .d(lookup_exp$d),
+        .q(lookup_exp$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$lookup_exact lookup_exact(
+        .clock(lookup_exact$clock),
+        .d(lookup_exact$d),
+        .q(lookup_exact$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$lookup_category lookup_category(
+        .clock(lookup_category$clock),
+        .d(lookup_category$d),
+        .q(lookup_category$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$quadratic quadratic(
+        .a(quadratic$a),
+        .b(quadratic$b),
+        .p(quadratic$p)
+    );
+    rtfpga_core$slots$0$lane$inv_det$partial_sum partial_sum(
+        .clock(partial_sum$clock),
+        .d(partial_sum$d),
+        .q(partial_sum$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$partial_quadratic partial_quadratic(
+        .clock(partial_quadratic$clock),
+        .d(partial_quadratic$d),
+        .q(partial_quadratic$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$partial_sig partial_sig(
+        .clock(partial_sig$clock),
+        .d(partial_sig$d),
+        .q(partial_sig$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$partial_exp partial_exp(
+        .clock(partial_exp$clock),
+        .d(partial_exp$d),
+        .q(partial_exp$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$partial_exact partial_exact(
+        .clock(partial_exact$clock),
+        .d(partial_exact$d),
+        .q(partial_exact$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$partial_category partial_category(
+        .clock(partial_category$clock),
+        .d(partial_category$d),
+        .q(partial_category$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$candidate_frac candidate_frac(
+        .clock(candidate_frac$clock),
+        .d(candidate_frac$d),
+        .q(candidate_frac$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$candidate_sig candidate_sig(
+        .clock(candidate_sig$clock),
+        .d(candidate_sig$d),
+        .q(candidate_sig$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$candidate_exp candidate_exp(
+        .clock(candidate_exp$clock),
+        .d(candidate_exp$d),
+        .q(candidate_exp$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$candidate_exact candidate_exact(
+        .clock(candidate_exact$clock),
+        .d(candidate_exact$d),
+        .q(candidate_exact$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$candidate_category candidate_category(
+        .clock(candidate_category$clock),
+        .d(candidate_category$d),
+        .q(candidate_category$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$check check(
+        .a(check$a),
+        .b(check$b),
+        .p(check$p)
+    );
+    rtfpga_core$slots$0$lane$inv_det$decided_up decided_up(
+        .clock(decided_up$clock),
+        .d(decided_up$d),
+        .q(decided_up$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$decided_frac decided_frac(
+        .clock(decided_frac$clock),
+        .d(decided_frac$d),
+        .q(decided_frac$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$decided_frac_up decided_frac_up(
+        .clock(decided_frac_up$clock),
+        .d(decided_frac_up$d),
+        .q(decided_frac_up$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$decided_exp decided_exp(
+        .clock(decided_exp$clock),
+        .d(decided_exp$d),
+        .q(decided_exp$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$decided_exact decided_exact(
+        .clock(decided_exact$clock),
+        .d(decided_exact$d),
+        .q(decided_exact$q)
+    );
+    rtfpga_core$slots$0$lane$inv_det$decided_category decided_category(
+        .clock(decided_category$clock),
+        .d(decided_category$d),
+        .q(decided_category$q)
     );
     rtfpga_core$slots$0$lane$inv_det$rounder rounder(
         .category(rounder$category),
@@ -29931,475 +28772,85 @@ module rtfpga_core$slots$0$lane$inv_det(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$zero;
         category[(64'h3)+:(1)] = unpack$inf;
-        operand_divisor$clock = clock;
-        operand_exp$clock = clock;
-        operand_category$clock = clock;
-        operand_divisor$d = ((unpack$sig) & 25'h1ffffff);
-        operand_exp$d = exp_base - ((unpack$exp) & 10'h3ff);
-        operand_category$d = category;
-        rows$0$remainder_in = first_remainder;
-        rows$0$quotient_in = no_quotient;
-        rows$0$divisor = operand_divisor$q;
-        row_exp$0$d = operand_exp$q;
-        row_category$0$d = operand_category$q;
-        rows$1$remainder_in = row_remainder$0$q;
-        rows$1$quotient_in = row_quotient$0$q;
-        rows$1$divisor = row_divisor$0$q;
-        row_exp$1$d = row_exp$0$q;
-        row_category$1$d = row_category$0$q;
-        rows$2$remainder_in = row_remainder$1$q;
-        rows$2$quotient_in = row_quotient$1$q;
-        rows$2$divisor = row_divisor$1$q;
-        row_exp$2$d = row_exp$1$q;
-        row_category$2$d = row_category$1$q;
-        rows$3$remainder_in = row_remainder$2$q;
-        rows$3$quotient_in = row_quotient$2$q;
-        rows$3$divisor = row_divisor$2$q;
-        row_exp$3$d = row_exp$2$q;
-        row_category$3$d = row_category$2$q;
-        rows$4$remainder_in = row_remainder$3$q;
-        rows$4$quotient_in = row_quotient$3$q;
-        rows$4$divisor = row_divisor$3$q;
-        row_exp$4$d = row_exp$3$q;
-        row_category$4$d = row_category$3$q;
-        rows$5$remainder_in = row_remainder$4$q;
-        rows$5$quotient_in = row_quotient$4$q;
-        rows$5$divisor = row_divisor$4$q;
-        row_exp$5$d = row_exp$4$q;
-        row_category$5$d = row_category$4$q;
-        rows$6$remainder_in = row_remainder$5$q;
-        rows$6$quotient_in = row_quotient$5$q;
-        rows$6$divisor = row_divisor$5$q;
-        row_exp$6$d = row_exp$5$q;
-        row_category$6$d = row_category$5$q;
-        rows$7$remainder_in = row_remainder$6$q;
-        rows$7$quotient_in = row_quotient$6$q;
-        rows$7$divisor = row_divisor$6$q;
-        row_exp$7$d = row_exp$6$q;
-        row_category$7$d = row_category$6$q;
-        rows$8$remainder_in = row_remainder$7$q;
-        rows$8$quotient_in = row_quotient$7$q;
-        rows$8$divisor = row_divisor$7$q;
-        row_exp$8$d = row_exp$7$q;
-        row_category$8$d = row_category$7$q;
-        rows$9$remainder_in = row_remainder$8$q;
-        rows$9$quotient_in = row_quotient$8$q;
-        rows$9$divisor = row_divisor$8$q;
-        row_exp$9$d = row_exp$8$q;
-        row_category$9$d = row_category$8$q;
-        rows$10$remainder_in = row_remainder$9$q;
-        rows$10$quotient_in = row_quotient$9$q;
-        rows$10$divisor = row_divisor$9$q;
-        row_exp$10$d = row_exp$9$q;
-        row_category$10$d = row_category$9$q;
-        rows$11$remainder_in = row_remainder$10$q;
-        rows$11$quotient_in = row_quotient$10$q;
-        rows$11$divisor = row_divisor$10$q;
-        row_exp$11$d = row_exp$10$q;
-        row_category$11$d = row_category$10$q;
-        rows$12$remainder_in = row_remainder$11$q;
-        rows$12$quotient_in = row_quotient$11$q;
-        rows$12$divisor = row_divisor$11$q;
-        row_exp$12$d = row_exp$11$q;
-        row_category$12$d = row_category$11$q;
-        rows$13$remainder_in = row_remainder$12$q;
-        rows$13$quotient_in = row_quotient$12$q;
-        rows$13$divisor = row_divisor$12$q;
-        row_exp$13$d = row_exp$12$q;
-        row_category$13$d = row_category$12$q;
-        rows$14$remainder_in = row_remainder$13$q;
-        rows$14$quotient_in = row_quotient$13$q;
-        rows$14$divisor = row_divisor$13$q;
-        row_exp$14$d = row_exp$13$q;
-        row_category$14$d = row_category$13$q;
-        rows$15$remainder_in = row_remainder$14$q;
-        rows$15$quotient_in = row_quotient$14$q;
-        rows$15$divisor = row_divisor$14$q;
-        row_exp$15$d = row_exp$14$q;
-        row_category$15$d = row_category$14$q;
-        rows$16$remainder_in = row_remainder$15$q;
-        rows$16$quotient_in = row_quotient$15$q;
-        rows$16$divisor = row_divisor$15$q;
-        row_exp$16$d = row_exp$15$q;
-        row_category$16$d = row_category$15$q;
-        rows$17$remainder_in = row_remainder$16$q;
-        rows$17$quotient_in = row_quotient$16$q;
-        rows$17$divisor = row_divisor$16$q;
-        row_exp$17$d = row_exp$16$q;
-        row_category$17$d = row_category$16$q;
-        rows$18$remainder_in = row_remainder$17$q;
-        rows$18$quotient_in = row_quotient$17$q;
-        rows$18$divisor = row_divisor$17$q;
-        row_exp$18$d = row_exp$17$q;
-        row_category$18$d = row_category$17$q;
-        rows$19$remainder_in = row_remainder$18$q;
-        rows$19$quotient_in = row_quotient$18$q;
-        rows$19$divisor = row_divisor$18$q;
-        row_exp$19$d = row_exp$18$q;
-        row_category$19$d = row_category$18$q;
-        rows$20$remainder_in = row_remainder$19$q;
-        rows$20$quotient_in = row_quotient$19$q;
-        rows$20$divisor = row_divisor$19$q;
-        row_exp$20$d = row_exp$19$q;
-        row_category$20$d = row_category$19$q;
-        rows$21$remainder_in = row_remainder$20$q;
-        rows$21$quotient_in = row_quotient$20$q;
-        rows$21$divisor = row_divisor$20$q;
-        row_exp$21$d = row_exp$20$q;
-        row_category$21$d = row_category$20$q;
-        rows$22$remainder_in = row_remainder$21$q;
-        rows$22$quotient_in = row_quotient$21$q;
-        rows$22$divisor = row_divisor$21$q;
-        row_exp$22$d = row_exp$21$q;
-        row_category$22$d = row_category$21$q;
-        rows$23$remainder_in = row_remainder$22$q;
-        rows$23$quotient_in = row_quotient$22$q;
-        rows$23$divisor = row_divisor$22$q;
-        row_exp$23$d = row_exp$22$q;
-        row_category$23$d = row_category$22$q;
-        rows$24$remainder_in = row_remainder$23$q;
-        rows$24$quotient_in = row_quotient$23$q;
-        rows$24$divisor = row_divisor$23$q;
-        row_exp$24$d = row_exp$23$q;
-        row_category$24$d = row_category$23$q;
-        rows$25$remainder_in = row_remainder$24$q;
-        rows$25$quotient_in = row_quotient$24$q;
-        rows$25$divisor = row_divisor$24$q;
-        row_exp$25$d = row_exp$24$q;
-        row_category$25$d = row_category$24$q;
-        row_remainder$0$clock = clock;
-        row_quotient$0$clock = clock;
-        row_divisor$0$clock = clock;
-        row_exp$0$clock = clock;
-        row_category$0$clock = clock;
-        row_remainder$0$d = rows$0$remainder_out;
-        row_quotient$0$d = rows$0$quotient_out;
-        row_divisor$0$d = rows$0$divisor;
-        remainder = row_remainder$0$q;
-        quotient = row_quotient$0$q;
-        quotient_exp = row_exp$0$q;
-        quotient_category = row_category$0$q;
-        row_remainder$1$clock = clock;
-        row_quotient$1$clock = clock;
-        row_divisor$1$clock = clock;
-        row_exp$1$clock = clock;
-        row_category$1$clock = clock;
-        row_remainder$1$d = rows$1$remainder_out;
-        row_quotient$1$d = rows$1$quotient_out;
-        row_divisor$1$d = rows$1$divisor;
-        remainder = row_remainder$1$q;
-        quotient = row_quotient$1$q;
-        quotient_exp = row_exp$1$q;
-        quotient_category = row_category$1$q;
-        row_remainder$2$clock = clock;
-        row_quotient$2$clock = clock;
-        row_divisor$2$clock = clock;
-        row_exp$2$clock = clock;
-        row_category$2$clock = clock;
-        row_remainder$2$d = rows$2$remainder_out;
-        row_quotient$2$d = rows$2$quotient_out;
-        row_divisor$2$d = rows$2$divisor;
-        remainder = row_remainder$2$q;
-        quotient = row_quotient$2$q;
-        quotient_exp = row_exp$2$q;
-        quotient_category = row_category$2$q;
-        row_remainder$3$clock = clock;
-        row_quotient$3$clock = clock;
-        row_divisor$3$clock = clock;
-        row_exp$3$clock = clock;
-        row_category$3$clock = clock;
-        row_remainder$3$d = rows$3$remainder_out;
-        row_quotient$3$d = rows$3$quotient_out;
-        row_divisor$3$d = rows$3$divisor;
-        remainder = row_remainder$3$q;
-        quotient = row_quotient$3$q;
-        quotient_exp = row_exp$3$q;
-        quotient_category = row_category$3$q;
-        row_remainder$4$clock = clock;
-        row_quotient$4$clock = clock;
-        row_divisor$4$clock = clock;
-        row_exp$4$clock = clock;
-        row_category$4$clock = clock;
-        row_remainder$4$d = rows$4$remainder_out;
-        row_quotient$4$d = rows$4$quotient_out;
-        row_divisor$4$d = rows$4$divisor;
-        remainder = row_remainder$4$q;
-        quotient = row_quotient$4$q;
-        quotient_exp = row_exp$4$q;
-        quotient_category = row_category$4$q;
-        row_remainder$5$clock = clock;
-        row_quotient$5$clock = clock;
-        row_divisor$5$clock = clock;
-        row_exp$5$clock = clock;
-        row_category$5$clock = clock;
-        row_remainder$5$d = rows$5$remainder_out;
-        row_quotient$5$d = rows$5$quotient_out;
-        row_divisor$5$d = rows$5$divisor;
-        remainder = row_remainder$5$q;
-        quotient = row_quotient$5$q;
-        quotient_exp = row_exp$5$q;
-        quotient_category = row_category$5$q;
-        row_remainder$6$clock = clock;
-        row_quotient$6$clock = clock;
-        row_divisor$6$clock = clock;
-        row_exp$6$clock = clock;
-        row_category$6$clock = clock;
-        row_remainder$6$d = rows$6$remainder_out;
-        row_quotient$6$d = rows$6$quotient_out;
-        row_divisor$6$d = rows$6$divisor;
-        remainder = row_remainder$6$q;
-        quotient = row_quotient$6$q;
-        quotient_exp = row_exp$6$q;
-        quotient_category = row_category$6$q;
-        row_remainder$7$clock = clock;
-        row_quotient$7$clock = clock;
-        row_divisor$7$clock = clock;
-        row_exp$7$clock = clock;
-        row_category$7$clock = clock;
-        row_remainder$7$d = rows$7$remainder_out;
-        row_quotient$7$d = rows$7$quotient_out;
-        row_divisor$7$d = rows$7$divisor;
-        remainder = row_remainder$7$q;
-        quotient = row_quotient$7$q;
-        quotient_exp = row_exp$7$q;
-        quotient_category = row_category$7$q;
-        row_remainder$8$clock = clock;
-        row_quotient$8$clock = clock;
-        row_divisor$8$clock = clock;
-        row_exp$8$clock = clock;
-        row_category$8$clock = clock;
-        row_remainder$8$d = rows$8$remainder_out;
-        row_quotient$8$d = rows$8$quotient_out;
-        row_divisor$8$d = rows$8$divisor;
-        remainder = row_remainder$8$q;
-        quotient = row_quotient$8$q;
-        quotient_exp = row_exp$8$q;
-        quotient_category = row_category$8$q;
-        row_remainder$9$clock = clock;
-        row_quotient$9$clock = clock;
-        row_divisor$9$clock = clock;
-        row_exp$9$clock = clock;
-        row_category$9$clock = clock;
-        row_remainder$9$d = rows$9$remainder_out;
-        row_quotient$9$d = rows$9$quotient_out;
-        row_divisor$9$d = rows$9$divisor;
-        remainder = row_remainder$9$q;
-        quotient = row_quotient$9$q;
-        quotient_exp = row_exp$9$q;
-        quotient_category = row_category$9$q;
-        row_remainder$10$clock = clock;
-        row_quotient$10$clock = clock;
-        row_divisor$10$clock = clock;
-        row_exp$10$clock = clock;
-        row_category$10$clock = clock;
-        row_remainder$10$d = rows$10$remainder_out;
-        row_quotient$10$d = rows$10$quotient_out;
-        row_divisor$10$d = rows$10$divisor;
-        remainder = row_remainder$10$q;
-        quotient = row_quotient$10$q;
-        quotient_exp = row_exp$10$q;
-        quotient_category = row_category$10$q;
-        row_remainder$11$clock = clock;
-        row_quotient$11$clock = clock;
-        row_divisor$11$clock = clock;
-        row_exp$11$clock = clock;
-        row_category$11$clock = clock;
-        row_remainder$11$d = rows$11$remainder_out;
-        row_quotient$11$d = rows$11$quotient_out;
-        row_divisor$11$d = rows$11$divisor;
-        remainder = row_remainder$11$q;
-        quotient = row_quotient$11$q;
-        quotient_exp = row_exp$11$q;
-        quotient_category = row_category$11$q;
-        row_remainder$12$clock = clock;
-        row_quotient$12$clock = clock;
-        row_divisor$12$clock = clock;
-        row_exp$12$clock = clock;
-        row_category$12$clock = clock;
-        row_remainder$12$d = rows$12$remainder_out;
-        row_quotient$12$d = rows$12$quotient_out;
-        row_divisor$12$d = rows$12$divisor;
-        remainder = row_remainder$12$q;
-        quotient = row_quotient$12$q;
-        quotient_exp = row_exp$12$q;
-        quotient_category = row_category$12$q;
-        row_remainder$13$clock = clock;
-        row_quotient$13$clock = clock;
-        row_divisor$13$clock = clock;
-        row_exp$13$clock = clock;
-        row_category$13$clock = clock;
-        row_remainder$13$d = rows$13$remainder_out;
-        row_quotient$13$d = rows$13$quotient_out;
-        row_divisor$13$d = rows$13$divisor;
-        remainder = row_remainder$13$q;
-        quotient = row_quotient$13$q;
-        quotient_exp = row_exp$13$q;
-        quotient_category = row_category$13$q;
-        row_remainder$14$clock = clock;
-        row_quotient$14$clock = clock;
-        row_divisor$14$clock = clock;
-        row_exp$14$clock = clock;
-        row_category$14$clock = clock;
-        row_remainder$14$d = rows$14$remainder_out;
-        row_quotient$14$d = rows$14$quotient_out;
-        row_divisor$14$d = rows$14$divisor;
-        remainder = row_remainder$14$q;
-        quotient = row_quotient$14$q;
-        quotient_exp = row_exp$14$q;
-        quotient_category = row_category$14$q;
-        row_remainder$15$clock = clock;
-        row_quotient$15$clock = clock;
-        row_divisor$15$clock = clock;
-        row_exp$15$clock = clock;
-        row_category$15$clock = clock;
-        row_remainder$15$d = rows$15$remainder_out;
-        row_quotient$15$d = rows$15$quotient_out;
-        row_divisor$15$d = rows$15$divisor;
-        remainder = row_remainder$15$q;
-        quotient = row_quotient$15$q;
-        quotient_exp = row_exp$15$q;
-        quotient_category = row_category$15$q;
-        row_remainder$16$clock = clock;
-        row_quotient$16$clock = clock;
-        row_divisor$16$clock = clock;
-        row_exp$16$clock = clock;
-        row_category$16$clock = clock;
-        row_remainder$16$d = rows$16$remainder_out;
-        row_quotient$16$d = rows$16$quotient_out;
-        row_divisor$16$d = rows$16$divisor;
-        remainder = row_remainder$16$q;
-        quotient = row_quotient$16$q;
-        quotient_exp = row_exp$16$q;
-        quotient_category = row_category$16$q;
-        row_remainder$17$clock = clock;
-        row_quotient$17$clock = clock;
-        row_divisor$17$clock = clock;
-        row_exp$17$clock = clock;
-        row_category$17$clock = clock;
-        row_remainder$17$d = rows$17$remainder_out;
-        row_quotient$17$d = rows$17$quotient_out;
-        row_divisor$17$d = rows$17$divisor;
-        remainder = row_remainder$17$q;
-        quotient = row_quotient$17$q;
-        quotient_exp = row_exp$17$q;
-        quotient_category = row_category$17$q;
-        row_remainder$18$clock = clock;
-        row_quotient$18$clock = clock;
-        row_divisor$18$clock = clock;
-        row_exp$18$clock = clock;
-        row_category$18$clock = clock;
-        row_remainder$18$d = rows$18$remainder_out;
-        row_quotient$18$d = rows$18$quotient_out;
-        row_divisor$18$d = rows$18$divisor;
-        remainder = row_remainder$18$q;
-        quotient = row_quotient$18$q;
-        quotient_exp = row_exp$18$q;
-        quotient_category = row_category$18$q;
-        row_remainder$19$clock = clock;
-        row_quotient$19$clock = clock;
-        row_divisor$19$clock = clock;
-        row_exp$19$clock = clock;
-        row_category$19$clock = clock;
-        row_remainder$19$d = rows$19$remainder_out;
-        row_quotient$19$d = rows$19$quotient_out;
-        row_divisor$19$d = rows$19$divisor;
-        remainder = row_remainder$19$q;
-        quotient = row_quotient$19$q;
-        quotient_exp = row_exp$19$q;
-        quotient_category = row_category$19$q;
-        row_remainder$20$clock = clock;
-        row_quotient$20$clock = clock;
-        row_divisor$20$clock = clock;
-        row_exp$20$clock = clock;
-        row_category$20$clock = clock;
-        row_remainder$20$d = rows$20$remainder_out;
-        row_quotient$20$d = rows$20$quotient_out;
-        row_divisor$20$d = rows$20$divisor;
-        remainder = row_remainder$20$q;
-        quotient = row_quotient$20$q;
-        quotient_exp = row_exp$20$q;
-        quotient_category = row_category$20$q;
-        row_remainder$21$clock = clock;
-        row_quotient$21$clock = clock;
-        row_divisor$21$clock = clock;
-        row_exp$21$clock = clock;
-        row_category$21$clock = clock;
-        row_remainder$21$d = rows$21$remainder_out;
-        row_quotient$21$d = rows$21$quotient_out;
-        row_divisor$21$d = rows$21$divisor;
-        remainder = row_remainder$21$q;
-        quotient = row_quotient$21$q;
-        quotient_exp = row_exp$21$q;
-        quotient_category = row_category$21$q;
-        row_remainder$22$clock = clock;
-        row_quotient$22$clock = clock;
-        row_divisor$22$clock = clock;
-        row_exp$22$clock = clock;
-        row_category$22$clock = clock;
-        row_remainder$22$d = rows$22$remainder_out;
-        row_quotient$22$d = rows$22$quotient_out;
-        row_divisor$22$d = rows$22$divisor;
-        remainder = row_remainder$22$q;
-        quotient = row_quotient$22$q;
-        quotient_exp = row_exp$22$q;
-        quotient_category = row_category$22$q;
-        row_remainder$23$clock = clock;
-        row_quotient$23$clock = clock;
-        row_divisor$23$clock = clock;
-        row_exp$23$clock = clock;
-        row_category$23$clock = clock;
-        row_remainder$23$d = rows$23$remainder_out;
-        row_quotient$23$d = rows$23$quotient_out;
-        row_divisor$23$d = rows$23$divisor;
-        remainder = row_remainder$23$q;
-        quotient = row_quotient$23$q;
-        quotient_exp = row_exp$23$q;
-        quotient_category = row_category$23$q;
-        row_remainder$24$clock = clock;
-        row_quotient$24$clock = clock;
-        row_divisor$24$clock = clock;
-        row_exp$24$clock = clock;
-        row_category$24$clock = clock;
-        row_remainder$24$d = rows$24$remainder_out;
-        row_quotient$24$d = rows$24$quotient_out;
-        row_divisor$24$d = rows$24$divisor;
-        remainder = row_remainder$24$q;
-        quotient = row_quotient$24$q;
-        quotient_exp = row_exp$24$q;
-        quotient_category = row_category$24$q;
-        row_remainder$25$clock = clock;
-        row_quotient$25$clock = clock;
-        row_divisor$25$clock = clock;
-        row_exp$25$clock = clock;
-        row_category$25$clock = clock;
-        row_remainder$25$d = rows$25$remainder_out;
-        row_quotient$25$d = rows$25$quotient_out;
-        row_divisor$25$d = rows$25$divisor;
-        remainder = row_remainder$25$q;
-        quotient = row_quotient$25$q;
-        quotient_exp = row_exp$25$q;
-        quotient_category = row_category$25$q;
-        exact_power = |(quotient & quotient_top);
-        rounding_sig$clock = clock;
-        rounding_round$clock = clock;
-        rounding_sticky$clock = clock;
-        rounding_exp$clock = clock;
-        rounding_category$clock = clock;
-        if (exact_power) begin
-            rounding_sig$d = ((quotient >> 32'h2) & 24'hffffff);
+        index = ((unpack$sig >> d_shift) & 8'hff);
+        d = ((unpack$sig) & 15'h7fff);
+        table_a$address = index;
+        table_b$address = index;
+        table_c$address = index;
+        linear$a = table_b$data;
+        linear$b = d;
+        square$a = d;
+        square$b = d;
+        lookup_a$clock = clock;
+        lookup_c$clock = clock;
+        lookup_linear$clock = clock;
+        lookup_square$clock = clock;
+        lookup_sig$clock = clock;
+        lookup_exp$clock = clock;
+        lookup_exact$clock = clock;
+        lookup_category$clock = clock;
+        lookup_a$d = table_a$data;
+        lookup_c$d = table_c$data;
+        lookup_linear$d = linear$p;
+        lookup_square$d = ((square$p >> r_shift) & 17'h1ffff);
+        lookup_sig$d = unpack$sig;
+        lookup_exp$d = exp_base - ((unpack$exp) & 10'h3ff);
+        lookup_exact$d = unpack$sig == hidden_bit;
+        lookup_category$d = category;
+        quadratic$a = lookup_c$q;
+        quadratic$b = lookup_square$q;
+        partial_sum$clock = clock;
+        partial_quadratic$clock = clock;
+        partial_sig$clock = clock;
+        partial_exp$clock = clock;
+        partial_exact$clock = clock;
+        partial_category$clock = clock;
+        partial_sum$d = lookup_a$q - ((lookup_linear$q >> b_shift) & 28'hfffffff);
+        partial_quadratic$d = quadratic$p;
+        partial_sig$d = lookup_sig$q;
+        partial_exp$d = lookup_exp$q;
+        partial_exact$d = lookup_exact$q;
+        partial_category$d = lookup_category$q;
+        sum = partial_sum$q + ((partial_quadratic$q >> c_shift) & 28'hfffffff);
+        candidate_frac$clock = clock;
+        candidate_sig$clock = clock;
+        candidate_exp$clock = clock;
+        candidate_exact$clock = clock;
+        candidate_category$clock = clock;
+        candidate_frac$d = ((sum >> extra_shift) & 23'h7fffff);
+        candidate_sig$d = partial_sig$q;
+        candidate_exp$d = partial_exp$q;
+        candidate_exact$d = partial_exact$q;
+        candidate_category$d = partial_category$q;
+        check$a = candidate_sig$q;
+        check$b = (((candidate_frac$q) & 24'hffffff) << 32'h1) | ((one) & 24'hffffff);
+        check_top = ((check$p >> check_shift) & 3'h7) + ((candidate_sig$q & low_three) & 3'h7);
+        decided_up$clock = clock;
+        decided_frac$clock = clock;
+        decided_frac_up$clock = clock;
+        decided_exp$clock = clock;
+        decided_exact$clock = clock;
+        decided_category$clock = clock;
+        decided_up$d = check_top[32'h2];
+        decided_frac$d = candidate_frac$q;
+        decided_frac_up$d = candidate_frac$q + one;
+        decided_exp$d = candidate_exp$q;
+        decided_exact$d = candidate_exact$q;
+        decided_category$d = candidate_category$q;
+        rounder$round = no_bit;
+        rounder$sticky = no_bit;
+        rounder$category = decided_category$q;
+        rounder$exp = decided_exp$q;
+        if (decided_exact$q) begin
+            rounder$sig = exact_sig;
+            rounder$exp = decided_exp$q + exp_one;
+        end
+        else if (decided_up$q) begin
+            rounder$sig = hidden_bit | ((decided_frac_up$q) & 24'hffffff);
         end
         else begin
-            rounding_sig$d = ((quotient >> 32'h1) & 24'hffffff);
+            rounder$sig = hidden_bit | ((decided_frac$q) & 24'hffffff);
         end
-        rounding_round$d = |(quotient & one);
-        rounding_sticky$d = |remainder;
-        rounding_exp$d = quotient_exp + exact_power;
-        rounding_category$d = quotient_category;
-        rounder$sig = rounding_sig$q;
-        rounder$round = rounding_round$q;
-        rounder$sticky = rounding_sticky$q;
-        rounder$exp = rounding_exp$q;
-        rounder$category = rounding_category$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
@@ -30408,7 +28859,7 @@ module rtfpga_core$slots$0$lane$inv_det(clock,a,y);
 endmodule // rtfpga_core$slots$0$lane$inv_det
 
 
-module rtfpga_core$slots$0$lane$inv_det$operand_category(clock,d,q);
+module rtfpga_core$slots$0$lane$inv_det$candidate_category(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -30416,7 +28867,7 @@ module rtfpga_core$slots$0$lane$inv_det$operand_category(clock,d,q);
     output reg  [3:0] q;
     
     // Constant declarations
-    localparam  registered = 1'b0;
+    localparam  registered = 1'b1;
     
     // Stub signals
     reg  [3:0] flop$d;
@@ -30424,7 +28875,7 @@ module rtfpga_core$slots$0$lane$inv_det$operand_category(clock,d,q);
     reg  flop$clock;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$operand_category$flop flop(
+    rtfpga_core$slots$0$lane$inv_det$candidate_category$flop flop(
         .d(flop$d),
         .q(flop$q),
         .clock(flop$clock)
@@ -30442,10 +28893,10 @@ module rtfpga_core$slots$0$lane$inv_det$operand_category(clock,d,q);
         end
     end
     
-endmodule // rtfpga_core$slots$0$lane$inv_det$operand_category
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_category
 
 
-module rtfpga_core$slots$0$lane$inv_det$operand_category$flop(d,q,clock);
+module rtfpga_core$slots$0$lane$inv_det$candidate_category$flop(d,q,clock);
     
     // Module arguments
     input wire  [3:0] d;
@@ -30461,26 +28912,26 @@ module rtfpga_core$slots$0$lane$inv_det$operand_category$flop(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$inv_det$operand_category$flop
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_category$flop
 
 
-module rtfpga_core$slots$0$lane$inv_det$operand_divisor(clock,d,q);
+module rtfpga_core$slots$0$lane$inv_det$candidate_exact(clock,d,q);
     
     // Module arguments
     input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
+    input wire  d;
+    output reg  q;
     
     // Constant declarations
-    localparam  registered = 1'b0;
+    localparam  registered = 1'b1;
     
     // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
+    reg  flop$d;
+    wire  flop$q;
     reg  flop$clock;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$operand_divisor$flop flop(
+    rtfpga_core$slots$0$lane$inv_det$candidate_exact$flop flop(
         .d(flop$d),
         .q(flop$q),
         .clock(flop$clock)
@@ -30498,29 +28949,29 @@ module rtfpga_core$slots$0$lane$inv_det$operand_divisor(clock,d,q);
         end
     end
     
-endmodule // rtfpga_core$slots$0$lane$inv_det$operand_divisor
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_exact
 
 
-module rtfpga_core$slots$0$lane$inv_det$operand_divisor$flop(d,q,clock);
+module rtfpga_core$slots$0$lane$inv_det$candidate_exact$flop(d,q,clock);
     
     // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
     
     // Update code (custom)
     initial begin
-       q = 25'h0;
+       q = 1'h0;
     end
     
     always @(posedge clock) begin
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$inv_det$operand_divisor$flop
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_exact$flop
 
 
-module rtfpga_core$slots$0$lane$inv_det$operand_exp(clock,d,q);
+module rtfpga_core$slots$0$lane$inv_det$candidate_exp(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -30528,7 +28979,7 @@ module rtfpga_core$slots$0$lane$inv_det$operand_exp(clock,d,q);
     output reg  [9:0] q;
     
     // Constant declarations
-    localparam  registered = 1'b0;
+    localparam  registered = 1'b1;
     
     // Stub signals
     reg  [9:0] flop$d;
@@ -30536,7 +28987,7 @@ module rtfpga_core$slots$0$lane$inv_det$operand_exp(clock,d,q);
     reg  flop$clock;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$operand_exp$flop flop(
+    rtfpga_core$slots$0$lane$inv_det$candidate_exp$flop flop(
         .d(flop$d),
         .q(flop$q),
         .clock(flop$clock)
@@ -30554,10 +29005,10 @@ module rtfpga_core$slots$0$lane$inv_det$operand_exp(clock,d,q);
         end
     end
     
-endmodule // rtfpga_core$slots$0$lane$inv_det$operand_exp
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_exp
 
 
-module rtfpga_core$slots$0$lane$inv_det$operand_exp$flop(d,q,clock);
+module rtfpga_core$slots$0$lane$inv_det$candidate_exp$flop(d,q,clock);
     
     // Module arguments
     input wire  [9:0] d;
@@ -30573,7 +29024,1275 @@ module rtfpga_core$slots$0$lane$inv_det$operand_exp$flop(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$inv_det$operand_exp$flop
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_exp$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$candidate_frac(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [22:0] d;
+    output reg  [22:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b1;
+    
+    // Stub signals
+    reg  [22:0] flop$d;
+    wire  [22:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$candidate_frac$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_frac
+
+
+module rtfpga_core$slots$0$lane$inv_det$candidate_frac$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [22:0] d;
+    output reg  [22:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 23'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_frac$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$candidate_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b1;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$candidate_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_sig
+
+
+module rtfpga_core$slots$0$lane$inv_det$candidate_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$candidate_sig$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$check(a,b,p);
+    
+    // Module arguments
+    input wire  [23:0] a;
+    input wire  [23:0] b;
+    output reg  [47:0] p;
+    
+    // Update code (custom)
+    always @(*) p = {24'd0, a} * {24'd0, b};
+endmodule // rtfpga_core$slots$0$lane$inv_det$check
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$decided_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_category
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_category$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_exact(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$decided_exact$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_exact
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_exact$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_exact$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$decided_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_exp
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_exp$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_frac(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [22:0] d;
+    output reg  [22:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [22:0] flop$d;
+    wire  [22:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$decided_frac$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_frac
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_frac$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [22:0] d;
+    output reg  [22:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 23'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_frac$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_frac_up(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [22:0] d;
+    output reg  [22:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [22:0] flop$d;
+    wire  [22:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$decided_frac_up$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_frac_up
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_frac_up$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [22:0] d;
+    output reg  [22:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 23'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_frac_up$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_up(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$decided_up$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_up
+
+
+module rtfpga_core$slots$0$lane$inv_det$decided_up$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$decided_up$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$linear(a,b,p);
+    
+    // Module arguments
+    input wire  [22:0] a;
+    input wire  [14:0] b;
+    output reg  [37:0] p;
+    
+    // Update code (custom)
+    always @(*) p = {15'd0, a} * {23'd0, b};
+endmodule // rtfpga_core$slots$0$lane$inv_det$linear
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_a(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [27:0] d;
+    output reg  [27:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [27:0] flop$d;
+    wire  [27:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$lookup_a$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_a
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_a$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [27:0] d;
+    output reg  [27:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 28'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_a$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_c(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [14:0] d;
+    output reg  [14:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [14:0] flop$d;
+    wire  [14:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$lookup_c$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_c
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_c$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [14:0] d;
+    output reg  [14:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 15'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_c$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$lookup_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_category
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_category$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_exact(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$lookup_exact$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_exact
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_exact$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_exact$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$lookup_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_exp
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_exp$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_linear(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [37:0] d;
+    output reg  [37:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [37:0] flop$d;
+    wire  [37:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$lookup_linear$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_linear
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_linear$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [37:0] d;
+    output reg  [37:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 38'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_linear$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$lookup_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_sig
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_sig$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_square(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [16:0] flop$d;
+    wire  [16:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$lookup_square$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_square
+
+
+module rtfpga_core$slots$0$lane$inv_det$lookup_square$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$lookup_square$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$partial_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_category
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_category$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_exact(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$partial_exact$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_exact
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_exact$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_exact$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$partial_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_exp
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_exp$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_quadratic(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [31:0] flop$d;
+    wire  [31:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$partial_quadratic$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_quadratic
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_quadratic$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_quadratic$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$partial_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_sig
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_sig$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_sum(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [27:0] d;
+    output reg  [27:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [27:0] flop$d;
+    wire  [27:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$inv_det$partial_sum$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_sum
+
+
+module rtfpga_core$slots$0$lane$inv_det$partial_sum$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [27:0] d;
+    output reg  [27:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 28'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$inv_det$partial_sum$flop
+
+
+module rtfpga_core$slots$0$lane$inv_det$quadratic(a,b,p);
+    
+    // Module arguments
+    input wire  [14:0] a;
+    input wire  [16:0] b;
+    output reg  [31:0] p;
+    
+    // Update code (custom)
+    always @(*) p = {17'd0, a} * {15'd0, b};
+endmodule // rtfpga_core$slots$0$lane$inv_det$quadratic
 
 
 module rtfpga_core$slots$0$lane$inv_det$result(clock,d,q);
@@ -30714,9072 +30433,829 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
 endmodule // rtfpga_core$slots$0$lane$inv_det$rounder
 
 
-module rtfpga_core$slots$0$lane$inv_det$rounding_category(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$rounding_category$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_category
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_category$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_category$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_exp(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$rounding_exp$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_exp
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_exp$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_exp$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_round(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  d;
-    output reg  q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  flop$d;
-    wire  flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$rounding_round$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_round
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_round$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_round$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_sig(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [23:0] d;
-    output reg  [23:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [23:0] flop$d;
-    wire  [23:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$rounding_sig$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_sig
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_sig$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [23:0] d;
-    output reg  [23:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 24'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_sig$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_sticky(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  d;
-    output reg  q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  flop$d;
-    wire  flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$rounding_sticky$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_sticky
-
-
-module rtfpga_core$slots$0$lane$inv_det$rounding_sticky$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$rounding_sticky$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$0(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$0$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$0
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$0$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$0$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$1(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$1$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$1
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$1$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$1$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$10(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$10$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$10
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$10$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$10$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$11(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$11$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$11
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$11$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$11$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$12(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$12$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$12
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$12$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$12$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$13(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b1;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$13$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$13
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$13$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$13$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$14(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$14$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$14
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$14$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$14$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$15(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$15$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$15
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$15$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$15$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$16(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$16$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$16
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$16$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$16$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$17(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$17$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$17
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$17$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$17$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$18(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$18$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$18
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$18$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$18$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$19(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$19$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$19
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$19$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$19$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$2(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$2$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$2
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$2$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$2$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$20(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$20$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$20
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$20$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$20$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$21(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$21$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$21
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$21$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$21$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$22(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$22$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$22
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$22$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$22$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$23(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$23$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$23
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$23$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$23$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$24(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$24$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$24
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$24$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$24$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$25(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$25$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$25
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$25$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$25$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$3(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$3$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$3
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$3$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$3$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$4(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$4$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$4
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$4$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$4$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$5(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$5$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$5
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$5$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$5$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$6(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$6$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$6
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$6$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$6$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$7(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$7$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$7
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$7$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$7$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$8(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$8$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$8
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$8$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$8$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$9(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [3:0] flop$d;
-    wire  [3:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_category$9$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$9
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_category$9$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_category$9$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$0(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$0$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$0
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$0$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$0$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$1(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$1$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$1
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$1$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$1$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$10(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$10$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$10
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$10$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$10$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$11(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$11$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$11
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$11$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$11$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$12(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$12$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$12
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$12$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$12$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$13(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b1;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$13$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$13
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$13$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$13$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$14(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$14$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$14
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$14$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$14$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$15(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$15$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$15
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$15$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$15$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$16(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$16$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$16
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$16$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$16$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$17(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$17$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$17
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$17$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$17$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$18(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$18$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$18
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$18$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$18$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$19(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$19$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$19
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$19$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$19$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$2(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$2$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$2
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$2$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$2$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$20(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$20$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$20
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$20$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$20$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$21(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$21$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$21
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$21$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$21$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$22(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$22$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$22
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$22$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$22$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$23(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$23$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$23
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$23$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$23$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$24(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$24$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$24
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$24$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$24$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$25(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$25$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$25
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$25$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$25$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$3(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$3$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$3
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$3$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$3$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$4(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$4$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$4
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$4$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$4$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$5(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$5$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$5
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$5$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$5$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$6(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$6$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$6
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$6$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$6$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$7(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$7$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$7
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$7$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$7$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$8(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$8$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$8
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$8$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$8$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$9(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_divisor$9$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$9
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_divisor$9$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_divisor$9$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$0(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$0$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$0
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$0$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$0$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$1(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$1$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$1
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$1$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$1$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$10(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$10$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$10
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$10$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$10$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$11(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$11$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$11
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$11$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$11$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$12(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$12$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$12
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$12$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$12$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$13(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b1;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$13$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$13
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$13$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$13$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$14(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$14$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$14
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$14$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$14$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$15(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$15$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$15
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$15$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$15$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$16(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$16$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$16
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$16$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$16$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$17(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$17$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$17
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$17$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$17$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$18(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$18$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$18
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$18$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$18$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$19(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$19$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$19
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$19$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$19$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$2(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$2$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$2
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$2$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$2$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$20(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$20$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$20
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$20$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$20$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$21(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$21$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$21
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$21$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$21$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$22(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$22$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$22
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$22$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$22$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$23(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$23$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$23
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$23$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$23$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$24(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$24$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$24
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$24$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$24$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$25(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$25$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$25
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$25$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$25$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$3(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$3$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$3
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$3$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$3$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$4(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$4$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$4
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$4$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$4$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$5(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$5$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$5
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$5$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$5$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$6(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$6$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$6
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$6$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$6$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$7(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$7$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$7
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$7$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$7$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$8(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$8$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$8
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$8$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$8$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$9(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [9:0] flop$d;
-    wire  [9:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_exp$9$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$9
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_exp$9$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [9:0] d;
-    output reg  [9:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 10'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_exp$9$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$0(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$0$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$0
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$0$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$0$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$1(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$1$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$1
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$1$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$1$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$10(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$10$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$10
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$10$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$10$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$11(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$11$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$11
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$11$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$11$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$12(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$12$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$12
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$12$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$12$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$13(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b1;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$13$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$13
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$13$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$13$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$14(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$14$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$14
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$14$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$14$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$15(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$15$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$15
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$15$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$15$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$16(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$16$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$16
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$16$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$16$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$17(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$17$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$17
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$17$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$17$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$18(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$18$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$18
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$18$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$18$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$19(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$19$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$19
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$19$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$19$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$2(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$2$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$2
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$2$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$2$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$20(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$20$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$20
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$20$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$20$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$21(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$21$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$21
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$21$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$21$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$22(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$22$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$22
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$22$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$22$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$23(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$23$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$23
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$23$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$23$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$24(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$24$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$24
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$24$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$24$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$25(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$25$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$25
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$25$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$25$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$3(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$3$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$3
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$3$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$3$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$4(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$4$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$4
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$4$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$4$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$5(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$5$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$5
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$5$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$5$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$6(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$6$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$6
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$6$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$6$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$7(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$7$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$7
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$7$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$7$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$8(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$8$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$8
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$8$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$8$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$9(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [25:0] flop$d;
-    wire  [25:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_quotient$9$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$9
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_quotient$9$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [25:0] d;
-    output reg  [25:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 26'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_quotient$9$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$0(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$0$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$0
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$0$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$0$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$1(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$1$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$1
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$1$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$1$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$10(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$10$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$10
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$10$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$10$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$11(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$11$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$11
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$11$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$11$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$12(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$12$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$12
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$12$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$12$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$13(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b1;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$13$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$13
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$13$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$13$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$14(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$14$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$14
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$14$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$14$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$15(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$15$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$15
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$15$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$15$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$16(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$16$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$16
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$16$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$16$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$17(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$17$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$17
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$17$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$17$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$18(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$18$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$18
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$18$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$18$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$19(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$19$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$19
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$19$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$19$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$2(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$2$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$2
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$2$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$2$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$20(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$20$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$20
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$20$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$20$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$21(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$21$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$21
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$21$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$21$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$22(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$22$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$22
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$22$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$22$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$23(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$23$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$23
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$23$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$23$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$24(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$24$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$24
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$24$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$24$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$25(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$25$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$25
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$25$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$25$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$3(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$3$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$3
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$3$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$3$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$4(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$4$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$4
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$4$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$4$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$5(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$5$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$5
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$5$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$5$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$6(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$6$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$6
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$6$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$6$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$7(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$7$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$7
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$7$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$7$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$8(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$8$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$8
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$8$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$8$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$9(clock,d,q);
-    
-    // Module arguments
-    input wire  clock;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    
-    // Constant declarations
-    localparam  registered = 1'b0;
-    
-    // Stub signals
-    reg  [24:0] flop$d;
-    wire  [24:0] flop$q;
-    reg  flop$clock;
-    
-    // Sub module instances
-    rtfpga_core$slots$0$lane$inv_det$row_remainder$9$flop flop(
-        .d(flop$d),
-        .q(flop$q),
-        .clock(flop$clock)
-    );
-    
-    // Update code
-    always @(*) begin
-        flop$clock = clock;
-        flop$d = d;
-        if (registered) begin
-            q = flop$q;
-        end
-        else begin
-            q = d;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$9
-
-
-module rtfpga_core$slots$0$lane$inv_det$row_remainder$9$flop(d,q,clock);
-    
-    // Module arguments
-    input wire  [24:0] d;
-    output reg  [24:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 25'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$inv_det$row_remainder$9$flop
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$0(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$0
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$1(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$1
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$10(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$10
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$11(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$11
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$12(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$12
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$13(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$13
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$14(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$14
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$15(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$15
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$16(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$16
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$17(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$17
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$18(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$18
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$19(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$19
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$2(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$2
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$20(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$20
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$21(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$21
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$22(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$22
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$23(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$23
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$24(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$24
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$25(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$25
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$3(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$3
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$4(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$4
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$5(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$5
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$6(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$6
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$7(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$7
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$8(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$8
-
-
-module rtfpga_core$slots$0$lane$inv_det$rows$9(remainder_in,quotient_in,divisor,remainder_out,quotient_out);
-    
-    // Module arguments
-    input wire  [24:0] remainder_in;
-    input wire  [25:0] quotient_in;
-    input wire  [24:0] divisor;
-    output reg  [24:0] remainder_out;
-    output reg  [25:0] quotient_out;
-    
-    // Constant declarations
-    localparam  one = 26'h1;
-    localparam  half = 8'hc;
-    localparam  low_mask = 25'hfff;
-    localparam  borrow = 25'h1;
-    
-    // Local signals
-    reg  [24:0] doubled;
-    reg  [24:0] low_doubled;
-    reg  [24:0] low_divisor;
-    reg  [24:0] high_doubled;
-    reg  [24:0] high_divisor;
-    reg  [24:0] low_difference;
-    reg  [24:0] high_difference;
-    reg  fits;
-    
-    // Update code
-    always @(*) begin
-        doubled = remainder_in << 32'h1;
-        low_doubled = doubled & low_mask;
-        low_divisor = divisor & low_mask;
-        high_doubled = doubled >> half;
-        high_divisor = divisor >> half;
-        if (low_doubled >= low_divisor) begin
-            fits = high_doubled >= high_divisor;
-        end
-        else begin
-            fits = high_doubled > high_divisor;
-        end
-        low_difference = (low_doubled - low_divisor) & low_mask;
-        if (low_doubled >= low_divisor) begin
-            high_difference = high_doubled - high_divisor;
-        end
-        else begin
-            high_difference = high_doubled - high_divisor - borrow;
-        end
-        if (fits) begin
-            remainder_out = (high_difference << half) | low_difference;
-            quotient_out = (quotient_in << 32'h1) | one;
-        end
-        else begin
-            remainder_out = doubled;
-            quotient_out = quotient_in << 32'h1;
-        end
-    end
-    
-endmodule // rtfpga_core$slots$0$lane$inv_det$rows$9
+module rtfpga_core$slots$0$lane$inv_det$square(a,b,p);
+    
+    // Module arguments
+    input wire  [14:0] a;
+    input wire  [14:0] b;
+    output reg  [29:0] p;
+    
+    // Update code (custom)
+    always @(*) p = {15'd0, a} * {15'd0, b};
+endmodule // rtfpga_core$slots$0$lane$inv_det$square
+
+
+module rtfpga_core$slots$0$lane$inv_det$table_a(address,data);
+    
+    // Module arguments
+    input wire  [7:0] address;
+    output reg  [27:0] data;
+    
+    // Update code (custom)
+    always @*
+    case (address)
+        8'h0: data = 28'hfffffff;
+      8'h1: data = 28'hfe01fdf;
+      8'h2: data = 28'hfc07f01;
+      8'h3: data = 28'hfa11ca9;
+      8'h4: data = 28'hf81f81f;
+      8'h5: data = 28'hf6310ac;
+      8'h6: data = 28'hf44659d;
+      8'h7: data = 28'hf25f643;
+      8'h8: data = 28'hf07c1f0;
+      8'h9: data = 28'hee9c7f7;
+      8'ha: data = 28'hecc07b2;
+      8'hb: data = 28'heae807a;
+      8'hc: data = 28'he9131ab;
+      8'hd: data = 28'he741aa5;
+      8'he: data = 28'he573ac8;
+      8'hf: data = 28'he3a9179;
+      8'h10: data = 28'he1e1e1d;
+      8'h11: data = 28'he01e01d;
+      8'h12: data = 28'hde5d6e3;
+      8'h13: data = 28'hdca01dc;
+      8'h14: data = 28'hdae6076;
+      8'h15: data = 28'hd92f222;
+      8'h16: data = 28'hd77b654;
+      8'h17: data = 28'hd5cac80;
+      8'h18: data = 28'hd41d41d;
+      8'h19: data = 28'hd272ca3;
+      8'h1a: data = 28'hd0cb58f;
+      8'h1b: data = 28'hcf26e5c;
+      8'h1c: data = 28'hcd85688;
+      8'h1d: data = 28'hcbe6d95;
+      8'h1e: data = 28'hca4b305;
+      8'h1f: data = 28'hc8b265a;
+      8'h20: data = 28'hc71c71c;
+      8'h21: data = 28'hc5894d0;
+      8'h22: data = 28'hc3f8f01;
+      8'h23: data = 28'hc26b539;
+      8'h24: data = 28'hc0e0703;
+      8'h25: data = 28'hbf583ee;
+      8'h26: data = 28'hbdd2b89;
+      8'h27: data = 28'hbc4fd65;
+      8'h28: data = 28'hbacf914;
+      8'h29: data = 28'hb951e2b;
+      8'h2a: data = 28'hb7d6c3d;
+      8'h2b: data = 28'hb65e2e3;
+      8'h2c: data = 28'hb4e81b4;
+      8'h2d: data = 28'hb37484a;
+      8'h2e: data = 28'hb203640;
+      8'h2f: data = 28'hb094b31;
+      8'h30: data = 28'haf286bc;
+      8'h31: data = 28'hadbe87f;
+      8'h32: data = 28'hac5701a;
+      8'h33: data = 28'haaf1d2f;
+      8'h34: data = 28'ha98ef60;
+      8'h35: data = 28'ha82e651;
+      8'h36: data = 28'ha6d01a6;
+      8'h37: data = 28'ha574107;
+      8'h38: data = 28'ha41a41a;
+      8'h39: data = 28'ha2c2a87;
+      8'h3a: data = 28'ha16d3f9;
+      8'h3b: data = 28'ha01a01a;
+      8'h3c: data = 28'h9ec8e95;
+      8'h3d: data = 28'h9d79f17;
+      8'h3e: data = 28'h9c2d14e;
+      8'h3f: data = 28'h9ae24ea;
+      8'h40: data = 28'h9999999;
+      8'h41: data = 28'h9852f0d;
+      8'h42: data = 28'h970e4f8;
+      8'h43: data = 28'h95cbb0b;
+      8'h44: data = 28'h948b0fc;
+      8'h45: data = 28'h934c67f;
+      8'h46: data = 28'h920fb49;
+      8'h47: data = 28'h90d4f12;
+      8'h48: data = 28'h8f9c18f;
+      8'h49: data = 28'h8e6527b;
+      8'h4a: data = 28'h8d3018d;
+      8'h4b: data = 28'h8bfce80;
+      8'h4c: data = 28'h8acb90f;
+      8'h4d: data = 28'h899c0f6;
+      8'h4e: data = 28'h886e5f0;
+      8'h4f: data = 28'h87427bc;
+      8'h50: data = 28'h8618618;
+      8'h51: data = 28'h84f00c2;
+      8'h52: data = 28'h83c977a;
+      8'h53: data = 28'h82a4a01;
+      8'h54: data = 28'h8181818;
+      8'h55: data = 28'h8060180;
+      8'h56: data = 28'h7f405fd;
+      8'h57: data = 28'h7e22551;
+      8'h58: data = 28'h7d05f41;
+      8'h59: data = 28'h7beb392;
+      8'h5a: data = 28'h7ad2209;
+      8'h5b: data = 28'h79baa6b;
+      8'h5c: data = 28'h78a4c81;
+      8'h5d: data = 28'h7790811;
+      8'h5e: data = 28'h767dce4;
+      8'h5f: data = 28'h756cac2;
+      8'h60: data = 28'h745d174;
+      8'h61: data = 28'h734f0c5;
+      8'h62: data = 28'h724287f;
+      8'h63: data = 28'h713786d;
+      8'h64: data = 28'h702e05c;
+      8'h65: data = 28'h6f26017;
+      8'h66: data = 28'h6e1f76b;
+      8'h67: data = 28'h6d1a626;
+      8'h68: data = 28'h6c16c17;
+      8'h69: data = 28'h6b1490a;
+      8'h6a: data = 28'h6a13cd1;
+      8'h6b: data = 28'h691473a;
+      8'h6c: data = 28'h6816816;
+      8'h6d: data = 28'h6719f36;
+      8'h6e: data = 28'h661ec6a;
+      8'h6f: data = 28'h6524f85;
+      8'h70: data = 28'h642c859;
+      8'h71: data = 28'h63356b8;
+      8'h72: data = 28'h623fa77;
+      8'h73: data = 28'h614b368;
+      8'h74: data = 28'h6058160;
+      8'h75: data = 28'h5f66434;
+      8'h76: data = 28'h5e75bb9;
+      8'h77: data = 28'h5d867c4;
+      8'h78: data = 28'h5c9882b;
+      8'h79: data = 28'h5babcc6;
+      8'h7a: data = 28'h5ac056b;
+      8'h7b: data = 28'h59d61f1;
+      8'h7c: data = 28'h58ed230;
+      8'h7d: data = 28'h5805601;
+      8'h7e: data = 28'h571ed3c;
+      8'h7f: data = 28'h56397ba;
+      8'h80: data = 28'h5555555;
+      8'h81: data = 28'h54725e7;
+      8'h82: data = 28'h5390949;
+      8'h83: data = 28'h52aff56;
+      8'h84: data = 28'h51d07eb;
+      8'h85: data = 28'h50f22e1;
+      8'h86: data = 28'h5015015;
+      8'h87: data = 28'h4f38f63;
+      8'h88: data = 28'h4e5e0a7;
+      8'h89: data = 28'h4d843bf;
+      8'h8a: data = 28'h4cab887;
+      8'h8b: data = 28'h4bd3edd;
+      8'h8c: data = 28'h4afd6a0;
+      8'h8d: data = 28'h4a27fad;
+      8'h8e: data = 28'h49539e4;
+      8'h8f: data = 28'h4880522;
+      8'h90: data = 28'h47ae148;
+      8'h91: data = 28'h46dce34;
+      8'h92: data = 28'h460cbc8;
+      8'h93: data = 28'h453d9e3;
+      8'h94: data = 28'h446f865;
+      8'h95: data = 28'h43a2731;
+      8'h96: data = 28'h42d6626;
+      8'h97: data = 28'h420b526;
+      8'h98: data = 28'h4141414;
+      8'h99: data = 28'h40782d1;
+      8'h9a: data = 28'h3fb0140;
+      8'h9b: data = 28'h3ee8f42;
+      8'h9c: data = 28'h3e22cbd;
+      8'h9d: data = 28'h3d5d992;
+      8'h9e: data = 28'h3c995a4;
+      8'h9f: data = 28'h3bd60d9;
+      8'ha0: data = 28'h3b13b14;
+      8'ha1: data = 28'h3a52438;
+      8'ha2: data = 28'h3991c2c;
+      8'ha3: data = 28'h38d22d3;
+      8'ha4: data = 28'h3813813;
+      8'ha5: data = 28'h3755bd2;
+      8'ha6: data = 28'h3698df4;
+      8'ha7: data = 28'h35dce5f;
+      8'ha8: data = 28'h3521cfb;
+      8'ha9: data = 28'h34679ad;
+      8'haa: data = 28'h33ae45b;
+      8'hab: data = 28'h32f5ced;
+      8'hac: data = 28'h323e34a;
+      8'had: data = 28'h3187759;
+      8'hae: data = 28'h30d1901;
+      8'haf: data = 28'h301c82b;
+      8'hb0: data = 28'h2f684be;
+      8'hb1: data = 28'h2eb4ea2;
+      8'hb2: data = 28'h2e025c0;
+      8'hb3: data = 28'h2d50a01;
+      8'hb4: data = 28'h2c9fb4d;
+      8'hb5: data = 28'h2bef98e;
+      8'hb6: data = 28'h2b404ad;
+      8'hb7: data = 28'h2a91c93;
+      8'hb8: data = 28'h29e412a;
+      8'hb9: data = 28'h293725c;
+      8'hba: data = 28'h288b012;
+      8'hbb: data = 28'h27dfa39;
+      8'hbc: data = 28'h27350b8;
+      8'hbd: data = 28'h268b37d;
+      8'hbe: data = 28'h25e2270;
+      8'hbf: data = 28'h2539d7e;
+      8'hc0: data = 28'h2492492;
+      8'hc1: data = 28'h23eb797;
+      8'hc2: data = 28'h2345679;
+      8'hc3: data = 28'h22a0123;
+      8'hc4: data = 28'h21fb781;
+      8'hc5: data = 28'h2157980;
+      8'hc6: data = 28'h20b470c;
+      8'hc7: data = 28'h2012012;
+      8'hc8: data = 28'h1f7047e;
+      8'hc9: data = 28'h1ecf43c;
+      8'hca: data = 28'h1e2ef3b;
+      8'hcb: data = 28'h1d8f567;
+      8'hcc: data = 28'h1cf06ae;
+      8'hcd: data = 28'h1c522fc;
+      8'hce: data = 28'h1bb4a40;
+      8'hcf: data = 28'h1b17c68;
+      8'hd0: data = 28'h1a7b961;
+      8'hd1: data = 28'h19e011a;
+      8'hd2: data = 28'h1945380;
+      8'hd3: data = 28'h18ab083;
+      8'hd4: data = 28'h1811811;
+      8'hd5: data = 28'h1778a19;
+      8'hd6: data = 28'h16e0689;
+      8'hd7: data = 28'h1648d51;
+      8'hd8: data = 28'h15b1e5f;
+      8'hd9: data = 28'h151b9a4;
+      8'hda: data = 28'h1485f0e;
+      8'hdb: data = 28'h13f0e8d;
+      8'hdc: data = 28'h135c811;
+      8'hdd: data = 28'h12c8b8a;
+      8'hde: data = 28'h12358e7;
+      8'hdf: data = 28'h11a301a;
+      8'he0: data = 28'h1111111;
+      8'he1: data = 28'h107fbbe;
+      8'he2: data = 28'hfef011;
+      8'he3: data = 28'hf5edfb;
+      8'he4: data = 28'hecf56c;
+      8'he5: data = 28'he40655;
+      8'he6: data = 28'hdb20a8;
+      8'he7: data = 28'hd24456;
+      8'he8: data = 28'hc97150;
+      8'he9: data = 28'hc0a786;
+      8'hea: data = 28'hb7e6ec;
+      8'heb: data = 28'haf2f72;
+      8'hec: data = 28'ha6810a;
+      8'hed: data = 28'h9ddba7;
+      8'hee: data = 28'h953f39;
+      8'hef: data = 28'h8cabb3;
+      8'hf0: data = 28'h842108;
+      8'hf1: data = 28'h7b9f2a;
+      8'hf2: data = 28'h73260a;
+      8'hf3: data = 28'h6ab59c;
+      8'hf4: data = 28'h624dd3;
+      8'hf5: data = 28'h59eea0;
+      8'hf6: data = 28'h5197f8;
+      8'hf7: data = 28'h4949cc;
+      8'hf8: data = 28'h410410;
+      8'hf9: data = 28'h38c6b7;
+      8'hfa: data = 28'h3091b5;
+      8'hfb: data = 28'h2864fc;
+      8'hfc: data = 28'h204081;
+      8'hfd: data = 28'h182436;
+      8'hfe: data = 28'h101010;
+      8'hff: data = 28'h80402;
+      default: data = 28'h0;
+    endcase
+            
+endmodule // rtfpga_core$slots$0$lane$inv_det$table_a
+
+
+module rtfpga_core$slots$0$lane$inv_det$table_b(address,data);
+    
+    // Module arguments
+    input wire  [7:0] address;
+    output reg  [22:0] data;
+    
+    // Update code (custom)
+    always @*
+    case (address)
+        8'h0: data = 23'h7fffb8;
+      8'h1: data = 23'h7f0138;
+      8'h2: data = 23'h7e05ab;
+      8'h3: data = 23'h7d0d06;
+      8'h4: data = 23'h7c173f;
+      8'h5: data = 23'h7b244a;
+      8'h6: data = 23'h7a341b;
+      8'h7: data = 23'h7946a8;
+      8'h8: data = 23'h785be7;
+      8'h9: data = 23'h7773cd;
+      8'ha: data = 23'h768e50;
+      8'hb: data = 23'h75ab65;
+      8'hc: data = 23'h74cb04;
+      8'hd: data = 23'h73ed22;
+      8'he: data = 23'h7311b6;
+      8'hf: data = 23'h7238b7;
+      8'h10: data = 23'h71621b;
+      8'h11: data = 23'h708dda;
+      8'h12: data = 23'h6fbbeb;
+      8'h13: data = 23'h6eec45;
+      8'h14: data = 23'h6e1edf;
+      8'h15: data = 23'h6d53b2;
+      8'h16: data = 23'h6c8ab6;
+      8'h17: data = 23'h6bc3e1;
+      8'h18: data = 23'h6aff2d;
+      8'h19: data = 23'h6a3c92;
+      8'h1a: data = 23'h697c08;
+      8'h1b: data = 23'h68bd87;
+      8'h1c: data = 23'h680109;
+      8'h1d: data = 23'h674685;
+      8'h1e: data = 23'h668df6;
+      8'h1f: data = 23'h65d753;
+      8'h20: data = 23'h652297;
+      8'h21: data = 23'h646fba;
+      8'h22: data = 23'h63beb7;
+      8'h23: data = 23'h630f85;
+      8'h24: data = 23'h62621f;
+      8'h25: data = 23'h61b680;
+      8'h26: data = 23'h610c9f;
+      8'h27: data = 23'h606478;
+      8'h28: data = 23'h5fbe05;
+      8'h29: data = 23'h5f1940;
+      8'h2a: data = 23'h5e7622;
+      8'h2b: data = 23'h5dd4a7;
+      8'h2c: data = 23'h5d34c8;
+      8'h2d: data = 23'h5c9681;
+      8'h2e: data = 23'h5bf9cb;
+      8'h2f: data = 23'h5b5ea2;
+      8'h30: data = 23'h5ac500;
+      8'h31: data = 23'h5a2ce1;
+      8'h32: data = 23'h59963e;
+      8'h33: data = 23'h590114;
+      8'h34: data = 23'h586d5d;
+      8'h35: data = 23'h57db15;
+      8'h36: data = 23'h574a37;
+      8'h37: data = 23'h56babd;
+      8'h38: data = 23'h562ca5;
+      8'h39: data = 23'h559fe8;
+      8'h3a: data = 23'h551483;
+      8'h3b: data = 23'h548a72;
+      8'h3c: data = 23'h5401af;
+      8'h3d: data = 23'h537a37;
+      8'h3e: data = 23'h52f406;
+      8'h3f: data = 23'h526f18;
+      8'h40: data = 23'h51eb68;
+      8'h41: data = 23'h5168f2;
+      8'h42: data = 23'h50e7b4;
+      8'h43: data = 23'h5067a8;
+      8'h44: data = 23'h4fe8cb;
+      8'h45: data = 23'h4f6b19;
+      8'h46: data = 23'h4eee8f;
+      8'h47: data = 23'h4e7329;
+      8'h48: data = 23'h4df8e4;
+      8'h49: data = 23'h4d7fbc;
+      8'h4a: data = 23'h4d07ad;
+      8'h4b: data = 23'h4c90b4;
+      8'h4c: data = 23'h4c1ace;
+      8'h4d: data = 23'h4ba5f8;
+      8'h4e: data = 23'h4b322e;
+      8'h4f: data = 23'h4abf6c;
+      8'h50: data = 23'h4a4db1;
+      8'h51: data = 23'h49dcf9;
+      8'h52: data = 23'h496d40;
+      8'h53: data = 23'h48fe84;
+      8'h54: data = 23'h4890c2;
+      8'h55: data = 23'h4823f7;
+      8'h56: data = 23'h47b81f;
+      8'h57: data = 23'h474d39;
+      8'h58: data = 23'h46e341;
+      8'h59: data = 23'h467a35;
+      8'h5a: data = 23'h461211;
+      8'h5b: data = 23'h45aad4;
+      8'h5c: data = 23'h45447a;
+      8'h5d: data = 23'h44df01;
+      8'h5e: data = 23'h447a66;
+      8'h5f: data = 23'h4416a7;
+      8'h60: data = 23'h43b3c2;
+      8'h61: data = 23'h4351b3;
+      8'h62: data = 23'h42f079;
+      8'h63: data = 23'h429010;
+      8'h64: data = 23'h423078;
+      8'h65: data = 23'h41d1ad;
+      8'h66: data = 23'h4173ad;
+      8'h67: data = 23'h411675;
+      8'h68: data = 23'h40ba05;
+      8'h69: data = 23'h405e58;
+      8'h6a: data = 23'h40036e;
+      8'h6b: data = 23'h3fa944;
+      8'h6c: data = 23'h3f4fd8;
+      8'h6d: data = 23'h3ef728;
+      8'h6e: data = 23'h3e9f32;
+      8'h6f: data = 23'h3e47f3;
+      8'h70: data = 23'h3df16b;
+      8'h71: data = 23'h3d9b96;
+      8'h72: data = 23'h3d4673;
+      8'h73: data = 23'h3cf200;
+      8'h74: data = 23'h3c9e3b;
+      8'h75: data = 23'h3c4b23;
+      8'h76: data = 23'h3bf8b5;
+      8'h77: data = 23'h3ba6ef;
+      8'h78: data = 23'h3b55d0;
+      8'h79: data = 23'h3b0557;
+      8'h7a: data = 23'h3ab580;
+      8'h7b: data = 23'h3a664b;
+      8'h7c: data = 23'h3a17b6;
+      8'h7d: data = 23'h39c9c0;
+      8'h7e: data = 23'h397c65;
+      8'h7f: data = 23'h392fa6;
+      8'h80: data = 23'h38e380;
+      8'h81: data = 23'h3897f2;
+      8'h82: data = 23'h384cfa;
+      8'h83: data = 23'h380296;
+      8'h84: data = 23'h37b8c5;
+      8'h85: data = 23'h376f86;
+      8'h86: data = 23'h3726d7;
+      8'h87: data = 23'h36deb7;
+      8'h88: data = 23'h369724;
+      8'h89: data = 23'h36501c;
+      8'h8a: data = 23'h36099f;
+      8'h8b: data = 23'h35c3aa;
+      8'h8c: data = 23'h357e3d;
+      8'h8d: data = 23'h353957;
+      8'h8e: data = 23'h34f4f5;
+      8'h8f: data = 23'h34b116;
+      8'h90: data = 23'h346dba;
+      8'h91: data = 23'h342ade;
+      8'h92: data = 23'h33e882;
+      8'h93: data = 23'h33a6a5;
+      8'h94: data = 23'h336544;
+      8'h95: data = 23'h33245f;
+      8'h96: data = 23'h32e3f5;
+      8'h97: data = 23'h32a404;
+      8'h98: data = 23'h32648c;
+      8'h99: data = 23'h32258a;
+      8'h9a: data = 23'h31e6fe;
+      8'h9b: data = 23'h31a8e8;
+      8'h9c: data = 23'h316b44;
+      8'h9d: data = 23'h312e13;
+      8'h9e: data = 23'h30f154;
+      8'h9f: data = 23'h30b505;
+      8'ha0: data = 23'h307925;
+      8'ha1: data = 23'h303db3;
+      8'ha2: data = 23'h3002ae;
+      8'ha3: data = 23'h2fc815;
+      8'ha4: data = 23'h2f8de8;
+      8'ha5: data = 23'h2f5424;
+      8'ha6: data = 23'h2f1ac9;
+      8'ha7: data = 23'h2ee1d7;
+      8'ha8: data = 23'h2ea94b;
+      8'ha9: data = 23'h2e7125;
+      8'haa: data = 23'h2e3965;
+      8'hab: data = 23'h2e0209;
+      8'hac: data = 23'h2dcb0f;
+      8'had: data = 23'h2d9479;
+      8'hae: data = 23'h2d5e43;
+      8'haf: data = 23'h2d286e;
+      8'hb0: data = 23'h2cf2f9;
+      8'hb1: data = 23'h2cbde2;
+      8'hb2: data = 23'h2c8929;
+      8'hb3: data = 23'h2c54ce;
+      8'hb4: data = 23'h2c20ce;
+      8'hb5: data = 23'h2bed29;
+      8'hb6: data = 23'h2bb9df;
+      8'hb7: data = 23'h2b86ef;
+      8'hb8: data = 23'h2b5458;
+      8'hb9: data = 23'h2b2218;
+      8'hba: data = 23'h2af030;
+      8'hbb: data = 23'h2abe9e;
+      8'hbc: data = 23'h2a8d62;
+      8'hbd: data = 23'h2a5c7a;
+      8'hbe: data = 23'h2a2be7;
+      8'hbf: data = 23'h29fba7;
+      8'hc0: data = 23'h29cbba;
+      8'hc1: data = 23'h299c1e;
+      8'hc2: data = 23'h296cd4;
+      8'hc3: data = 23'h293dda;
+      8'hc4: data = 23'h290f30;
+      8'hc5: data = 23'h28e0d5;
+      8'hc6: data = 23'h28b2c8;
+      8'hc7: data = 23'h288509;
+      8'hc8: data = 23'h285797;
+      8'hc9: data = 23'h282a71;
+      8'hca: data = 23'h27fd97;
+      8'hcb: data = 23'h27d108;
+      8'hcc: data = 23'h27a4c3;
+      8'hcd: data = 23'h2778c8;
+      8'hce: data = 23'h274d15;
+      8'hcf: data = 23'h2721ac;
+      8'hd0: data = 23'h26f68a;
+      8'hd1: data = 23'h26cbaf;
+      8'hd2: data = 23'h26a11a;
+      8'hd3: data = 23'h2676cc;
+      8'hd4: data = 23'h264cc3;
+      8'hd5: data = 23'h2622ff;
+      8'hd6: data = 23'h25f97f;
+      8'hd7: data = 23'h25d042;
+      8'hd8: data = 23'h25a749;
+      8'hd9: data = 23'h257e92;
+      8'hda: data = 23'h25561d;
+      8'hdb: data = 23'h252de9;
+      8'hdc: data = 23'h2505f6;
+      8'hdd: data = 23'h24de43;
+      8'hde: data = 23'h24b6d0;
+      8'hdf: data = 23'h248f9c;
+      8'he0: data = 23'h2468a7;
+      8'he1: data = 23'h2441f0;
+      8'he2: data = 23'h241b77;
+      8'he3: data = 23'h23f53a;
+      8'he4: data = 23'h23cf3b;
+      8'he5: data = 23'h23a977;
+      8'he6: data = 23'h2383ef;
+      8'he7: data = 23'h235ea2;
+      8'he8: data = 23'h233990;
+      8'he9: data = 23'h2314b8;
+      8'hea: data = 23'h22f01a;
+      8'heb: data = 23'h22cbb5;
+      8'hec: data = 23'h22a788;
+      8'hed: data = 23'h228394;
+      8'hee: data = 23'h225fd8;
+      8'hef: data = 23'h223c53;
+      8'hf0: data = 23'h221905;
+      8'hf1: data = 23'h21f5ee;
+      8'hf2: data = 23'h21d30d;
+      8'hf3: data = 23'h21b061;
+      8'hf4: data = 23'h218dea;
+      8'hf5: data = 23'h216ba9;
+      8'hf6: data = 23'h21499b;
+      8'hf7: data = 23'h2127c2;
+      8'hf8: data = 23'h21061c;
+      8'hf9: data = 23'h20e4a9;
+      8'hfa: data = 23'h20c369;
+      8'hfb: data = 23'h20a25b;
+      8'hfc: data = 23'h20817f;
+      8'hfd: data = 23'h2060d5;
+      8'hfe: data = 23'h20405c;
+      8'hff: data = 23'h202014;
+      default: data = 23'h0;
+    endcase
+            
+endmodule // rtfpga_core$slots$0$lane$inv_det$table_b
+
+
+module rtfpga_core$slots$0$lane$inv_det$table_c(address,data);
+    
+    // Module arguments
+    input wire  [7:0] address;
+    output reg  [14:0] data;
+    
+    // Update code (custom)
+    always @*
+    case (address)
+        8'h0: data = 15'b111111101000001;
+      8'h1: data = 15'b111110111000111;
+      8'h2: data = 15'b111110001010011;
+      8'h3: data = 15'b111101011100100;
+      8'h4: data = 15'b111100101111011;
+      8'h5: data = 15'b111100000011000;
+      8'h6: data = 15'b111011010111010;
+      8'h7: data = 15'b111010101100001;
+      8'h8: data = 15'b111010000001101;
+      8'h9: data = 15'b111001010111111;
+      8'ha: data = 15'b111000101110110;
+      8'hb: data = 15'b111000000110001;
+      8'hc: data = 15'b110111011110001;
+      8'hd: data = 15'b110110110110110;
+      8'he: data = 15'b110110010000000;
+      8'hf: data = 15'b110101101001110;
+      8'h10: data = 15'b110101000100001;
+      8'h11: data = 15'b110100011111000;
+      8'h12: data = 15'b110011111010011;
+      8'h13: data = 15'b110011010110011;
+      8'h14: data = 15'b110010110010111;
+      8'h15: data = 15'b110010001111111;
+      8'h16: data = 15'b110001101101010;
+      8'h17: data = 15'b110001001011010;
+      8'h18: data = 15'b110000101001110;
+      8'h19: data = 15'b110000001000101;
+      8'h1a: data = 15'b101111101000001;
+      8'h1b: data = 15'b101111000111111;
+      8'h1c: data = 15'b101110101000010;
+      8'h1d: data = 15'b101110001001000;
+      8'h1e: data = 15'b101101101010001;
+      8'h1f: data = 15'b101101001011110;
+      8'h20: data = 15'b101100101101111;
+      8'h21: data = 15'b101100010000010;
+      8'h22: data = 15'b101011110011001;
+      8'h23: data = 15'b101011010110011;
+      8'h24: data = 15'b101010111010000;
+      8'h25: data = 15'b101010011110000;
+      8'h26: data = 15'b101010000010100;
+      8'h27: data = 15'b101001100111010;
+      8'h28: data = 15'b101001001100011;
+      8'h29: data = 15'b101000110001111;
+      8'h2a: data = 15'b101000010111110;
+      8'h2b: data = 15'b100111111110000;
+      8'h2c: data = 15'b100111100100100;
+      8'h2d: data = 15'b100111001011011;
+      8'h2e: data = 15'b100110110010101;
+      8'h2f: data = 15'b100110011010001;
+      8'h30: data = 15'b100110000010000;
+      8'h31: data = 15'b100101101010001;
+      8'h32: data = 15'b100101010010101;
+      8'h33: data = 15'b100100111011100;
+      8'h34: data = 15'b100100100100100;
+      8'h35: data = 15'b100100001101111;
+      8'h36: data = 15'b100011110111101;
+      8'h37: data = 15'b100011100001100;
+      8'h38: data = 15'b100011001011110;
+      8'h39: data = 15'b100010110110011;
+      8'h3a: data = 15'b100010100001001;
+      8'h3b: data = 15'b100010001100001;
+      8'h3c: data = 15'b100001110111100;
+      8'h3d: data = 15'b100001100011001;
+      8'h3e: data = 15'b100001001110111;
+      8'h3f: data = 15'b100000111011000;
+      8'h40: data = 15'b100000100111011;
+      8'h41: data = 15'b100000010100000;
+      8'h42: data = 15'b100000000000110;
+      8'h43: data = 15'b11111101101111;
+      8'h44: data = 15'b11111011011001;
+      8'h45: data = 15'b11111001000101;
+      8'h46: data = 15'b11110110110011;
+      8'h47: data = 15'b11110100100011;
+      8'h48: data = 15'b11110010010100;
+      8'h49: data = 15'b11110000001000;
+      8'h4a: data = 15'b11101101111100;
+      8'h4b: data = 15'b11101011110011;
+      8'h4c: data = 15'b11101001101011;
+      8'h4d: data = 15'b11100111100101;
+      8'h4e: data = 15'b11100101100001;
+      8'h4f: data = 15'b11100011011110;
+      8'h50: data = 15'b11100001011100;
+      8'h51: data = 15'b11011111011100;
+      8'h52: data = 15'b11011101011110;
+      8'h53: data = 15'b11011011100001;
+      8'h54: data = 15'b11011001100110;
+      8'h55: data = 15'b11010111101100;
+      8'h56: data = 15'b11010101110011;
+      8'h57: data = 15'b11010011111100;
+      8'h58: data = 15'b11010010000110;
+      8'h59: data = 15'b11010000010010;
+      8'h5a: data = 15'b11001110011111;
+      8'h5b: data = 15'b11001100101101;
+      8'h5c: data = 15'b11001010111101;
+      8'h5d: data = 15'b11001001001101;
+      8'h5e: data = 15'b11000111100000;
+      8'h5f: data = 15'b11000101110011;
+      8'h60: data = 15'b11000100000111;
+      8'h61: data = 15'b11000010011101;
+      8'h62: data = 15'b11000000110100;
+      8'h63: data = 15'b10111111001100;
+      8'h64: data = 15'b10111101100110;
+      8'h65: data = 15'b10111100000000;
+      8'h66: data = 15'b10111010011100;
+      8'h67: data = 15'b10111000111000;
+      8'h68: data = 15'b10110111010110;
+      8'h69: data = 15'b10110101110101;
+      8'h6a: data = 15'b10110100010101;
+      8'h6b: data = 15'b10110010110110;
+      8'h6c: data = 15'b10110001011000;
+      8'h6d: data = 15'b10101111111011;
+      8'h6e: data = 15'b10101110011111;
+      8'h6f: data = 15'b10101101000100;
+      8'h70: data = 15'b10101011101010;
+      8'h71: data = 15'b10101010010010;
+      8'h72: data = 15'b10101000111010;
+      8'h73: data = 15'b10100111100010;
+      8'h74: data = 15'b10100110001100;
+      8'h75: data = 15'b10100100110111;
+      8'h76: data = 15'b10100011100011;
+      8'h77: data = 15'b10100010001111;
+      8'h78: data = 15'b10100000111101;
+      8'h79: data = 15'b10011111101011;
+      8'h7a: data = 15'b10011110011010;
+      8'h7b: data = 15'b10011101001011;
+      8'h7c: data = 15'b10011011111011;
+      8'h7d: data = 15'b10011010101101;
+      8'h7e: data = 15'b10011001100000;
+      8'h7f: data = 15'b10011000010011;
+      8'h80: data = 15'b10010111000111;
+      8'h81: data = 15'b10010101111100;
+      8'h82: data = 15'b10010100110010;
+      8'h83: data = 15'b10010011101000;
+      8'h84: data = 15'b10010010100000;
+      8'h85: data = 15'b10010001011000;
+      8'h86: data = 15'b10010000010000;
+      8'h87: data = 15'b10001111001010;
+      8'h88: data = 15'b10001110000100;
+      8'h89: data = 15'b10001100111111;
+      8'h8a: data = 15'b10001011111010;
+      8'h8b: data = 15'b10001010110111;
+      8'h8c: data = 15'b10001001110011;
+      8'h8d: data = 15'b10001000110001;
+      8'h8e: data = 15'b10000111101111;
+      8'h8f: data = 15'b10000110101110;
+      8'h90: data = 15'b10000101101110;
+      8'h91: data = 15'b10000100101110;
+      8'h92: data = 15'b10000011101111;
+      8'h93: data = 15'b10000010110000;
+      8'h94: data = 15'b10000001110010;
+      8'h95: data = 15'b10000000110101;
+      8'h96: data = 15'b1111111111000;
+      8'h97: data = 15'b1111110111100;
+      8'h98: data = 15'b1111110000001;
+      8'h99: data = 15'b1111101000110;
+      8'h9a: data = 15'b1111100001100;
+      8'h9b: data = 15'b1111011010010;
+      8'h9c: data = 15'b1111010011000;
+      8'h9d: data = 15'b1111001100000;
+      8'h9e: data = 15'b1111000101000;
+      8'h9f: data = 15'b1110111110000;
+      8'ha0: data = 15'b1110110111001;
+      8'ha1: data = 15'b1110110000010;
+      8'ha2: data = 15'b1110101001100;
+      8'ha3: data = 15'b1110100010111;
+      8'ha4: data = 15'b1110011100010;
+      8'ha5: data = 15'b1110010101101;
+      8'ha6: data = 15'b1110001111001;
+      8'ha7: data = 15'b1110001000110;
+      8'ha8: data = 15'b1110000010011;
+      8'ha9: data = 15'b1101111100000;
+      8'haa: data = 15'b1101110101110;
+      8'hab: data = 15'b1101101111101;
+      8'hac: data = 15'b1101101001011;
+      8'had: data = 15'b1101100011011;
+      8'hae: data = 15'b1101011101011;
+      8'haf: data = 15'b1101010111011;
+      8'hb0: data = 15'b1101010001011;
+      8'hb1: data = 15'b1101001011100;
+      8'hb2: data = 15'b1101000101110;
+      8'hb3: data = 15'b1101000000000;
+      8'hb4: data = 15'b1100111010010;
+      8'hb5: data = 15'b1100110100101;
+      8'hb6: data = 15'b1100101111000;
+      8'hb7: data = 15'b1100101001100;
+      8'hb8: data = 15'b1100100100000;
+      8'hb9: data = 15'b1100011110100;
+      8'hba: data = 15'b1100011001001;
+      8'hbb: data = 15'b1100010011110;
+      8'hbc: data = 15'b1100001110100;
+      8'hbd: data = 15'b1100001001010;
+      8'hbe: data = 15'b1100000100000;
+      8'hbf: data = 15'b1011111110111;
+      8'hc0: data = 15'b1011111001110;
+      8'hc1: data = 15'b1011110100101;
+      8'hc2: data = 15'b1011101111101;
+      8'hc3: data = 15'b1011101010101;
+      8'hc4: data = 15'b1011100101110;
+      8'hc5: data = 15'b1011100000110;
+      8'hc6: data = 15'b1011011100000;
+      8'hc7: data = 15'b1011010111001;
+      8'hc8: data = 15'b1011010010011;
+      8'hc9: data = 15'b1011001101101;
+      8'hca: data = 15'b1011001001000;
+      8'hcb: data = 15'b1011000100010;
+      8'hcc: data = 15'b1010111111110;
+      8'hcd: data = 15'b1010111011001;
+      8'hce: data = 15'b1010110110101;
+      8'hcf: data = 15'b1010110010001;
+      8'hd0: data = 15'b1010101101101;
+      8'hd1: data = 15'b1010101001010;
+      8'hd2: data = 15'b1010100100111;
+      8'hd3: data = 15'b1010100000101;
+      8'hd4: data = 15'b1010011100010;
+      8'hd5: data = 15'b1010011000000;
+      8'hd6: data = 15'b1010010011110;
+      8'hd7: data = 15'b1010001111101;
+      8'hd8: data = 15'b1010001011100;
+      8'hd9: data = 15'b1010000111011;
+      8'hda: data = 15'b1010000011010;
+      8'hdb: data = 15'b1001111111010;
+      8'hdc: data = 15'b1001111011001;
+      8'hdd: data = 15'b1001110111010;
+      8'hde: data = 15'b1001110011010;
+      8'hdf: data = 15'b1001101111011;
+      8'he0: data = 15'b1001101011100;
+      8'he1: data = 15'b1001100111101;
+      8'he2: data = 15'b1001100011110;
+      8'he3: data = 15'b1001100000000;
+      8'he4: data = 15'b1001011100010;
+      8'he5: data = 15'b1001011000100;
+      8'he6: data = 15'b1001010100110;
+      8'he7: data = 15'b1001010001001;
+      8'he8: data = 15'b1001001101100;
+      8'he9: data = 15'b1001001001111;
+      8'hea: data = 15'b1001000110011;
+      8'heb: data = 15'b1001000010110;
+      8'hec: data = 15'b1000111111010;
+      8'hed: data = 15'b1000111011110;
+      8'hee: data = 15'b1000111000010;
+      8'hef: data = 15'b1000110100111;
+      8'hf0: data = 15'b1000110001100;
+      8'hf1: data = 15'b1000101110001;
+      8'hf2: data = 15'b1000101010110;
+      8'hf3: data = 15'b1000100111011;
+      8'hf4: data = 15'b1000100100001;
+      8'hf5: data = 15'b1000100000111;
+      8'hf6: data = 15'b1000011101101;
+      8'hf7: data = 15'b1000011010011;
+      8'hf8: data = 15'b1000010111001;
+      8'hf9: data = 15'b1000010100000;
+      8'hfa: data = 15'b1000010000111;
+      8'hfb: data = 15'b1000001101110;
+      8'hfc: data = 15'b1000001010101;
+      8'hfd: data = 15'b1000000111101;
+      8'hfe: data = 15'b1000000100100;
+      8'hff: data = 15'b1000000001100;
+      default: data = 15'b0;
+    endcase
+            
+endmodule // rtfpga_core$slots$0$lane$inv_det$table_c
 
 
 module rtfpga_core$slots$0$lane$inv_det$unpack(x,sign,exp,sig,zero,inf,nan);

@@ -32,7 +32,12 @@ macro_rules! operator_table {
             use $crate::verilog::operator_verilog;
             let max = max_stages(op);
             if stages > max {
-                return Err($crate::operator::OperatorError::TooManyStages { format: NAME.to_string(), op, stages, max });
+                return Err($crate::operator::OperatorError::TooManyStages {
+                    format: NAME.to_string(),
+                    op,
+                    stages,
+                    max,
+                });
             }
             Ok(match op {
                 Op::Add => operator_verilog::<Add>(stages),
@@ -65,8 +70,12 @@ macro_rules! float_format {
             pub type Add = FloatAdd<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $e + 2 }, { $m + 4 }, { $m + 5 }, false>;
             pub type Sub = FloatAdd<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $e + 2 }, { $m + 4 }, { $m + 5 }, true>;
             pub type Mul = FloatMul<$e, $m, { 1 + $e + $m }, { $m + 1 }, { 2 * $m + 2 }, { $e + 2 }>;
-            // Recip: R = M+2 (remainder), Q = M+3 (quotient bits).
-            pub type Recip = FloatRecip<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $e + 2 }, { $m + 2 }, { $m + 3 }>;
+            // Recip: the table and product widths of `float::recip` (its docs).
+            pub type Recip = FloatRecip<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $e + 2 },
+                { recip::index_bits($m) }, { recip::d_bits($m) }, { recip::y_bits($m) },
+                { recip::b_bits($m) }, { recip::c_bits($m) }, { 2 * recip::d_bits($m) },
+                { recip::square_bits($m) }, { recip::b_bits($m) + recip::d_bits($m) },
+                { recip::c_bits($m) + recip::square_bits($m) }, { 2 * $m + 2 }>;
             pub type Lt = FloatLt<$e, $m, { 1 + $e + $m }, { $m + 1 }>;
             // FromF32: X = 10, the signed range of fp32's exponent.
             pub type FromF32 = FloatFromF32<$e, $m, { 1 + $e + $m }, { $m + 1 }, 10>;
@@ -100,8 +109,22 @@ crate::fixed::fixed_format!(fx32_20_rnd_sat, int = 20, frac = 12, Rnd, Sat);
 macro_rules! with_formats {
     ($callback:ident) => {
         $callback!(
-            fp32, fp24, bf16, fp16, fx16_10, fx16_10_rnd_sat, fx16_13, fx16_13_rnd_sat, fx21_12, fx21_12_rnd_sat,
-            fx25_10, fx25_10_rnd_sat, fx32_16, fx32_16_rnd_sat, fx32_20, fx32_20_rnd_sat,
+            fp32,
+            fp24,
+            bf16,
+            fp16,
+            fx16_10,
+            fx16_10_rnd_sat,
+            fx16_13,
+            fx16_13_rnd_sat,
+            fx21_12,
+            fx21_12_rnd_sat,
+            fx25_10,
+            fx25_10_rnd_sat,
+            fx32_16,
+            fx32_16_rnd_sat,
+            fx32_20,
+            fx32_20_rnd_sat,
         );
     };
 }

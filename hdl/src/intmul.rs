@@ -17,7 +17,11 @@ pub struct IntMul<const A: usize, const B: usize, const P: usize> {
 
 impl<const A: usize, const B: usize, const P: usize> Default for IntMul<A, B, P> {
     fn default() -> Self {
-        assert_eq!(P, A + B, "IntMul<{A}, {B}, {P}>: the product needs A + B bits");
+        assert_eq!(
+            P,
+            A + B,
+            "IntMul<{A}, {B}, {P}>: the product needs A + B bits"
+        );
         assert!(P <= 128, "IntMul products are at most 128 bits");
         Self {
             a: Default::default(),
@@ -59,7 +63,12 @@ mod tests {
     fn product_matches_u128() {
         let mut m = IntMul::<24, 24, 48>::default();
         m.connect_all();
-        for (a, b) in [(0u64, 0u64), (1, 0xff_ffff), (0xff_ffff, 0xff_ffff), (0x80_0001, 0x7f_fff3)] {
+        for (a, b) in [
+            (0u64, 0u64),
+            (1, 0xff_ffff),
+            (0xff_ffff, 0xff_ffff),
+            (0x80_0001, 0x7f_fff3),
+        ] {
             m.a.next = a.into();
             m.b.next = b.into();
             assert!(simulate(&mut m, 10));
@@ -77,6 +86,9 @@ mod tests {
         assert!(simulate(&mut m, 10));
         let p = (a as u128) * (b as u128);
         assert_eq!(m.p.val().get_bits::<16>(64).to_u64() as u128, p >> 64);
-        assert_eq!(m.p.val().get_bits::<64>(0).to_u64() as u128, p & u64::MAX as u128);
+        assert_eq!(
+            m.p.val().get_bits::<64>(0).to_u64() as u128,
+            p & u64::MAX as u128
+        );
     }
 }

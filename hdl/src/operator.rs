@@ -22,7 +22,15 @@ pub enum Op {
 }
 
 impl Op {
-    pub const ALL: [Op; 7] = [Op::Add, Op::Sub, Op::Mul, Op::Recip, Op::Lt, Op::FromF32, Op::ToF32];
+    pub const ALL: [Op; 7] = [
+        Op::Add,
+        Op::Sub,
+        Op::Mul,
+        Op::Recip,
+        Op::Lt,
+        Op::FromF32,
+        Op::ToF32,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -50,13 +58,21 @@ pub enum OperatorError {
     #[error("format `{0}` has no rust-hdl operators; see `hdl::formats`")]
     UnknownFormat(String),
     #[error("{format} {op}: {stages} pipeline stages requested, at most {max}")]
-    TooManyStages { format: String, op: Op, stages: usize, max: usize },
+    TooManyStages {
+        format: String,
+        op: Op,
+        stages: usize,
+        max: usize,
+    },
 }
 
 impl FromStr for Op {
     type Err = OperatorError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Op::ALL.into_iter().find(|op| op.name() == s).ok_or_else(|| OperatorError::UnknownOp(s.to_string()))
+        Op::ALL
+            .into_iter()
+            .find(|op| op.name() == s)
+            .ok_or_else(|| OperatorError::UnknownOp(s.to_string()))
     }
 }
 

@@ -12,28 +12,30 @@ use rand::{rngs::StdRng, Rng, SeedableRng};
 /// Edge-case operands of a float format: zeros, subnormals, min/max normal, Inf, NaN,
 /// one and its neighbours, values whose sums/products land on rounding halfway points.
 fn edge_values(format: Format) -> Vec<u64> {
-    let Format::Float { exp, man } = format else { panic!("float formats only") };
+    let Format::Float { exp, man } = format else {
+        panic!("float formats only")
+    };
     let sign = 1u64 << (exp + man);
     let bias = (1u64 << (exp - 1)) - 1;
     let inf = ((1u64 << exp) - 1) << man;
     let one = bias << man;
     let mags = [
         0,
-        1,                          // smallest subnormal
-        (1 << man) - 1,             // largest subnormal
-        1 << man,                   // smallest normal
+        1,              // smallest subnormal
+        (1 << man) - 1, // largest subnormal
+        1 << man,       // smallest normal
         (1 << man) | 1,
-        inf - 1,                    // largest finite
-        inf - (1 << man),           // largest binade, fraction 0
+        inf - 1,          // largest finite
+        inf - (1 << man), // largest binade, fraction 0
         inf,
-        inf | 1,                    // a NaN that is not canonical
-        inf | (1 << (man - 1)),     // canonical NaN
+        inf | 1,                // a NaN that is not canonical
+        inf | (1 << (man - 1)), // canonical NaN
         one,
         one + 1,
         one - 1,
-        one | (1 << (man - 1)),     // 1.5
-        one + (1 << man),           // 2
-        one | ((1 << man) - 1),     // 2 - ulp
+        one | (1 << (man - 1)),         // 1.5
+        one + (1 << man),               // 2
+        one | ((1 << man) - 1),         // 2 - ulp
         (bias + man as u64 + 1) << man, // 2^(M+1): adding 1 is a tie
         (bias + man as u64 + 2) << man | 1,
         ((bias / 2) << man) | 3,
@@ -47,17 +49,29 @@ fn edge_values(format: Format) -> Vec<u64> {
 fn vectors(format: Format, random: usize, seed: u64) -> Vec<(u64, u64)> {
     let width = format.width();
     let mask = (1u64 << width) - 1;
-    let Format::Float { man, .. } = format else { unreachable!() };
+    let Format::Float { man, .. } = format else {
+        unreachable!()
+    };
     let edges = edge_values(format);
-    let mut v: Vec<(u64, u64)> = edges.iter().flat_map(|&a| edges.iter().map(move |&b| (a, b))).collect();
+    let mut v: Vec<(u64, u64)> = edges
+        .iter()
+        .flat_map(|&a| edges.iter().map(move |&b| (a, b)))
+        .collect();
     let mut rng = StdRng::seed_from_u64(seed);
     for i in 0..random {
         let a = rng.gen::<u64>() & mask;
         let b = match i % 5 {
             0 => rng.gen::<u64>() & mask,
-            1 => (a ^ (rng.gen::<u64>() & ((1 << man) - 1)) ^ (rng.gen_range(0..2) << (width - 1))) & mask,
+            1 => {
+                (a ^ (rng.gen::<u64>() & ((1 << man) - 1)) ^ (rng.gen_range(0..2) << (width - 1)))
+                    & mask
+            }
             2 => (a ^ (1 << (width - 1))) & mask,
-            3 => (a.wrapping_add(rng.gen_range(0..4u64) << man) ^ (rng.gen_range(0..2) << (width - 1))) & mask,
+            3 => {
+                (a.wrapping_add(rng.gen_range(0..4u64) << man)
+                    ^ (rng.gen_range(0..2) << (width - 1)))
+                    & mask
+            }
             _ => {
                 // Exponent sum close to the bias: products near the overflow and underflow limits.
                 let e = (a >> man) & ((1 << (width - 1 - man)) - 1);
@@ -75,14 +89,23 @@ fn vectors(format: Format, random: usize, seed: u64) -> Vec<(u64, u64)> {
 fn singles(format: Format, random: usize, seed: u64) -> Vec<(u64, u64)> {
     let edges = edge_values(format);
     let pairs = vectors(format, random, seed);
-    let randoms = pairs[edges.len() * edges.len()..].iter().flat_map(|&(a, b)| [a, b]);
-    edges.iter().copied().chain(randoms).map(|a| (a, 0)).collect()
+    let randoms = pairs[edges.len() * edges.len()..]
+        .iter()
+        .flat_map(|&(a, b)| [a, b]);
+    edges
+        .iter()
+        .copied()
+        .chain(randoms)
+        .map(|a| (a, 0))
+        .collect()
 }
 
 /// fp32 inputs for the conversion to `format`: fp32's own vectors, and the format's values
 /// widened to fp32 with random dropped bits, exact halfway points and halfway ± 1 ulp.
 fn fp32_inputs(format: Format, random: usize, seed: u64) -> Vec<(u64, u64)> {
-    let Format::Float { man, .. } = format else { unreachable!() };
+    let Format::Float { man, .. } = format else {
+        unreachable!()
+    };
     let dropped = 23 - man;
     let mut rng = StdRng::seed_from_u64(seed);
     let mut v = singles(fp32::FORMAT, random / 2, seed);
@@ -108,7 +131,10 @@ fn check<T: Operator>(what: &str, vectors: &[(u64, u64)], model: impl Fn(u64, u6
         let out = simulate_operator::<T>(stages, vectors);
         for (&(a, b), &y) in vectors.iter().zip(&out) {
             let want = model(a, b);
-            assert_eq!(y, want, "{what} stages={stages}: a={a:#x} b={b:#x} gave {y:#x}, model {want:#x}");
+            assert_eq!(
+                y, want,
+                "{what} stages={stages}: a={a:#x} b={b:#x} gave {y:#x}, model {want:#x}"
+            );
         }
     }
 }
@@ -154,6 +180,28 @@ fn float_operators_match_the_model_many_vectors() {
     check_all_formats(20_000, 2);
 }
 
+/// The table reciprocal's approximation must hold on every segment: every bf16 and fp16 bit
+/// pattern (each fraction at every exponent, both signs, the specials), at 0 and max stages.
+#[test]
+fn recip_of_every_half_precision_input_matches_the_model() {
+    let all = |width: usize| (0..1u64 << width).map(|a| (a, 0)).collect::<Vec<_>>();
+    let f = bf16::FORMAT;
+    for stages in [0, bf16::max_stages(Op::Recip)] {
+        let v = all(16);
+        for (&(a, _), y) in v.iter().zip(simulate_operator::<bf16::Recip>(stages, &v)) {
+            assert_eq!(y, f.recip(a), "bf16 recip stages={stages}: a={a:#x}");
+        }
+    }
+    let f = fp16::FORMAT;
+    let v = all(16);
+    for (&(a, _), y) in v.iter().zip(simulate_operator::<fp16::Recip>(
+        fp16::max_stages(Op::Recip),
+        &v,
+    )) {
+        assert_eq!(y, f.recip(a), "fp16 recip: a={a:#x}");
+    }
+}
+
 /// Runs `verilator --lint-only -Wall` (with the documented waivers) on generated Verilog.
 fn verilator_lint(verilog: &str) -> Result<(), String> {
     let dir = tempfile::tempdir().unwrap();
@@ -169,7 +217,11 @@ fn verilator_lint(verilog: &str) -> Result<(), String> {
     if out.status.success() {
         Ok(())
     } else {
-        Err(String::from_utf8_lossy(&out.stderr).lines().take(20).collect::<Vec<_>>().join("\n"))
+        Err(String::from_utf8_lossy(&out.stderr)
+            .lines()
+            .take(20)
+            .collect::<Vec<_>>()
+            .join("\n"))
     }
 }
 
@@ -192,8 +244,14 @@ fn every_operator_passes_verilator_lint() {
 #[test]
 fn stages_beyond_the_maximum_are_an_error() {
     let max = formats::max_stages("fp16", Op::Mul).unwrap();
-    assert!(matches!(formats::rtl("fp16", Op::Mul, max + 1), Err(OperatorError::TooManyStages { .. })));
-    assert!(matches!(formats::rtl("fp8", Op::Mul, 0), Err(OperatorError::UnknownFormat(_))));
+    assert!(matches!(
+        formats::rtl("fp16", Op::Mul, max + 1),
+        Err(OperatorError::TooManyStages { .. })
+    ));
+    assert!(matches!(
+        formats::rtl("fp8", Op::Mul, 0),
+        Err(OperatorError::UnknownFormat(_))
+    ));
     assert_eq!("recip".parse::<Op>(), Ok(Op::Recip));
     assert!("div".parse::<Op>().is_err());
 }
@@ -204,10 +262,22 @@ fn stages_beyond_the_maximum_are_an_error() {
 fn fp32_mul_synthesises_onto_dsp_slices() {
     for stages in [0, fp32::max_stages(Op::Mul)] {
         let rtl = fp32::rtl(Op::Mul, stages).unwrap();
-        let report = synthesize(&rtl.verilog, TOP, &SynthOptions::default()).expect("yosys synth_xilinx");
-        eprintln!("fp32 mul stages={stages}: {} LUT {} FF {} DSP48E1 {} CARRY4", report.lut, report.ff, report.dsp48e1, report.carry4);
-        assert!(report.dsp48e1 >= 1 && report.dsp48e1 <= 3, "fp32 mul uses {} DSP48E1", report.dsp48e1);
-        assert!(report.lut < 1000, "fp32 mul uses {} LUTs: the multiplier went into fabric", report.lut);
+        let report =
+            synthesize(&rtl.verilog, TOP, &SynthOptions::default()).expect("yosys synth_xilinx");
+        eprintln!(
+            "fp32 mul stages={stages}: {} LUT {} FF {} DSP48E1 {} CARRY4",
+            report.lut, report.ff, report.dsp48e1, report.carry4
+        );
+        assert!(
+            report.dsp48e1 >= 1 && report.dsp48e1 <= 3,
+            "fp32 mul uses {} DSP48E1",
+            report.dsp48e1
+        );
+        assert!(
+            report.lut < 1000,
+            "fp32 mul uses {} LUTs: the multiplier went into fabric",
+            report.lut
+        );
     }
 }
 
@@ -222,8 +292,12 @@ fn synthesis_table() {
             let max = formats::max_stages(format, op).unwrap();
             for stages in [0, max] {
                 let rtl = formats::rtl(format, op, stages).unwrap();
-                let r = synthesize(&rtl.verilog, TOP, &SynthOptions::default()).expect("yosys synth_xilinx");
-                println!("| {format} | {op} | {stages} | {} | {} | {} | {} | {} |", r.lut, r.ff, r.dsp48e1, r.carry4, r.logic_depth);
+                let r = synthesize(&rtl.verilog, TOP, &SynthOptions::default())
+                    .expect("yosys synth_xilinx");
+                println!(
+                    "| {format} | {op} | {stages} | {} | {} | {} | {} | {} |",
+                    r.lut, r.ff, r.dsp48e1, r.carry4, r.logic_depth
+                );
                 if op == Op::Mul && *format == "fp32" {
                     assert!(r.dsp48e1 <= 3);
                 }

@@ -253,7 +253,11 @@ fn latency_table() {
 fn lane_resources() {
     use hdl::synth::{synthesize, SynthOptions, SynthReport};
     let lanes = [
-        (fp32::NAME, fp32::mt_lane_verilog as fn(usize) -> String, &[1, 2, 4, 6][..]),
+        (
+            fp32::NAME,
+            fp32::mt_lane_verilog as fn(usize) -> String,
+            &[1, 2, 4, 6][..],
+        ),
         (fp16::NAME, fp16::mt_lane_verilog, &[1][..]),
     ];
     println!("{}", SynthReport::markdown_header());

@@ -1,10 +1,11 @@
 //! The rust-hdl operators, Verilated, streamed one vector per cycle (II = 1) and checked bit
 //! for bit against `hw_model`, at 0 and at the maximum number of pipeline stages.
-//! Default run: 50k vectors per case, fp32 multiply, fp16 add and fx32_16_rnd_sat multiply.
+//! Default run: 50k vectors per case, fp32 multiply, fp16 add and fx32_16_rnd_sat multiply;
+//! the table reciprocal on every fp24 input and every fp32 fraction.
 //! The ≥1M-vector run over every operator of fp32, fp16 and fx32_16_rnd_sat:
 //! `cargo test --release -p sim --test operators_verilator -- --ignored`.
 
-use hdl::formats::{fp16, fp32, fx32_16_rnd_sat};
+use hdl::formats::{fp16, fp24, fp32, fx32_16_rnd_sat};
 use hdl::operator::Operator;
 use hw_model::Format;
 use rand::{rngs::StdRng, Rng, SeedableRng};
@@ -166,6 +167,23 @@ fn fp32_mul_and_fp16_add_match_the_model() {
         let s = stages.min(fx32_16_rnd_sat::Mul::max_stages());
         check::<fx32_16_rnd_sat::Mul>("fx32_16_rnd_sat mul", s, &vectors(f, 50_000, 3), |a, b| f.mul(a, b));
     }
+}
+
+/// The table reciprocal at max stages on every fp24 bit pattern and on every fp32 fraction
+/// at the exponents of 1.x, of the smallest normals (result near overflow) and of the
+/// largest finite values (result subnormal, flushed): each of the table's segments and
+/// offsets against the model's correctly rounded reciprocal.
+#[test]
+fn recip_of_every_fraction_matches_the_model() {
+    let f = fp24::FORMAT;
+    let every: Vec<[u64; 2]> = (0..1u64 << 24).map(|a| [a, 0]).collect();
+    check::<fp24::Recip>("fp24 recip", fp24::Recip::max_stages(), &every, |a, _| f.recip(a));
+    let f = fp32::FORMAT;
+    let fractions: Vec<[u64; 2]> = [127u64, 1, 253, 0x1fe]
+        .iter()
+        .flat_map(|&e| (0..1u64 << 23).map(move |m| [(e << 23) | m, 0]))
+        .collect();
+    check::<fp32::Recip>("fp32 recip", fp32::Recip::max_stages(), &fractions, |a, _| f.recip(a));
 }
 
 /// `cargo test --release -p sim --test operators_verilator -- --ignored`

@@ -7,6 +7,7 @@
 
 pub mod add;
 pub mod convert;
+pub mod division_row;
 pub mod fit;
 pub mod lt;
 pub mod mul;

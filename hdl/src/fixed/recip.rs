@@ -1,7 +1,7 @@
 //! Fixed-point reciprocal `y = 1 / a` = 2^(2F) / X in units of 2^-F (X the raw signed
 //! operand), quantised with the format's mode, then the overflow mode; recip(0) = max.
 //!
-//! |X| divides 2^(2F) by restoring division (the float reciprocal's `DivisionRow`), one
+//! |X| divides 2^(2F) by restoring division (`DivisionRow`), one
 //! quotient bit a row. The numerator has a single 1, at bit 2F: its quotient bit is 1 only
 //! for |X| = 1, so it is decided before the rows (remainder 0 or 1), and 2F rows give the
 //! other bits. The remainder then tells where the fraction rem/|X| lies: ≥ 1/2 when
@@ -14,9 +14,9 @@
 
 use rust_hdl::prelude::*;
 
+use super::division_row::DivisionRow;
 use super::fit::Fit;
 use super::round::SignedRound;
-use crate::float::recip::DivisionRow;
 use crate::pipe::{chain, placement, Pipe};
 
 /// W: the format's width, F its fraction bits; Q = 2F+1 (quotient bits);

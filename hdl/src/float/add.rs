@@ -127,9 +127,15 @@ impl<
     }
 
     pub fn new(stages: usize) -> Self {
-        assert!(A == S + 3 && A1 == A + 1 && X >= E + 2, "FloatAdd: inconsistent widths");
+        assert!(
+            A == S + 3 && A1 == A + 1 && X >= E + 2,
+            "FloatAdd: inconsistent widths"
+        );
         // The alignment shift (at most A) is held in 5 bits: a narrow shift is a shallow shifter.
-        assert!((A as u64) < (1 << E) && A < 32, "FloatAdd: the format is too narrow or too wide");
+        assert!(
+            (A as u64) < (1 << E) && A < 32,
+            "FloatAdd: the format is too narrow or too wide"
+        );
         let cut = placement(stages, Self::CUTS);
         Self {
             clock: Default::default(),
@@ -197,13 +203,19 @@ impl<
             all_ones: Constant::new(Bits::<A>::mask()),
             carry_in: Constant::new(1.into()),
             sum_carry: Constant::new(Bits::<A1>::from(1) << A as u64),
-            smear_shifts: (0..8).map(|k| 1u64 << k).take_while(|&k| k < A1 as u64).map(|k| Constant::new(k.into())).collect(),
+            smear_shifts: (0..8)
+                .map(|k| 1u64 << k)
+                .take_while(|&k| k < A1 as u64)
+                .map(|k| Constant::new(k.into()))
+                .collect(),
             // Leading one at bit i: A1-1-i leading zeros; count bit k is set for the i in mask k.
             count_masks: (0..8)
                 .map(|k| {
-                    let mask = (0..A1).filter(|i| (A1 - 1 - i) >> k & 1 == 1).fold(Bits::<A1>::default(), |m, i| {
-                        m | (Bits::<A1>::from(1) << i as u64)
-                    });
+                    let mask = (0..A1)
+                        .filter(|i| (A1 - 1 - i) >> k & 1 == 1)
+                        .fold(Bits::<A1>::default(), |m, i| {
+                            m | (Bits::<A1>::from(1) << i as u64)
+                        });
                     Constant::new(mask)
                 })
                 .collect(),
@@ -270,7 +282,9 @@ impl<
         self.compared_sign_b.d.next = self.sign_b.val();
         self.compared_nan.d.next = self.unpack_a.nan.val()
             | self.unpack_b.nan.val()
-            | (self.unpack_a.inf.val() & self.unpack_b.inf.val() & (self.unpack_a.sign.val() ^ self.sign_b.val()));
+            | (self.unpack_a.inf.val()
+                & self.unpack_b.inf.val()
+                & (self.unpack_a.sign.val() ^ self.sign_b.val()));
         self.compared_inf.d.next = self.unpack_a.inf.val() | self.unpack_b.inf.val();
         // The sum is exactly 0 when both operands are zeros or equal magnitudes cancel.
         self.compared_cancel.d.next = (self.unpack_a.zero.val() & self.unpack_b.zero.val())
@@ -319,7 +333,8 @@ impl<
         self.aligned_x.d.next = bit_cast::<A, S>(self.x_sig.val()) << self.extra_bits.val();
         self.aligned_y.d.next = self.y_aligned.val();
         if self.subtract_now.val() {
-            self.aligned_x.d.next = (bit_cast::<A, S>(self.x_sig.val()) << self.extra_bits.val()) | self.carry_in.val();
+            self.aligned_x.d.next =
+                (bit_cast::<A, S>(self.x_sig.val()) << self.extra_bits.val()) | self.carry_in.val();
             self.aligned_y.d.next = !self.y_aligned.val();
         }
         self.aligned_subtract.d.next = self.subtract_now.val();
@@ -329,7 +344,8 @@ impl<
         self.summed_exp.clock.next = self.clock.val();
         self.summed_subtract.clock.next = self.clock.val();
         self.summed_category.clock.next = self.clock.val();
-        self.summed.d.next = bit_cast::<A1, A>(self.aligned_x.q.val()) + bit_cast::<A1, A>(self.aligned_y.q.val());
+        self.summed.d.next =
+            bit_cast::<A1, A>(self.aligned_x.q.val()) + bit_cast::<A1, A>(self.aligned_y.q.val());
         self.summed_exp.d.next = bit_cast::<X, E>(self.aligned_exp.q.val()) + self.exp_one.val();
         self.summed_subtract.d.next = self.aligned_subtract.q.val();
         self.summed_category.d.next = self.aligned_category.q.val();
@@ -370,7 +386,8 @@ impl<
         self.normal_sig.d.next = bit_cast::<S, A1>(self.normalized.val() >> self.sig_shift.val());
         self.normal_round.d.next = (self.normalized.val() & self.round_bit.val()).any();
         self.normal_sticky.d.next = (self.normalized.val() & self.sticky_bits.val()).any();
-        self.normal_exp.d.next = self.counted_exp.q.val() - bit_cast::<X, 8>(self.counted_zeros.q.val());
+        self.normal_exp.d.next =
+            self.counted_exp.q.val() - bit_cast::<X, 8>(self.counted_zeros.q.val());
         self.normal_category.d.next = self.counted_category.q.val();
         self.rounder.category.next = self.normal_category.q.val();
         self.rounder.exp.next = self.normal_exp.q.val();

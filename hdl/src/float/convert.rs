@@ -12,7 +12,13 @@ use crate::pipe::{placement, Pipe};
 
 /// fp32 → (E, M). W = 1+E+M; S = M+1; X = 10 (fp32's exponent range, signed).
 #[derive(LogicBlock)]
-pub struct FloatFromF32<const E: usize, const M: usize, const W: usize, const S: usize, const X: usize> {
+pub struct FloatFromF32<
+    const E: usize,
+    const M: usize,
+    const W: usize,
+    const S: usize,
+    const X: usize,
+> {
     pub clock: Signal<In, Clock>,
     pub a: Signal<In, Bits<32>>,
     pub y: Signal<Out, Bits<W>>,
@@ -41,10 +47,17 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: us
     }
 
     pub fn new(stages: usize) -> Self {
-        assert!(E <= 8 && M <= 23 && X >= 10, "FloatFromF32: formats up to fp32 only");
+        assert!(
+            E <= 8 && M <= 23 && X >= 10,
+            "FloatFromF32: formats up to fp32 only"
+        );
         let cut = placement(stages, Self::CUTS);
         let dropped = 23 - M;
-        let round_bit = if dropped > 0 { 1u64 << (dropped - 1) } else { 0 };
+        let round_bit = if dropped > 0 {
+            1u64 << (dropped - 1)
+        } else {
+            0
+        };
         Self {
             clock: Default::default(),
             a: Default::default(),
@@ -81,7 +94,8 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: us
         self.narrow_sticky.clock.next = self.clock.val();
         self.narrow_exp.clock.next = self.clock.val();
         self.narrow_category.clock.next = self.clock.val();
-        self.narrow_sig.d.next = bit_cast::<S, 24>(self.unpack.sig.val() >> self.dropped_bits.val());
+        self.narrow_sig.d.next =
+            bit_cast::<S, 24>(self.unpack.sig.val() >> self.dropped_bits.val());
         self.narrow_round.d.next = (self.unpack.sig.val() & self.round_bit.val()).any();
         self.narrow_sticky.d.next = (self.unpack.sig.val() & self.sticky_bits.val()).any();
         self.narrow_exp.d.next = bit_cast::<X, 8>(self.unpack.exp.val()) - self.rebias.val();
@@ -151,7 +165,9 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize> FloatToF32<
     }
 }
 
-impl<const E: usize, const M: usize, const W: usize, const S: usize> Logic for FloatToF32<E, M, W, S> {
+impl<const E: usize, const M: usize, const W: usize, const S: usize> Logic
+    for FloatToF32<E, M, W, S>
+{
     #[hdl_gen]
     fn update(&mut self) {
         self.unpack.x.next = self.a.val();
@@ -170,7 +186,8 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize> Logic for F
         } else {
             self.result.d.next = self.sign_bit.val()
                 | (bit_cast::<32, 8>(self.exp32.val()) << self.exp_shift.val())
-                | ((bit_cast::<32, S>(self.unpack.sig.val()) << self.frac_shift.val()) & self.frac_mask.val());
+                | ((bit_cast::<32, S>(self.unpack.sig.val()) << self.frac_shift.val())
+                    & self.frac_mask.val());
         }
         self.y.next = self.result.q.val();
     }

@@ -61,7 +61,10 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize> FloatLt<E, 
             a_smaller: Default::default(),
             b_smaller: Default::default(),
             result: Pipe::new(cut[0]),
-            frac_high: Constant::new(((Bits::<W>::from(1) << M as u64) - 1) & !((Bits::<W>::from(1) << (M / 2) as u64) - 1)),
+            frac_high: Constant::new(
+                ((Bits::<W>::from(1) << M as u64) - 1)
+                    & !((Bits::<W>::from(1) << (M / 2) as u64) - 1),
+            ),
             frac_low: Constant::new((Bits::<W>::from(1) << (M / 2) as u64) - 1),
         }
     }
@@ -79,17 +82,24 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize> Logic for F
         self.frac_low_a.next = self.a.val() & self.frac_low.val();
         self.frac_low_b.next = self.b.val() & self.frac_low.val();
         self.frac_less.next = (self.frac_high_a.val() < self.frac_high_b.val())
-            | ((self.frac_high_a.val() == self.frac_high_b.val()) & (self.frac_low_a.val() < self.frac_low_b.val()));
+            | ((self.frac_high_a.val() == self.frac_high_b.val())
+                & (self.frac_low_a.val() < self.frac_low_b.val()));
         self.frac_greater.next = (self.frac_high_a.val() > self.frac_high_b.val())
-            | ((self.frac_high_a.val() == self.frac_high_b.val()) & (self.frac_low_a.val() > self.frac_low_b.val()));
-        self.same_binade.next = (self.unpack_a.exp.val() == self.unpack_b.exp.val()) & !self.unpack_a.zero.val();
-        self.a_smaller.next = (self.unpack_a.exp.val() < self.unpack_b.exp.val()) | (self.same_binade.val() & self.frac_less.val());
-        self.b_smaller.next = (self.unpack_a.exp.val() > self.unpack_b.exp.val()) | (self.same_binade.val() & self.frac_greater.val());
+            | ((self.frac_high_a.val() == self.frac_high_b.val())
+                & (self.frac_low_a.val() > self.frac_low_b.val()));
+        self.same_binade.next =
+            (self.unpack_a.exp.val() == self.unpack_b.exp.val()) & !self.unpack_a.zero.val();
+        self.a_smaller.next = (self.unpack_a.exp.val() < self.unpack_b.exp.val())
+            | (self.same_binade.val() & self.frac_less.val());
+        self.b_smaller.next = (self.unpack_a.exp.val() > self.unpack_b.exp.val())
+            | (self.same_binade.val() & self.frac_greater.val());
         self.result.clock.next = self.clock.val();
         self.result.d.next = !(self.unpack_a.nan.val() | self.unpack_b.nan.val())
             & ((!self.unpack_a.sign.val() & !self.unpack_b.sign.val() & self.a_smaller.val())
                 | (self.unpack_a.sign.val() & self.unpack_b.sign.val() & self.b_smaller.val())
-                | (self.unpack_a.sign.val() & !self.unpack_b.sign.val() & !(self.unpack_a.zero.val() & self.unpack_b.zero.val())));
+                | (self.unpack_a.sign.val()
+                    & !self.unpack_b.sign.val()
+                    & !(self.unpack_a.zero.val() & self.unpack_b.zero.val())));
         self.y.next = self.result.q.val();
     }
 }

@@ -15,7 +15,14 @@ use crate::pipe::{placement, Pipe};
 
 /// E, M: the format; W = 1+E+M; S = M+1; S2 = 2S; X = exponent width (≥ E+2).
 #[derive(LogicBlock)]
-pub struct FloatMul<const E: usize, const M: usize, const W: usize, const S: usize, const S2: usize, const X: usize> {
+pub struct FloatMul<
+    const E: usize,
+    const M: usize,
+    const W: usize,
+    const S: usize,
+    const S2: usize,
+    const X: usize,
+> {
     pub clock: Signal<In, Clock>,
     pub a: Signal<In, Bits<W>>,
     pub b: Signal<In, Bits<W>>,
@@ -44,8 +51,14 @@ pub struct FloatMul<const E: usize, const M: usize, const W: usize, const S: usi
     sticky_bits: Constant<Bits<S2>>,
 }
 
-impl<const E: usize, const M: usize, const W: usize, const S: usize, const S2: usize, const X: usize>
-    FloatMul<E, M, W, S, S2, X>
+impl<
+        const E: usize,
+        const M: usize,
+        const W: usize,
+        const S: usize,
+        const S2: usize,
+        const X: usize,
+    > FloatMul<E, M, W, S, S2, X>
 {
     pub const CUTS: usize = 3;
 
@@ -87,15 +100,22 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const S2: u
     }
 }
 
-impl<const E: usize, const M: usize, const W: usize, const S: usize, const S2: usize, const X: usize> Logic
-    for FloatMul<E, M, W, S, S2, X>
+impl<
+        const E: usize,
+        const M: usize,
+        const W: usize,
+        const S: usize,
+        const S2: usize,
+        const X: usize,
+    > Logic for FloatMul<E, M, W, S, S2, X>
 {
     #[hdl_gen]
     fn update(&mut self) {
         self.unpack_a.x.next = self.a.val();
         self.unpack_b.x.next = self.b.val();
         // Exponent of the product of the two leading bits; normalization may add 1.
-        self.exp_sum.next = bit_cast::<X, E>(self.unpack_a.exp.val()) + bit_cast::<X, E>(self.unpack_b.exp.val())
+        self.exp_sum.next = bit_cast::<X, E>(self.unpack_a.exp.val())
+            + bit_cast::<X, E>(self.unpack_b.exp.val())
             - self.bias.val();
         self.category.next.sign = self.unpack_a.sign.val() ^ self.unpack_b.sign.val();
         self.category.next.nan = self.unpack_a.nan.val()
@@ -126,7 +146,8 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const S2: u
         self.normal_sticky.clock.next = self.clock.val();
         self.normal_exp.clock.next = self.clock.val();
         self.normal_class.clock.next = self.clock.val();
-        self.normal_sig.d.next = bit_cast::<S, S2>(self.product_normalized.val() >> self.sig_width.val());
+        self.normal_sig.d.next =
+            bit_cast::<S, S2>(self.product_normalized.val() >> self.sig_width.val());
         self.normal_round.d.next = (self.product_normalized.val() & self.round_bit.val()).any();
         self.normal_sticky.d.next = (self.product_normalized.val() & self.sticky_bits.val()).any();
         self.normal_exp.d.next = self.product_exp.q.val() + self.product_top.val();

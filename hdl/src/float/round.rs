@@ -56,9 +56,14 @@ pub struct Round<const E: usize, const M: usize, const W: usize, const S: usize,
     zero_pattern: Constant<Bits<W>>,
 }
 
-impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: usize> Default for Round<E, M, W, S, X> {
+impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: usize> Default
+    for Round<E, M, W, S, X>
+{
     fn default() -> Self {
-        assert!(W == 1 + E + M && S == M + 1 && X > E + 1, "Round: inconsistent widths");
+        assert!(
+            W == 1 + E + M && S == M + 1 && X > E + 1,
+            "Round: inconsistent widths"
+        );
         let exp_ones = (1u64 << E) - 1;
         Self {
             category: Default::default(),
@@ -93,7 +98,9 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: us
     }
 }
 
-impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: usize> Logic for Round<E, M, W, S, X> {
+impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: usize> Logic
+    for Round<E, M, W, S, X>
+{
     #[hdl_gen]
     fn update(&mut self) {
         self.round_up.next = self.round.val() & (self.sticky.val() | self.sig.val().get_bit(0));
@@ -103,10 +110,12 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: us
         // taking its +1 when the low half is all ones.
         self.frac.next = bit_cast::<M, S>(self.sig.val());
         if (self.frac.val() & self.frac_low.val()) == self.frac_low.val() {
-            self.frac_up.next = ((self.frac.val() >> self.frac_half.val()) + self.frac_one.val()) << self.frac_half.val();
+            self.frac_up.next = ((self.frac.val() >> self.frac_half.val()) + self.frac_one.val())
+                << self.frac_half.val();
         } else {
-            self.frac_up.next =
-                (self.frac.val() & !self.frac_low.val()) | (((self.frac.val() & self.frac_low.val()) + self.frac_one.val()) & self.frac_low.val());
+            self.frac_up.next = (self.frac.val() & !self.frac_low.val())
+                | (((self.frac.val() & self.frac_low.val()) + self.frac_one.val())
+                    & self.frac_low.val());
         }
         if self.round_up.val() {
             self.frac.next = self.frac_up.val();

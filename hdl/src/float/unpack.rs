@@ -23,9 +23,14 @@ pub struct Unpack<const E: usize, const M: usize, const W: usize, const S: usize
     no_sig: Constant<Bits<S>>,
 }
 
-impl<const E: usize, const M: usize, const W: usize, const S: usize> Default for Unpack<E, M, W, S> {
+impl<const E: usize, const M: usize, const W: usize, const S: usize> Default
+    for Unpack<E, M, W, S>
+{
     fn default() -> Self {
-        assert!(W == 1 + E + M && S == M + 1, "Unpack<{E}, {M}, {W}, {S}>: inconsistent widths");
+        assert!(
+            W == 1 + E + M && S == M + 1,
+            "Unpack<{E}, {M}, {W}, {S}>: inconsistent widths"
+        );
         Self {
             x: Default::default(),
             sign: Default::default(),

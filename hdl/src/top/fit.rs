@@ -172,10 +172,28 @@ mod tests {
 
     #[test]
     fn a_fixed_part_from_elsewhere_leaves_the_rest_to_the_lane() {
-        let one = Usage { lut: 9000, ff: 12_000, dsp48e1: 30, bram18: 6 };
-        let fixed = Usage { lut: 1000, ff: 2000, dsp48e1: 2, bram18: 2 };
+        let one = Usage {
+            lut: 9000,
+            ff: 12_000,
+            dsp48e1: 30,
+            bram18: 6,
+        };
+        let fixed = Usage {
+            lut: 1000,
+            ff: 2000,
+            dsp48e1: 2,
+            bram18: 2,
+        };
         let f = fit_with_fixed(one, fixed, &XC7Z020);
-        assert_eq!(f.per_lane, Usage { lut: 8000, ff: 10_000, dsp48e1: 28, bram18: 4 });
+        assert_eq!(
+            f.per_lane,
+            Usage {
+                lut: 8000,
+                ff: 10_000,
+                dsp48e1: 28,
+                bram18: 4
+            }
+        );
         // LUT: 52200 / 8000 = 6; FF: 104400 / 10000 = 10; DSP: 218 / 28 = 7.
         assert_eq!((f.lanes, f.limit), (6, "LUT"));
         assert_eq!(Usage::with_lanes(f.fixed, f.per_lane, 1), one);
