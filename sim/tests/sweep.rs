@@ -168,11 +168,12 @@ fn bad_configurations_are_rejected_with_file_line_and_key() {
     let e = rejection(&with("lanes = [9]"));
     assert!(e.key == "lanes" && e.message.contains("at most 8"), "{e}");
 
-    // fx16_10's operators have registers for depth 0..=max only.
-    let max = hdl::mt::max_depth("fx16_10").unwrap();
+    // A format's operators have registers for depth 0..=max only: a depth beyond both formats'
+    // maxima is refused for the first of them, fp32.
+    let max = hdl::mt::max_depth("fp32").unwrap().max(hdl::mt::max_depth("fx16_10").unwrap());
     let e = rejection(&with(&format!("depths = [1, {}]", max + 1)));
     assert_eq!((e.line, e.key.as_str()), (3, "depths"));
-    assert!(e.message.contains("impossible depth") && e.message.contains("fx16_10"), "{e}");
+    assert!(e.message.contains("impossible depth") && e.message.contains("format fp32"), "{e}");
     let e = rejection(&with(r#"depths = ["deep"]"#));
     assert!(e.message.contains("\"max\""), "{e}");
 
