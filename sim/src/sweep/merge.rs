@@ -4,8 +4,9 @@
 //! and the projected ZedBoard frame time (one calibration for all points).
 //!
 //! A format and depth with only its 1-lane design synthesised borrows the fixed part (AXI-Lite
-//! slave, stream front end) from the same format's 1- and 2-lane pair at the nearest depth:
-//! two yosys runs per depth would double the sweep's longest stage.
+//! slave, stream front end: the same blocks whatever the format) from the nearest 1- and
+//! 2-lane pair: the same format at the nearest depth, else the same kind (float or fixed) at
+//! the nearest width. Two yosys runs per point would double the sweep's longest stage.
 
 use anyhow::{bail, Result};
 use hdl::top::fit::{fit_from, fit_with_fixed, LaneFit, Usage, XC7Z020};
@@ -47,8 +48,8 @@ pub fn merge(layout: &Layout) -> Result<Results> {
 
     let mut rows = Vec::new();
     for p in &points {
-        let (fit, fixed_part_depth) = match lane_fit(&points, p) {
-            Some((fit, depth)) => (Some(fit), Some(depth)),
+        let (fit, fixed_part_from) = match lane_fit(&points, p) {
+            Some((fit, from)) => (Some(fit), Some(from)),
             None => (None, None),
         };
         let q = quality.iter().find(|q| q.format == p.point.format);
@@ -82,7 +83,7 @@ pub fn merge(layout: &Layout) -> Result<Results> {
             resources: source,
             lanes_fit: fit.map(|f| f.lanes),
             fit_limit: fit.map(|f| f.limit.to_string()),
-            fixed_part_depth,
+            fixed_part_from,
             min_psnr_db: q.map(|q| Psnr(q.min_psnr_db())),
             max_differing_share: q.map(QualityResult::max_differing_share),
             cosim_identical: p.cosim_identical(),
@@ -123,29 +124,43 @@ fn read_or_note<T: serde::de::DeserializeOwned>(path: &std::path::Path, missing:
     }
 }
 
-/// The XC7Z020 lane fit of `p`'s format and depth and the depth its fixed part comes from:
-/// its own when both its 1- and 2-lane designs were synthesised, else the nearest depth of the
-/// same format that has both (with this depth's 1-lane design).
-fn lane_fit(points: &[PointResult], p: &PointResult) -> Option<(LaneFit, usize)> {
-    let usage = |depth: usize, lanes: usize| {
+/// The XC7Z020 lane fit of `p`'s format and depth and the pair its fixed part comes from
+/// (`format_dD`): its own when both its 1- and 2-lane designs were synthesised, else the
+/// nearest pair (see the module docs), with this point's 1-lane design.
+fn lane_fit(points: &[PointResult], p: &PointResult) -> Option<(LaneFit, String)> {
+    let usage = |format: &str, depth: usize, lanes: usize| {
         points
             .iter()
-            .find(|o| o.point.format == p.point.format && o.point.depth == depth && o.point.lanes == lanes)
+            .find(|o| o.point.format == format && o.point.depth == depth && o.point.lanes == lanes)
             .and_then(|o| o.synth.as_ref())
             .map(|s| s.usage())
     };
-    let depth = p.point.depth;
-    let one = usage(depth, 1)?;
-    if let Some(two) = usage(depth, 2) {
-        return Some((fit_from(one, two, &XC7Z020), depth));
+    let (format, depth) = (p.point.format.as_str(), p.point.depth);
+    let one = usage(format, depth, 1)?;
+    let is_float = |f: &str| matches!(hw_model::lookup(f), Ok(hw_model::Format::Float { .. }));
+    let mut pairs: Vec<&PointResult> = points
+        .iter()
+        .filter(|o| o.point.lanes == 1 && usage(&o.point.format, o.point.depth, 2).is_some())
+        .collect();
+    pairs.sort_by_key(|o| {
+        (
+            o.point.format != format,
+            is_float(&o.point.format) != is_float(format),
+            o.bits.abs_diff(p.bits),
+            o.point.depth.abs_diff(depth),
+            o.point.format.clone(),
+            o.point.depth,
+        )
+    });
+    let pair = pairs.first()?;
+    let (f, d) = (pair.point.format.as_str(), pair.point.depth);
+    let from = format!("{f}_d{d}");
+    let two = usage(f, d, 2)?;
+    if (f, d) == (format, depth) {
+        return Some((fit_from(one, two, &XC7Z020), from));
     }
-    let mut depths: Vec<usize> = points.iter().filter(|o| o.point.format == p.point.format).map(|o| o.point.depth).collect();
-    depths.sort_by_key(|&d| (d.abs_diff(depth), d));
-    depths.dedup();
-    depths.into_iter().find_map(|d| {
-        let fixed = fit_from(usage(d, 1)?, usage(d, 2)?, &XC7Z020).fixed;
-        Some((fit_with_fixed(one, fixed, &XC7Z020), d))
-    })
+    let fixed = fit_from(usage(f, d, 1)?, two, &XC7Z020).fixed;
+    Some((fit_with_fixed(one, fixed, &XC7Z020), from))
 }
 
 #[cfg(test)]
@@ -155,9 +170,10 @@ mod tests {
     use crate::sweep::synth_cache::SynthRecord;
 
     fn synthesised(format: &str, depth: usize, lanes: usize, lut: u64, dsp48e1: u64) -> PointResult {
+        let point = Point::new(format, depth, lanes);
         PointResult {
-            point: Point::new(format, depth, lanes),
-            bits: 32,
+            bits: point.bits(),
+            point,
             latency: 0,
             stream_latency: None,
             verilog_bytes: None,
@@ -178,9 +194,9 @@ mod tests {
     }
 
     #[test]
-    fn a_depth_without_its_two_lane_design_borrows_the_nearest_fixed_part() {
-        // Depth 1: fixed 2000 LUT + 10000 per lane; depth 6: 2000 LUT + 9000 per lane, no 2-lane
-        // design; depth 9 (farther) would give another fixed part.
+    fn a_point_without_its_two_lane_design_borrows_the_nearest_fixed_part() {
+        // fp32 depth 1: fixed 2000 LUT + 10000 per lane; depth 6 has no 2-lane design; depth 9
+        // (nearer to 6) gives another fixed part; fp16's and fx16_10's pairs are other formats'.
         let points = vec![
             synthesised("fp32", 1, 1, 12_000, 54),
             synthesised("fp32", 1, 2, 22_000, 108),
@@ -189,18 +205,27 @@ mod tests {
             synthesised("fp32", 9, 2, 15_000, 108),
             synthesised("fp16", 6, 1, 5_000, 27),
             synthesised("fp16", 6, 2, 9_000, 54),
+            synthesised("fx16_10", 1, 1, 4_500, 27),
+            synthesised("fx16_10", 1, 2, 8_500, 54),
+            synthesised("bf16", 2, 1, 6_000, 27),
+            synthesised("fx21_12", 3, 1, 7_000, 54),
         ];
-        let (own, own_depth) = lane_fit(&points, &points[0]).unwrap();
-        assert_eq!((own.fixed.lut, own.per_lane.lut, own_depth), (2000, 10_000, 1));
-        let (borrowed, from) = lane_fit(&points, &points[2]).unwrap();
-        assert_eq!(from, 9, "depth 9 is nearer to 6 than depth 1");
+        let fit = |i: usize| lane_fit(&points, &points[i]).unwrap();
+        let (own, from) = fit(0);
+        assert_eq!((own.fixed.lut, own.per_lane.lut, from.as_str()), (2000, 10_000, "fp32_d1"));
+        let (borrowed, from) = fit(2);
+        assert_eq!(from, "fp32_d9", "depth 9 is nearer to 6 than depth 1");
         assert_eq!((borrowed.fixed.lut, borrowed.per_lane.lut), (5000, 6000));
-        // fp16's pair at depth 6 is another format's: never borrowed across formats.
-        let lone = synthesised("fp24", 6, 1, 8000, 27);
-        assert!(lane_fit(&[lone.clone()], &lone).is_none());
-        // A point whose 1-lane design was not synthesised has no fit.
+        // No bf16 pair: the float of the same width (fp16, fixed part 1000) before the fixed
+        // format of the same width.
+        let (borrowed, from) = fit(9);
+        assert_eq!((from.as_str(), borrowed.fixed.lut, borrowed.per_lane.lut), ("fp16_d6", 1000, 5000));
+        let (_, from) = fit(10);
+        assert_eq!(from, "fx16_10_d1", "a fixed format borrows from a fixed format");
+        // A point whose 1-lane design was not synthesised has no fit, nor one without any pair.
         let mut unsynthesised = points[2].clone();
         unsynthesised.synth = None;
         assert!(lane_fit(&[unsynthesised.clone(), points[0].clone(), points[1].clone()], &unsynthesised).is_none());
+        assert!(lane_fit(&points[9..10], &points[9]).is_none());
     }
 }

@@ -16,7 +16,7 @@ pub enum ResourceSource {
     /// yosys synthesised this point.
     Yosys,
     /// Fixed part + lanes × per-lane cost, from the 1- and 2-lane synthesis of the same
-    /// format (the fixed part at `Row::fixed_part_depth`).
+    /// format (the fixed part from the pair `Row::fixed_part_from`).
     Estimate,
 }
 
@@ -42,9 +42,9 @@ pub struct Row {
     /// Lanes of this format and depth that fit an XC7Z020, and the resource that limits it.
     pub lanes_fit: Option<u64>,
     pub fit_limit: Option<String>,
-    /// The depth whose 1- and 2-lane synthesis gave the fixed part of `lanes_fit` (this row's
-    /// own depth, or the nearest one with both designs synthesised).
-    pub fixed_part_depth: Option<usize>,
+    /// The format and depth (`fp16_d1`) whose 1- and 2-lane synthesis gave the fixed part of
+    /// `lanes_fit`: this row's own, or the nearest pair (`merge`'s docs).
+    pub fixed_part_from: Option<String>,
     /// Worst scene's PSNR against the f32 reference.
     pub min_psnr_db: Option<Psnr>,
     /// Largest share of differing pixels over the scenes.
@@ -103,7 +103,7 @@ pub fn markdown(results: &Results) -> Result<String> {
         )?;
     }
     writeln!(s, "## Points\n")?;
-    writeln!(s, "Resources: `yosys` synthesised, `estimate` = fixed + lanes × per-lane from the 1- and 2-lane synthesis; lanes fit = lanes of the format and depth that fit an XC7Z020 (limit; † = this depth's 1-lane synthesis with the fixed part of the same format's 1- and 2-lane pair at another depth). Cycles/test: `*` measured in co-simulation.\n")?;
+    writeln!(s, "Resources: `yosys` synthesised, `estimate` = fixed + lanes × per-lane from the 1- and 2-lane synthesis; lanes fit = lanes of the format and depth that fit an XC7Z020 (limit; †fp16_d1 = this point's 1-lane synthesis with the fixed part (AXI-Lite slave, stream front end) of that 1- and 2-lane pair). Cycles/test: `*` measured in co-simulation.\n")?;
     writeln!(s, "| point | bits | depth | lanes | latency | cycles/test | LUT | FF | DSP | BRAM18 | CARRY4 | logic depth | resources | lanes fit | min PSNR dB | max diff px | cosim = model | frame s | × ARM |")?;
     writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---:|---|---:|---:|")?;
     for r in &results.rows {
@@ -112,7 +112,11 @@ pub fn markdown(results: &Results) -> Result<String> {
             Some(ResourceSource::Estimate) => "estimate",
             None => "—",
         };
-        let borrowed = if r.fixed_part_depth.is_some_and(|d| d != r.depth) { "†" } else { "" };
+        let own = format!("{}_d{}", r.format, r.depth);
+        let borrowed = match &r.fixed_part_from {
+            Some(from) if *from != own => format!(" †{from}"),
+            _ => String::new(),
+        };
         let fit = match (&r.lanes_fit, &r.fit_limit) {
             (Some(n), Some(l)) => format!("{n} ({l}){borrowed}"),
             _ => "—".into(),
