@@ -38,7 +38,7 @@ golden: build
 verilog: build
 	$(RTFPGA) verilog --defaults --out generated-verilog
 
-# Design-space sweep of sweeps/default.toml into sweep-out/ (about 25 min on 2 cores; a re-run
+# Design-space sweep of sweeps/default.toml into sweep-out/ (about 1.5 h on 2 cores; a re-run
 # reuses the cached syntheses): results.md/csv/json, plots/, grids/. docs/sweep.md reports it.
 sweep: build
 	$(RTFPGA) sweep --config sweeps/default.toml --out sweep-out
