@@ -140,7 +140,7 @@ fn lane_fit(points: &[PointResult], p: &PointResult) -> Option<(LaneFit, String)
     let is_float = |f: &str| matches!(hw_model::lookup(f), Ok(hw_model::Format::Float { .. }));
     let mut pairs: Vec<&PointResult> = points
         .iter()
-        .filter(|o| o.point.lanes == 1 && usage(&o.point.format, o.point.depth, 2).is_some())
+        .filter(|o| o.point.lanes == 1 && o.synth.is_some() && usage(&o.point.format, o.point.depth, 2).is_some())
         .collect();
     pairs.sort_by_key(|o| {
         (
@@ -227,5 +227,9 @@ mod tests {
         unsynthesised.synth = None;
         assert!(lane_fit(&[unsynthesised.clone(), points[0].clone(), points[1].clone()], &unsynthesised).is_none());
         assert!(lane_fit(&points[9..10], &points[9]).is_none());
+        // A 2-lane design without its 1-lane one is no pair: the next one is taken.
+        let mut lone_two = points.clone();
+        lone_two[7].synth = None;
+        assert_eq!(lane_fit(&lone_two, &lone_two[10]).unwrap().1, "fp16_d6", "fx16_10 has no pair left");
     }
 }
