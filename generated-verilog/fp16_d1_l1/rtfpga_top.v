@@ -28446,7 +28446,6 @@ module rtfpga_core$slots$0$lane$inv_det(clock,a,y);
     localparam  hidden_bit = 11'b10000000000;
     localparam  low_three = 11'b111;
     localparam  one = 10'b1;
-    localparam  exact_sig = 11'b10000000000;
     localparam  exp_one = 7'b1;
     localparam  no_bit = 1'b0;
     
@@ -28826,7 +28825,7 @@ module rtfpga_core$slots$0$lane$inv_det(clock,a,y);
         rounder$category = decided_category$q;
         rounder$exp = decided_exp$q;
         if (decided_exact$q) begin
-            rounder$sig = exact_sig;
+            rounder$sig = hidden_bit;
             rounder$exp = decided_exp$q + exp_one;
         end
         else if (decided_up$q) begin

@@ -28462,7 +28462,6 @@ module rtfpga_core$slots$0$lane$inv_det(clock,a,y);
     localparam  hidden_bit = 24'h800000;
     localparam  low_three = 24'h7;
     localparam  one = 23'h1;
-    localparam  exact_sig = 24'h800000;
     localparam  exp_one = 10'b1;
     localparam  no_bit = 1'b0;
     
@@ -28842,7 +28841,7 @@ module rtfpga_core$slots$0$lane$inv_det(clock,a,y);
         rounder$category = decided_category$q;
         rounder$exp = decided_exp$q;
         if (decided_exact$q) begin
-            rounder$sig = exact_sig;
+            rounder$sig = hidden_bit;
             rounder$exp = decided_exp$q + exp_one;
         end
         else if (decided_up$q) begin

@@ -74,7 +74,7 @@ pub const fn square_bits(m: usize) -> usize {
 /// The (A, B, C) table of an M-bit fraction: entry i approximates 2^(2M+6)/sig over the
 /// segment sig ∈ [2^M + i·2^D, 2^M + (i+1)·2^D) as A − B·d/2^(D+2) + C·(d²/2^r)/2^(D2H+2),
 /// with A reduced mod 2^(M+5).
-pub fn table(m: usize) -> Vec<(u64, u64, u64)> {
+fn table(m: usize) -> Vec<(u64, u64, u64)> {
     let (k, d) = (index_bits(m), d_bits(m));
     let r = 2 * d - square_bits(m);
     let (b_shift, c_shift) = (d + 2, square_bits(m) + 2);
@@ -190,7 +190,6 @@ pub struct FloatRecip<
     hidden_bit: Constant<Bits<S>>,
     low_three: Constant<Bits<S>>,
     one: Constant<Bits<M>>,
-    exact_sig: Constant<Bits<S>>,
     exp_one: Constant<Bits<X>>,
     no_bit: Constant<Bit>,
 }
@@ -295,7 +294,6 @@ impl<
             hidden_bit: Constant::new(Bits::<S>::from(1) << M as u64),
             low_three: Constant::new(7.into()),
             one: Constant::new(1.into()),
-            exact_sig: Constant::new(Bits::<S>::from(1) << M as u64),
             exp_one: Constant::new(1.into()),
             no_bit: Constant::new(false),
         }
@@ -408,7 +406,7 @@ impl<
         self.rounder.category.next = self.decided_category.q.val();
         self.rounder.exp.next = self.decided_exp.q.val();
         if self.decided_exact.q.val() {
-            self.rounder.sig.next = self.exact_sig.val();
+            self.rounder.sig.next = self.hidden_bit.val();
             self.rounder.exp.next = self.decided_exp.q.val() + self.exp_one.val();
         } else if self.decided_up.q.val() {
             self.rounder.sig.next =
