@@ -48,10 +48,7 @@ pub fn merge(layout: &Layout) -> Result<Results> {
 
     let mut rows = Vec::new();
     for p in &points {
-        let (fit, fixed_part_from) = match lane_fit(&points, p) {
-            Some((fit, from)) => (Some(fit), Some(from)),
-            None => (None, None),
-        };
+        let (fit, fixed_part_from) = lane_fit(&points, p).unzip();
         let q = quality.iter().find(|q| q.format == p.point.format);
         let cycles_per_test = p.cycles_per_test();
         let projected = match &projector {
@@ -83,7 +80,7 @@ pub fn merge(layout: &Layout) -> Result<Results> {
             resources: source,
             lanes_fit: fit.map(|f| f.lanes),
             fit_limit: fit.map(|f| f.limit.to_string()),
-            fixed_part_from,
+            fixed_part_from: fixed_part_from.flatten(),
             min_psnr_db: q.map(|q| Psnr(q.min_psnr_db())),
             max_differing_share: q.map(QualityResult::max_differing_share),
             cosim_identical: p.cosim_identical(),
@@ -124,10 +121,10 @@ fn read_or_note<T: serde::de::DeserializeOwned>(path: &std::path::Path, missing:
     }
 }
 
-/// The XC7Z020 lane fit of `p`'s format and depth and the pair its fixed part comes from
-/// (`format_dD`): its own when both its 1- and 2-lane designs were synthesised, else the
+/// The XC7Z020 lane fit of `p`'s format and depth, and the pair (`format_dD`) whose fixed part
+/// it borrowed: none when both its own 1- and 2-lane designs were synthesised, else the
 /// nearest pair (see the module docs), with this point's 1-lane design.
-fn lane_fit(points: &[PointResult], p: &PointResult) -> Option<(LaneFit, String)> {
+fn lane_fit(points: &[PointResult], p: &PointResult) -> Option<(LaneFit, Option<String>)> {
     let usage = |format: &str, depth: usize, lanes: usize| {
         points
             .iter()
@@ -154,13 +151,12 @@ fn lane_fit(points: &[PointResult], p: &PointResult) -> Option<(LaneFit, String)
     });
     let pair = pairs.first()?;
     let (f, d) = (pair.point.format.as_str(), pair.point.depth);
-    let from = format!("{f}_d{d}");
     let two = usage(f, d, 2)?;
     if (f, d) == (format, depth) {
-        return Some((fit_from(one, two, &XC7Z020), from));
+        return Some((fit_from(one, two, &XC7Z020), None));
     }
-    let fixed = fit_from(usage(f, d, 1)?, two, &XC7Z020).fixed;
-    Some((fit_with_fixed(one, fixed, &XC7Z020), from))
+    let fixed = fit_from(pair.synth.as_ref()?.usage(), two, &XC7Z020).fixed;
+    Some((fit_with_fixed(one, fixed, &XC7Z020), Some(format!("{f}_d{d}"))))
 }
 
 #[cfg(test)]
@@ -212,16 +208,16 @@ mod tests {
         ];
         let fit = |i: usize| lane_fit(&points, &points[i]).unwrap();
         let (own, from) = fit(0);
-        assert_eq!((own.fixed.lut, own.per_lane.lut, from.as_str()), (2000, 10_000, "fp32_d1"));
+        assert_eq!((own.fixed.lut, own.per_lane.lut, from), (2000, 10_000, None));
         let (borrowed, from) = fit(2);
-        assert_eq!(from, "fp32_d9", "depth 9 is nearer to 6 than depth 1");
+        assert_eq!(from.as_deref(), Some("fp32_d9"), "depth 9 is nearer to 6 than depth 1");
         assert_eq!((borrowed.fixed.lut, borrowed.per_lane.lut), (5000, 6000));
         // No bf16 pair: the float of the same width (fp16, fixed part 1000) before the fixed
         // format of the same width.
         let (borrowed, from) = fit(9);
-        assert_eq!((from.as_str(), borrowed.fixed.lut, borrowed.per_lane.lut), ("fp16_d6", 1000, 5000));
+        assert_eq!((from.as_deref(), borrowed.fixed.lut, borrowed.per_lane.lut), (Some("fp16_d6"), 1000, 5000));
         let (_, from) = fit(10);
-        assert_eq!(from, "fx16_10_d1", "a fixed format borrows from a fixed format");
+        assert_eq!(from.as_deref(), Some("fx16_10_d1"), "a fixed format borrows from a fixed format");
         // A point whose 1-lane design was not synthesised has no fit, nor one without any pair.
         let mut unsynthesised = points[2].clone();
         unsynthesised.synth = None;
@@ -230,6 +226,6 @@ mod tests {
         // A 2-lane design without its 1-lane one is no pair: the next one is taken.
         let mut lone_two = points.clone();
         lone_two[7].synth = None;
-        assert_eq!(lane_fit(&lone_two, &lone_two[10]).unwrap().1, "fp16_d6", "fx16_10 has no pair left");
+        assert_eq!(lane_fit(&lone_two, &lone_two[10]).unwrap().1.as_deref(), Some("fp16_d6"), "fx16_10 has no pair left");
     }
 }

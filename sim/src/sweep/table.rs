@@ -42,8 +42,8 @@ pub struct Row {
     /// Lanes of this format and depth that fit an XC7Z020, and the resource that limits it.
     pub lanes_fit: Option<u64>,
     pub fit_limit: Option<String>,
-    /// The format and depth (`fp16_d1`) whose 1- and 2-lane synthesis gave the fixed part of
-    /// `lanes_fit`: this row's own, or the nearest pair (`merge`'s docs).
+    /// The format and depth (`fp16_d1`) whose 1- and 2-lane synthesis lent the fixed part of
+    /// `lanes_fit` (`merge`'s docs); none when this row's own pair gave it.
     pub fixed_part_from: Option<String>,
     /// Worst scene's PSNR against the f32 reference.
     pub min_psnr_db: Option<Psnr>,
@@ -112,11 +112,7 @@ pub fn markdown(results: &Results) -> Result<String> {
             Some(ResourceSource::Estimate) => "estimate",
             None => "—",
         };
-        let own = format!("{}_d{}", r.format, r.depth);
-        let borrowed = match &r.fixed_part_from {
-            Some(from) if *from != own => format!(" †{from}"),
-            _ => String::new(),
-        };
+        let borrowed = r.fixed_part_from.as_ref().map_or(String::new(), |from| format!(" †{from}"));
         let fit = match (&r.lanes_fit, &r.fit_limit) {
             (Some(n), Some(l)) => format!("{n} ({l}){borrowed}"),
             _ => "—".into(),
