@@ -65,6 +65,10 @@ macro_rules! float_format {
             pub const NAME: &str = stringify!($name);
             pub const WIDTH: usize = 1 + $e + $m;
             pub const FORMAT: hw_model::Format = hw_model::Format::Float { exp: $e, man: $m };
+            /// fp32 itself: converting an fp32 word only flushes a subnormal to ±0 and makes a
+            /// NaN canonical, which every operator does to its inputs anyway, so the MT lane
+            /// feeds the words to its operators unconverted (no from_f32 stage).
+            pub const RAW_LOAD: bool = $e == 8 && $m == 23;
             // Width parameters, in the order the operators take them (see their docs):
             // W = 1+E+M, S = M+1, X = E+2 (signed exponent), A = M+4, A1 = M+5.
             pub type Add = FloatAdd<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $e + 2 }, { $m + 4 }, { $m + 5 }, false>;
@@ -139,6 +143,14 @@ macro_rules! dispatch {
         pub fn rtl(format: &str, op: crate::operator::Op, stages: usize) -> Result<crate::verilog::OperatorRtl, crate::operator::OperatorError> {
             match format {
                 $($name::NAME => $name::rtl(op, stages),)*
+                _ => Err(crate::operator::OperatorError::UnknownFormat(format.to_string())),
+            }
+        }
+
+        /// Whether the MT lane of `format` takes its fp32 inputs unconverted (`RAW_LOAD`).
+        pub fn raw_load(format: &str) -> Result<bool, crate::operator::OperatorError> {
+            match format {
+                $($name::NAME => Ok($name::RAW_LOAD),)*
                 _ => Err(crate::operator::OperatorError::UnknownFormat(format.to_string())),
             }
         }

@@ -165,7 +165,9 @@ fn fp32_mul_and_fp16_add_match_the_model() {
         check::<fp16::Add>("fp16 add", s, &vectors(f, 50_000, 2), |a, b| f.add(a, b));
         let f = fx32_16_rnd_sat::FORMAT;
         let s = stages.min(fx32_16_rnd_sat::Mul::max_stages());
-        check::<fx32_16_rnd_sat::Mul>("fx32_16_rnd_sat mul", s, &vectors(f, 50_000, 3), |a, b| f.mul(a, b));
+        check::<fx32_16_rnd_sat::Mul>("fx32_16_rnd_sat mul", s, &vectors(f, 50_000, 3), |a, b| {
+            f.mul(a, b)
+        });
     }
 }
 
@@ -177,13 +179,40 @@ fn fp32_mul_and_fp16_add_match_the_model() {
 fn recip_of_every_fraction_matches_the_model() {
     let f = fp24::FORMAT;
     let every: Vec<[u64; 2]> = (0..1u64 << 24).map(|a| [a, 0]).collect();
-    check::<fp24::Recip>("fp24 recip", fp24::Recip::max_stages(), &every, |a, _| f.recip(a));
+    check::<fp24::Recip>("fp24 recip", fp24::Recip::max_stages(), &every, |a, _| {
+        f.recip(a)
+    });
     let f = fp32::FORMAT;
     let fractions: Vec<[u64; 2]> = [127u64, 1, 253, 0x1fe]
         .iter()
         .flat_map(|&e| (0..1u64 << 23).map(move |m| [(e << 23) | m, 0]))
         .collect();
-    check::<fp32::Recip>("fp32 recip", fp32::Recip::max_stages(), &fractions, |a, _| f.recip(a));
+    check::<fp32::Recip>(
+        "fp32 recip",
+        fp32::Recip::max_stages(),
+        &fractions,
+        |a, _| f.recip(a),
+    );
+}
+
+/// The subtractor's leading-zero anticipation and its one-place correction on every pair of
+/// fp16 fractions at exponent distances 0, 1 and 2 (in both orders): every cancellation a
+/// difference can have (at distance 2 at most one leading zero remains) and every place of
+/// the leading one, at max stages and unpipelined.
+#[test]
+fn sub_of_every_close_fp16_pair_matches_the_model() {
+    let f = fp16::FORMAT;
+    let at = |exp: u64, frac: u64| (exp << 10) | frac;
+    let pairs: Vec<[u64; 2]> = [(15u64, 15u64), (15, 14), (14, 15), (15, 13), (13, 15)]
+        .iter()
+        .flat_map(|&(ea, eb)| {
+            (0..1u64 << 10)
+                .flat_map(move |ma| (0..1u64 << 10).map(move |mb| [at(ea, ma), at(eb, mb)]))
+        })
+        .collect();
+    for stages in [0, fp16::Sub::max_stages()] {
+        check::<fp16::Sub>("fp16 sub", stages, &pairs, |a, b| f.sub(a, b));
+    }
 }
 
 /// `cargo test --release -p sim --test operators_verilator -- --ignored`

@@ -4,20 +4,25 @@
 //! bits: guard, round and a sticky bit that collects everything shifted out) is aligned to
 //! x, added or subtracted, normalized by the position of the leading one and rounded.
 //!
+//! The leading zeros of a difference are anticipated from the two addends beside the add
+//! (a leading-zero anticipator, LZA: Schmookler and Nowka's indicator string, whose leading
+//! one is at the sum's or one place above it), so counting them costs no stage of its own; a
+//! one-place correction after the normalizing shift fixes the anticipation's error.
+//!
 //! The stages are cut so that no register-to-register path holds two wide carry chains or a
 //! carry chain and a wide shifter:
 //!   0. after comparing: exponents (both differences, clamped to the alignment range) and
 //!      fractions are compared separately, and an exact cancellation is detected there
 //!   1. after ordering and aligning y (shifter and sticky mask side by side); y is already
 //!      inverted for a subtraction and x carries the +1, so the next stage is one adder
-//!   2. after the add
-//!   3. after counting the sum's leading zeros
-//!   4. after the normalizing shift and exponent adjust
-//!   5. the result, after rounding and packing
-//! Registers are spread over them by `pipe::placement`; max_stages() = 6.
+//!   2. after the add and, beside it, the anticipated leading-zero count
+//!   3. after the normalizing shift, its one-place correction and the exponent adjust
+//!   4. the result, after rounding and packing
+//! Registers are spread over them by `pipe::placement`; max_stages() = 5.
 
 use rust_hdl::prelude::*;
 
+use super::leading_zeros::LeadingZeros;
 use super::round::{ResultClass, Round};
 use super::unpack::Unpack;
 use crate::pipe::{placement, Pipe};
@@ -58,6 +63,12 @@ pub struct FloatAdd<
     compared_nan: Pipe<Bit>,
     compared_inf: Pipe<Bit>,
     compared_cancel: Pipe<Bit>,
+    reversed_a: Signal<Local, Bits<32>>,
+    reversed_b: Signal<Local, Bits<32>>,
+    trailing_a: LeadingZeros,
+    trailing_b: LeadingZeros,
+    compared_zeros_a: Pipe<Bits<5>>,
+    compared_zeros_b: Pipe<Bits<5>>,
     a_larger: Signal<Local, Bit>,
     subtract_now: Signal<Local, Bit>,
     x_sig: Signal<Local, Bits<S>>,
@@ -73,19 +84,19 @@ pub struct FloatAdd<
     aligned_exp: Pipe<Bits<E>>,
     aligned_subtract: Pipe<Bit>,
     aligned_category: Pipe<ResultClass>,
+    lza_t: Signal<Local, Bits<A>>,
+    lza_g: Signal<Local, Bits<A>>,
+    lza_z: Signal<Local, Bits<A>>,
+    indicator: Signal<Local, Bits<A>>,
+    anticipated: LeadingZeros,
     summed: Pipe<Bits<A1>>,
+    summed_zeros: Pipe<Bits<8>>,
     summed_exp: Pipe<Bits<X>>,
-    summed_subtract: Pipe<Bit>,
+    summed_exp_below: Pipe<Bits<X>>,
     summed_category: Pipe<ResultClass>,
-    sum: Signal<Local, Bits<A1>>,
-    smear: Signal<Local, Bits<A1>>,
-    leading_one: Signal<Local, Bits<A1>>,
-    leading_zeros: Signal<Local, Bits<8>>,
-    counted: Pipe<Bits<A1>>,
-    counted_zeros: Pipe<Bits<8>>,
-    counted_exp: Pipe<Bits<X>>,
-    counted_category: Pipe<ResultClass>,
+    shifted: Signal<Local, Bits<A1>>,
     normalized: Signal<Local, Bits<A1>>,
+    exp_select: Signal<Local, Bits<X>>,
     normal_sig: Pipe<Bits<S>>,
     normal_round: Pipe<Bit>,
     normal_sticky: Pipe<Bit>,
@@ -97,14 +108,14 @@ pub struct FloatAdd<
     frac_mask: Constant<Bits<W>>,
     extra_bits: Constant<Bits<8>>,
     align_limit: Constant<Bits<E>>,
-    all_ones: Constant<Bits<A>>,
+    reversed_bits: Vec<Constant<Bits<32>>>,
     carry_in: Constant<Bits<A>>,
-    sum_carry: Constant<Bits<A1>>,
-    smear_shifts: Vec<Constant<Bits<8>>>,
-    count_masks: Vec<Constant<Bits<A1>>>,
-    count_bits: Vec<Constant<Bits<8>>>,
+    lza_top: Constant<Bits<A>>,
+    left_align: Constant<Bits<8>>,
     exp_one: Constant<Bits<X>>,
+    exp_all_ones: Constant<Bits<X>>,
     sig_shift: Constant<Bits<8>>,
+    top_bit: Constant<Bits<A1>>,
     round_bit: Constant<Bits<A1>>,
     sticky_bits: Constant<Bits<A1>>,
 }
@@ -120,7 +131,7 @@ impl<
         const SUB: bool,
     > FloatAdd<E, M, W, S, X, A, A1, SUB>
 {
-    pub const CUTS: usize = 6;
+    pub const CUTS: usize = 5;
 
     pub fn max_stages() -> usize {
         Self::CUTS
@@ -161,6 +172,12 @@ impl<
             compared_nan: Pipe::new(cut[0]),
             compared_inf: Pipe::new(cut[0]),
             compared_cancel: Pipe::new(cut[0]),
+            reversed_a: Default::default(),
+            reversed_b: Default::default(),
+            trailing_a: Default::default(),
+            trailing_b: Default::default(),
+            compared_zeros_a: Pipe::new(cut[0]),
+            compared_zeros_b: Pipe::new(cut[0]),
             a_larger: Default::default(),
             subtract_now: Default::default(),
             x_sig: Default::default(),
@@ -176,52 +193,42 @@ impl<
             aligned_exp: Pipe::new(cut[1]),
             aligned_subtract: Pipe::new(cut[1]),
             aligned_category: Pipe::new(cut[1]),
+            lza_t: Default::default(),
+            lza_g: Default::default(),
+            lza_z: Default::default(),
+            indicator: Default::default(),
+            anticipated: Default::default(),
             summed: Pipe::new(cut[2]),
+            summed_zeros: Pipe::new(cut[2]),
             summed_exp: Pipe::new(cut[2]),
-            summed_subtract: Pipe::new(cut[2]),
+            summed_exp_below: Pipe::new(cut[2]),
             summed_category: Pipe::new(cut[2]),
-            sum: Default::default(),
-            smear: Default::default(),
-            leading_one: Default::default(),
-            leading_zeros: Default::default(),
-            counted: Pipe::new(cut[3]),
-            counted_zeros: Pipe::new(cut[3]),
-            counted_exp: Pipe::new(cut[3]),
-            counted_category: Pipe::new(cut[3]),
+            shifted: Default::default(),
             normalized: Default::default(),
-            normal_sig: Pipe::new(cut[4]),
-            normal_round: Pipe::new(cut[4]),
-            normal_sticky: Pipe::new(cut[4]),
-            normal_exp: Pipe::new(cut[4]),
-            normal_category: Pipe::new(cut[4]),
+            exp_select: Default::default(),
+            normal_sig: Pipe::new(cut[3]),
+            normal_round: Pipe::new(cut[3]),
+            normal_sticky: Pipe::new(cut[3]),
+            normal_exp: Pipe::new(cut[3]),
+            normal_category: Pipe::new(cut[3]),
             rounder: Default::default(),
-            result: Pipe::new(cut[5]),
+            result: Pipe::new(cut[4]),
             subtract: Constant::new(SUB),
             frac_mask: Constant::new((Bits::<W>::from(1) << M as u64) - 1),
             extra_bits: Constant::new(3.into()),
             align_limit: Constant::new((A as u64).into()),
-            all_ones: Constant::new(Bits::<A>::mask()),
+            // Significand bit i is bit i+3 of the aligned frame, reversed: bit 28-i.
+            reversed_bits: (0..S)
+                .map(|i| Constant::new(Bits::<32>::from(1) << (28 - i) as u64))
+                .collect(),
             carry_in: Constant::new(1.into()),
-            sum_carry: Constant::new(Bits::<A1>::from(1) << A as u64),
-            smear_shifts: (0..8)
-                .map(|k| 1u64 << k)
-                .take_while(|&k| k < A1 as u64)
-                .map(|k| Constant::new(k.into()))
-                .collect(),
-            // Leading one at bit i: A1-1-i leading zeros; count bit k is set for the i in mask k.
-            count_masks: (0..8)
-                .map(|k| {
-                    let mask = (0..A1)
-                        .filter(|i| (A1 - 1 - i) >> k & 1 == 1)
-                        .fold(Bits::<A1>::default(), |m, i| {
-                            m | (Bits::<A1>::from(1) << i as u64)
-                        });
-                    Constant::new(mask)
-                })
-                .collect(),
-            count_bits: (0..8).map(|k| Constant::new((1u64 << k).into())).collect(),
+            lza_top: Constant::new(Bits::<A>::from(1) << (A - 1) as u64),
+            // The indicator's top bit goes to bit 30: the A1-bit frame's count.
+            left_align: Constant::new(((31 - A) as u64).into()),
             exp_one: Constant::new(1.into()),
+            exp_all_ones: Constant::new(Bits::<X>::mask()),
             sig_shift: Constant::new(((A1 - S) as u64).into()),
+            top_bit: Constant::new(Bits::<A1>::from(1) << A as u64),
             round_bit: Constant::new(Bits::<A1>::from(1) << (A1 - S - 1) as u64),
             sticky_bits: Constant::new((Bits::<A1>::from(1) << (A1 - S - 1) as u64) - 1),
         }
@@ -286,6 +293,24 @@ impl<
                 & self.unpack_b.inf.val()
                 & (self.unpack_a.sign.val() ^ self.sign_b.val()));
         self.compared_inf.d.next = self.unpack_a.inf.val() | self.unpack_b.inf.val();
+        // Trailing zeros of each significand in the aligned frame (3 extra low bits), as the
+        // leading zeros of the bit-reversed frame (an all-zero significand counts 31).
+        self.reversed_a.next = 0.into();
+        self.reversed_b.next = 0.into();
+        for i in 0..S {
+            if self.unpack_a.sig.val().get_bit(i) {
+                self.reversed_a.next = self.reversed_a.val() | self.reversed_bits[i].val();
+            }
+            if self.unpack_b.sig.val().get_bit(i) {
+                self.reversed_b.next = self.reversed_b.val() | self.reversed_bits[i].val();
+            }
+        }
+        self.trailing_a.x.next = self.reversed_a.val();
+        self.trailing_b.x.next = self.reversed_b.val();
+        self.compared_zeros_a.clock.next = self.clock.val();
+        self.compared_zeros_b.clock.next = self.clock.val();
+        self.compared_zeros_a.d.next = bit_cast::<5, 8>(self.trailing_a.count.val());
+        self.compared_zeros_b.d.next = bit_cast::<5, 8>(self.trailing_b.count.val());
         // The sum is exactly 0 when both operands are zeros or equal magnitudes cancel.
         self.compared_cancel.d.next = (self.unpack_a.zero.val() & self.unpack_b.zero.val())
             | ((self.unpack_a.sign.val() ^ self.sign_b.val())
@@ -315,11 +340,15 @@ impl<
         if self.compared_cancel.q.val() & !self.compared_inf.q.val() {
             self.category.next.sign = self.compared_sign_a.q.val() & !self.subtract_now.val();
         }
-        // Align y to x; the bits shifted out (selected by a mask, beside the shifter) leave
-        // a sticky 1 in the lowest bit.
+        // Align y to x; the bits shifted out leave a sticky 1 in the lowest bit. Some are
+        // shifted out when the shift exceeds y's trailing zeros: a comparison of registered
+        // counts for either order, selected after, so it does not wait for the ordering.
         self.y_wide.next = bit_cast::<A, S>(self.y_sig.val()) << self.extra_bits.val();
         self.y_shifted.next = self.y_wide.val() >> self.shift.val();
-        self.y_sticky.next = (self.y_wide.val() & !(self.all_ones.val() << self.shift.val())).any();
+        self.y_sticky.next = self.compared_shift_ba.q.val() > self.compared_zeros_a.q.val();
+        if self.a_larger.val() {
+            self.y_sticky.next = self.compared_shift_ab.q.val() > self.compared_zeros_b.q.val();
+        }
         self.y_aligned.next = self.y_shifted.val();
         if self.y_sticky.val() {
             self.y_aligned.next = self.y_shifted.val() | self.carry_in.val();
@@ -339,45 +368,57 @@ impl<
         }
         self.aligned_subtract.d.next = self.subtract_now.val();
         self.aligned_category.d.next = self.category.val();
-        // Cut 2. The sum's exponent is that of its bit A-1 (x's leading one) plus one.
+        // Cut 2. The sum, and beside it the leading zeros of a difference anticipated from
+        // its addends: indicator bit i (a function of addend bits i-1..i+1, one LUT) marks
+        // where a string of equal-sum digits ends; its leading one sits at the difference's
+        // leading one or one place above. Below bit 0 the addends count as zeros, above the
+        // top as differing (the carry out is always 1). A sum has no zeros to anticipate: its
+        // leading one is x's or one place above, which the correction finds.
         self.summed.clock.next = self.clock.val();
+        self.summed_zeros.clock.next = self.clock.val();
         self.summed_exp.clock.next = self.clock.val();
-        self.summed_subtract.clock.next = self.clock.val();
+        self.summed_exp_below.clock.next = self.clock.val();
         self.summed_category.clock.next = self.clock.val();
         self.summed.d.next =
             bit_cast::<A1, A>(self.aligned_x.q.val()) + bit_cast::<A1, A>(self.aligned_y.q.val());
+        self.lza_t.next =
+            ((self.aligned_x.q.val() ^ self.aligned_y.q.val()) >> 1) | self.lza_top.val();
+        self.lza_g.next = self.aligned_x.q.val() & self.aligned_y.q.val();
+        self.lza_z.next = !(self.aligned_x.q.val() | self.aligned_y.q.val());
+        self.indicator.next = (self.lza_t.val()
+            & ((self.lza_g.val() & !((self.lza_z.val() << 1) | self.carry_in.val()))
+                | (self.lza_z.val() & !(self.lza_g.val() << 1))))
+            | (!self.lza_t.val()
+                & ((self.lza_z.val() & !((self.lza_z.val() << 1) | self.carry_in.val()))
+                    | (self.lza_g.val() & !(self.lza_g.val() << 1))));
+        self.anticipated.x.next = bit_cast::<32, A>(self.indicator.val()) << self.left_align.val();
+        // The count is of the sum's A1-bit frame (one more than the difference's), in which
+        // the sum's top bit A1-1 is x's leading one's place plus one.
+        self.summed_zeros.d.next = 0.into();
+        if self.aligned_subtract.q.val() {
+            self.summed_zeros.d.next = self.anticipated.count.val();
+        }
         self.summed_exp.d.next = bit_cast::<X, E>(self.aligned_exp.q.val()) + self.exp_one.val();
-        self.summed_subtract.d.next = self.aligned_subtract.q.val();
+        self.summed_exp_below.d.next = bit_cast::<X, E>(self.aligned_exp.q.val());
         self.summed_category.d.next = self.aligned_category.q.val();
-        // |x| ≥ |y|: a difference never borrows, its carry out (always 1) is not part of it.
-        self.sum.next = self.summed.q.val();
-        if self.summed_subtract.q.val() {
-            self.sum.next = self.summed.q.val() & !self.sum_carry.val();
+        // Normalize by the anticipated count; when it was one short the top bit is still 0.
+        // |x| ≥ |y|: a difference never borrows, and its carry out (always 1) is shifted out
+        // (its count is at least 1).
+        self.shifted.next = self.summed.q.val() << self.summed_zeros.q.val();
+        // Both exponents are computed before the correction is known; they are selected by
+        // AND/OR, not by a mux that yosys would fold into one subtractor behind a mux.
+        self.normalized.next = self.shifted.val();
+        self.exp_select.next = self.exp_all_ones.val();
+        if !(self.shifted.val() & self.top_bit.val()).any() {
+            self.normalized.next = self.shifted.val() << 1;
+            self.exp_select.next = 0.into();
         }
-        // Normalize: the leading one goes to the top bit of the sum. Its position comes from
-        // the sum smeared down from the leading one (log-depth ORs, not a priority chain).
-        self.smear.next = self.sum.val();
-        for k in 0..self.smear_shifts.len() {
-            self.smear.next = self.smear.val() | (self.smear.val() >> self.smear_shifts[k].val());
-        }
-        self.leading_one.next = self.smear.val() & !(self.smear.val() >> 1);
-        self.leading_zeros.next = 0.into();
-        for k in 0..8 {
-            if (self.leading_one.val() & self.count_masks[k].val()).any() {
-                self.leading_zeros.next = self.leading_zeros.val() | self.count_bits[k].val();
-            }
-        }
+        self.normal_exp.d.next = ((self.summed_exp.q.val()
+            - bit_cast::<X, 8>(self.summed_zeros.q.val()))
+            & self.exp_select.val())
+            | ((self.summed_exp_below.q.val() - bit_cast::<X, 8>(self.summed_zeros.q.val()))
+                & !self.exp_select.val());
         // Cut 3.
-        self.counted.clock.next = self.clock.val();
-        self.counted_zeros.clock.next = self.clock.val();
-        self.counted_exp.clock.next = self.clock.val();
-        self.counted_category.clock.next = self.clock.val();
-        self.counted.d.next = self.sum.val();
-        self.counted_zeros.d.next = self.leading_zeros.val();
-        self.counted_exp.d.next = self.summed_exp.q.val();
-        self.counted_category.d.next = self.summed_category.q.val();
-        self.normalized.next = self.counted.q.val() << self.counted_zeros.q.val();
-        // Cut 4.
         self.normal_sig.clock.next = self.clock.val();
         self.normal_round.clock.next = self.clock.val();
         self.normal_sticky.clock.next = self.clock.val();
@@ -386,15 +427,13 @@ impl<
         self.normal_sig.d.next = bit_cast::<S, A1>(self.normalized.val() >> self.sig_shift.val());
         self.normal_round.d.next = (self.normalized.val() & self.round_bit.val()).any();
         self.normal_sticky.d.next = (self.normalized.val() & self.sticky_bits.val()).any();
-        self.normal_exp.d.next =
-            self.counted_exp.q.val() - bit_cast::<X, 8>(self.counted_zeros.q.val());
-        self.normal_category.d.next = self.counted_category.q.val();
+        self.normal_category.d.next = self.summed_category.q.val();
         self.rounder.category.next = self.normal_category.q.val();
         self.rounder.exp.next = self.normal_exp.q.val();
         self.rounder.sig.next = self.normal_sig.q.val();
         self.rounder.round.next = self.normal_round.q.val();
         self.rounder.sticky.next = self.normal_sticky.q.val();
-        // Cut 5.
+        // Cut 4.
         self.result.clock.next = self.clock.val();
         self.result.d.next = self.rounder.y.val();
         self.y.next = self.result.q.val();

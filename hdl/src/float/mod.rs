@@ -3,6 +3,7 @@
 
 pub mod add;
 pub mod convert;
+pub mod leading_zeros;
 pub mod lt;
 pub mod mul;
 pub mod recip;

@@ -16,13 +16,14 @@ macro_rules! mt_lane {
             use rust_hdl::prelude::*;
 
             use super::{
-                max_stages, Add, FromF32, Lt, Mul, Recip, Sub, ToF32, FORMAT, NAME, WIDTH,
+                max_stages, Add, FromF32, Lt, Mul, Recip, Sub, ToF32, FORMAT, NAME, RAW_LOAD,
+                WIDTH,
             };
             use $crate::mt::delay::Delay;
             use $crate::mt::schedule::{OpLatencies, Schedule};
 
             fn schedule(depth: usize) -> Schedule {
-                Schedule::new(OpLatencies::for_depth(depth, max_stages))
+                Schedule::new(OpLatencies::for_depth(depth, max_stages).loading(RAW_LOAD))
             }
 
             /// a × b, each component as a.j·b.k − a.k·b.j (the model's `cross`).
@@ -141,8 +142,12 @@ macro_rules! mt_lane {
                 pub t: Signal<Out, Bits<32>>,
                 pub u: Signal<Out, Bits<32>>,
                 pub v: Signal<Out, Bits<32>>,
-                /// query[i] in the format: orig 0..3, dir 3..6, v0 6..9, v1 9..12, v2 12..15.
+                /// query[i] in the format: orig 0..3, dir 3..6, v0 6..9, v1 9..12, v2 12..15
+                /// (`loaded`; the words themselves when the format is `RAW_LOAD`).
                 load: [FromF32; 15],
+                loaded: [Signal<Local, Bits<WIDTH>>; 15],
+                raw_word: Signal<Local, Bits<32>>,
+                raw_load: Constant<Bit>,
                 /// e1 = v1 − v0, e2 = v2 − v0, s = orig − v0.
                 edge1: [Sub; 3],
                 edge2: [Sub; 3],
@@ -208,6 +213,9 @@ macro_rules! mt_lane {
                         u: Default::default(),
                         v: Default::default(),
                         load: std::array::from_fn(|_| FromF32::new(ops.from_f32)),
+                        loaded: Default::default(),
+                        raw_word: Default::default(),
+                        raw_load: Constant::new(RAW_LOAD),
                         edge1: std::array::from_fn(|_| Sub::new(ops.sub)),
                         edge2: std::array::from_fn(|_| Sub::new(ops.sub)),
                         to_origin: std::array::from_fn(|_| Sub::new(ops.sub)),
@@ -266,6 +274,13 @@ macro_rules! mt_lane {
                     for i in 0..15 {
                         self.load[i].clock.next = self.clock.val();
                         self.load[i].a.next = self.query[i].val();
+                        self.loaded[i].next = self.load[i].y.val();
+                        // (Through a word signal: the index inside `bit_cast` would lose
+                        // its macro hygiene in hdl_gen's expansion.)
+                        self.raw_word.next = self.query[i].val();
+                        if self.raw_load.val() {
+                            self.loaded[i].next = bit_cast::<WIDTH, 32>(self.raw_word.val());
+                        }
                     }
                     for i in 0..3 {
                         self.edge1[i].clock.next = self.clock.val();
@@ -277,13 +292,13 @@ macro_rules! mt_lane {
                         self.edge2_at_dot[i].clock.next = self.clock.val();
                         self.to_origin_at_dot[i].clock.next = self.clock.val();
                         // The loads of orig, dir, v0, v1, v2 component i.
-                        self.to_origin[i].a.next = self.load[i].y.val();
-                        self.dir_at_cross[i].d.next = self.load[3 + i].y.val();
-                        self.to_origin[i].b.next = self.load[6 + i].y.val();
-                        self.edge1[i].b.next = self.load[6 + i].y.val();
-                        self.edge2[i].b.next = self.load[6 + i].y.val();
-                        self.edge1[i].a.next = self.load[9 + i].y.val();
-                        self.edge2[i].a.next = self.load[12 + i].y.val();
+                        self.to_origin[i].a.next = self.loaded[i].val();
+                        self.dir_at_cross[i].d.next = self.loaded[3 + i].val();
+                        self.to_origin[i].b.next = self.loaded[6 + i].val();
+                        self.edge1[i].b.next = self.loaded[6 + i].val();
+                        self.edge2[i].b.next = self.loaded[6 + i].val();
+                        self.edge1[i].a.next = self.loaded[9 + i].val();
+                        self.edge2[i].a.next = self.loaded[12 + i].val();
                         // p = dir × e2, q = s × e1.
                         self.p.a[i].next = self.dir_at_cross[i].q.val();
                         self.p.b[i].next = self.edge2[i].y.val();

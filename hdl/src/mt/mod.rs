@@ -24,9 +24,8 @@ use schedule::{OpLatencies, Schedule};
 
 /// The lane's timing in catalogue format `format` at `depth`.
 pub fn schedule(format: &str, depth: usize) -> Result<Schedule, OperatorError> {
-    Ok(Schedule::new(OpLatencies::try_for_depth(depth, |op| {
-        formats::max_stages(format, op)
-    })?))
+    let ops = OpLatencies::try_for_depth(depth, |op| formats::max_stages(format, op))?;
+    Ok(Schedule::new(ops.loading(formats::raw_load(format)?)))
 }
 
 /// Cycles from query to result of a lane in catalogue format `format` at `depth`.

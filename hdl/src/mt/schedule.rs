@@ -39,6 +39,13 @@ impl OpLatencies {
         }
     }
 
+    /// The lane's load: no from_f32 stages when the lane takes the fp32 words unconverted
+    /// (`raw`, a format whose conversion from fp32 only flushes: see `formats`).
+    pub fn loading(self, raw: bool) -> Self {
+        let from_f32 = if raw { 0 } else { self.from_f32 };
+        OpLatencies { from_f32, ..self }
+    }
+
     /// [`OpLatencies::for_depth`] with a lookup of `max_stages` that can fail.
     pub fn try_for_depth<E>(
         depth: usize,
