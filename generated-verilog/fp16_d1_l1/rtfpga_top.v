@@ -34812,6 +34812,21 @@ module rtfpga_core$slots$0$lane$load$0(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [10:0] narrow_sig$d;
+    wire  [10:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [10:0] rounder$sig;
@@ -34835,6 +34850,31 @@ module rtfpga_core$slots$0$lane$load$0(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$0$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$0$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$0$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$0$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$0$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$0$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -34856,17 +34896,307 @@ module rtfpga_core$slots$0$lane$load$0(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 11'h7ff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 11'h7ff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$0
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$0$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$0$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$0$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$0$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$0$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$0$result(clock,d,q);
@@ -35068,6 +35398,21 @@ module rtfpga_core$slots$0$lane$load$1(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [10:0] narrow_sig$d;
+    wire  [10:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [10:0] rounder$sig;
@@ -35091,6 +35436,31 @@ module rtfpga_core$slots$0$lane$load$1(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$1$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$1$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$1$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$1$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$1$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$1$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -35112,17 +35482,307 @@ module rtfpga_core$slots$0$lane$load$1(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 11'h7ff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 11'h7ff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$1
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$1$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$1$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$1$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$1$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$1$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$1$result(clock,d,q);
@@ -35324,6 +35984,21 @@ module rtfpga_core$slots$0$lane$load$10(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [10:0] narrow_sig$d;
+    wire  [10:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [10:0] rounder$sig;
@@ -35347,6 +36022,31 @@ module rtfpga_core$slots$0$lane$load$10(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$10$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$10$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$10$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$10$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$10$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$10$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -35368,17 +36068,307 @@ module rtfpga_core$slots$0$lane$load$10(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 11'h7ff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 11'h7ff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$10
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$10$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$10$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$10$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$10$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$10$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$10$result(clock,d,q);
@@ -35580,6 +36570,21 @@ module rtfpga_core$slots$0$lane$load$11(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [10:0] narrow_sig$d;
+    wire  [10:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [10:0] rounder$sig;
@@ -35603,6 +36608,31 @@ module rtfpga_core$slots$0$lane$load$11(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$11$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$11$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$11$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$11$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$11$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$11$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -35624,17 +36654,307 @@ module rtfpga_core$slots$0$lane$load$11(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 11'h7ff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 11'h7ff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$11
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$11$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$11$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$11$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$11$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$11$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$11$result(clock,d,q);
@@ -35836,6 +37156,21 @@ module rtfpga_core$slots$0$lane$load$12(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [10:0] narrow_sig$d;
+    wire  [10:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [10:0] rounder$sig;
@@ -35859,6 +37194,31 @@ module rtfpga_core$slots$0$lane$load$12(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$12$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$12$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$12$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$12$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$12$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$12$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -35880,17 +37240,307 @@ module rtfpga_core$slots$0$lane$load$12(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 11'h7ff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 11'h7ff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$12
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$12$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$12$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$12$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$12$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$12$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$12$result(clock,d,q);
@@ -36092,6 +37742,21 @@ module rtfpga_core$slots$0$lane$load$13(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [10:0] narrow_sig$d;
+    wire  [10:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [10:0] rounder$sig;
@@ -36115,6 +37780,31 @@ module rtfpga_core$slots$0$lane$load$13(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$13$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$13$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$13$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$13$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$13$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$13$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -36136,17 +37826,307 @@ module rtfpga_core$slots$0$lane$load$13(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 11'h7ff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 11'h7ff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$13
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$13$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$13$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$13$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$13$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$13$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$13$result(clock,d,q);
@@ -36348,6 +38328,21 @@ module rtfpga_core$slots$0$lane$load$14(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [10:0] narrow_sig$d;
+    wire  [10:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [10:0] rounder$sig;
@@ -36371,6 +38366,31 @@ module rtfpga_core$slots$0$lane$load$14(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$14$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$14$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$14$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$14$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$14$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$14$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -36392,17 +38412,307 @@ module rtfpga_core$slots$0$lane$load$14(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 11'h7ff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 11'h7ff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$14
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$14$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$14$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$14$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$14$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$14$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$14$result(clock,d,q);
@@ -36604,6 +38914,21 @@ module rtfpga_core$slots$0$lane$load$2(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [10:0] narrow_sig$d;
+    wire  [10:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [10:0] rounder$sig;
@@ -36627,6 +38952,31 @@ module rtfpga_core$slots$0$lane$load$2(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$2$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$2$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$2$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$2$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$2$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$2$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -36648,17 +38998,307 @@ module rtfpga_core$slots$0$lane$load$2(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 11'h7ff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 11'h7ff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$2
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$2$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$2$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$2$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$2$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$2$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$2$result(clock,d,q);
@@ -36860,6 +39500,21 @@ module rtfpga_core$slots$0$lane$load$3(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [10:0] narrow_sig$d;
+    wire  [10:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [10:0] rounder$sig;
@@ -36883,6 +39538,31 @@ module rtfpga_core$slots$0$lane$load$3(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$3$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$3$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$3$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$3$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$3$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$3$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -36904,17 +39584,307 @@ module rtfpga_core$slots$0$lane$load$3(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 11'h7ff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 11'h7ff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$3
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$3$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$3$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$3$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$3$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$3$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$3$result(clock,d,q);
@@ -37116,6 +40086,21 @@ module rtfpga_core$slots$0$lane$load$4(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [10:0] narrow_sig$d;
+    wire  [10:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [10:0] rounder$sig;
@@ -37139,6 +40124,31 @@ module rtfpga_core$slots$0$lane$load$4(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$4$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$4$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$4$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$4$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$4$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$4$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -37160,17 +40170,307 @@ module rtfpga_core$slots$0$lane$load$4(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 11'h7ff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 11'h7ff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$4
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$4$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$4$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$4$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$4$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$4$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$4$result(clock,d,q);
@@ -37372,6 +40672,21 @@ module rtfpga_core$slots$0$lane$load$5(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [10:0] narrow_sig$d;
+    wire  [10:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [10:0] rounder$sig;
@@ -37395,6 +40710,31 @@ module rtfpga_core$slots$0$lane$load$5(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$5$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$5$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$5$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$5$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$5$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$5$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -37416,17 +40756,307 @@ module rtfpga_core$slots$0$lane$load$5(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 11'h7ff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 11'h7ff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$5
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$5$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$5$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$5$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$5$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$5$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$5$result(clock,d,q);
@@ -37628,6 +41258,21 @@ module rtfpga_core$slots$0$lane$load$6(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [10:0] narrow_sig$d;
+    wire  [10:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [10:0] rounder$sig;
@@ -37651,6 +41296,31 @@ module rtfpga_core$slots$0$lane$load$6(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$6$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$6$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$6$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$6$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$6$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$6$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -37672,17 +41342,307 @@ module rtfpga_core$slots$0$lane$load$6(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 11'h7ff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 11'h7ff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$6
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$6$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$6$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$6$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$6$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$6$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$6$result(clock,d,q);
@@ -37884,6 +41844,21 @@ module rtfpga_core$slots$0$lane$load$7(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [10:0] narrow_sig$d;
+    wire  [10:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [10:0] rounder$sig;
@@ -37907,6 +41882,31 @@ module rtfpga_core$slots$0$lane$load$7(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$7$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$7$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$7$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$7$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$7$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$7$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -37928,17 +41928,307 @@ module rtfpga_core$slots$0$lane$load$7(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 11'h7ff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 11'h7ff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$7
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$7$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$7$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$7$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$7$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$7$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$7$result(clock,d,q);
@@ -38140,6 +42430,21 @@ module rtfpga_core$slots$0$lane$load$8(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [10:0] narrow_sig$d;
+    wire  [10:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [10:0] rounder$sig;
@@ -38163,6 +42468,31 @@ module rtfpga_core$slots$0$lane$load$8(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$8$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$8$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$8$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$8$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$8$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$8$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -38184,17 +42514,307 @@ module rtfpga_core$slots$0$lane$load$8(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 11'h7ff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 11'h7ff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$8
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$8$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$8$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$8$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$8$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$8$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$8$result(clock,d,q);
@@ -38396,6 +43016,21 @@ module rtfpga_core$slots$0$lane$load$9(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [10:0] narrow_sig$d;
+    wire  [10:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [10:0] rounder$sig;
@@ -38419,6 +43054,31 @@ module rtfpga_core$slots$0$lane$load$9(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$9$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$9$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$9$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$9$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$9$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$9$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -38440,17 +43100,307 @@ module rtfpga_core$slots$0$lane$load$9(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 11'h7ff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 11'h7ff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$9
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$9$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$9$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$9$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [10:0] flop$d;
+    wire  [10:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$9$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [10:0] d;
+    output reg  [10:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 11'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$9$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$9$result(clock,d,q);

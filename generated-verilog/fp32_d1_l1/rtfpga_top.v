@@ -36260,6 +36260,21 @@ module rtfpga_core$slots$0$lane$load$0(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [23:0] narrow_sig$d;
+    wire  [23:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [23:0] rounder$sig;
@@ -36283,6 +36298,31 @@ module rtfpga_core$slots$0$lane$load$0(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$0$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$0$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$0$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$0$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$0$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$0$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -36304,17 +36344,307 @@ module rtfpga_core$slots$0$lane$load$0(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 24'hffffff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 24'hffffff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$0
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$0$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$0$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$0$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$0$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$0$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$0$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$0$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$0$result(clock,d,q);
@@ -36516,6 +36846,21 @@ module rtfpga_core$slots$0$lane$load$1(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [23:0] narrow_sig$d;
+    wire  [23:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [23:0] rounder$sig;
@@ -36539,6 +36884,31 @@ module rtfpga_core$slots$0$lane$load$1(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$1$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$1$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$1$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$1$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$1$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$1$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -36560,17 +36930,307 @@ module rtfpga_core$slots$0$lane$load$1(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 24'hffffff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 24'hffffff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$1
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$1$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$1$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$1$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$1$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$1$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$1$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$1$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$1$result(clock,d,q);
@@ -36772,6 +37432,21 @@ module rtfpga_core$slots$0$lane$load$10(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [23:0] narrow_sig$d;
+    wire  [23:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [23:0] rounder$sig;
@@ -36795,6 +37470,31 @@ module rtfpga_core$slots$0$lane$load$10(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$10$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$10$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$10$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$10$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$10$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$10$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -36816,17 +37516,307 @@ module rtfpga_core$slots$0$lane$load$10(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 24'hffffff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 24'hffffff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$10
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$10$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$10$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$10$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$10$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$10$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$10$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$10$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$10$result(clock,d,q);
@@ -37028,6 +38018,21 @@ module rtfpga_core$slots$0$lane$load$11(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [23:0] narrow_sig$d;
+    wire  [23:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [23:0] rounder$sig;
@@ -37051,6 +38056,31 @@ module rtfpga_core$slots$0$lane$load$11(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$11$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$11$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$11$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$11$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$11$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$11$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -37072,17 +38102,307 @@ module rtfpga_core$slots$0$lane$load$11(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 24'hffffff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 24'hffffff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$11
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$11$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$11$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$11$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$11$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$11$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$11$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$11$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$11$result(clock,d,q);
@@ -37284,6 +38604,21 @@ module rtfpga_core$slots$0$lane$load$12(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [23:0] narrow_sig$d;
+    wire  [23:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [23:0] rounder$sig;
@@ -37307,6 +38642,31 @@ module rtfpga_core$slots$0$lane$load$12(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$12$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$12$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$12$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$12$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$12$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$12$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -37328,17 +38688,307 @@ module rtfpga_core$slots$0$lane$load$12(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 24'hffffff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 24'hffffff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$12
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$12$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$12$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$12$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$12$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$12$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$12$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$12$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$12$result(clock,d,q);
@@ -37540,6 +39190,21 @@ module rtfpga_core$slots$0$lane$load$13(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [23:0] narrow_sig$d;
+    wire  [23:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [23:0] rounder$sig;
@@ -37563,6 +39228,31 @@ module rtfpga_core$slots$0$lane$load$13(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$13$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$13$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$13$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$13$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$13$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$13$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -37584,17 +39274,307 @@ module rtfpga_core$slots$0$lane$load$13(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 24'hffffff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 24'hffffff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$13
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$13$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$13$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$13$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$13$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$13$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$13$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$13$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$13$result(clock,d,q);
@@ -37796,6 +39776,21 @@ module rtfpga_core$slots$0$lane$load$14(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [23:0] narrow_sig$d;
+    wire  [23:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [23:0] rounder$sig;
@@ -37819,6 +39814,31 @@ module rtfpga_core$slots$0$lane$load$14(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$14$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$14$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$14$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$14$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$14$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$14$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -37840,17 +39860,307 @@ module rtfpga_core$slots$0$lane$load$14(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 24'hffffff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 24'hffffff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$14
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$14$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$14$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$14$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$14$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$14$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$14$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$14$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$14$result(clock,d,q);
@@ -38052,6 +40362,21 @@ module rtfpga_core$slots$0$lane$load$2(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [23:0] narrow_sig$d;
+    wire  [23:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [23:0] rounder$sig;
@@ -38075,6 +40400,31 @@ module rtfpga_core$slots$0$lane$load$2(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$2$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$2$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$2$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$2$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$2$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$2$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -38096,17 +40446,307 @@ module rtfpga_core$slots$0$lane$load$2(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 24'hffffff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 24'hffffff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$2
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$2$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$2$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$2$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$2$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$2$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$2$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$2$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$2$result(clock,d,q);
@@ -38308,6 +40948,21 @@ module rtfpga_core$slots$0$lane$load$3(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [23:0] narrow_sig$d;
+    wire  [23:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [23:0] rounder$sig;
@@ -38331,6 +40986,31 @@ module rtfpga_core$slots$0$lane$load$3(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$3$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$3$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$3$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$3$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$3$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$3$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -38352,17 +41032,307 @@ module rtfpga_core$slots$0$lane$load$3(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 24'hffffff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 24'hffffff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$3
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$3$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$3$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$3$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$3$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$3$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$3$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$3$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$3$result(clock,d,q);
@@ -38564,6 +41534,21 @@ module rtfpga_core$slots$0$lane$load$4(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [23:0] narrow_sig$d;
+    wire  [23:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [23:0] rounder$sig;
@@ -38587,6 +41572,31 @@ module rtfpga_core$slots$0$lane$load$4(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$4$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$4$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$4$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$4$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$4$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$4$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -38608,17 +41618,307 @@ module rtfpga_core$slots$0$lane$load$4(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 24'hffffff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 24'hffffff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$4
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$4$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$4$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$4$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$4$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$4$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$4$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$4$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$4$result(clock,d,q);
@@ -38820,6 +42120,21 @@ module rtfpga_core$slots$0$lane$load$5(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [23:0] narrow_sig$d;
+    wire  [23:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [23:0] rounder$sig;
@@ -38843,6 +42158,31 @@ module rtfpga_core$slots$0$lane$load$5(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$5$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$5$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$5$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$5$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$5$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$5$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -38864,17 +42204,307 @@ module rtfpga_core$slots$0$lane$load$5(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 24'hffffff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 24'hffffff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$5
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$5$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$5$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$5$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$5$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$5$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$5$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$5$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$5$result(clock,d,q);
@@ -39076,6 +42706,21 @@ module rtfpga_core$slots$0$lane$load$6(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [23:0] narrow_sig$d;
+    wire  [23:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [23:0] rounder$sig;
@@ -39099,6 +42744,31 @@ module rtfpga_core$slots$0$lane$load$6(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$6$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$6$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$6$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$6$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$6$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$6$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -39120,17 +42790,307 @@ module rtfpga_core$slots$0$lane$load$6(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 24'hffffff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 24'hffffff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$6
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$6$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$6$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$6$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$6$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$6$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$6$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$6$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$6$result(clock,d,q);
@@ -39332,6 +43292,21 @@ module rtfpga_core$slots$0$lane$load$7(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [23:0] narrow_sig$d;
+    wire  [23:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [23:0] rounder$sig;
@@ -39355,6 +43330,31 @@ module rtfpga_core$slots$0$lane$load$7(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$7$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$7$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$7$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$7$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$7$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$7$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -39376,17 +43376,307 @@ module rtfpga_core$slots$0$lane$load$7(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 24'hffffff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 24'hffffff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$7
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$7$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$7$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$7$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$7$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$7$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$7$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$7$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$7$result(clock,d,q);
@@ -39588,6 +43878,21 @@ module rtfpga_core$slots$0$lane$load$8(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [23:0] narrow_sig$d;
+    wire  [23:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [23:0] rounder$sig;
@@ -39611,6 +43916,31 @@ module rtfpga_core$slots$0$lane$load$8(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$8$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$8$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$8$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$8$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$8$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$8$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -39632,17 +43962,307 @@ module rtfpga_core$slots$0$lane$load$8(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 24'hffffff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 24'hffffff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$8
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$8$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$8$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$8$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$8$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$8$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$8$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$8$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$8$result(clock,d,q);
@@ -39844,6 +44464,21 @@ module rtfpga_core$slots$0$lane$load$9(clock,a,y);
     wire  unpack$zero;
     wire  unpack$inf;
     wire  unpack$nan;
+    reg  narrow_sig$clock;
+    reg  [23:0] narrow_sig$d;
+    wire  [23:0] narrow_sig$q;
+    reg  narrow_round$clock;
+    reg  narrow_round$d;
+    wire  narrow_round$q;
+    reg  narrow_sticky$clock;
+    reg  narrow_sticky$d;
+    wire  narrow_sticky$q;
+    reg  narrow_exp$clock;
+    reg  [9:0] narrow_exp$d;
+    wire  [9:0] narrow_exp$q;
+    reg  narrow_category$clock;
+    reg  [3:0] narrow_category$d;
+    wire  [3:0] narrow_category$q;
     reg  [3:0] rounder$category;
     reg  [9:0] rounder$exp;
     reg  [23:0] rounder$sig;
@@ -39867,6 +44502,31 @@ module rtfpga_core$slots$0$lane$load$9(clock,a,y);
         .inf(unpack$inf),
         .nan(unpack$nan)
     );
+    rtfpga_core$slots$0$lane$load$9$narrow_sig narrow_sig(
+        .clock(narrow_sig$clock),
+        .d(narrow_sig$d),
+        .q(narrow_sig$q)
+    );
+    rtfpga_core$slots$0$lane$load$9$narrow_round narrow_round(
+        .clock(narrow_round$clock),
+        .d(narrow_round$d),
+        .q(narrow_round$q)
+    );
+    rtfpga_core$slots$0$lane$load$9$narrow_sticky narrow_sticky(
+        .clock(narrow_sticky$clock),
+        .d(narrow_sticky$d),
+        .q(narrow_sticky$q)
+    );
+    rtfpga_core$slots$0$lane$load$9$narrow_exp narrow_exp(
+        .clock(narrow_exp$clock),
+        .d(narrow_exp$d),
+        .q(narrow_exp$q)
+    );
+    rtfpga_core$slots$0$lane$load$9$narrow_category narrow_category(
+        .clock(narrow_category$clock),
+        .d(narrow_category$d),
+        .q(narrow_category$q)
+    );
     rtfpga_core$slots$0$lane$load$9$rounder rounder(
         .category(rounder$category),
         .exp(rounder$exp),
@@ -39888,17 +44548,307 @@ module rtfpga_core$slots$0$lane$load$9(clock,a,y);
         category[(64'h1)+:(1)] = unpack$nan;
         category[(64'h2)+:(1)] = unpack$inf;
         category[(64'h3)+:(1)] = unpack$zero;
-        rounder$sig = ((unpack$sig >> dropped_bits) & 24'hffffff);
-        rounder$round = |(unpack$sig & round_bit);
-        rounder$sticky = |(unpack$sig & sticky_bits);
-        rounder$exp = ((unpack$exp) & 10'h3ff) - rebias;
-        rounder$category = category;
+        narrow_sig$clock = clock;
+        narrow_round$clock = clock;
+        narrow_sticky$clock = clock;
+        narrow_exp$clock = clock;
+        narrow_category$clock = clock;
+        narrow_sig$d = ((unpack$sig >> dropped_bits) & 24'hffffff);
+        narrow_round$d = |(unpack$sig & round_bit);
+        narrow_sticky$d = |(unpack$sig & sticky_bits);
+        narrow_exp$d = ((unpack$exp) & 10'h3ff) - rebias;
+        narrow_category$d = category;
+        rounder$category = narrow_category$q;
+        rounder$exp = narrow_exp$q;
+        rounder$sig = narrow_sig$q;
+        rounder$round = narrow_round$q;
+        rounder$sticky = narrow_sticky$q;
         result$clock = clock;
         result$d = rounder$y;
         y = result$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$9
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_category(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [3:0] flop$d;
+    wire  [3:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$9$narrow_category$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_category
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_category$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_category$flop
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_exp(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [9:0] flop$d;
+    wire  [9:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$9$narrow_exp$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_exp
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_exp$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [9:0] d;
+    output reg  [9:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 10'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_exp$flop
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_round(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$9$narrow_round$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_round
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_round$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_round$flop
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_sig(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  [23:0] flop$d;
+    wire  [23:0] flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$9$narrow_sig$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_sig
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_sig$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_sig$flop
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_sticky(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  d;
+    output reg  q;
+    
+    // Constant declarations
+    localparam  registered = 1'b0;
+    
+    // Stub signals
+    reg  flop$d;
+    wire  flop$q;
+    reg  flop$clock;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$load$9$narrow_sticky$flop flop(
+        .d(flop$d),
+        .q(flop$q),
+        .clock(flop$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        flop$clock = clock;
+        flop$d = d;
+        if (registered) begin
+            q = flop$q;
+        end
+        else begin
+            q = d;
+        end
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_sticky
+
+
+module rtfpga_core$slots$0$lane$load$9$narrow_sticky$flop(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$load$9$narrow_sticky$flop
 
 
 module rtfpga_core$slots$0$lane$load$9$result(clock,d,q);

@@ -1,8 +1,8 @@
 //! Conversions between fp32 and a float format with E ≤ 8, M ≤ 23: `FromF32` rounds (RNE,
 //! FTZ, overflow to Inf), `ToF32` is exact (subnormal inputs flush to ±0, NaN → canonical).
 //!
-//! Cut points: FromF32 (max_stages() = 1): 0. the result (4 levels from the input: a cut
-//! before rounding would not lower that); ToF32 (max_stages() = 1): 0. the result.
+//! Cut points: FromF32 (max_stages() = 2): 0. before rounding, 1. the result; ToF32
+//! (max_stages() = 1): 0. the result. One FromF32 register goes to the result.
 
 use rust_hdl::prelude::*;
 
@@ -24,6 +24,11 @@ pub struct FloatFromF32<
     pub y: Signal<Out, Bits<W>>,
     unpack: Unpack<8, 23, 32, 24>,
     category: Signal<Local, ResultClass>,
+    narrow_sig: Pipe<Bits<S>>,
+    narrow_round: Pipe<Bit>,
+    narrow_sticky: Pipe<Bit>,
+    narrow_exp: Pipe<Bits<X>>,
+    narrow_category: Pipe<ResultClass>,
     rounder: Round<E, M, W, S, X>,
     result: Pipe<Bits<W>>,
     dropped_bits: Constant<Bits<8>>,
@@ -35,7 +40,7 @@ pub struct FloatFromF32<
 impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: usize>
     FloatFromF32<E, M, W, S, X>
 {
-    pub const CUTS: usize = 1;
+    pub const CUTS: usize = 2;
 
     pub fn max_stages() -> usize {
         Self::CUTS
@@ -59,8 +64,13 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: us
             y: Default::default(),
             unpack: Default::default(),
             category: Default::default(),
+            narrow_sig: Pipe::new(cut[0]),
+            narrow_round: Pipe::new(cut[0]),
+            narrow_sticky: Pipe::new(cut[0]),
+            narrow_exp: Pipe::new(cut[0]),
+            narrow_category: Pipe::new(cut[0]),
             rounder: Default::default(),
-            result: Pipe::new(cut[0]),
+            result: Pipe::new(cut[1]),
             dropped_bits: Constant::new((dropped as u64).into()),
             round_bit: Constant::new(round_bit.into()),
             sticky_bits: Constant::new(round_bit.saturating_sub(1).into()),
@@ -79,11 +89,22 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: us
         self.category.next.nan = self.unpack.nan.val();
         self.category.next.inf = self.unpack.inf.val();
         self.category.next.zero = self.unpack.zero.val();
-        self.rounder.sig.next = bit_cast::<S, 24>(self.unpack.sig.val() >> self.dropped_bits.val());
-        self.rounder.round.next = (self.unpack.sig.val() & self.round_bit.val()).any();
-        self.rounder.sticky.next = (self.unpack.sig.val() & self.sticky_bits.val()).any();
-        self.rounder.exp.next = bit_cast::<X, 8>(self.unpack.exp.val()) - self.rebias.val();
-        self.rounder.category.next = self.category.val();
+        self.narrow_sig.clock.next = self.clock.val();
+        self.narrow_round.clock.next = self.clock.val();
+        self.narrow_sticky.clock.next = self.clock.val();
+        self.narrow_exp.clock.next = self.clock.val();
+        self.narrow_category.clock.next = self.clock.val();
+        self.narrow_sig.d.next =
+            bit_cast::<S, 24>(self.unpack.sig.val() >> self.dropped_bits.val());
+        self.narrow_round.d.next = (self.unpack.sig.val() & self.round_bit.val()).any();
+        self.narrow_sticky.d.next = (self.unpack.sig.val() & self.sticky_bits.val()).any();
+        self.narrow_exp.d.next = bit_cast::<X, 8>(self.unpack.exp.val()) - self.rebias.val();
+        self.narrow_category.d.next = self.category.val();
+        self.rounder.category.next = self.narrow_category.q.val();
+        self.rounder.exp.next = self.narrow_exp.q.val();
+        self.rounder.sig.next = self.narrow_sig.q.val();
+        self.rounder.round.next = self.narrow_round.q.val();
+        self.rounder.sticky.next = self.narrow_sticky.q.val();
         self.result.clock.next = self.clock.val();
         self.result.d.next = self.rounder.y.val();
         self.y.next = self.result.q.val();

@@ -237,4 +237,26 @@ mod tests {
         );
         assert_eq!(OpLatencies::for_depth(100, max).recip, 27);
     }
+
+    #[test]
+    fn a_raw_load_drops_only_the_conversion_stages() {
+        let ops = uniform(2);
+        assert_eq!(ops.loading(false), ops);
+        assert_eq!(ops.loading(true), OpLatencies { from_f32: 0, ..ops });
+        assert_eq!(
+            Schedule::new(ops.loading(true)).latency + 2,
+            Schedule::new(ops).latency
+        );
+    }
+
+    #[test]
+    fn fp32_lane_is_40_cycles_at_max_depth_and_other_floats_keep_their_load() {
+        assert_eq!(crate::formats::raw_load("fp32"), Ok(true));
+        assert_eq!(crate::formats::raw_load("fp16"), Ok(false));
+        assert_eq!(crate::formats::raw_load("fx16_10"), Ok(false));
+        assert!(crate::formats::raw_load("e8m20").is_err());
+        assert_eq!(crate::mt::max_depth("fp32"), Ok(5));
+        assert_eq!(crate::mt::latency("fp32", 5), Ok(40));
+        assert_eq!(crate::mt::latency("fp16", 5), Ok(42));
+    }
 }
