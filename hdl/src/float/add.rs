@@ -12,8 +12,9 @@
 //! The stages are cut so that no register-to-register path holds two wide carry chains or a
 //! carry chain and a wide shifter:
 //!   0. after comparing: exponents (both differences, clamped to the alignment range) and
-//!      fractions are compared separately, and an exact cancellation is detected there
-//!   1. after ordering and aligning y (shifter and sticky mask side by side); y is already
+//!      fractions are compared separately, an exact cancellation is detected there, and
+//!      each significand's trailing zeros are counted (for the sticky bit)
+//!   1. after ordering and aligning y (shifter and sticky comparison side by side); y is already
 //!      inverted for a subtraction and x carries the +1, so the next stage is one adder
 //!   2. after the add and, beside it, the anticipated leading-zero count
 //!   3. after the normalizing shift, its one-place correction and the exponent adjust

@@ -16,8 +16,7 @@ macro_rules! mt_lane {
             use rust_hdl::prelude::*;
 
             use super::{
-                max_stages, Add, FromF32, Lt, Mul, Recip, Sub, ToF32, FORMAT, NAME, RAW_LOAD,
-                WIDTH,
+                max_stages, Add, FromF32, Lt, Mul, Recip, Sub, ToF32, FORMAT, NAME, RAW_LOAD, WIDTH,
             };
             use $crate::mt::delay::Delay;
             use $crate::mt::schedule::{OpLatencies, Schedule};
