@@ -165,9 +165,7 @@ fn fp32_mul_and_fp16_add_match_the_model() {
         check::<fp16::Add>("fp16 add", s, &vectors(f, 50_000, 2), |a, b| f.add(a, b));
         let f = fx32_16_rnd_sat::FORMAT;
         let s = stages.min(fx32_16_rnd_sat::Mul::max_stages());
-        check::<fx32_16_rnd_sat::Mul>("fx32_16_rnd_sat mul", s, &vectors(f, 50_000, 3), |a, b| {
-            f.mul(a, b)
-        });
+        check::<fx32_16_rnd_sat::Mul>("fx32_16_rnd_sat mul", s, &vectors(f, 50_000, 3), |a, b| f.mul(a, b));
     }
 }
 
@@ -179,20 +177,13 @@ fn fp32_mul_and_fp16_add_match_the_model() {
 fn recip_of_every_fraction_matches_the_model() {
     let f = fp24::FORMAT;
     let every: Vec<[u64; 2]> = (0..1u64 << 24).map(|a| [a, 0]).collect();
-    check::<fp24::Recip>("fp24 recip", fp24::Recip::max_stages(), &every, |a, _| {
-        f.recip(a)
-    });
+    check::<fp24::Recip>("fp24 recip", fp24::Recip::max_stages(), &every, |a, _| f.recip(a));
     let f = fp32::FORMAT;
     let fractions: Vec<[u64; 2]> = [127u64, 1, 253, 0x1fe]
         .iter()
         .flat_map(|&e| (0..1u64 << 23).map(move |m| [(e << 23) | m, 0]))
         .collect();
-    check::<fp32::Recip>(
-        "fp32 recip",
-        fp32::Recip::max_stages(),
-        &fractions,
-        |a, _| f.recip(a),
-    );
+    check::<fp32::Recip>("fp32 recip", fp32::Recip::max_stages(), &fractions, |a, _| f.recip(a));
 }
 
 /// The subtractor's leading-zero anticipation and its one-place correction on every pair of

@@ -1,8 +1,9 @@
 //! Leading zeros of a 32-bit vector as a 4-ary tree: each nibble's count (one LUT per bit),
 //! then each 16-bit half's (the first non-zero nibble's count, offset by its place), then
 //! the word's. About four LUT levels, where a priority chain or a smear of ORs maps onto
-//! LUT/MUXF7/MUXF8 chains of ten. Narrower vectors are passed left-aligned; the count of an
-//! all-zero word is not used by the operators (they know a zero result beforehand).
+//! LUT/MUXF7/MUXF8 chains of ten. Narrower vectors are passed left-aligned. An all-zero word
+//! counts 31: the adder's anticipated count of an exact zero is not used (it knows a zero
+//! result beforehand), but its trailing-zero sticky test relies on a zero significand's 31.
 
 use rust_hdl::prelude::*;
 

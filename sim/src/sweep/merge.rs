@@ -135,11 +135,13 @@ fn lane_fit(points: &[PointResult], p: &PointResult) -> Option<(LaneFit, Option<
     let (format, depth) = (p.point.format.as_str(), p.point.depth);
     let one = usage(format, depth, 1)?;
     let is_float = |f: &str| matches!(hw_model::lookup(f), Ok(hw_model::Format::Float { .. }));
-    let mut pairs: Vec<&PointResult> = points
+    // Every synthesised 1-/2-lane pair, with both usages; the nearest first.
+    let mut pairs: Vec<(&PointResult, Usage, Usage)> = points
         .iter()
-        .filter(|o| o.point.lanes == 1 && o.synth.is_some() && usage(&o.point.format, o.point.depth, 2).is_some())
+        .filter(|o| o.point.lanes == 1)
+        .filter_map(|o| Some((o, o.synth.as_ref()?.usage(), usage(&o.point.format, o.point.depth, 2)?)))
         .collect();
-    pairs.sort_by_key(|o| {
+    pairs.sort_by_cached_key(|(o, _, _)| {
         (
             o.point.format != format,
             is_float(&o.point.format) != is_float(format),
@@ -149,13 +151,12 @@ fn lane_fit(points: &[PointResult], p: &PointResult) -> Option<(LaneFit, Option<
             o.point.depth,
         )
     });
-    let pair = pairs.first()?;
+    let &(pair, pair_one, two) = pairs.first()?;
     let (f, d) = (pair.point.format.as_str(), pair.point.depth);
-    let two = usage(f, d, 2)?;
     if (f, d) == (format, depth) {
         return Some((fit_from(one, two, &XC7Z020), None));
     }
-    let fixed = fit_from(pair.synth.as_ref()?.usage(), two, &XC7Z020).fixed;
+    let fixed = fit_from(pair_one, two, &XC7Z020).fixed;
     Some((fit_with_fixed(one, fixed, &XC7Z020), Some(format!("{f}_d{d}"))))
 }
 
