@@ -4103,6 +4103,7 @@ module rtfpga_core$slots$0$lane$det$first_sum(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -4498,11 +4499,11 @@ module rtfpga_core$slots$0$lane$det$first_sum(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -4585,7 +4586,13 @@ module rtfpga_core$slots$0$lane$det$first_sum(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -6399,6 +6406,10 @@ module rtfpga_core$slots$0$lane$det$first_sum$rounder(category,exp,sig,round,sti
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -6425,22 +6436,24 @@ module rtfpga_core$slots$0$lane$det$first_sum$rounder(category,exp,sig,round,sti
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$det$first_sum$rounder
@@ -7086,7 +7099,6 @@ module rtfpga_core$slots$0$lane$det$first_sum$unpack_a(x,sign,exp,sig,zero,inf,n
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -7099,10 +7111,8 @@ module rtfpga_core$slots$0$lane$det$first_sum$unpack_a(x,sign,exp,sig,zero,inf,n
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -7126,7 +7136,6 @@ module rtfpga_core$slots$0$lane$det$first_sum$unpack_b(x,sign,exp,sig,zero,inf,n
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -7139,10 +7148,8 @@ module rtfpga_core$slots$0$lane$det$first_sum$unpack_b(x,sign,exp,sig,zero,inf,n
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -7159,7 +7166,8 @@ module rtfpga_core$slots$0$lane$det$products$0(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -7222,6 +7230,7 @@ module rtfpga_core$slots$0$lane$det$products$0(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$det$products$0$unpack_a unpack_a(
@@ -7305,7 +7314,7 @@ module rtfpga_core$slots$0$lane$det$products$0(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -7333,7 +7342,11 @@ module rtfpga_core$slots$0$lane$det$products$0(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -7899,6 +7912,10 @@ module rtfpga_core$slots$0$lane$det$products$0$rounder(category,exp,sig,round,st
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -7925,22 +7942,24 @@ module rtfpga_core$slots$0$lane$det$products$0$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$det$products$0$rounder
@@ -7962,7 +7981,6 @@ module rtfpga_core$slots$0$lane$det$products$0$unpack_a(x,sign,exp,sig,zero,inf,
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -7975,10 +7993,8 @@ module rtfpga_core$slots$0$lane$det$products$0$unpack_a(x,sign,exp,sig,zero,inf,
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -8002,7 +8018,6 @@ module rtfpga_core$slots$0$lane$det$products$0$unpack_b(x,sign,exp,sig,zero,inf,
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -8015,10 +8030,8 @@ module rtfpga_core$slots$0$lane$det$products$0$unpack_b(x,sign,exp,sig,zero,inf,
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -8035,7 +8048,8 @@ module rtfpga_core$slots$0$lane$det$products$1(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -8098,6 +8112,7 @@ module rtfpga_core$slots$0$lane$det$products$1(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$det$products$1$unpack_a unpack_a(
@@ -8181,7 +8196,7 @@ module rtfpga_core$slots$0$lane$det$products$1(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -8209,7 +8224,11 @@ module rtfpga_core$slots$0$lane$det$products$1(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -8775,6 +8794,10 @@ module rtfpga_core$slots$0$lane$det$products$1$rounder(category,exp,sig,round,st
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -8801,22 +8824,24 @@ module rtfpga_core$slots$0$lane$det$products$1$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$det$products$1$rounder
@@ -8838,7 +8863,6 @@ module rtfpga_core$slots$0$lane$det$products$1$unpack_a(x,sign,exp,sig,zero,inf,
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -8851,10 +8875,8 @@ module rtfpga_core$slots$0$lane$det$products$1$unpack_a(x,sign,exp,sig,zero,inf,
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -8878,7 +8900,6 @@ module rtfpga_core$slots$0$lane$det$products$1$unpack_b(x,sign,exp,sig,zero,inf,
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -8891,10 +8912,8 @@ module rtfpga_core$slots$0$lane$det$products$1$unpack_b(x,sign,exp,sig,zero,inf,
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -8911,7 +8930,8 @@ module rtfpga_core$slots$0$lane$det$products$2(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -8974,6 +8994,7 @@ module rtfpga_core$slots$0$lane$det$products$2(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$det$products$2$unpack_a unpack_a(
@@ -9057,7 +9078,7 @@ module rtfpga_core$slots$0$lane$det$products$2(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -9085,7 +9106,11 @@ module rtfpga_core$slots$0$lane$det$products$2(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -9651,6 +9676,10 @@ module rtfpga_core$slots$0$lane$det$products$2$rounder(category,exp,sig,round,st
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -9677,22 +9706,24 @@ module rtfpga_core$slots$0$lane$det$products$2$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$det$products$2$rounder
@@ -9714,7 +9745,6 @@ module rtfpga_core$slots$0$lane$det$products$2$unpack_a(x,sign,exp,sig,zero,inf,
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -9727,10 +9757,8 @@ module rtfpga_core$slots$0$lane$det$products$2$unpack_a(x,sign,exp,sig,zero,inf,
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -9754,7 +9782,6 @@ module rtfpga_core$slots$0$lane$det$products$2$unpack_b(x,sign,exp,sig,zero,inf,
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -9767,10 +9794,8 @@ module rtfpga_core$slots$0$lane$det$products$2$unpack_b(x,sign,exp,sig,zero,inf,
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -9791,6 +9816,7 @@ module rtfpga_core$slots$0$lane$det$sum(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -10186,11 +10212,11 @@ module rtfpga_core$slots$0$lane$det$sum(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -10273,7 +10299,13 @@ module rtfpga_core$slots$0$lane$det$sum(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -12087,6 +12119,10 @@ module rtfpga_core$slots$0$lane$det$sum$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -12113,22 +12149,24 @@ module rtfpga_core$slots$0$lane$det$sum$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$det$sum$rounder
@@ -12774,7 +12812,6 @@ module rtfpga_core$slots$0$lane$det$sum$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -12787,10 +12824,8 @@ module rtfpga_core$slots$0$lane$det$sum$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -12814,7 +12849,6 @@ module rtfpga_core$slots$0$lane$det$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -12827,10 +12861,8 @@ module rtfpga_core$slots$0$lane$det$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -13051,7 +13083,6 @@ module rtfpga_core$slots$0$lane$det_above_neg_eps$unpack_a(x,sign,exp,sig,zero,i
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -13064,10 +13095,8 @@ module rtfpga_core$slots$0$lane$det_above_neg_eps$unpack_a(x,sign,exp,sig,zero,i
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -13091,7 +13120,6 @@ module rtfpga_core$slots$0$lane$det_above_neg_eps$unpack_b(x,sign,exp,sig,zero,i
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -13104,10 +13132,8 @@ module rtfpga_core$slots$0$lane$det_above_neg_eps$unpack_b(x,sign,exp,sig,zero,i
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -13275,7 +13301,6 @@ module rtfpga_core$slots$0$lane$det_below_eps$unpack_a(x,sign,exp,sig,zero,inf,n
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -13288,10 +13313,8 @@ module rtfpga_core$slots$0$lane$det_below_eps$unpack_a(x,sign,exp,sig,zero,inf,n
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -13315,7 +13338,6 @@ module rtfpga_core$slots$0$lane$det_below_eps$unpack_b(x,sign,exp,sig,zero,inf,n
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -13328,10 +13350,8 @@ module rtfpga_core$slots$0$lane$det_below_eps$unpack_b(x,sign,exp,sig,zero,inf,n
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -13760,6 +13780,7 @@ module rtfpga_core$slots$0$lane$edge1$0(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -14155,11 +14176,11 @@ module rtfpga_core$slots$0$lane$edge1$0(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -14242,7 +14263,13 @@ module rtfpga_core$slots$0$lane$edge1$0(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -16056,6 +16083,10 @@ module rtfpga_core$slots$0$lane$edge1$0$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -16082,22 +16113,24 @@ module rtfpga_core$slots$0$lane$edge1$0$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$edge1$0$rounder
@@ -16743,7 +16776,6 @@ module rtfpga_core$slots$0$lane$edge1$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -16756,10 +16788,8 @@ module rtfpga_core$slots$0$lane$edge1$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -16783,7 +16813,6 @@ module rtfpga_core$slots$0$lane$edge1$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -16796,10 +16825,8 @@ module rtfpga_core$slots$0$lane$edge1$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -16820,6 +16847,7 @@ module rtfpga_core$slots$0$lane$edge1$1(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -17215,11 +17243,11 @@ module rtfpga_core$slots$0$lane$edge1$1(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -17302,7 +17330,13 @@ module rtfpga_core$slots$0$lane$edge1$1(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -19116,6 +19150,10 @@ module rtfpga_core$slots$0$lane$edge1$1$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -19142,22 +19180,24 @@ module rtfpga_core$slots$0$lane$edge1$1$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$edge1$1$rounder
@@ -19803,7 +19843,6 @@ module rtfpga_core$slots$0$lane$edge1$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -19816,10 +19855,8 @@ module rtfpga_core$slots$0$lane$edge1$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -19843,7 +19880,6 @@ module rtfpga_core$slots$0$lane$edge1$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -19856,10 +19892,8 @@ module rtfpga_core$slots$0$lane$edge1$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -19880,6 +19914,7 @@ module rtfpga_core$slots$0$lane$edge1$2(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -20275,11 +20310,11 @@ module rtfpga_core$slots$0$lane$edge1$2(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -20362,7 +20397,13 @@ module rtfpga_core$slots$0$lane$edge1$2(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -22176,6 +22217,10 @@ module rtfpga_core$slots$0$lane$edge1$2$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -22202,22 +22247,24 @@ module rtfpga_core$slots$0$lane$edge1$2$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$edge1$2$rounder
@@ -22863,7 +22910,6 @@ module rtfpga_core$slots$0$lane$edge1$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -22876,10 +22922,8 @@ module rtfpga_core$slots$0$lane$edge1$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -22903,7 +22947,6 @@ module rtfpga_core$slots$0$lane$edge1$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -22916,10 +22959,8 @@ module rtfpga_core$slots$0$lane$edge1$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -23189,6 +23230,7 @@ module rtfpga_core$slots$0$lane$edge2$0(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -23584,11 +23626,11 @@ module rtfpga_core$slots$0$lane$edge2$0(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -23671,7 +23713,13 @@ module rtfpga_core$slots$0$lane$edge2$0(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -25485,6 +25533,10 @@ module rtfpga_core$slots$0$lane$edge2$0$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -25511,22 +25563,24 @@ module rtfpga_core$slots$0$lane$edge2$0$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$edge2$0$rounder
@@ -26172,7 +26226,6 @@ module rtfpga_core$slots$0$lane$edge2$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -26185,10 +26238,8 @@ module rtfpga_core$slots$0$lane$edge2$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -26212,7 +26263,6 @@ module rtfpga_core$slots$0$lane$edge2$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -26225,10 +26275,8 @@ module rtfpga_core$slots$0$lane$edge2$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -26249,6 +26297,7 @@ module rtfpga_core$slots$0$lane$edge2$1(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -26644,11 +26693,11 @@ module rtfpga_core$slots$0$lane$edge2$1(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -26731,7 +26780,13 @@ module rtfpga_core$slots$0$lane$edge2$1(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -28545,6 +28600,10 @@ module rtfpga_core$slots$0$lane$edge2$1$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -28571,22 +28630,24 @@ module rtfpga_core$slots$0$lane$edge2$1$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$edge2$1$rounder
@@ -29232,7 +29293,6 @@ module rtfpga_core$slots$0$lane$edge2$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -29245,10 +29305,8 @@ module rtfpga_core$slots$0$lane$edge2$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -29272,7 +29330,6 @@ module rtfpga_core$slots$0$lane$edge2$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -29285,10 +29342,8 @@ module rtfpga_core$slots$0$lane$edge2$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -29309,6 +29364,7 @@ module rtfpga_core$slots$0$lane$edge2$2(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -29704,11 +29760,11 @@ module rtfpga_core$slots$0$lane$edge2$2(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -29791,7 +29847,13 @@ module rtfpga_core$slots$0$lane$edge2$2(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -31605,6 +31667,10 @@ module rtfpga_core$slots$0$lane$edge2$2$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -31631,22 +31697,24 @@ module rtfpga_core$slots$0$lane$edge2$2$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$edge2$2$rounder
@@ -32292,7 +32360,6 @@ module rtfpga_core$slots$0$lane$edge2$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -32305,10 +32372,8 @@ module rtfpga_core$slots$0$lane$edge2$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -32332,7 +32397,6 @@ module rtfpga_core$slots$0$lane$edge2$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -32345,10 +32409,8 @@ module rtfpga_core$slots$0$lane$edge2$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -34599,6 +34661,10 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -34625,22 +34691,24 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$inv_det$rounder
@@ -34767,7 +34835,6 @@ module rtfpga_core$slots$0$lane$inv_det$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -34780,10 +34847,8 @@ module rtfpga_core$slots$0$lane$inv_det$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -35290,6 +35355,10 @@ module rtfpga_core$slots$0$lane$load$0$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -35316,22 +35385,24 @@ module rtfpga_core$slots$0$lane$load$0$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$0$rounder
@@ -35353,7 +35424,6 @@ module rtfpga_core$slots$0$lane$load$0$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -35366,10 +35436,8 @@ module rtfpga_core$slots$0$lane$load$0$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -35876,6 +35944,10 @@ module rtfpga_core$slots$0$lane$load$1$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -35902,22 +35974,24 @@ module rtfpga_core$slots$0$lane$load$1$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$1$rounder
@@ -35939,7 +36013,6 @@ module rtfpga_core$slots$0$lane$load$1$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -35952,10 +36025,8 @@ module rtfpga_core$slots$0$lane$load$1$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -36462,6 +36533,10 @@ module rtfpga_core$slots$0$lane$load$10$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -36488,22 +36563,24 @@ module rtfpga_core$slots$0$lane$load$10$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$10$rounder
@@ -36525,7 +36602,6 @@ module rtfpga_core$slots$0$lane$load$10$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -36538,10 +36614,8 @@ module rtfpga_core$slots$0$lane$load$10$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -37048,6 +37122,10 @@ module rtfpga_core$slots$0$lane$load$11$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -37074,22 +37152,24 @@ module rtfpga_core$slots$0$lane$load$11$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$11$rounder
@@ -37111,7 +37191,6 @@ module rtfpga_core$slots$0$lane$load$11$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -37124,10 +37203,8 @@ module rtfpga_core$slots$0$lane$load$11$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -37634,6 +37711,10 @@ module rtfpga_core$slots$0$lane$load$12$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -37660,22 +37741,24 @@ module rtfpga_core$slots$0$lane$load$12$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$12$rounder
@@ -37697,7 +37780,6 @@ module rtfpga_core$slots$0$lane$load$12$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -37710,10 +37792,8 @@ module rtfpga_core$slots$0$lane$load$12$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -38220,6 +38300,10 @@ module rtfpga_core$slots$0$lane$load$13$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -38246,22 +38330,24 @@ module rtfpga_core$slots$0$lane$load$13$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$13$rounder
@@ -38283,7 +38369,6 @@ module rtfpga_core$slots$0$lane$load$13$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -38296,10 +38381,8 @@ module rtfpga_core$slots$0$lane$load$13$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -38806,6 +38889,10 @@ module rtfpga_core$slots$0$lane$load$14$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -38832,22 +38919,24 @@ module rtfpga_core$slots$0$lane$load$14$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$14$rounder
@@ -38869,7 +38958,6 @@ module rtfpga_core$slots$0$lane$load$14$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -38882,10 +38970,8 @@ module rtfpga_core$slots$0$lane$load$14$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -39392,6 +39478,10 @@ module rtfpga_core$slots$0$lane$load$2$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -39418,22 +39508,24 @@ module rtfpga_core$slots$0$lane$load$2$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$2$rounder
@@ -39455,7 +39547,6 @@ module rtfpga_core$slots$0$lane$load$2$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -39468,10 +39559,8 @@ module rtfpga_core$slots$0$lane$load$2$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -39978,6 +40067,10 @@ module rtfpga_core$slots$0$lane$load$3$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -40004,22 +40097,24 @@ module rtfpga_core$slots$0$lane$load$3$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$3$rounder
@@ -40041,7 +40136,6 @@ module rtfpga_core$slots$0$lane$load$3$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -40054,10 +40148,8 @@ module rtfpga_core$slots$0$lane$load$3$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -40564,6 +40656,10 @@ module rtfpga_core$slots$0$lane$load$4$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -40590,22 +40686,24 @@ module rtfpga_core$slots$0$lane$load$4$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$4$rounder
@@ -40627,7 +40725,6 @@ module rtfpga_core$slots$0$lane$load$4$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -40640,10 +40737,8 @@ module rtfpga_core$slots$0$lane$load$4$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -41150,6 +41245,10 @@ module rtfpga_core$slots$0$lane$load$5$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -41176,22 +41275,24 @@ module rtfpga_core$slots$0$lane$load$5$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$5$rounder
@@ -41213,7 +41314,6 @@ module rtfpga_core$slots$0$lane$load$5$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -41226,10 +41326,8 @@ module rtfpga_core$slots$0$lane$load$5$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -41736,6 +41834,10 @@ module rtfpga_core$slots$0$lane$load$6$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -41762,22 +41864,24 @@ module rtfpga_core$slots$0$lane$load$6$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$6$rounder
@@ -41799,7 +41903,6 @@ module rtfpga_core$slots$0$lane$load$6$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -41812,10 +41915,8 @@ module rtfpga_core$slots$0$lane$load$6$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -42322,6 +42423,10 @@ module rtfpga_core$slots$0$lane$load$7$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -42348,22 +42453,24 @@ module rtfpga_core$slots$0$lane$load$7$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$7$rounder
@@ -42385,7 +42492,6 @@ module rtfpga_core$slots$0$lane$load$7$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -42398,10 +42504,8 @@ module rtfpga_core$slots$0$lane$load$7$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -42908,6 +43012,10 @@ module rtfpga_core$slots$0$lane$load$8$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -42934,22 +43042,24 @@ module rtfpga_core$slots$0$lane$load$8$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$8$rounder
@@ -42971,7 +43081,6 @@ module rtfpga_core$slots$0$lane$load$8$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -42984,10 +43093,8 @@ module rtfpga_core$slots$0$lane$load$8$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -43494,6 +43601,10 @@ module rtfpga_core$slots$0$lane$load$9$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -43520,22 +43631,24 @@ module rtfpga_core$slots$0$lane$load$9$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$9$rounder
@@ -43557,7 +43670,6 @@ module rtfpga_core$slots$0$lane$load$9$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -43570,10 +43682,8 @@ module rtfpga_core$slots$0$lane$load$9$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -43739,6 +43849,7 @@ module rtfpga_core$slots$0$lane$p$diff$0(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -44134,11 +44245,11 @@ module rtfpga_core$slots$0$lane$p$diff$0(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -44221,7 +44332,13 @@ module rtfpga_core$slots$0$lane$p$diff$0(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -46035,6 +46152,10 @@ module rtfpga_core$slots$0$lane$p$diff$0$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -46061,22 +46182,24 @@ module rtfpga_core$slots$0$lane$p$diff$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$diff$0$rounder
@@ -46722,7 +46845,6 @@ module rtfpga_core$slots$0$lane$p$diff$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -46735,10 +46857,8 @@ module rtfpga_core$slots$0$lane$p$diff$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -46762,7 +46882,6 @@ module rtfpga_core$slots$0$lane$p$diff$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -46775,10 +46894,8 @@ module rtfpga_core$slots$0$lane$p$diff$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -46799,6 +46916,7 @@ module rtfpga_core$slots$0$lane$p$diff$1(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -47194,11 +47312,11 @@ module rtfpga_core$slots$0$lane$p$diff$1(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -47281,7 +47399,13 @@ module rtfpga_core$slots$0$lane$p$diff$1(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -49095,6 +49219,10 @@ module rtfpga_core$slots$0$lane$p$diff$1$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -49121,22 +49249,24 @@ module rtfpga_core$slots$0$lane$p$diff$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$diff$1$rounder
@@ -49782,7 +49912,6 @@ module rtfpga_core$slots$0$lane$p$diff$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -49795,10 +49924,8 @@ module rtfpga_core$slots$0$lane$p$diff$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -49822,7 +49949,6 @@ module rtfpga_core$slots$0$lane$p$diff$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -49835,10 +49961,8 @@ module rtfpga_core$slots$0$lane$p$diff$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -49859,6 +49983,7 @@ module rtfpga_core$slots$0$lane$p$diff$2(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -50254,11 +50379,11 @@ module rtfpga_core$slots$0$lane$p$diff$2(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -50341,7 +50466,13 @@ module rtfpga_core$slots$0$lane$p$diff$2(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -52155,6 +52286,10 @@ module rtfpga_core$slots$0$lane$p$diff$2$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -52181,22 +52316,24 @@ module rtfpga_core$slots$0$lane$p$diff$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$diff$2$rounder
@@ -52842,7 +52979,6 @@ module rtfpga_core$slots$0$lane$p$diff$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -52855,10 +52991,8 @@ module rtfpga_core$slots$0$lane$p$diff$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -52882,7 +53016,6 @@ module rtfpga_core$slots$0$lane$p$diff$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -52895,10 +53028,8 @@ module rtfpga_core$slots$0$lane$p$diff$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -52915,7 +53046,8 @@ module rtfpga_core$slots$0$lane$p$left$0(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -52978,6 +53110,7 @@ module rtfpga_core$slots$0$lane$p$left$0(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$p$left$0$unpack_a unpack_a(
@@ -53061,7 +53194,7 @@ module rtfpga_core$slots$0$lane$p$left$0(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -53089,7 +53222,11 @@ module rtfpga_core$slots$0$lane$p$left$0(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -53655,6 +53792,10 @@ module rtfpga_core$slots$0$lane$p$left$0$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -53681,22 +53822,24 @@ module rtfpga_core$slots$0$lane$p$left$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$left$0$rounder
@@ -53718,7 +53861,6 @@ module rtfpga_core$slots$0$lane$p$left$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -53731,10 +53873,8 @@ module rtfpga_core$slots$0$lane$p$left$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -53758,7 +53898,6 @@ module rtfpga_core$slots$0$lane$p$left$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -53771,10 +53910,8 @@ module rtfpga_core$slots$0$lane$p$left$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -53791,7 +53928,8 @@ module rtfpga_core$slots$0$lane$p$left$1(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -53854,6 +53992,7 @@ module rtfpga_core$slots$0$lane$p$left$1(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$p$left$1$unpack_a unpack_a(
@@ -53937,7 +54076,7 @@ module rtfpga_core$slots$0$lane$p$left$1(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -53965,7 +54104,11 @@ module rtfpga_core$slots$0$lane$p$left$1(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -54531,6 +54674,10 @@ module rtfpga_core$slots$0$lane$p$left$1$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -54557,22 +54704,24 @@ module rtfpga_core$slots$0$lane$p$left$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$left$1$rounder
@@ -54594,7 +54743,6 @@ module rtfpga_core$slots$0$lane$p$left$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -54607,10 +54755,8 @@ module rtfpga_core$slots$0$lane$p$left$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -54634,7 +54780,6 @@ module rtfpga_core$slots$0$lane$p$left$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -54647,10 +54792,8 @@ module rtfpga_core$slots$0$lane$p$left$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -54667,7 +54810,8 @@ module rtfpga_core$slots$0$lane$p$left$2(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -54730,6 +54874,7 @@ module rtfpga_core$slots$0$lane$p$left$2(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$p$left$2$unpack_a unpack_a(
@@ -54813,7 +54958,7 @@ module rtfpga_core$slots$0$lane$p$left$2(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -54841,7 +54986,11 @@ module rtfpga_core$slots$0$lane$p$left$2(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -55407,6 +55556,10 @@ module rtfpga_core$slots$0$lane$p$left$2$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -55433,22 +55586,24 @@ module rtfpga_core$slots$0$lane$p$left$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$left$2$rounder
@@ -55470,7 +55625,6 @@ module rtfpga_core$slots$0$lane$p$left$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -55483,10 +55637,8 @@ module rtfpga_core$slots$0$lane$p$left$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -55510,7 +55662,6 @@ module rtfpga_core$slots$0$lane$p$left$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -55523,10 +55674,8 @@ module rtfpga_core$slots$0$lane$p$left$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -55543,7 +55692,8 @@ module rtfpga_core$slots$0$lane$p$right$0(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -55606,6 +55756,7 @@ module rtfpga_core$slots$0$lane$p$right$0(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$p$right$0$unpack_a unpack_a(
@@ -55689,7 +55840,7 @@ module rtfpga_core$slots$0$lane$p$right$0(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -55717,7 +55868,11 @@ module rtfpga_core$slots$0$lane$p$right$0(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -56283,6 +56438,10 @@ module rtfpga_core$slots$0$lane$p$right$0$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -56309,22 +56468,24 @@ module rtfpga_core$slots$0$lane$p$right$0$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$right$0$rounder
@@ -56346,7 +56507,6 @@ module rtfpga_core$slots$0$lane$p$right$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -56359,10 +56519,8 @@ module rtfpga_core$slots$0$lane$p$right$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -56386,7 +56544,6 @@ module rtfpga_core$slots$0$lane$p$right$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -56399,10 +56556,8 @@ module rtfpga_core$slots$0$lane$p$right$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -56419,7 +56574,8 @@ module rtfpga_core$slots$0$lane$p$right$1(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -56482,6 +56638,7 @@ module rtfpga_core$slots$0$lane$p$right$1(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$p$right$1$unpack_a unpack_a(
@@ -56565,7 +56722,7 @@ module rtfpga_core$slots$0$lane$p$right$1(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -56593,7 +56750,11 @@ module rtfpga_core$slots$0$lane$p$right$1(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -57159,6 +57320,10 @@ module rtfpga_core$slots$0$lane$p$right$1$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -57185,22 +57350,24 @@ module rtfpga_core$slots$0$lane$p$right$1$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$right$1$rounder
@@ -57222,7 +57389,6 @@ module rtfpga_core$slots$0$lane$p$right$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -57235,10 +57401,8 @@ module rtfpga_core$slots$0$lane$p$right$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -57262,7 +57426,6 @@ module rtfpga_core$slots$0$lane$p$right$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -57275,10 +57438,8 @@ module rtfpga_core$slots$0$lane$p$right$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -57295,7 +57456,8 @@ module rtfpga_core$slots$0$lane$p$right$2(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -57358,6 +57520,7 @@ module rtfpga_core$slots$0$lane$p$right$2(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$p$right$2$unpack_a unpack_a(
@@ -57441,7 +57604,7 @@ module rtfpga_core$slots$0$lane$p$right$2(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -57469,7 +57632,11 @@ module rtfpga_core$slots$0$lane$p$right$2(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -58035,6 +58202,10 @@ module rtfpga_core$slots$0$lane$p$right$2$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -58061,22 +58232,24 @@ module rtfpga_core$slots$0$lane$p$right$2$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$right$2$rounder
@@ -58098,7 +58271,6 @@ module rtfpga_core$slots$0$lane$p$right$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -58111,10 +58283,8 @@ module rtfpga_core$slots$0$lane$p$right$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -58138,7 +58308,6 @@ module rtfpga_core$slots$0$lane$p$right$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -58151,10 +58320,8 @@ module rtfpga_core$slots$0$lane$p$right$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -58433,6 +58600,7 @@ module rtfpga_core$slots$0$lane$q$diff$0(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -58828,11 +58996,11 @@ module rtfpga_core$slots$0$lane$q$diff$0(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -58915,7 +59083,13 @@ module rtfpga_core$slots$0$lane$q$diff$0(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -60729,6 +60903,10 @@ module rtfpga_core$slots$0$lane$q$diff$0$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -60755,22 +60933,24 @@ module rtfpga_core$slots$0$lane$q$diff$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$diff$0$rounder
@@ -61416,7 +61596,6 @@ module rtfpga_core$slots$0$lane$q$diff$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -61429,10 +61608,8 @@ module rtfpga_core$slots$0$lane$q$diff$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -61456,7 +61633,6 @@ module rtfpga_core$slots$0$lane$q$diff$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -61469,10 +61645,8 @@ module rtfpga_core$slots$0$lane$q$diff$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -61493,6 +61667,7 @@ module rtfpga_core$slots$0$lane$q$diff$1(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -61888,11 +62063,11 @@ module rtfpga_core$slots$0$lane$q$diff$1(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -61975,7 +62150,13 @@ module rtfpga_core$slots$0$lane$q$diff$1(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -63789,6 +63970,10 @@ module rtfpga_core$slots$0$lane$q$diff$1$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -63815,22 +64000,24 @@ module rtfpga_core$slots$0$lane$q$diff$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$diff$1$rounder
@@ -64476,7 +64663,6 @@ module rtfpga_core$slots$0$lane$q$diff$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -64489,10 +64675,8 @@ module rtfpga_core$slots$0$lane$q$diff$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -64516,7 +64700,6 @@ module rtfpga_core$slots$0$lane$q$diff$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -64529,10 +64712,8 @@ module rtfpga_core$slots$0$lane$q$diff$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -64553,6 +64734,7 @@ module rtfpga_core$slots$0$lane$q$diff$2(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -64948,11 +65130,11 @@ module rtfpga_core$slots$0$lane$q$diff$2(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -65035,7 +65217,13 @@ module rtfpga_core$slots$0$lane$q$diff$2(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -66849,6 +67037,10 @@ module rtfpga_core$slots$0$lane$q$diff$2$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -66875,22 +67067,24 @@ module rtfpga_core$slots$0$lane$q$diff$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$diff$2$rounder
@@ -67536,7 +67730,6 @@ module rtfpga_core$slots$0$lane$q$diff$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -67549,10 +67742,8 @@ module rtfpga_core$slots$0$lane$q$diff$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -67576,7 +67767,6 @@ module rtfpga_core$slots$0$lane$q$diff$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -67589,10 +67779,8 @@ module rtfpga_core$slots$0$lane$q$diff$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -67609,7 +67797,8 @@ module rtfpga_core$slots$0$lane$q$left$0(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -67672,6 +67861,7 @@ module rtfpga_core$slots$0$lane$q$left$0(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$q$left$0$unpack_a unpack_a(
@@ -67755,7 +67945,7 @@ module rtfpga_core$slots$0$lane$q$left$0(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -67783,7 +67973,11 @@ module rtfpga_core$slots$0$lane$q$left$0(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -68349,6 +68543,10 @@ module rtfpga_core$slots$0$lane$q$left$0$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -68375,22 +68573,24 @@ module rtfpga_core$slots$0$lane$q$left$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$left$0$rounder
@@ -68412,7 +68612,6 @@ module rtfpga_core$slots$0$lane$q$left$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -68425,10 +68624,8 @@ module rtfpga_core$slots$0$lane$q$left$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -68452,7 +68649,6 @@ module rtfpga_core$slots$0$lane$q$left$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -68465,10 +68661,8 @@ module rtfpga_core$slots$0$lane$q$left$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -68485,7 +68679,8 @@ module rtfpga_core$slots$0$lane$q$left$1(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -68548,6 +68743,7 @@ module rtfpga_core$slots$0$lane$q$left$1(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$q$left$1$unpack_a unpack_a(
@@ -68631,7 +68827,7 @@ module rtfpga_core$slots$0$lane$q$left$1(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -68659,7 +68855,11 @@ module rtfpga_core$slots$0$lane$q$left$1(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -69225,6 +69425,10 @@ module rtfpga_core$slots$0$lane$q$left$1$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -69251,22 +69455,24 @@ module rtfpga_core$slots$0$lane$q$left$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$left$1$rounder
@@ -69288,7 +69494,6 @@ module rtfpga_core$slots$0$lane$q$left$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -69301,10 +69506,8 @@ module rtfpga_core$slots$0$lane$q$left$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -69328,7 +69531,6 @@ module rtfpga_core$slots$0$lane$q$left$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -69341,10 +69543,8 @@ module rtfpga_core$slots$0$lane$q$left$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -69361,7 +69561,8 @@ module rtfpga_core$slots$0$lane$q$left$2(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -69424,6 +69625,7 @@ module rtfpga_core$slots$0$lane$q$left$2(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$q$left$2$unpack_a unpack_a(
@@ -69507,7 +69709,7 @@ module rtfpga_core$slots$0$lane$q$left$2(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -69535,7 +69737,11 @@ module rtfpga_core$slots$0$lane$q$left$2(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -70101,6 +70307,10 @@ module rtfpga_core$slots$0$lane$q$left$2$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -70127,22 +70337,24 @@ module rtfpga_core$slots$0$lane$q$left$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$left$2$rounder
@@ -70164,7 +70376,6 @@ module rtfpga_core$slots$0$lane$q$left$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -70177,10 +70388,8 @@ module rtfpga_core$slots$0$lane$q$left$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -70204,7 +70413,6 @@ module rtfpga_core$slots$0$lane$q$left$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -70217,10 +70425,8 @@ module rtfpga_core$slots$0$lane$q$left$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -70237,7 +70443,8 @@ module rtfpga_core$slots$0$lane$q$right$0(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -70300,6 +70507,7 @@ module rtfpga_core$slots$0$lane$q$right$0(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$q$right$0$unpack_a unpack_a(
@@ -70383,7 +70591,7 @@ module rtfpga_core$slots$0$lane$q$right$0(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -70411,7 +70619,11 @@ module rtfpga_core$slots$0$lane$q$right$0(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -70977,6 +71189,10 @@ module rtfpga_core$slots$0$lane$q$right$0$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -71003,22 +71219,24 @@ module rtfpga_core$slots$0$lane$q$right$0$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$right$0$rounder
@@ -71040,7 +71258,6 @@ module rtfpga_core$slots$0$lane$q$right$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -71053,10 +71270,8 @@ module rtfpga_core$slots$0$lane$q$right$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -71080,7 +71295,6 @@ module rtfpga_core$slots$0$lane$q$right$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -71093,10 +71307,8 @@ module rtfpga_core$slots$0$lane$q$right$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -71113,7 +71325,8 @@ module rtfpga_core$slots$0$lane$q$right$1(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -71176,6 +71389,7 @@ module rtfpga_core$slots$0$lane$q$right$1(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$q$right$1$unpack_a unpack_a(
@@ -71259,7 +71473,7 @@ module rtfpga_core$slots$0$lane$q$right$1(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -71287,7 +71501,11 @@ module rtfpga_core$slots$0$lane$q$right$1(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -71853,6 +72071,10 @@ module rtfpga_core$slots$0$lane$q$right$1$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -71879,22 +72101,24 @@ module rtfpga_core$slots$0$lane$q$right$1$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$right$1$rounder
@@ -71916,7 +72140,6 @@ module rtfpga_core$slots$0$lane$q$right$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -71929,10 +72152,8 @@ module rtfpga_core$slots$0$lane$q$right$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -71956,7 +72177,6 @@ module rtfpga_core$slots$0$lane$q$right$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -71969,10 +72189,8 @@ module rtfpga_core$slots$0$lane$q$right$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -71989,7 +72207,8 @@ module rtfpga_core$slots$0$lane$q$right$2(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -72052,6 +72271,7 @@ module rtfpga_core$slots$0$lane$q$right$2(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$q$right$2$unpack_a unpack_a(
@@ -72135,7 +72355,7 @@ module rtfpga_core$slots$0$lane$q$right$2(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -72163,7 +72383,11 @@ module rtfpga_core$slots$0$lane$q$right$2(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -72729,6 +72953,10 @@ module rtfpga_core$slots$0$lane$q$right$2$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -72755,22 +72983,24 @@ module rtfpga_core$slots$0$lane$q$right$2$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$right$2$rounder
@@ -72792,7 +73022,6 @@ module rtfpga_core$slots$0$lane$q$right$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -72805,10 +73034,8 @@ module rtfpga_core$slots$0$lane$q$right$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -72832,7 +73059,6 @@ module rtfpga_core$slots$0$lane$q$right$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -72845,10 +73071,8 @@ module rtfpga_core$slots$0$lane$q$right$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -73016,7 +73240,6 @@ module rtfpga_core$slots$0$lane$sum_above_one$unpack_a(x,sign,exp,sig,zero,inf,n
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -73029,10 +73252,8 @@ module rtfpga_core$slots$0$lane$sum_above_one$unpack_a(x,sign,exp,sig,zero,inf,n
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -73056,7 +73277,6 @@ module rtfpga_core$slots$0$lane$sum_above_one$unpack_b(x,sign,exp,sig,zero,inf,n
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -73069,10 +73289,8 @@ module rtfpga_core$slots$0$lane$sum_above_one$unpack_b(x,sign,exp,sig,zero,inf,n
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -73259,7 +73477,6 @@ module rtfpga_core$slots$0$lane$t_above_zero$unpack_a(x,sign,exp,sig,zero,inf,na
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -73272,10 +73489,8 @@ module rtfpga_core$slots$0$lane$t_above_zero$unpack_a(x,sign,exp,sig,zero,inf,na
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -73299,7 +73514,6 @@ module rtfpga_core$slots$0$lane$t_above_zero$unpack_b(x,sign,exp,sig,zero,inf,na
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -73312,10 +73526,8 @@ module rtfpga_core$slots$0$lane$t_above_zero$unpack_b(x,sign,exp,sig,zero,inf,na
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -73488,6 +73700,7 @@ module rtfpga_core$slots$0$lane$t_num$first_sum(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -73883,11 +74096,11 @@ module rtfpga_core$slots$0$lane$t_num$first_sum(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -73970,7 +74183,13 @@ module rtfpga_core$slots$0$lane$t_num$first_sum(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -75784,6 +76003,10 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$rounder(category,exp,sig,round,s
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -75810,22 +76033,24 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$t_num$first_sum$rounder
@@ -76471,7 +76696,6 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$unpack_a(x,sign,exp,sig,zero,inf
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -76484,10 +76708,8 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$unpack_a(x,sign,exp,sig,zero,inf
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -76511,7 +76733,6 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$unpack_b(x,sign,exp,sig,zero,inf
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -76524,10 +76745,8 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$unpack_b(x,sign,exp,sig,zero,inf
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -76544,7 +76763,8 @@ module rtfpga_core$slots$0$lane$t_num$products$0(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -76607,6 +76827,7 @@ module rtfpga_core$slots$0$lane$t_num$products$0(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$t_num$products$0$unpack_a unpack_a(
@@ -76690,7 +76911,7 @@ module rtfpga_core$slots$0$lane$t_num$products$0(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -76718,7 +76939,11 @@ module rtfpga_core$slots$0$lane$t_num$products$0(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -77284,6 +77509,10 @@ module rtfpga_core$slots$0$lane$t_num$products$0$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -77310,22 +77539,24 @@ module rtfpga_core$slots$0$lane$t_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$t_num$products$0$rounder
@@ -77347,7 +77578,6 @@ module rtfpga_core$slots$0$lane$t_num$products$0$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -77360,10 +77590,8 @@ module rtfpga_core$slots$0$lane$t_num$products$0$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -77387,7 +77615,6 @@ module rtfpga_core$slots$0$lane$t_num$products$0$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -77400,10 +77627,8 @@ module rtfpga_core$slots$0$lane$t_num$products$0$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -77420,7 +77645,8 @@ module rtfpga_core$slots$0$lane$t_num$products$1(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -77483,6 +77709,7 @@ module rtfpga_core$slots$0$lane$t_num$products$1(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$t_num$products$1$unpack_a unpack_a(
@@ -77566,7 +77793,7 @@ module rtfpga_core$slots$0$lane$t_num$products$1(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -77594,7 +77821,11 @@ module rtfpga_core$slots$0$lane$t_num$products$1(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -78160,6 +78391,10 @@ module rtfpga_core$slots$0$lane$t_num$products$1$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -78186,22 +78421,24 @@ module rtfpga_core$slots$0$lane$t_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$t_num$products$1$rounder
@@ -78223,7 +78460,6 @@ module rtfpga_core$slots$0$lane$t_num$products$1$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -78236,10 +78472,8 @@ module rtfpga_core$slots$0$lane$t_num$products$1$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -78263,7 +78497,6 @@ module rtfpga_core$slots$0$lane$t_num$products$1$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -78276,10 +78509,8 @@ module rtfpga_core$slots$0$lane$t_num$products$1$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -78296,7 +78527,8 @@ module rtfpga_core$slots$0$lane$t_num$products$2(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -78359,6 +78591,7 @@ module rtfpga_core$slots$0$lane$t_num$products$2(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$t_num$products$2$unpack_a unpack_a(
@@ -78442,7 +78675,7 @@ module rtfpga_core$slots$0$lane$t_num$products$2(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -78470,7 +78703,11 @@ module rtfpga_core$slots$0$lane$t_num$products$2(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -79036,6 +79273,10 @@ module rtfpga_core$slots$0$lane$t_num$products$2$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -79062,22 +79303,24 @@ module rtfpga_core$slots$0$lane$t_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$t_num$products$2$rounder
@@ -79099,7 +79342,6 @@ module rtfpga_core$slots$0$lane$t_num$products$2$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -79112,10 +79354,8 @@ module rtfpga_core$slots$0$lane$t_num$products$2$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -79139,7 +79379,6 @@ module rtfpga_core$slots$0$lane$t_num$products$2$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -79152,10 +79391,8 @@ module rtfpga_core$slots$0$lane$t_num$products$2$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -79176,6 +79413,7 @@ module rtfpga_core$slots$0$lane$t_num$sum(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -79571,11 +79809,11 @@ module rtfpga_core$slots$0$lane$t_num$sum(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -79658,7 +79896,13 @@ module rtfpga_core$slots$0$lane$t_num$sum(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -81472,6 +81716,10 @@ module rtfpga_core$slots$0$lane$t_num$sum$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -81498,22 +81746,24 @@ module rtfpga_core$slots$0$lane$t_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$t_num$sum$rounder
@@ -82159,7 +82409,6 @@ module rtfpga_core$slots$0$lane$t_num$sum$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -82172,10 +82421,8 @@ module rtfpga_core$slots$0$lane$t_num$sum$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -82199,7 +82446,6 @@ module rtfpga_core$slots$0$lane$t_num$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -82212,10 +82458,8 @@ module rtfpga_core$slots$0$lane$t_num$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -82477,7 +82721,6 @@ module rtfpga_core$slots$0$lane$t_out$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -82490,10 +82733,8 @@ module rtfpga_core$slots$0$lane$t_out$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -82510,7 +82751,8 @@ module rtfpga_core$slots$0$lane$t_scale(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -82573,6 +82815,7 @@ module rtfpga_core$slots$0$lane$t_scale(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$t_scale$unpack_a unpack_a(
@@ -82656,7 +82899,7 @@ module rtfpga_core$slots$0$lane$t_scale(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -82684,7 +82927,11 @@ module rtfpga_core$slots$0$lane$t_scale(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -83250,6 +83497,10 @@ module rtfpga_core$slots$0$lane$t_scale$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -83276,22 +83527,24 @@ module rtfpga_core$slots$0$lane$t_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$t_scale$rounder
@@ -83313,7 +83566,6 @@ module rtfpga_core$slots$0$lane$t_scale$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -83326,10 +83578,8 @@ module rtfpga_core$slots$0$lane$t_scale$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -83353,7 +83603,6 @@ module rtfpga_core$slots$0$lane$t_scale$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -83366,10 +83615,8 @@ module rtfpga_core$slots$0$lane$t_scale$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -83390,6 +83637,7 @@ module rtfpga_core$slots$0$lane$to_origin$0(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -83785,11 +84033,11 @@ module rtfpga_core$slots$0$lane$to_origin$0(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -83872,7 +84120,13 @@ module rtfpga_core$slots$0$lane$to_origin$0(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -85686,6 +85940,10 @@ module rtfpga_core$slots$0$lane$to_origin$0$rounder(category,exp,sig,round,stick
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -85712,22 +85970,24 @@ module rtfpga_core$slots$0$lane$to_origin$0$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$to_origin$0$rounder
@@ -86373,7 +86633,6 @@ module rtfpga_core$slots$0$lane$to_origin$0$unpack_a(x,sign,exp,sig,zero,inf,nan
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -86386,10 +86645,8 @@ module rtfpga_core$slots$0$lane$to_origin$0$unpack_a(x,sign,exp,sig,zero,inf,nan
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -86413,7 +86670,6 @@ module rtfpga_core$slots$0$lane$to_origin$0$unpack_b(x,sign,exp,sig,zero,inf,nan
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -86426,10 +86682,8 @@ module rtfpga_core$slots$0$lane$to_origin$0$unpack_b(x,sign,exp,sig,zero,inf,nan
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -86450,6 +86704,7 @@ module rtfpga_core$slots$0$lane$to_origin$1(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -86845,11 +87100,11 @@ module rtfpga_core$slots$0$lane$to_origin$1(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -86932,7 +87187,13 @@ module rtfpga_core$slots$0$lane$to_origin$1(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -88746,6 +89007,10 @@ module rtfpga_core$slots$0$lane$to_origin$1$rounder(category,exp,sig,round,stick
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -88772,22 +89037,24 @@ module rtfpga_core$slots$0$lane$to_origin$1$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$to_origin$1$rounder
@@ -89433,7 +89700,6 @@ module rtfpga_core$slots$0$lane$to_origin$1$unpack_a(x,sign,exp,sig,zero,inf,nan
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -89446,10 +89712,8 @@ module rtfpga_core$slots$0$lane$to_origin$1$unpack_a(x,sign,exp,sig,zero,inf,nan
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -89473,7 +89737,6 @@ module rtfpga_core$slots$0$lane$to_origin$1$unpack_b(x,sign,exp,sig,zero,inf,nan
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -89486,10 +89749,8 @@ module rtfpga_core$slots$0$lane$to_origin$1$unpack_b(x,sign,exp,sig,zero,inf,nan
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -89510,6 +89771,7 @@ module rtfpga_core$slots$0$lane$to_origin$2(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -89905,11 +90167,11 @@ module rtfpga_core$slots$0$lane$to_origin$2(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -89992,7 +90254,13 @@ module rtfpga_core$slots$0$lane$to_origin$2(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -91806,6 +92074,10 @@ module rtfpga_core$slots$0$lane$to_origin$2$rounder(category,exp,sig,round,stick
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -91832,22 +92104,24 @@ module rtfpga_core$slots$0$lane$to_origin$2$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$to_origin$2$rounder
@@ -92493,7 +92767,6 @@ module rtfpga_core$slots$0$lane$to_origin$2$unpack_a(x,sign,exp,sig,zero,inf,nan
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -92506,10 +92779,8 @@ module rtfpga_core$slots$0$lane$to_origin$2$unpack_a(x,sign,exp,sig,zero,inf,nan
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -92533,7 +92804,6 @@ module rtfpga_core$slots$0$lane$to_origin$2$unpack_b(x,sign,exp,sig,zero,inf,nan
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -92546,10 +92816,8 @@ module rtfpga_core$slots$0$lane$to_origin$2$unpack_b(x,sign,exp,sig,zero,inf,nan
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -92966,7 +93234,6 @@ module rtfpga_core$slots$0$lane$u_above_one$unpack_a(x,sign,exp,sig,zero,inf,nan
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -92979,10 +93246,8 @@ module rtfpga_core$slots$0$lane$u_above_one$unpack_a(x,sign,exp,sig,zero,inf,nan
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -93006,7 +93271,6 @@ module rtfpga_core$slots$0$lane$u_above_one$unpack_b(x,sign,exp,sig,zero,inf,nan
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -93019,10 +93283,8 @@ module rtfpga_core$slots$0$lane$u_above_one$unpack_b(x,sign,exp,sig,zero,inf,nan
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -93243,7 +93505,6 @@ module rtfpga_core$slots$0$lane$u_below_zero$unpack_a(x,sign,exp,sig,zero,inf,na
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -93256,10 +93517,8 @@ module rtfpga_core$slots$0$lane$u_below_zero$unpack_a(x,sign,exp,sig,zero,inf,na
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -93283,7 +93542,6 @@ module rtfpga_core$slots$0$lane$u_below_zero$unpack_b(x,sign,exp,sig,zero,inf,na
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -93296,10 +93554,8 @@ module rtfpga_core$slots$0$lane$u_below_zero$unpack_b(x,sign,exp,sig,zero,inf,na
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -93419,6 +93675,7 @@ module rtfpga_core$slots$0$lane$u_num$first_sum(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -93814,11 +94071,11 @@ module rtfpga_core$slots$0$lane$u_num$first_sum(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -93901,7 +94158,13 @@ module rtfpga_core$slots$0$lane$u_num$first_sum(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -95715,6 +95978,10 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$rounder(category,exp,sig,round,s
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -95741,22 +96008,24 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$u_num$first_sum$rounder
@@ -96402,7 +96671,6 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$unpack_a(x,sign,exp,sig,zero,inf
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -96415,10 +96683,8 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$unpack_a(x,sign,exp,sig,zero,inf
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -96442,7 +96708,6 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$unpack_b(x,sign,exp,sig,zero,inf
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -96455,10 +96720,8 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$unpack_b(x,sign,exp,sig,zero,inf
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -96475,7 +96738,8 @@ module rtfpga_core$slots$0$lane$u_num$products$0(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -96538,6 +96802,7 @@ module rtfpga_core$slots$0$lane$u_num$products$0(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$u_num$products$0$unpack_a unpack_a(
@@ -96621,7 +96886,7 @@ module rtfpga_core$slots$0$lane$u_num$products$0(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -96649,7 +96914,11 @@ module rtfpga_core$slots$0$lane$u_num$products$0(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -97215,6 +97484,10 @@ module rtfpga_core$slots$0$lane$u_num$products$0$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -97241,22 +97514,24 @@ module rtfpga_core$slots$0$lane$u_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$u_num$products$0$rounder
@@ -97278,7 +97553,6 @@ module rtfpga_core$slots$0$lane$u_num$products$0$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -97291,10 +97565,8 @@ module rtfpga_core$slots$0$lane$u_num$products$0$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -97318,7 +97590,6 @@ module rtfpga_core$slots$0$lane$u_num$products$0$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -97331,10 +97602,8 @@ module rtfpga_core$slots$0$lane$u_num$products$0$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -97351,7 +97620,8 @@ module rtfpga_core$slots$0$lane$u_num$products$1(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -97414,6 +97684,7 @@ module rtfpga_core$slots$0$lane$u_num$products$1(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$u_num$products$1$unpack_a unpack_a(
@@ -97497,7 +97768,7 @@ module rtfpga_core$slots$0$lane$u_num$products$1(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -97525,7 +97796,11 @@ module rtfpga_core$slots$0$lane$u_num$products$1(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -98091,6 +98366,10 @@ module rtfpga_core$slots$0$lane$u_num$products$1$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -98117,22 +98396,24 @@ module rtfpga_core$slots$0$lane$u_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$u_num$products$1$rounder
@@ -98154,7 +98435,6 @@ module rtfpga_core$slots$0$lane$u_num$products$1$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -98167,10 +98447,8 @@ module rtfpga_core$slots$0$lane$u_num$products$1$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -98194,7 +98472,6 @@ module rtfpga_core$slots$0$lane$u_num$products$1$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -98207,10 +98484,8 @@ module rtfpga_core$slots$0$lane$u_num$products$1$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -98227,7 +98502,8 @@ module rtfpga_core$slots$0$lane$u_num$products$2(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -98290,6 +98566,7 @@ module rtfpga_core$slots$0$lane$u_num$products$2(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$u_num$products$2$unpack_a unpack_a(
@@ -98373,7 +98650,7 @@ module rtfpga_core$slots$0$lane$u_num$products$2(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -98401,7 +98678,11 @@ module rtfpga_core$slots$0$lane$u_num$products$2(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -98967,6 +99248,10 @@ module rtfpga_core$slots$0$lane$u_num$products$2$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -98993,22 +99278,24 @@ module rtfpga_core$slots$0$lane$u_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$u_num$products$2$rounder
@@ -99030,7 +99317,6 @@ module rtfpga_core$slots$0$lane$u_num$products$2$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -99043,10 +99329,8 @@ module rtfpga_core$slots$0$lane$u_num$products$2$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -99070,7 +99354,6 @@ module rtfpga_core$slots$0$lane$u_num$products$2$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -99083,10 +99366,8 @@ module rtfpga_core$slots$0$lane$u_num$products$2$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -99107,6 +99388,7 @@ module rtfpga_core$slots$0$lane$u_num$sum(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -99502,11 +99784,11 @@ module rtfpga_core$slots$0$lane$u_num$sum(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -99589,7 +99871,13 @@ module rtfpga_core$slots$0$lane$u_num$sum(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -101403,6 +101691,10 @@ module rtfpga_core$slots$0$lane$u_num$sum$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -101429,22 +101721,24 @@ module rtfpga_core$slots$0$lane$u_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$u_num$sum$rounder
@@ -102090,7 +102384,6 @@ module rtfpga_core$slots$0$lane$u_num$sum$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -102103,10 +102396,8 @@ module rtfpga_core$slots$0$lane$u_num$sum$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -102130,7 +102421,6 @@ module rtfpga_core$slots$0$lane$u_num$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -102143,10 +102433,8 @@ module rtfpga_core$slots$0$lane$u_num$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -102408,7 +102696,6 @@ module rtfpga_core$slots$0$lane$u_out$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -102421,10 +102708,8 @@ module rtfpga_core$slots$0$lane$u_out$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -102445,6 +102730,7 @@ module rtfpga_core$slots$0$lane$u_plus_v(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -102840,11 +103126,11 @@ module rtfpga_core$slots$0$lane$u_plus_v(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -102927,7 +103213,13 @@ module rtfpga_core$slots$0$lane$u_plus_v(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -104741,6 +105033,10 @@ module rtfpga_core$slots$0$lane$u_plus_v$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -104767,22 +105063,24 @@ module rtfpga_core$slots$0$lane$u_plus_v$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$u_plus_v$rounder
@@ -105428,7 +105726,6 @@ module rtfpga_core$slots$0$lane$u_plus_v$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -105441,10 +105738,8 @@ module rtfpga_core$slots$0$lane$u_plus_v$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -105468,7 +105763,6 @@ module rtfpga_core$slots$0$lane$u_plus_v$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -105481,10 +105775,8 @@ module rtfpga_core$slots$0$lane$u_plus_v$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -105501,7 +105793,8 @@ module rtfpga_core$slots$0$lane$u_scale(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -105564,6 +105857,7 @@ module rtfpga_core$slots$0$lane$u_scale(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$u_scale$unpack_a unpack_a(
@@ -105647,7 +105941,7 @@ module rtfpga_core$slots$0$lane$u_scale(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -105675,7 +105969,11 @@ module rtfpga_core$slots$0$lane$u_scale(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -106241,6 +106539,10 @@ module rtfpga_core$slots$0$lane$u_scale$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -106267,22 +106569,24 @@ module rtfpga_core$slots$0$lane$u_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$u_scale$rounder
@@ -106304,7 +106608,6 @@ module rtfpga_core$slots$0$lane$u_scale$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -106317,10 +106620,8 @@ module rtfpga_core$slots$0$lane$u_scale$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -106344,7 +106645,6 @@ module rtfpga_core$slots$0$lane$u_scale$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -106357,10 +106657,8 @@ module rtfpga_core$slots$0$lane$u_scale$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -106581,7 +106879,6 @@ module rtfpga_core$slots$0$lane$v_below_zero$unpack_a(x,sign,exp,sig,zero,inf,na
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -106594,10 +106891,8 @@ module rtfpga_core$slots$0$lane$v_below_zero$unpack_a(x,sign,exp,sig,zero,inf,na
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -106621,7 +106916,6 @@ module rtfpga_core$slots$0$lane$v_below_zero$unpack_b(x,sign,exp,sig,zero,inf,na
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -106634,10 +106928,8 @@ module rtfpga_core$slots$0$lane$v_below_zero$unpack_b(x,sign,exp,sig,zero,inf,na
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -106757,6 +107049,7 @@ module rtfpga_core$slots$0$lane$v_num$first_sum(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -107152,11 +107445,11 @@ module rtfpga_core$slots$0$lane$v_num$first_sum(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -107239,7 +107532,13 @@ module rtfpga_core$slots$0$lane$v_num$first_sum(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -109053,6 +109352,10 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$rounder(category,exp,sig,round,s
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -109079,22 +109382,24 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$v_num$first_sum$rounder
@@ -109740,7 +110045,6 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$unpack_a(x,sign,exp,sig,zero,inf
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -109753,10 +110057,8 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$unpack_a(x,sign,exp,sig,zero,inf
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -109780,7 +110082,6 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$unpack_b(x,sign,exp,sig,zero,inf
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -109793,10 +110094,8 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$unpack_b(x,sign,exp,sig,zero,inf
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -109813,7 +110112,8 @@ module rtfpga_core$slots$0$lane$v_num$products$0(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -109876,6 +110176,7 @@ module rtfpga_core$slots$0$lane$v_num$products$0(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$v_num$products$0$unpack_a unpack_a(
@@ -109959,7 +110260,7 @@ module rtfpga_core$slots$0$lane$v_num$products$0(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -109987,7 +110288,11 @@ module rtfpga_core$slots$0$lane$v_num$products$0(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -110553,6 +110858,10 @@ module rtfpga_core$slots$0$lane$v_num$products$0$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -110579,22 +110888,24 @@ module rtfpga_core$slots$0$lane$v_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$v_num$products$0$rounder
@@ -110616,7 +110927,6 @@ module rtfpga_core$slots$0$lane$v_num$products$0$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -110629,10 +110939,8 @@ module rtfpga_core$slots$0$lane$v_num$products$0$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -110656,7 +110964,6 @@ module rtfpga_core$slots$0$lane$v_num$products$0$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -110669,10 +110976,8 @@ module rtfpga_core$slots$0$lane$v_num$products$0$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -110689,7 +110994,8 @@ module rtfpga_core$slots$0$lane$v_num$products$1(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -110752,6 +111058,7 @@ module rtfpga_core$slots$0$lane$v_num$products$1(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$v_num$products$1$unpack_a unpack_a(
@@ -110835,7 +111142,7 @@ module rtfpga_core$slots$0$lane$v_num$products$1(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -110863,7 +111170,11 @@ module rtfpga_core$slots$0$lane$v_num$products$1(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -111429,6 +111740,10 @@ module rtfpga_core$slots$0$lane$v_num$products$1$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -111455,22 +111770,24 @@ module rtfpga_core$slots$0$lane$v_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$v_num$products$1$rounder
@@ -111492,7 +111809,6 @@ module rtfpga_core$slots$0$lane$v_num$products$1$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -111505,10 +111821,8 @@ module rtfpga_core$slots$0$lane$v_num$products$1$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -111532,7 +111846,6 @@ module rtfpga_core$slots$0$lane$v_num$products$1$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -111545,10 +111858,8 @@ module rtfpga_core$slots$0$lane$v_num$products$1$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -111565,7 +111876,8 @@ module rtfpga_core$slots$0$lane$v_num$products$2(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -111628,6 +111940,7 @@ module rtfpga_core$slots$0$lane$v_num$products$2(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$v_num$products$2$unpack_a unpack_a(
@@ -111711,7 +112024,7 @@ module rtfpga_core$slots$0$lane$v_num$products$2(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -111739,7 +112052,11 @@ module rtfpga_core$slots$0$lane$v_num$products$2(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -112305,6 +112622,10 @@ module rtfpga_core$slots$0$lane$v_num$products$2$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -112331,22 +112652,24 @@ module rtfpga_core$slots$0$lane$v_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$v_num$products$2$rounder
@@ -112368,7 +112691,6 @@ module rtfpga_core$slots$0$lane$v_num$products$2$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -112381,10 +112703,8 @@ module rtfpga_core$slots$0$lane$v_num$products$2$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -112408,7 +112728,6 @@ module rtfpga_core$slots$0$lane$v_num$products$2$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -112421,10 +112740,8 @@ module rtfpga_core$slots$0$lane$v_num$products$2$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -112445,6 +112762,7 @@ module rtfpga_core$slots$0$lane$v_num$sum(clock,a,b,y);
     localparam  frac_mask = 16'h3ff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 5'b1110;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -112840,11 +113158,11 @@ module rtfpga_core$slots$0$lane$v_num$sum(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -112927,7 +113245,13 @@ module rtfpga_core$slots$0$lane$v_num$sum(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -114741,6 +115065,10 @@ module rtfpga_core$slots$0$lane$v_num$sum$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -114767,22 +115095,24 @@ module rtfpga_core$slots$0$lane$v_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$v_num$sum$rounder
@@ -115428,7 +115758,6 @@ module rtfpga_core$slots$0$lane$v_num$sum$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -115441,10 +115770,8 @@ module rtfpga_core$slots$0$lane$v_num$sum$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -115468,7 +115795,6 @@ module rtfpga_core$slots$0$lane$v_num$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -115481,10 +115807,8 @@ module rtfpga_core$slots$0$lane$v_num$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -115746,7 +116070,6 @@ module rtfpga_core$slots$0$lane$v_out$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -115759,10 +116082,8 @@ module rtfpga_core$slots$0$lane$v_out$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -115779,7 +116100,8 @@ module rtfpga_core$slots$0$lane$v_scale(clock,a,b,y);
     output reg  [15:0] y;
     
     // Constant declarations
-    localparam  bias = 7'b1111;
+    localparam  minus_bias = 7'b1110001;
+    localparam  one_minus_bias = 7'b1110010;
     localparam  top_bit = 22'h200000;
     localparam  sig_width = 8'hb;
     localparam  round_bit = 22'h400;
@@ -115842,6 +116164,7 @@ module rtfpga_core$slots$0$lane$v_scale(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [21:0] product_normalized;
+    reg  [6:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$v_scale$unpack_a unpack_a(
@@ -115925,7 +116248,7 @@ module rtfpga_core$slots$0$lane$v_scale(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f) - bias;
+        exp_sum = ((unpack_a$exp) & 7'h7f) + ((unpack_b$exp) & 7'h7f);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -115953,7 +116276,11 @@ module rtfpga_core$slots$0$lane$v_scale(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 11'h7ff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -116519,6 +116846,10 @@ module rtfpga_core$slots$0$lane$v_scale$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [15:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [15:0] keep;
+    reg  [15:0] special;
     
     // Update code
     always @(*) begin
@@ -116545,22 +116876,24 @@ module rtfpga_core$slots$0$lane$v_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$v_scale$rounder
@@ -116582,7 +116915,6 @@ module rtfpga_core$slots$0$lane$v_scale$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -116595,10 +116927,8 @@ module rtfpga_core$slots$0$lane$v_scale$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end
@@ -116622,7 +116952,6 @@ module rtfpga_core$slots$0$lane$v_scale$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'hf;
     localparam  exp_ones = 5'b11111;
     localparam  hidden_bit = 11'b10000000000;
-    localparam  no_sig = 11'b0;
     
     // Local signals
     reg  [9:0] frac;
@@ -116635,10 +116964,8 @@ module rtfpga_core$slots$0$lane$v_scale$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 11'h7ff);
+        if (~zero) begin
             sig = ((frac) & 11'h7ff) | hidden_bit;
         end
     end

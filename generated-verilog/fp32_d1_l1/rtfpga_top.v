@@ -4103,6 +4103,7 @@ module rtfpga_core$slots$0$lane$det$first_sum(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -4511,11 +4512,11 @@ module rtfpga_core$slots$0$lane$det$first_sum(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -4676,7 +4677,13 @@ module rtfpga_core$slots$0$lane$det$first_sum(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -6490,6 +6497,10 @@ module rtfpga_core$slots$0$lane$det$first_sum$rounder(category,exp,sig,round,sti
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -6516,22 +6527,24 @@ module rtfpga_core$slots$0$lane$det$first_sum$rounder(category,exp,sig,round,sti
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$det$first_sum$rounder
@@ -7177,7 +7190,6 @@ module rtfpga_core$slots$0$lane$det$first_sum$unpack_a(x,sign,exp,sig,zero,inf,n
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -7190,10 +7202,8 @@ module rtfpga_core$slots$0$lane$det$first_sum$unpack_a(x,sign,exp,sig,zero,inf,n
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -7217,7 +7227,6 @@ module rtfpga_core$slots$0$lane$det$first_sum$unpack_b(x,sign,exp,sig,zero,inf,n
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -7230,10 +7239,8 @@ module rtfpga_core$slots$0$lane$det$first_sum$unpack_b(x,sign,exp,sig,zero,inf,n
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -7250,7 +7257,8 @@ module rtfpga_core$slots$0$lane$det$products$0(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -7313,6 +7321,7 @@ module rtfpga_core$slots$0$lane$det$products$0(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$det$products$0$unpack_a unpack_a(
@@ -7396,7 +7405,7 @@ module rtfpga_core$slots$0$lane$det$products$0(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -7424,7 +7433,11 @@ module rtfpga_core$slots$0$lane$det$products$0(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -7990,6 +8003,10 @@ module rtfpga_core$slots$0$lane$det$products$0$rounder(category,exp,sig,round,st
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -8016,22 +8033,24 @@ module rtfpga_core$slots$0$lane$det$products$0$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$det$products$0$rounder
@@ -8053,7 +8072,6 @@ module rtfpga_core$slots$0$lane$det$products$0$unpack_a(x,sign,exp,sig,zero,inf,
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -8066,10 +8084,8 @@ module rtfpga_core$slots$0$lane$det$products$0$unpack_a(x,sign,exp,sig,zero,inf,
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -8093,7 +8109,6 @@ module rtfpga_core$slots$0$lane$det$products$0$unpack_b(x,sign,exp,sig,zero,inf,
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -8106,10 +8121,8 @@ module rtfpga_core$slots$0$lane$det$products$0$unpack_b(x,sign,exp,sig,zero,inf,
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -8126,7 +8139,8 @@ module rtfpga_core$slots$0$lane$det$products$1(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -8189,6 +8203,7 @@ module rtfpga_core$slots$0$lane$det$products$1(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$det$products$1$unpack_a unpack_a(
@@ -8272,7 +8287,7 @@ module rtfpga_core$slots$0$lane$det$products$1(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -8300,7 +8315,11 @@ module rtfpga_core$slots$0$lane$det$products$1(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -8866,6 +8885,10 @@ module rtfpga_core$slots$0$lane$det$products$1$rounder(category,exp,sig,round,st
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -8892,22 +8915,24 @@ module rtfpga_core$slots$0$lane$det$products$1$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$det$products$1$rounder
@@ -8929,7 +8954,6 @@ module rtfpga_core$slots$0$lane$det$products$1$unpack_a(x,sign,exp,sig,zero,inf,
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -8942,10 +8966,8 @@ module rtfpga_core$slots$0$lane$det$products$1$unpack_a(x,sign,exp,sig,zero,inf,
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -8969,7 +8991,6 @@ module rtfpga_core$slots$0$lane$det$products$1$unpack_b(x,sign,exp,sig,zero,inf,
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -8982,10 +9003,8 @@ module rtfpga_core$slots$0$lane$det$products$1$unpack_b(x,sign,exp,sig,zero,inf,
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -9002,7 +9021,8 @@ module rtfpga_core$slots$0$lane$det$products$2(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -9065,6 +9085,7 @@ module rtfpga_core$slots$0$lane$det$products$2(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$det$products$2$unpack_a unpack_a(
@@ -9148,7 +9169,7 @@ module rtfpga_core$slots$0$lane$det$products$2(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -9176,7 +9197,11 @@ module rtfpga_core$slots$0$lane$det$products$2(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -9742,6 +9767,10 @@ module rtfpga_core$slots$0$lane$det$products$2$rounder(category,exp,sig,round,st
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -9768,22 +9797,24 @@ module rtfpga_core$slots$0$lane$det$products$2$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$det$products$2$rounder
@@ -9805,7 +9836,6 @@ module rtfpga_core$slots$0$lane$det$products$2$unpack_a(x,sign,exp,sig,zero,inf,
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -9818,10 +9848,8 @@ module rtfpga_core$slots$0$lane$det$products$2$unpack_a(x,sign,exp,sig,zero,inf,
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -9845,7 +9873,6 @@ module rtfpga_core$slots$0$lane$det$products$2$unpack_b(x,sign,exp,sig,zero,inf,
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -9858,10 +9885,8 @@ module rtfpga_core$slots$0$lane$det$products$2$unpack_b(x,sign,exp,sig,zero,inf,
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -9882,6 +9907,7 @@ module rtfpga_core$slots$0$lane$det$sum(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -10290,11 +10316,11 @@ module rtfpga_core$slots$0$lane$det$sum(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -10455,7 +10481,13 @@ module rtfpga_core$slots$0$lane$det$sum(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -12269,6 +12301,10 @@ module rtfpga_core$slots$0$lane$det$sum$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -12295,22 +12331,24 @@ module rtfpga_core$slots$0$lane$det$sum$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$det$sum$rounder
@@ -12956,7 +12994,6 @@ module rtfpga_core$slots$0$lane$det$sum$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -12969,10 +13006,8 @@ module rtfpga_core$slots$0$lane$det$sum$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -12996,7 +13031,6 @@ module rtfpga_core$slots$0$lane$det$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -13009,10 +13043,8 @@ module rtfpga_core$slots$0$lane$det$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -13233,7 +13265,6 @@ module rtfpga_core$slots$0$lane$det_above_neg_eps$unpack_a(x,sign,exp,sig,zero,i
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -13246,10 +13277,8 @@ module rtfpga_core$slots$0$lane$det_above_neg_eps$unpack_a(x,sign,exp,sig,zero,i
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -13273,7 +13302,6 @@ module rtfpga_core$slots$0$lane$det_above_neg_eps$unpack_b(x,sign,exp,sig,zero,i
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -13286,10 +13314,8 @@ module rtfpga_core$slots$0$lane$det_above_neg_eps$unpack_b(x,sign,exp,sig,zero,i
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -13457,7 +13483,6 @@ module rtfpga_core$slots$0$lane$det_below_eps$unpack_a(x,sign,exp,sig,zero,inf,n
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -13470,10 +13495,8 @@ module rtfpga_core$slots$0$lane$det_below_eps$unpack_a(x,sign,exp,sig,zero,inf,n
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -13497,7 +13520,6 @@ module rtfpga_core$slots$0$lane$det_below_eps$unpack_b(x,sign,exp,sig,zero,inf,n
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -13510,10 +13532,8 @@ module rtfpga_core$slots$0$lane$det_below_eps$unpack_b(x,sign,exp,sig,zero,inf,n
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -13942,6 +13962,7 @@ module rtfpga_core$slots$0$lane$edge1$0(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -14350,11 +14371,11 @@ module rtfpga_core$slots$0$lane$edge1$0(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -14515,7 +14536,13 @@ module rtfpga_core$slots$0$lane$edge1$0(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -16329,6 +16356,10 @@ module rtfpga_core$slots$0$lane$edge1$0$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -16355,22 +16386,24 @@ module rtfpga_core$slots$0$lane$edge1$0$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$edge1$0$rounder
@@ -17016,7 +17049,6 @@ module rtfpga_core$slots$0$lane$edge1$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -17029,10 +17061,8 @@ module rtfpga_core$slots$0$lane$edge1$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -17056,7 +17086,6 @@ module rtfpga_core$slots$0$lane$edge1$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -17069,10 +17098,8 @@ module rtfpga_core$slots$0$lane$edge1$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -17093,6 +17120,7 @@ module rtfpga_core$slots$0$lane$edge1$1(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -17501,11 +17529,11 @@ module rtfpga_core$slots$0$lane$edge1$1(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -17666,7 +17694,13 @@ module rtfpga_core$slots$0$lane$edge1$1(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -19480,6 +19514,10 @@ module rtfpga_core$slots$0$lane$edge1$1$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -19506,22 +19544,24 @@ module rtfpga_core$slots$0$lane$edge1$1$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$edge1$1$rounder
@@ -20167,7 +20207,6 @@ module rtfpga_core$slots$0$lane$edge1$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -20180,10 +20219,8 @@ module rtfpga_core$slots$0$lane$edge1$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -20207,7 +20244,6 @@ module rtfpga_core$slots$0$lane$edge1$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -20220,10 +20256,8 @@ module rtfpga_core$slots$0$lane$edge1$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -20244,6 +20278,7 @@ module rtfpga_core$slots$0$lane$edge1$2(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -20652,11 +20687,11 @@ module rtfpga_core$slots$0$lane$edge1$2(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -20817,7 +20852,13 @@ module rtfpga_core$slots$0$lane$edge1$2(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -22631,6 +22672,10 @@ module rtfpga_core$slots$0$lane$edge1$2$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -22657,22 +22702,24 @@ module rtfpga_core$slots$0$lane$edge1$2$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$edge1$2$rounder
@@ -23318,7 +23365,6 @@ module rtfpga_core$slots$0$lane$edge1$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -23331,10 +23377,8 @@ module rtfpga_core$slots$0$lane$edge1$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -23358,7 +23402,6 @@ module rtfpga_core$slots$0$lane$edge1$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -23371,10 +23414,8 @@ module rtfpga_core$slots$0$lane$edge1$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -23644,6 +23685,7 @@ module rtfpga_core$slots$0$lane$edge2$0(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -24052,11 +24094,11 @@ module rtfpga_core$slots$0$lane$edge2$0(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -24217,7 +24259,13 @@ module rtfpga_core$slots$0$lane$edge2$0(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -26031,6 +26079,10 @@ module rtfpga_core$slots$0$lane$edge2$0$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -26057,22 +26109,24 @@ module rtfpga_core$slots$0$lane$edge2$0$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$edge2$0$rounder
@@ -26718,7 +26772,6 @@ module rtfpga_core$slots$0$lane$edge2$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -26731,10 +26784,8 @@ module rtfpga_core$slots$0$lane$edge2$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -26758,7 +26809,6 @@ module rtfpga_core$slots$0$lane$edge2$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -26771,10 +26821,8 @@ module rtfpga_core$slots$0$lane$edge2$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -26795,6 +26843,7 @@ module rtfpga_core$slots$0$lane$edge2$1(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -27203,11 +27252,11 @@ module rtfpga_core$slots$0$lane$edge2$1(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -27368,7 +27417,13 @@ module rtfpga_core$slots$0$lane$edge2$1(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -29182,6 +29237,10 @@ module rtfpga_core$slots$0$lane$edge2$1$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -29208,22 +29267,24 @@ module rtfpga_core$slots$0$lane$edge2$1$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$edge2$1$rounder
@@ -29869,7 +29930,6 @@ module rtfpga_core$slots$0$lane$edge2$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -29882,10 +29942,8 @@ module rtfpga_core$slots$0$lane$edge2$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -29909,7 +29967,6 @@ module rtfpga_core$slots$0$lane$edge2$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -29922,10 +29979,8 @@ module rtfpga_core$slots$0$lane$edge2$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -29946,6 +30001,7 @@ module rtfpga_core$slots$0$lane$edge2$2(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -30354,11 +30410,11 @@ module rtfpga_core$slots$0$lane$edge2$2(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -30519,7 +30575,13 @@ module rtfpga_core$slots$0$lane$edge2$2(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -32333,6 +32395,10 @@ module rtfpga_core$slots$0$lane$edge2$2$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -32359,22 +32425,24 @@ module rtfpga_core$slots$0$lane$edge2$2$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$edge2$2$rounder
@@ -33020,7 +33088,6 @@ module rtfpga_core$slots$0$lane$edge2$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -33033,10 +33100,8 @@ module rtfpga_core$slots$0$lane$edge2$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -33060,7 +33125,6 @@ module rtfpga_core$slots$0$lane$edge2$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -33073,10 +33137,8 @@ module rtfpga_core$slots$0$lane$edge2$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -35327,6 +35389,10 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -35353,22 +35419,24 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$inv_det$rounder
@@ -36215,7 +36283,6 @@ module rtfpga_core$slots$0$lane$inv_det$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -36228,10 +36295,8 @@ module rtfpga_core$slots$0$lane$inv_det$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -36738,6 +36803,10 @@ module rtfpga_core$slots$0$lane$load$0$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -36764,22 +36833,24 @@ module rtfpga_core$slots$0$lane$load$0$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$0$rounder
@@ -36801,7 +36872,6 @@ module rtfpga_core$slots$0$lane$load$0$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -36814,10 +36884,8 @@ module rtfpga_core$slots$0$lane$load$0$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -37324,6 +37392,10 @@ module rtfpga_core$slots$0$lane$load$1$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -37350,22 +37422,24 @@ module rtfpga_core$slots$0$lane$load$1$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$1$rounder
@@ -37387,7 +37461,6 @@ module rtfpga_core$slots$0$lane$load$1$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -37400,10 +37473,8 @@ module rtfpga_core$slots$0$lane$load$1$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -37910,6 +37981,10 @@ module rtfpga_core$slots$0$lane$load$10$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -37936,22 +38011,24 @@ module rtfpga_core$slots$0$lane$load$10$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$10$rounder
@@ -37973,7 +38050,6 @@ module rtfpga_core$slots$0$lane$load$10$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -37986,10 +38062,8 @@ module rtfpga_core$slots$0$lane$load$10$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -38496,6 +38570,10 @@ module rtfpga_core$slots$0$lane$load$11$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -38522,22 +38600,24 @@ module rtfpga_core$slots$0$lane$load$11$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$11$rounder
@@ -38559,7 +38639,6 @@ module rtfpga_core$slots$0$lane$load$11$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -38572,10 +38651,8 @@ module rtfpga_core$slots$0$lane$load$11$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -39082,6 +39159,10 @@ module rtfpga_core$slots$0$lane$load$12$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -39108,22 +39189,24 @@ module rtfpga_core$slots$0$lane$load$12$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$12$rounder
@@ -39145,7 +39228,6 @@ module rtfpga_core$slots$0$lane$load$12$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -39158,10 +39240,8 @@ module rtfpga_core$slots$0$lane$load$12$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -39668,6 +39748,10 @@ module rtfpga_core$slots$0$lane$load$13$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -39694,22 +39778,24 @@ module rtfpga_core$slots$0$lane$load$13$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$13$rounder
@@ -39731,7 +39817,6 @@ module rtfpga_core$slots$0$lane$load$13$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -39744,10 +39829,8 @@ module rtfpga_core$slots$0$lane$load$13$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -40254,6 +40337,10 @@ module rtfpga_core$slots$0$lane$load$14$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -40280,22 +40367,24 @@ module rtfpga_core$slots$0$lane$load$14$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$14$rounder
@@ -40317,7 +40406,6 @@ module rtfpga_core$slots$0$lane$load$14$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -40330,10 +40418,8 @@ module rtfpga_core$slots$0$lane$load$14$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -40840,6 +40926,10 @@ module rtfpga_core$slots$0$lane$load$2$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -40866,22 +40956,24 @@ module rtfpga_core$slots$0$lane$load$2$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$2$rounder
@@ -40903,7 +40995,6 @@ module rtfpga_core$slots$0$lane$load$2$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -40916,10 +41007,8 @@ module rtfpga_core$slots$0$lane$load$2$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -41426,6 +41515,10 @@ module rtfpga_core$slots$0$lane$load$3$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -41452,22 +41545,24 @@ module rtfpga_core$slots$0$lane$load$3$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$3$rounder
@@ -41489,7 +41584,6 @@ module rtfpga_core$slots$0$lane$load$3$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -41502,10 +41596,8 @@ module rtfpga_core$slots$0$lane$load$3$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -42012,6 +42104,10 @@ module rtfpga_core$slots$0$lane$load$4$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -42038,22 +42134,24 @@ module rtfpga_core$slots$0$lane$load$4$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$4$rounder
@@ -42075,7 +42173,6 @@ module rtfpga_core$slots$0$lane$load$4$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -42088,10 +42185,8 @@ module rtfpga_core$slots$0$lane$load$4$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -42598,6 +42693,10 @@ module rtfpga_core$slots$0$lane$load$5$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -42624,22 +42723,24 @@ module rtfpga_core$slots$0$lane$load$5$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$5$rounder
@@ -42661,7 +42762,6 @@ module rtfpga_core$slots$0$lane$load$5$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -42674,10 +42774,8 @@ module rtfpga_core$slots$0$lane$load$5$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -43184,6 +43282,10 @@ module rtfpga_core$slots$0$lane$load$6$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -43210,22 +43312,24 @@ module rtfpga_core$slots$0$lane$load$6$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$6$rounder
@@ -43247,7 +43351,6 @@ module rtfpga_core$slots$0$lane$load$6$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -43260,10 +43363,8 @@ module rtfpga_core$slots$0$lane$load$6$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -43770,6 +43871,10 @@ module rtfpga_core$slots$0$lane$load$7$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -43796,22 +43901,24 @@ module rtfpga_core$slots$0$lane$load$7$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$7$rounder
@@ -43833,7 +43940,6 @@ module rtfpga_core$slots$0$lane$load$7$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -43846,10 +43952,8 @@ module rtfpga_core$slots$0$lane$load$7$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -44356,6 +44460,10 @@ module rtfpga_core$slots$0$lane$load$8$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -44382,22 +44490,24 @@ module rtfpga_core$slots$0$lane$load$8$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$8$rounder
@@ -44419,7 +44529,6 @@ module rtfpga_core$slots$0$lane$load$8$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -44432,10 +44541,8 @@ module rtfpga_core$slots$0$lane$load$8$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -44942,6 +45049,10 @@ module rtfpga_core$slots$0$lane$load$9$rounder(category,exp,sig,round,sticky,y);
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -44968,22 +45079,24 @@ module rtfpga_core$slots$0$lane$load$9$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$9$rounder
@@ -45005,7 +45118,6 @@ module rtfpga_core$slots$0$lane$load$9$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -45018,10 +45130,8 @@ module rtfpga_core$slots$0$lane$load$9$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -45187,6 +45297,7 @@ module rtfpga_core$slots$0$lane$p$diff$0(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -45595,11 +45706,11 @@ module rtfpga_core$slots$0$lane$p$diff$0(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -45760,7 +45871,13 @@ module rtfpga_core$slots$0$lane$p$diff$0(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -47574,6 +47691,10 @@ module rtfpga_core$slots$0$lane$p$diff$0$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -47600,22 +47721,24 @@ module rtfpga_core$slots$0$lane$p$diff$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$diff$0$rounder
@@ -48261,7 +48384,6 @@ module rtfpga_core$slots$0$lane$p$diff$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -48274,10 +48396,8 @@ module rtfpga_core$slots$0$lane$p$diff$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -48301,7 +48421,6 @@ module rtfpga_core$slots$0$lane$p$diff$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -48314,10 +48433,8 @@ module rtfpga_core$slots$0$lane$p$diff$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -48338,6 +48455,7 @@ module rtfpga_core$slots$0$lane$p$diff$1(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -48746,11 +48864,11 @@ module rtfpga_core$slots$0$lane$p$diff$1(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -48911,7 +49029,13 @@ module rtfpga_core$slots$0$lane$p$diff$1(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -50725,6 +50849,10 @@ module rtfpga_core$slots$0$lane$p$diff$1$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -50751,22 +50879,24 @@ module rtfpga_core$slots$0$lane$p$diff$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$diff$1$rounder
@@ -51412,7 +51542,6 @@ module rtfpga_core$slots$0$lane$p$diff$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -51425,10 +51554,8 @@ module rtfpga_core$slots$0$lane$p$diff$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -51452,7 +51579,6 @@ module rtfpga_core$slots$0$lane$p$diff$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -51465,10 +51591,8 @@ module rtfpga_core$slots$0$lane$p$diff$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -51489,6 +51613,7 @@ module rtfpga_core$slots$0$lane$p$diff$2(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -51897,11 +52022,11 @@ module rtfpga_core$slots$0$lane$p$diff$2(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -52062,7 +52187,13 @@ module rtfpga_core$slots$0$lane$p$diff$2(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -53876,6 +54007,10 @@ module rtfpga_core$slots$0$lane$p$diff$2$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -53902,22 +54037,24 @@ module rtfpga_core$slots$0$lane$p$diff$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$diff$2$rounder
@@ -54563,7 +54700,6 @@ module rtfpga_core$slots$0$lane$p$diff$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -54576,10 +54712,8 @@ module rtfpga_core$slots$0$lane$p$diff$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -54603,7 +54737,6 @@ module rtfpga_core$slots$0$lane$p$diff$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -54616,10 +54749,8 @@ module rtfpga_core$slots$0$lane$p$diff$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -54636,7 +54767,8 @@ module rtfpga_core$slots$0$lane$p$left$0(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -54699,6 +54831,7 @@ module rtfpga_core$slots$0$lane$p$left$0(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$p$left$0$unpack_a unpack_a(
@@ -54782,7 +54915,7 @@ module rtfpga_core$slots$0$lane$p$left$0(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -54810,7 +54943,11 @@ module rtfpga_core$slots$0$lane$p$left$0(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -55376,6 +55513,10 @@ module rtfpga_core$slots$0$lane$p$left$0$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -55402,22 +55543,24 @@ module rtfpga_core$slots$0$lane$p$left$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$left$0$rounder
@@ -55439,7 +55582,6 @@ module rtfpga_core$slots$0$lane$p$left$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -55452,10 +55594,8 @@ module rtfpga_core$slots$0$lane$p$left$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -55479,7 +55619,6 @@ module rtfpga_core$slots$0$lane$p$left$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -55492,10 +55631,8 @@ module rtfpga_core$slots$0$lane$p$left$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -55512,7 +55649,8 @@ module rtfpga_core$slots$0$lane$p$left$1(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -55575,6 +55713,7 @@ module rtfpga_core$slots$0$lane$p$left$1(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$p$left$1$unpack_a unpack_a(
@@ -55658,7 +55797,7 @@ module rtfpga_core$slots$0$lane$p$left$1(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -55686,7 +55825,11 @@ module rtfpga_core$slots$0$lane$p$left$1(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -56252,6 +56395,10 @@ module rtfpga_core$slots$0$lane$p$left$1$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -56278,22 +56425,24 @@ module rtfpga_core$slots$0$lane$p$left$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$left$1$rounder
@@ -56315,7 +56464,6 @@ module rtfpga_core$slots$0$lane$p$left$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -56328,10 +56476,8 @@ module rtfpga_core$slots$0$lane$p$left$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -56355,7 +56501,6 @@ module rtfpga_core$slots$0$lane$p$left$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -56368,10 +56513,8 @@ module rtfpga_core$slots$0$lane$p$left$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -56388,7 +56531,8 @@ module rtfpga_core$slots$0$lane$p$left$2(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -56451,6 +56595,7 @@ module rtfpga_core$slots$0$lane$p$left$2(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$p$left$2$unpack_a unpack_a(
@@ -56534,7 +56679,7 @@ module rtfpga_core$slots$0$lane$p$left$2(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -56562,7 +56707,11 @@ module rtfpga_core$slots$0$lane$p$left$2(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -57128,6 +57277,10 @@ module rtfpga_core$slots$0$lane$p$left$2$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -57154,22 +57307,24 @@ module rtfpga_core$slots$0$lane$p$left$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$left$2$rounder
@@ -57191,7 +57346,6 @@ module rtfpga_core$slots$0$lane$p$left$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -57204,10 +57358,8 @@ module rtfpga_core$slots$0$lane$p$left$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -57231,7 +57383,6 @@ module rtfpga_core$slots$0$lane$p$left$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -57244,10 +57395,8 @@ module rtfpga_core$slots$0$lane$p$left$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -57264,7 +57413,8 @@ module rtfpga_core$slots$0$lane$p$right$0(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -57327,6 +57477,7 @@ module rtfpga_core$slots$0$lane$p$right$0(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$p$right$0$unpack_a unpack_a(
@@ -57410,7 +57561,7 @@ module rtfpga_core$slots$0$lane$p$right$0(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -57438,7 +57589,11 @@ module rtfpga_core$slots$0$lane$p$right$0(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -58004,6 +58159,10 @@ module rtfpga_core$slots$0$lane$p$right$0$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -58030,22 +58189,24 @@ module rtfpga_core$slots$0$lane$p$right$0$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$right$0$rounder
@@ -58067,7 +58228,6 @@ module rtfpga_core$slots$0$lane$p$right$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -58080,10 +58240,8 @@ module rtfpga_core$slots$0$lane$p$right$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -58107,7 +58265,6 @@ module rtfpga_core$slots$0$lane$p$right$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -58120,10 +58277,8 @@ module rtfpga_core$slots$0$lane$p$right$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -58140,7 +58295,8 @@ module rtfpga_core$slots$0$lane$p$right$1(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -58203,6 +58359,7 @@ module rtfpga_core$slots$0$lane$p$right$1(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$p$right$1$unpack_a unpack_a(
@@ -58286,7 +58443,7 @@ module rtfpga_core$slots$0$lane$p$right$1(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -58314,7 +58471,11 @@ module rtfpga_core$slots$0$lane$p$right$1(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -58880,6 +59041,10 @@ module rtfpga_core$slots$0$lane$p$right$1$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -58906,22 +59071,24 @@ module rtfpga_core$slots$0$lane$p$right$1$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$right$1$rounder
@@ -58943,7 +59110,6 @@ module rtfpga_core$slots$0$lane$p$right$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -58956,10 +59122,8 @@ module rtfpga_core$slots$0$lane$p$right$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -58983,7 +59147,6 @@ module rtfpga_core$slots$0$lane$p$right$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -58996,10 +59159,8 @@ module rtfpga_core$slots$0$lane$p$right$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -59016,7 +59177,8 @@ module rtfpga_core$slots$0$lane$p$right$2(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -59079,6 +59241,7 @@ module rtfpga_core$slots$0$lane$p$right$2(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$p$right$2$unpack_a unpack_a(
@@ -59162,7 +59325,7 @@ module rtfpga_core$slots$0$lane$p$right$2(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -59190,7 +59353,11 @@ module rtfpga_core$slots$0$lane$p$right$2(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -59756,6 +59923,10 @@ module rtfpga_core$slots$0$lane$p$right$2$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -59782,22 +59953,24 @@ module rtfpga_core$slots$0$lane$p$right$2$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$p$right$2$rounder
@@ -59819,7 +59992,6 @@ module rtfpga_core$slots$0$lane$p$right$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -59832,10 +60004,8 @@ module rtfpga_core$slots$0$lane$p$right$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -59859,7 +60029,6 @@ module rtfpga_core$slots$0$lane$p$right$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -59872,10 +60041,8 @@ module rtfpga_core$slots$0$lane$p$right$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -60154,6 +60321,7 @@ module rtfpga_core$slots$0$lane$q$diff$0(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -60562,11 +60730,11 @@ module rtfpga_core$slots$0$lane$q$diff$0(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -60727,7 +60895,13 @@ module rtfpga_core$slots$0$lane$q$diff$0(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -62541,6 +62715,10 @@ module rtfpga_core$slots$0$lane$q$diff$0$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -62567,22 +62745,24 @@ module rtfpga_core$slots$0$lane$q$diff$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$diff$0$rounder
@@ -63228,7 +63408,6 @@ module rtfpga_core$slots$0$lane$q$diff$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -63241,10 +63420,8 @@ module rtfpga_core$slots$0$lane$q$diff$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -63268,7 +63445,6 @@ module rtfpga_core$slots$0$lane$q$diff$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -63281,10 +63457,8 @@ module rtfpga_core$slots$0$lane$q$diff$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -63305,6 +63479,7 @@ module rtfpga_core$slots$0$lane$q$diff$1(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -63713,11 +63888,11 @@ module rtfpga_core$slots$0$lane$q$diff$1(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -63878,7 +64053,13 @@ module rtfpga_core$slots$0$lane$q$diff$1(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -65692,6 +65873,10 @@ module rtfpga_core$slots$0$lane$q$diff$1$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -65718,22 +65903,24 @@ module rtfpga_core$slots$0$lane$q$diff$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$diff$1$rounder
@@ -66379,7 +66566,6 @@ module rtfpga_core$slots$0$lane$q$diff$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -66392,10 +66578,8 @@ module rtfpga_core$slots$0$lane$q$diff$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -66419,7 +66603,6 @@ module rtfpga_core$slots$0$lane$q$diff$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -66432,10 +66615,8 @@ module rtfpga_core$slots$0$lane$q$diff$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -66456,6 +66637,7 @@ module rtfpga_core$slots$0$lane$q$diff$2(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -66864,11 +67046,11 @@ module rtfpga_core$slots$0$lane$q$diff$2(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -67029,7 +67211,13 @@ module rtfpga_core$slots$0$lane$q$diff$2(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -68843,6 +69031,10 @@ module rtfpga_core$slots$0$lane$q$diff$2$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -68869,22 +69061,24 @@ module rtfpga_core$slots$0$lane$q$diff$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$diff$2$rounder
@@ -69530,7 +69724,6 @@ module rtfpga_core$slots$0$lane$q$diff$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -69543,10 +69736,8 @@ module rtfpga_core$slots$0$lane$q$diff$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -69570,7 +69761,6 @@ module rtfpga_core$slots$0$lane$q$diff$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -69583,10 +69773,8 @@ module rtfpga_core$slots$0$lane$q$diff$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -69603,7 +69791,8 @@ module rtfpga_core$slots$0$lane$q$left$0(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -69666,6 +69855,7 @@ module rtfpga_core$slots$0$lane$q$left$0(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$q$left$0$unpack_a unpack_a(
@@ -69749,7 +69939,7 @@ module rtfpga_core$slots$0$lane$q$left$0(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -69777,7 +69967,11 @@ module rtfpga_core$slots$0$lane$q$left$0(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -70343,6 +70537,10 @@ module rtfpga_core$slots$0$lane$q$left$0$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -70369,22 +70567,24 @@ module rtfpga_core$slots$0$lane$q$left$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$left$0$rounder
@@ -70406,7 +70606,6 @@ module rtfpga_core$slots$0$lane$q$left$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -70419,10 +70618,8 @@ module rtfpga_core$slots$0$lane$q$left$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -70446,7 +70643,6 @@ module rtfpga_core$slots$0$lane$q$left$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -70459,10 +70655,8 @@ module rtfpga_core$slots$0$lane$q$left$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -70479,7 +70673,8 @@ module rtfpga_core$slots$0$lane$q$left$1(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -70542,6 +70737,7 @@ module rtfpga_core$slots$0$lane$q$left$1(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$q$left$1$unpack_a unpack_a(
@@ -70625,7 +70821,7 @@ module rtfpga_core$slots$0$lane$q$left$1(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -70653,7 +70849,11 @@ module rtfpga_core$slots$0$lane$q$left$1(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -71219,6 +71419,10 @@ module rtfpga_core$slots$0$lane$q$left$1$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -71245,22 +71449,24 @@ module rtfpga_core$slots$0$lane$q$left$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$left$1$rounder
@@ -71282,7 +71488,6 @@ module rtfpga_core$slots$0$lane$q$left$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -71295,10 +71500,8 @@ module rtfpga_core$slots$0$lane$q$left$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -71322,7 +71525,6 @@ module rtfpga_core$slots$0$lane$q$left$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -71335,10 +71537,8 @@ module rtfpga_core$slots$0$lane$q$left$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -71355,7 +71555,8 @@ module rtfpga_core$slots$0$lane$q$left$2(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -71418,6 +71619,7 @@ module rtfpga_core$slots$0$lane$q$left$2(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$q$left$2$unpack_a unpack_a(
@@ -71501,7 +71703,7 @@ module rtfpga_core$slots$0$lane$q$left$2(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -71529,7 +71731,11 @@ module rtfpga_core$slots$0$lane$q$left$2(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -72095,6 +72301,10 @@ module rtfpga_core$slots$0$lane$q$left$2$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -72121,22 +72331,24 @@ module rtfpga_core$slots$0$lane$q$left$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$left$2$rounder
@@ -72158,7 +72370,6 @@ module rtfpga_core$slots$0$lane$q$left$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -72171,10 +72382,8 @@ module rtfpga_core$slots$0$lane$q$left$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -72198,7 +72407,6 @@ module rtfpga_core$slots$0$lane$q$left$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -72211,10 +72419,8 @@ module rtfpga_core$slots$0$lane$q$left$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -72231,7 +72437,8 @@ module rtfpga_core$slots$0$lane$q$right$0(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -72294,6 +72501,7 @@ module rtfpga_core$slots$0$lane$q$right$0(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$q$right$0$unpack_a unpack_a(
@@ -72377,7 +72585,7 @@ module rtfpga_core$slots$0$lane$q$right$0(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -72405,7 +72613,11 @@ module rtfpga_core$slots$0$lane$q$right$0(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -72971,6 +73183,10 @@ module rtfpga_core$slots$0$lane$q$right$0$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -72997,22 +73213,24 @@ module rtfpga_core$slots$0$lane$q$right$0$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$right$0$rounder
@@ -73034,7 +73252,6 @@ module rtfpga_core$slots$0$lane$q$right$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -73047,10 +73264,8 @@ module rtfpga_core$slots$0$lane$q$right$0$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -73074,7 +73289,6 @@ module rtfpga_core$slots$0$lane$q$right$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -73087,10 +73301,8 @@ module rtfpga_core$slots$0$lane$q$right$0$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -73107,7 +73319,8 @@ module rtfpga_core$slots$0$lane$q$right$1(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -73170,6 +73383,7 @@ module rtfpga_core$slots$0$lane$q$right$1(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$q$right$1$unpack_a unpack_a(
@@ -73253,7 +73467,7 @@ module rtfpga_core$slots$0$lane$q$right$1(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -73281,7 +73495,11 @@ module rtfpga_core$slots$0$lane$q$right$1(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -73847,6 +74065,10 @@ module rtfpga_core$slots$0$lane$q$right$1$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -73873,22 +74095,24 @@ module rtfpga_core$slots$0$lane$q$right$1$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$right$1$rounder
@@ -73910,7 +74134,6 @@ module rtfpga_core$slots$0$lane$q$right$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -73923,10 +74146,8 @@ module rtfpga_core$slots$0$lane$q$right$1$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -73950,7 +74171,6 @@ module rtfpga_core$slots$0$lane$q$right$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -73963,10 +74183,8 @@ module rtfpga_core$slots$0$lane$q$right$1$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -73983,7 +74201,8 @@ module rtfpga_core$slots$0$lane$q$right$2(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -74046,6 +74265,7 @@ module rtfpga_core$slots$0$lane$q$right$2(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$q$right$2$unpack_a unpack_a(
@@ -74129,7 +74349,7 @@ module rtfpga_core$slots$0$lane$q$right$2(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -74157,7 +74377,11 @@ module rtfpga_core$slots$0$lane$q$right$2(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -74723,6 +74947,10 @@ module rtfpga_core$slots$0$lane$q$right$2$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -74749,22 +74977,24 @@ module rtfpga_core$slots$0$lane$q$right$2$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$q$right$2$rounder
@@ -74786,7 +75016,6 @@ module rtfpga_core$slots$0$lane$q$right$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -74799,10 +75028,8 @@ module rtfpga_core$slots$0$lane$q$right$2$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -74826,7 +75053,6 @@ module rtfpga_core$slots$0$lane$q$right$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -74839,10 +75065,8 @@ module rtfpga_core$slots$0$lane$q$right$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -75010,7 +75234,6 @@ module rtfpga_core$slots$0$lane$sum_above_one$unpack_a(x,sign,exp,sig,zero,inf,n
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -75023,10 +75246,8 @@ module rtfpga_core$slots$0$lane$sum_above_one$unpack_a(x,sign,exp,sig,zero,inf,n
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -75050,7 +75271,6 @@ module rtfpga_core$slots$0$lane$sum_above_one$unpack_b(x,sign,exp,sig,zero,inf,n
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -75063,10 +75283,8 @@ module rtfpga_core$slots$0$lane$sum_above_one$unpack_b(x,sign,exp,sig,zero,inf,n
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -75253,7 +75471,6 @@ module rtfpga_core$slots$0$lane$t_above_zero$unpack_a(x,sign,exp,sig,zero,inf,na
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -75266,10 +75483,8 @@ module rtfpga_core$slots$0$lane$t_above_zero$unpack_a(x,sign,exp,sig,zero,inf,na
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -75293,7 +75508,6 @@ module rtfpga_core$slots$0$lane$t_above_zero$unpack_b(x,sign,exp,sig,zero,inf,na
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -75306,10 +75520,8 @@ module rtfpga_core$slots$0$lane$t_above_zero$unpack_b(x,sign,exp,sig,zero,inf,na
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -75482,6 +75694,7 @@ module rtfpga_core$slots$0$lane$t_num$first_sum(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -75890,11 +76103,11 @@ module rtfpga_core$slots$0$lane$t_num$first_sum(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -76055,7 +76268,13 @@ module rtfpga_core$slots$0$lane$t_num$first_sum(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -77869,6 +78088,10 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$rounder(category,exp,sig,round,s
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -77895,22 +78118,24 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$t_num$first_sum$rounder
@@ -78556,7 +78781,6 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$unpack_a(x,sign,exp,sig,zero,inf
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -78569,10 +78793,8 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$unpack_a(x,sign,exp,sig,zero,inf
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -78596,7 +78818,6 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$unpack_b(x,sign,exp,sig,zero,inf
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -78609,10 +78830,8 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$unpack_b(x,sign,exp,sig,zero,inf
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -78629,7 +78848,8 @@ module rtfpga_core$slots$0$lane$t_num$products$0(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -78692,6 +78912,7 @@ module rtfpga_core$slots$0$lane$t_num$products$0(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$t_num$products$0$unpack_a unpack_a(
@@ -78775,7 +78996,7 @@ module rtfpga_core$slots$0$lane$t_num$products$0(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -78803,7 +79024,11 @@ module rtfpga_core$slots$0$lane$t_num$products$0(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -79369,6 +79594,10 @@ module rtfpga_core$slots$0$lane$t_num$products$0$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -79395,22 +79624,24 @@ module rtfpga_core$slots$0$lane$t_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$t_num$products$0$rounder
@@ -79432,7 +79663,6 @@ module rtfpga_core$slots$0$lane$t_num$products$0$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -79445,10 +79675,8 @@ module rtfpga_core$slots$0$lane$t_num$products$0$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -79472,7 +79700,6 @@ module rtfpga_core$slots$0$lane$t_num$products$0$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -79485,10 +79712,8 @@ module rtfpga_core$slots$0$lane$t_num$products$0$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -79505,7 +79730,8 @@ module rtfpga_core$slots$0$lane$t_num$products$1(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -79568,6 +79794,7 @@ module rtfpga_core$slots$0$lane$t_num$products$1(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$t_num$products$1$unpack_a unpack_a(
@@ -79651,7 +79878,7 @@ module rtfpga_core$slots$0$lane$t_num$products$1(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -79679,7 +79906,11 @@ module rtfpga_core$slots$0$lane$t_num$products$1(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -80245,6 +80476,10 @@ module rtfpga_core$slots$0$lane$t_num$products$1$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -80271,22 +80506,24 @@ module rtfpga_core$slots$0$lane$t_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$t_num$products$1$rounder
@@ -80308,7 +80545,6 @@ module rtfpga_core$slots$0$lane$t_num$products$1$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -80321,10 +80557,8 @@ module rtfpga_core$slots$0$lane$t_num$products$1$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -80348,7 +80582,6 @@ module rtfpga_core$slots$0$lane$t_num$products$1$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -80361,10 +80594,8 @@ module rtfpga_core$slots$0$lane$t_num$products$1$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -80381,7 +80612,8 @@ module rtfpga_core$slots$0$lane$t_num$products$2(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -80444,6 +80676,7 @@ module rtfpga_core$slots$0$lane$t_num$products$2(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$t_num$products$2$unpack_a unpack_a(
@@ -80527,7 +80760,7 @@ module rtfpga_core$slots$0$lane$t_num$products$2(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -80555,7 +80788,11 @@ module rtfpga_core$slots$0$lane$t_num$products$2(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -81121,6 +81358,10 @@ module rtfpga_core$slots$0$lane$t_num$products$2$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -81147,22 +81388,24 @@ module rtfpga_core$slots$0$lane$t_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$t_num$products$2$rounder
@@ -81184,7 +81427,6 @@ module rtfpga_core$slots$0$lane$t_num$products$2$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -81197,10 +81439,8 @@ module rtfpga_core$slots$0$lane$t_num$products$2$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -81224,7 +81464,6 @@ module rtfpga_core$slots$0$lane$t_num$products$2$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -81237,10 +81476,8 @@ module rtfpga_core$slots$0$lane$t_num$products$2$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -81261,6 +81498,7 @@ module rtfpga_core$slots$0$lane$t_num$sum(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -81669,11 +81907,11 @@ module rtfpga_core$slots$0$lane$t_num$sum(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -81834,7 +82072,13 @@ module rtfpga_core$slots$0$lane$t_num$sum(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -83648,6 +83892,10 @@ module rtfpga_core$slots$0$lane$t_num$sum$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -83674,22 +83922,24 @@ module rtfpga_core$slots$0$lane$t_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$t_num$sum$rounder
@@ -84335,7 +84585,6 @@ module rtfpga_core$slots$0$lane$t_num$sum$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -84348,10 +84597,8 @@ module rtfpga_core$slots$0$lane$t_num$sum$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -84375,7 +84622,6 @@ module rtfpga_core$slots$0$lane$t_num$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -84388,10 +84634,8 @@ module rtfpga_core$slots$0$lane$t_num$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -84653,7 +84897,6 @@ module rtfpga_core$slots$0$lane$t_out$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -84666,10 +84909,8 @@ module rtfpga_core$slots$0$lane$t_out$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -84686,7 +84927,8 @@ module rtfpga_core$slots$0$lane$t_scale(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -84749,6 +84991,7 @@ module rtfpga_core$slots$0$lane$t_scale(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$t_scale$unpack_a unpack_a(
@@ -84832,7 +85075,7 @@ module rtfpga_core$slots$0$lane$t_scale(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -84860,7 +85103,11 @@ module rtfpga_core$slots$0$lane$t_scale(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -85426,6 +85673,10 @@ module rtfpga_core$slots$0$lane$t_scale$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -85452,22 +85703,24 @@ module rtfpga_core$slots$0$lane$t_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$t_scale$rounder
@@ -85489,7 +85742,6 @@ module rtfpga_core$slots$0$lane$t_scale$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -85502,10 +85754,8 @@ module rtfpga_core$slots$0$lane$t_scale$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -85529,7 +85779,6 @@ module rtfpga_core$slots$0$lane$t_scale$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -85542,10 +85791,8 @@ module rtfpga_core$slots$0$lane$t_scale$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -85566,6 +85813,7 @@ module rtfpga_core$slots$0$lane$to_origin$0(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -85974,11 +86222,11 @@ module rtfpga_core$slots$0$lane$to_origin$0(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -86139,7 +86387,13 @@ module rtfpga_core$slots$0$lane$to_origin$0(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -87953,6 +88207,10 @@ module rtfpga_core$slots$0$lane$to_origin$0$rounder(category,exp,sig,round,stick
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -87979,22 +88237,24 @@ module rtfpga_core$slots$0$lane$to_origin$0$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$to_origin$0$rounder
@@ -88640,7 +88900,6 @@ module rtfpga_core$slots$0$lane$to_origin$0$unpack_a(x,sign,exp,sig,zero,inf,nan
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -88653,10 +88912,8 @@ module rtfpga_core$slots$0$lane$to_origin$0$unpack_a(x,sign,exp,sig,zero,inf,nan
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -88680,7 +88937,6 @@ module rtfpga_core$slots$0$lane$to_origin$0$unpack_b(x,sign,exp,sig,zero,inf,nan
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -88693,10 +88949,8 @@ module rtfpga_core$slots$0$lane$to_origin$0$unpack_b(x,sign,exp,sig,zero,inf,nan
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -88717,6 +88971,7 @@ module rtfpga_core$slots$0$lane$to_origin$1(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -89125,11 +89380,11 @@ module rtfpga_core$slots$0$lane$to_origin$1(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -89290,7 +89545,13 @@ module rtfpga_core$slots$0$lane$to_origin$1(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -91104,6 +91365,10 @@ module rtfpga_core$slots$0$lane$to_origin$1$rounder(category,exp,sig,round,stick
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -91130,22 +91395,24 @@ module rtfpga_core$slots$0$lane$to_origin$1$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$to_origin$1$rounder
@@ -91791,7 +92058,6 @@ module rtfpga_core$slots$0$lane$to_origin$1$unpack_a(x,sign,exp,sig,zero,inf,nan
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -91804,10 +92070,8 @@ module rtfpga_core$slots$0$lane$to_origin$1$unpack_a(x,sign,exp,sig,zero,inf,nan
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -91831,7 +92095,6 @@ module rtfpga_core$slots$0$lane$to_origin$1$unpack_b(x,sign,exp,sig,zero,inf,nan
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -91844,10 +92107,8 @@ module rtfpga_core$slots$0$lane$to_origin$1$unpack_b(x,sign,exp,sig,zero,inf,nan
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -91868,6 +92129,7 @@ module rtfpga_core$slots$0$lane$to_origin$2(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -92276,11 +92538,11 @@ module rtfpga_core$slots$0$lane$to_origin$2(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -92441,7 +92703,13 @@ module rtfpga_core$slots$0$lane$to_origin$2(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -94255,6 +94523,10 @@ module rtfpga_core$slots$0$lane$to_origin$2$rounder(category,exp,sig,round,stick
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -94281,22 +94553,24 @@ module rtfpga_core$slots$0$lane$to_origin$2$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$to_origin$2$rounder
@@ -94942,7 +95216,6 @@ module rtfpga_core$slots$0$lane$to_origin$2$unpack_a(x,sign,exp,sig,zero,inf,nan
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -94955,10 +95228,8 @@ module rtfpga_core$slots$0$lane$to_origin$2$unpack_a(x,sign,exp,sig,zero,inf,nan
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -94982,7 +95253,6 @@ module rtfpga_core$slots$0$lane$to_origin$2$unpack_b(x,sign,exp,sig,zero,inf,nan
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -94995,10 +95265,8 @@ module rtfpga_core$slots$0$lane$to_origin$2$unpack_b(x,sign,exp,sig,zero,inf,nan
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -95415,7 +95683,6 @@ module rtfpga_core$slots$0$lane$u_above_one$unpack_a(x,sign,exp,sig,zero,inf,nan
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -95428,10 +95695,8 @@ module rtfpga_core$slots$0$lane$u_above_one$unpack_a(x,sign,exp,sig,zero,inf,nan
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -95455,7 +95720,6 @@ module rtfpga_core$slots$0$lane$u_above_one$unpack_b(x,sign,exp,sig,zero,inf,nan
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -95468,10 +95732,8 @@ module rtfpga_core$slots$0$lane$u_above_one$unpack_b(x,sign,exp,sig,zero,inf,nan
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -95692,7 +95954,6 @@ module rtfpga_core$slots$0$lane$u_below_zero$unpack_a(x,sign,exp,sig,zero,inf,na
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -95705,10 +95966,8 @@ module rtfpga_core$slots$0$lane$u_below_zero$unpack_a(x,sign,exp,sig,zero,inf,na
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -95732,7 +95991,6 @@ module rtfpga_core$slots$0$lane$u_below_zero$unpack_b(x,sign,exp,sig,zero,inf,na
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -95745,10 +96003,8 @@ module rtfpga_core$slots$0$lane$u_below_zero$unpack_b(x,sign,exp,sig,zero,inf,na
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -95868,6 +96124,7 @@ module rtfpga_core$slots$0$lane$u_num$first_sum(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -96276,11 +96533,11 @@ module rtfpga_core$slots$0$lane$u_num$first_sum(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -96441,7 +96698,13 @@ module rtfpga_core$slots$0$lane$u_num$first_sum(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -98255,6 +98518,10 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$rounder(category,exp,sig,round,s
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -98281,22 +98548,24 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$u_num$first_sum$rounder
@@ -98942,7 +99211,6 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$unpack_a(x,sign,exp,sig,zero,inf
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -98955,10 +99223,8 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$unpack_a(x,sign,exp,sig,zero,inf
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -98982,7 +99248,6 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$unpack_b(x,sign,exp,sig,zero,inf
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -98995,10 +99260,8 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$unpack_b(x,sign,exp,sig,zero,inf
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -99015,7 +99278,8 @@ module rtfpga_core$slots$0$lane$u_num$products$0(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -99078,6 +99342,7 @@ module rtfpga_core$slots$0$lane$u_num$products$0(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$u_num$products$0$unpack_a unpack_a(
@@ -99161,7 +99426,7 @@ module rtfpga_core$slots$0$lane$u_num$products$0(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -99189,7 +99454,11 @@ module rtfpga_core$slots$0$lane$u_num$products$0(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -99755,6 +100024,10 @@ module rtfpga_core$slots$0$lane$u_num$products$0$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -99781,22 +100054,24 @@ module rtfpga_core$slots$0$lane$u_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$u_num$products$0$rounder
@@ -99818,7 +100093,6 @@ module rtfpga_core$slots$0$lane$u_num$products$0$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -99831,10 +100105,8 @@ module rtfpga_core$slots$0$lane$u_num$products$0$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -99858,7 +100130,6 @@ module rtfpga_core$slots$0$lane$u_num$products$0$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -99871,10 +100142,8 @@ module rtfpga_core$slots$0$lane$u_num$products$0$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -99891,7 +100160,8 @@ module rtfpga_core$slots$0$lane$u_num$products$1(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -99954,6 +100224,7 @@ module rtfpga_core$slots$0$lane$u_num$products$1(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$u_num$products$1$unpack_a unpack_a(
@@ -100037,7 +100308,7 @@ module rtfpga_core$slots$0$lane$u_num$products$1(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -100065,7 +100336,11 @@ module rtfpga_core$slots$0$lane$u_num$products$1(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -100631,6 +100906,10 @@ module rtfpga_core$slots$0$lane$u_num$products$1$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -100657,22 +100936,24 @@ module rtfpga_core$slots$0$lane$u_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$u_num$products$1$rounder
@@ -100694,7 +100975,6 @@ module rtfpga_core$slots$0$lane$u_num$products$1$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -100707,10 +100987,8 @@ module rtfpga_core$slots$0$lane$u_num$products$1$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -100734,7 +101012,6 @@ module rtfpga_core$slots$0$lane$u_num$products$1$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -100747,10 +101024,8 @@ module rtfpga_core$slots$0$lane$u_num$products$1$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -100767,7 +101042,8 @@ module rtfpga_core$slots$0$lane$u_num$products$2(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -100830,6 +101106,7 @@ module rtfpga_core$slots$0$lane$u_num$products$2(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$u_num$products$2$unpack_a unpack_a(
@@ -100913,7 +101190,7 @@ module rtfpga_core$slots$0$lane$u_num$products$2(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -100941,7 +101218,11 @@ module rtfpga_core$slots$0$lane$u_num$products$2(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -101507,6 +101788,10 @@ module rtfpga_core$slots$0$lane$u_num$products$2$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -101533,22 +101818,24 @@ module rtfpga_core$slots$0$lane$u_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$u_num$products$2$rounder
@@ -101570,7 +101857,6 @@ module rtfpga_core$slots$0$lane$u_num$products$2$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -101583,10 +101869,8 @@ module rtfpga_core$slots$0$lane$u_num$products$2$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -101610,7 +101894,6 @@ module rtfpga_core$slots$0$lane$u_num$products$2$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -101623,10 +101906,8 @@ module rtfpga_core$slots$0$lane$u_num$products$2$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -101647,6 +101928,7 @@ module rtfpga_core$slots$0$lane$u_num$sum(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -102055,11 +102337,11 @@ module rtfpga_core$slots$0$lane$u_num$sum(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -102220,7 +102502,13 @@ module rtfpga_core$slots$0$lane$u_num$sum(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -104034,6 +104322,10 @@ module rtfpga_core$slots$0$lane$u_num$sum$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -104060,22 +104352,24 @@ module rtfpga_core$slots$0$lane$u_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$u_num$sum$rounder
@@ -104721,7 +105015,6 @@ module rtfpga_core$slots$0$lane$u_num$sum$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -104734,10 +105027,8 @@ module rtfpga_core$slots$0$lane$u_num$sum$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -104761,7 +105052,6 @@ module rtfpga_core$slots$0$lane$u_num$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -104774,10 +105064,8 @@ module rtfpga_core$slots$0$lane$u_num$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -105039,7 +105327,6 @@ module rtfpga_core$slots$0$lane$u_out$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -105052,10 +105339,8 @@ module rtfpga_core$slots$0$lane$u_out$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -105076,6 +105361,7 @@ module rtfpga_core$slots$0$lane$u_plus_v(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -105484,11 +105770,11 @@ module rtfpga_core$slots$0$lane$u_plus_v(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -105649,7 +105935,13 @@ module rtfpga_core$slots$0$lane$u_plus_v(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -107463,6 +107755,10 @@ module rtfpga_core$slots$0$lane$u_plus_v$rounder(category,exp,sig,round,sticky,y
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -107489,22 +107785,24 @@ module rtfpga_core$slots$0$lane$u_plus_v$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$u_plus_v$rounder
@@ -108150,7 +108448,6 @@ module rtfpga_core$slots$0$lane$u_plus_v$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -108163,10 +108460,8 @@ module rtfpga_core$slots$0$lane$u_plus_v$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -108190,7 +108485,6 @@ module rtfpga_core$slots$0$lane$u_plus_v$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -108203,10 +108497,8 @@ module rtfpga_core$slots$0$lane$u_plus_v$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -108223,7 +108515,8 @@ module rtfpga_core$slots$0$lane$u_scale(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -108286,6 +108579,7 @@ module rtfpga_core$slots$0$lane$u_scale(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$u_scale$unpack_a unpack_a(
@@ -108369,7 +108663,7 @@ module rtfpga_core$slots$0$lane$u_scale(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -108397,7 +108691,11 @@ module rtfpga_core$slots$0$lane$u_scale(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -108963,6 +109261,10 @@ module rtfpga_core$slots$0$lane$u_scale$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -108989,22 +109291,24 @@ module rtfpga_core$slots$0$lane$u_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$u_scale$rounder
@@ -109026,7 +109330,6 @@ module rtfpga_core$slots$0$lane$u_scale$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -109039,10 +109342,8 @@ module rtfpga_core$slots$0$lane$u_scale$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -109066,7 +109367,6 @@ module rtfpga_core$slots$0$lane$u_scale$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -109079,10 +109379,8 @@ module rtfpga_core$slots$0$lane$u_scale$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -109303,7 +109601,6 @@ module rtfpga_core$slots$0$lane$v_below_zero$unpack_a(x,sign,exp,sig,zero,inf,na
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -109316,10 +109613,8 @@ module rtfpga_core$slots$0$lane$v_below_zero$unpack_a(x,sign,exp,sig,zero,inf,na
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -109343,7 +109638,6 @@ module rtfpga_core$slots$0$lane$v_below_zero$unpack_b(x,sign,exp,sig,zero,inf,na
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -109356,10 +109650,8 @@ module rtfpga_core$slots$0$lane$v_below_zero$unpack_b(x,sign,exp,sig,zero,inf,na
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -109479,6 +109771,7 @@ module rtfpga_core$slots$0$lane$v_num$first_sum(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -109887,11 +110180,11 @@ module rtfpga_core$slots$0$lane$v_num$first_sum(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -110052,7 +110345,13 @@ module rtfpga_core$slots$0$lane$v_num$first_sum(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -111866,6 +112165,10 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$rounder(category,exp,sig,round,s
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -111892,22 +112195,24 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$v_num$first_sum$rounder
@@ -112553,7 +112858,6 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$unpack_a(x,sign,exp,sig,zero,inf
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -112566,10 +112870,8 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$unpack_a(x,sign,exp,sig,zero,inf
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -112593,7 +112895,6 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$unpack_b(x,sign,exp,sig,zero,inf
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -112606,10 +112907,8 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$unpack_b(x,sign,exp,sig,zero,inf
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -112626,7 +112925,8 @@ module rtfpga_core$slots$0$lane$v_num$products$0(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -112689,6 +112989,7 @@ module rtfpga_core$slots$0$lane$v_num$products$0(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$v_num$products$0$unpack_a unpack_a(
@@ -112772,7 +113073,7 @@ module rtfpga_core$slots$0$lane$v_num$products$0(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -112800,7 +113101,11 @@ module rtfpga_core$slots$0$lane$v_num$products$0(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -113366,6 +113671,10 @@ module rtfpga_core$slots$0$lane$v_num$products$0$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -113392,22 +113701,24 @@ module rtfpga_core$slots$0$lane$v_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$v_num$products$0$rounder
@@ -113429,7 +113740,6 @@ module rtfpga_core$slots$0$lane$v_num$products$0$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -113442,10 +113752,8 @@ module rtfpga_core$slots$0$lane$v_num$products$0$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -113469,7 +113777,6 @@ module rtfpga_core$slots$0$lane$v_num$products$0$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -113482,10 +113789,8 @@ module rtfpga_core$slots$0$lane$v_num$products$0$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -113502,7 +113807,8 @@ module rtfpga_core$slots$0$lane$v_num$products$1(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -113565,6 +113871,7 @@ module rtfpga_core$slots$0$lane$v_num$products$1(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$v_num$products$1$unpack_a unpack_a(
@@ -113648,7 +113955,7 @@ module rtfpga_core$slots$0$lane$v_num$products$1(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -113676,7 +113983,11 @@ module rtfpga_core$slots$0$lane$v_num$products$1(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -114242,6 +114553,10 @@ module rtfpga_core$slots$0$lane$v_num$products$1$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -114268,22 +114583,24 @@ module rtfpga_core$slots$0$lane$v_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$v_num$products$1$rounder
@@ -114305,7 +114622,6 @@ module rtfpga_core$slots$0$lane$v_num$products$1$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -114318,10 +114634,8 @@ module rtfpga_core$slots$0$lane$v_num$products$1$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -114345,7 +114659,6 @@ module rtfpga_core$slots$0$lane$v_num$products$1$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -114358,10 +114671,8 @@ module rtfpga_core$slots$0$lane$v_num$products$1$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -114378,7 +114689,8 @@ module rtfpga_core$slots$0$lane$v_num$products$2(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -114441,6 +114753,7 @@ module rtfpga_core$slots$0$lane$v_num$products$2(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$v_num$products$2$unpack_a unpack_a(
@@ -114524,7 +114837,7 @@ module rtfpga_core$slots$0$lane$v_num$products$2(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -114552,7 +114865,11 @@ module rtfpga_core$slots$0$lane$v_num$products$2(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -115118,6 +115435,10 @@ module rtfpga_core$slots$0$lane$v_num$products$2$rounder(category,exp,sig,round,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -115144,22 +115465,24 @@ module rtfpga_core$slots$0$lane$v_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$v_num$products$2$rounder
@@ -115181,7 +115504,6 @@ module rtfpga_core$slots$0$lane$v_num$products$2$unpack_a(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -115194,10 +115516,8 @@ module rtfpga_core$slots$0$lane$v_num$products$2$unpack_a(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -115221,7 +115541,6 @@ module rtfpga_core$slots$0$lane$v_num$products$2$unpack_b(x,sign,exp,sig,zero,in
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -115234,10 +115553,8 @@ module rtfpga_core$slots$0$lane$v_num$products$2$unpack_b(x,sign,exp,sig,zero,in
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -115258,6 +115575,7 @@ module rtfpga_core$slots$0$lane$v_num$sum(clock,a,b,y);
     localparam  frac_mask = 32'h7fffff;
     localparam  extra_bits = 8'h3;
     localparam  align_limit = 8'h1b;
+    localparam  all_zeros = 5'b11111;
     localparam  reversed_bits$0 = 32'h10000000;
     localparam  reversed_bits$1 = 32'h8000000;
     localparam  reversed_bits$2 = 32'h4000000;
@@ -115666,11 +115984,11 @@ module rtfpga_core$slots$0$lane$v_num$sum(clock,a,b,y);
         diff_ab = unpack_a$exp - unpack_b$exp;
         diff_ba = unpack_b$exp - unpack_a$exp;
         compared_shift_ab$d = ((diff_ab) & 5'h1f);
-        if (diff_ab > align_limit) begin
+        if ((diff_ab > align_limit) | unpack_b$zero) begin
             compared_shift_ab$d = ((align_limit) & 5'h1f);
         end
         compared_shift_ba$d = ((diff_ba) & 5'h1f);
-        if (diff_ba > align_limit) begin
+        if ((diff_ba > align_limit) | unpack_a$zero) begin
             compared_shift_ba$d = ((align_limit) & 5'h1f);
         end
         compared_exp_greater$d = unpack_a$exp > unpack_b$exp;
@@ -115831,7 +116149,13 @@ module rtfpga_core$slots$0$lane$v_num$sum(clock,a,b,y);
         compared_zeros_a$clock = clock;
         compared_zeros_b$clock = clock;
         compared_zeros_a$d = ((trailing_a$count) & 5'h1f);
+        if (unpack_a$zero) begin
+            compared_zeros_a$d = all_zeros;
+        end
         compared_zeros_b$d = ((trailing_b$count) & 5'h1f);
+        if (unpack_b$zero) begin
+            compared_zeros_b$d = all_zeros;
+        end
         compared_cancel$d = (unpack_a$zero & unpack_b$zero) | ((unpack_a$sign ^ sign_b) & (unpack_a$exp == unpack_b$exp) & ((a & frac_mask) == (b & frac_mask)));
         a_larger = compared_exp_greater$q | (compared_exp_equal$q & compared_frac_not_less$q);
         subtract_now = compared_sign_a$q ^ compared_sign_b$q;
@@ -117645,6 +117969,10 @@ module rtfpga_core$slots$0$lane$v_num$sum$rounder(category,exp,sig,round,sticky,
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -117671,22 +117999,24 @@ module rtfpga_core$slots$0$lane$v_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$v_num$sum$rounder
@@ -118332,7 +118662,6 @@ module rtfpga_core$slots$0$lane$v_num$sum$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -118345,10 +118674,8 @@ module rtfpga_core$slots$0$lane$v_num$sum$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -118372,7 +118699,6 @@ module rtfpga_core$slots$0$lane$v_num$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -118385,10 +118711,8 @@ module rtfpga_core$slots$0$lane$v_num$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -118650,7 +118974,6 @@ module rtfpga_core$slots$0$lane$v_out$unpack(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -118663,10 +118986,8 @@ module rtfpga_core$slots$0$lane$v_out$unpack(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -118683,7 +119004,8 @@ module rtfpga_core$slots$0$lane$v_scale(clock,a,b,y);
     output reg  [31:0] y;
     
     // Constant declarations
-    localparam  bias = 10'b1111111;
+    localparam  minus_bias = 10'b1110000001;
+    localparam  one_minus_bias = 10'b1110000010;
     localparam  top_bit = 48'h800000000000;
     localparam  sig_width = 8'h18;
     localparam  round_bit = 48'h800000;
@@ -118746,6 +119068,7 @@ module rtfpga_core$slots$0$lane$v_scale(clock,a,b,y);
     reg  [3:0] category;
     reg  product_top;
     reg  [47:0] product_normalized;
+    reg  [9:0] exp_offset;
     
     // Sub module instances
     rtfpga_core$slots$0$lane$v_scale$unpack_a unpack_a(
@@ -118829,7 +119152,7 @@ module rtfpga_core$slots$0$lane$v_scale(clock,a,b,y);
     always @(*) begin
         unpack_a$x = a;
         unpack_b$x = b;
-        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff) - bias;
+        exp_sum = ((unpack_a$exp) & 10'h3ff) + ((unpack_b$exp) & 10'h3ff);
         category[(64'h0)+:(1)] = unpack_a$sign ^ unpack_b$sign;
         category[(64'h1)+:(1)] = unpack_a$nan | unpack_b$nan | (unpack_a$zero & unpack_b$inf) | (unpack_a$inf & unpack_b$zero);
         category[(64'h2)+:(1)] = unpack_a$inf | unpack_b$inf;
@@ -118857,7 +119180,11 @@ module rtfpga_core$slots$0$lane$v_scale(clock,a,b,y);
         normal_sig$d = ((product_normalized >> sig_width) & 24'hffffff);
         normal_round$d = |(product_normalized & round_bit);
         normal_sticky$d = |(product_normalized & sticky_bits);
-        normal_exp$d = product_exp$q + product_top;
+        exp_offset = minus_bias;
+        if (product_top) begin
+            exp_offset = one_minus_bias;
+        end
+        normal_exp$d = product_exp$q + exp_offset;
         normal_class$d = product_class$q;
         rounder$category = normal_class$q;
         rounder$exp = normal_exp$q;
@@ -119423,6 +119750,10 @@ module rtfpga_core$slots$0$lane$v_scale$rounder(category,exp,sig,round,sticky,y)
     reg  tiny;
     reg  huge;
     reg  [31:0] sign_bit;
+    reg  overflow;
+    reg  underflow;
+    reg  [31:0] keep;
+    reg  [31:0] special;
     
     // Update code
     always @(*) begin
@@ -119449,22 +119780,24 @@ module rtfpga_core$slots$0$lane$v_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        keep = zero_pattern;
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+            keep = ~zero_pattern;
+        end
         sign_bit = zero_pattern;
-        if (category[(64'h0)+:(1)]) begin
+        if (category[(64'h0)+:(1)] & ~category[(64'h1)+:(1)]) begin
             sign_bit = sign_mask;
         end
+        special = zero_pattern;
         if (category[(64'h1)+:(1)]) begin
-            y = nan_pattern;
+            special = nan_pattern;
         end
-        else if (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)])) begin
-            y = sign_bit | inf_pattern;
+        if (overflow) begin
+            special = inf_pattern;
         end
-        else if (category[(64'h3)+:(1)] | tiny) begin
-            y = sign_bit;
-        end
-        else begin
-            y = sign_bit | (((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff);
-        end
+        y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
     
 endmodule // rtfpga_core$slots$0$lane$v_scale$rounder
@@ -119486,7 +119819,6 @@ module rtfpga_core$slots$0$lane$v_scale$unpack_a(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -119499,10 +119831,8 @@ module rtfpga_core$slots$0$lane$v_scale$unpack_a(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end
@@ -119526,7 +119856,6 @@ module rtfpga_core$slots$0$lane$v_scale$unpack_b(x,sign,exp,sig,zero,inf,nan);
     localparam  sign_position = 8'h1f;
     localparam  exp_ones = 8'hff;
     localparam  hidden_bit = 24'h800000;
-    localparam  no_sig = 24'h0;
     
     // Local signals
     reg  [22:0] frac;
@@ -119539,10 +119868,8 @@ module rtfpga_core$slots$0$lane$v_scale$unpack_b(x,sign,exp,sig,zero,inf,nan);
         zero = ~|exp;
         inf = (exp == exp_ones) & ~|frac;
         nan = (exp == exp_ones) & |frac;
-        if (zero) begin
-            sig = no_sig;
-        end
-        else begin
+        sig = ((frac) & 24'hffffff);
+        if (~zero) begin
             sig = ((frac) & 24'hffffff) | hidden_bit;
         end
     end

@@ -44,6 +44,7 @@ pub struct FixedFromF32<
     unpack: Unpack<8, 23, 32, 24>,
     exponent: Signal<Local, Bits<10>>,
     amount: Signal<Local, Bits<10>>,
+    flushed_sig: Signal<Local, Bits<24>>,
     aligned: Signal<Local, Bits<L>>,
     magnitude: Pipe<Bits<K>>,
     round: Pipe<Bit>,
@@ -100,6 +101,7 @@ impl<
             unpack: Default::default(),
             exponent: Default::default(),
             amount: Default::default(),
+            flushed_sig: Default::default(),
             aligned: Default::default(),
             magnitude: Pipe::new(cut[0]),
             round: Pipe::new(cut[0]),
@@ -151,7 +153,12 @@ impl<
         } else {
             self.amount.next = self.exponent.val();
         }
-        self.aligned.next = bit_cast::<L, 24>(self.unpack.sig.val()) << self.amount.val();
+        // Unpack leaves a subnormal's fraction in `sig`; here it would set the sticky bit.
+        self.flushed_sig.next = 0.into();
+        if !self.unpack.zero.val() {
+            self.flushed_sig.next = self.unpack.sig.val();
+        }
+        self.aligned.next = bit_cast::<L, 24>(self.flushed_sig.val()) << self.amount.val();
         // Cut 0.
         self.magnitude.clock.next = self.clock.val();
         self.round.clock.next = self.clock.val();

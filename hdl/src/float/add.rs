@@ -109,6 +109,7 @@ pub struct FloatAdd<
     frac_mask: Constant<Bits<W>>,
     extra_bits: Constant<Bits<8>>,
     align_limit: Constant<Bits<E>>,
+    all_zeros: Constant<Bits<5>>,
     reversed_bits: Vec<Constant<Bits<32>>>,
     carry_in: Constant<Bits<A>>,
     lza_top: Constant<Bits<A>>,
@@ -218,6 +219,7 @@ impl<
             frac_mask: Constant::new((Bits::<W>::from(1) << M as u64) - 1),
             extra_bits: Constant::new(3.into()),
             align_limit: Constant::new((A as u64).into()),
+            all_zeros: Constant::new(Bits::<5>::mask()),
             // Significand bit i is bit i+3 of the aligned frame, reversed: bit 28-i.
             reversed_bits: (0..S)
                 .map(|i| Constant::new(Bits::<32>::from(1) << (28 - i) as u64))
@@ -274,12 +276,14 @@ impl<
         // The alignment shift for either order; only the one of the larger operand is used.
         self.diff_ab.next = self.unpack_a.exp.val() - self.unpack_b.exp.val();
         self.diff_ba.next = self.unpack_b.exp.val() - self.unpack_a.exp.val();
+        // A zero (or flushed subnormal) y is shifted out entirely, its trailing zeros count as
+        // all (no sticky bit): y aligns to 0 without a mask on its significand.
         self.compared_shift_ab.d.next = bit_cast::<5, E>(self.diff_ab.val());
-        if self.diff_ab.val() > self.align_limit.val() {
+        if (self.diff_ab.val() > self.align_limit.val()) | self.unpack_b.zero.val() {
             self.compared_shift_ab.d.next = bit_cast::<5, E>(self.align_limit.val());
         }
         self.compared_shift_ba.d.next = bit_cast::<5, E>(self.diff_ba.val());
-        if self.diff_ba.val() > self.align_limit.val() {
+        if (self.diff_ba.val() > self.align_limit.val()) | self.unpack_a.zero.val() {
             self.compared_shift_ba.d.next = bit_cast::<5, E>(self.align_limit.val());
         }
         self.compared_exp_greater.d.next = self.unpack_a.exp.val() > self.unpack_b.exp.val();
@@ -311,7 +315,13 @@ impl<
         self.compared_zeros_a.clock.next = self.clock.val();
         self.compared_zeros_b.clock.next = self.clock.val();
         self.compared_zeros_a.d.next = bit_cast::<5, 8>(self.trailing_a.count.val());
+        if self.unpack_a.zero.val() {
+            self.compared_zeros_a.d.next = self.all_zeros.val();
+        }
         self.compared_zeros_b.d.next = bit_cast::<5, 8>(self.trailing_b.count.val());
+        if self.unpack_b.zero.val() {
+            self.compared_zeros_b.d.next = self.all_zeros.val();
+        }
         // The sum is exactly 0 when both operands are zeros or equal magnitudes cancel.
         self.compared_cancel.d.next = (self.unpack_a.zero.val() & self.unpack_b.zero.val())
             | ((self.unpack_a.sign.val() ^ self.sign_b.val())

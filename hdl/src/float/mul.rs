@@ -44,7 +44,9 @@ pub struct FloatMul<
     normal_class: Pipe<ResultClass>,
     rounder: Round<E, M, W, S, X>,
     result: Pipe<Bits<W>>,
-    bias: Constant<Bits<X>>,
+    exp_offset: Signal<Local, Bits<X>>,
+    minus_bias: Constant<Bits<X>>,
+    one_minus_bias: Constant<Bits<X>>,
     top_bit: Constant<Bits<S2>>,
     sig_width: Constant<Bits<8>>,
     round_bit: Constant<Bits<S2>>,
@@ -91,7 +93,10 @@ impl<
             normal_class: Pipe::new(cut[1]),
             rounder: Default::default(),
             result: Pipe::new(cut[2]),
-            bias: Constant::new(((1u64 << (E - 1)) - 1).into()),
+            exp_offset: Default::default(),
+            // −bias in X-bit two's complement.
+            minus_bias: Constant::new(((1u64 << X) - ((1u64 << (E - 1)) - 1)).into()),
+            one_minus_bias: Constant::new(((1u64 << X) - ((1u64 << (E - 1)) - 2)).into()),
             top_bit: Constant::new(Bits::<S2>::from(1) << (S2 - 1) as u64),
             sig_width: Constant::new(S.to_bits()),
             round_bit: Constant::new(Bits::<S2>::from(1) << (S - 1) as u64),
@@ -113,10 +118,10 @@ impl<
     fn update(&mut self) {
         self.unpack_a.x.next = self.a.val();
         self.unpack_b.x.next = self.b.val();
-        // Exponent of the product of the two leading bits; normalization may add 1.
-        self.exp_sum.next = bit_cast::<X, E>(self.unpack_a.exp.val())
-            + bit_cast::<X, E>(self.unpack_b.exp.val())
-            - self.bias.val();
+        // The sum of the biased exponents; the bias is taken off with normalization's +1, in
+        // one adder (a three-operand sum would be two carry chains).
+        self.exp_sum.next =
+            bit_cast::<X, E>(self.unpack_a.exp.val()) + bit_cast::<X, E>(self.unpack_b.exp.val());
         self.category.next.sign = self.unpack_a.sign.val() ^ self.unpack_b.sign.val();
         self.category.next.nan = self.unpack_a.nan.val()
             | self.unpack_b.nan.val()
@@ -150,7 +155,11 @@ impl<
             bit_cast::<S, S2>(self.product_normalized.val() >> self.sig_width.val());
         self.normal_round.d.next = (self.product_normalized.val() & self.round_bit.val()).any();
         self.normal_sticky.d.next = (self.product_normalized.val() & self.sticky_bits.val()).any();
-        self.normal_exp.d.next = self.product_exp.q.val() + self.product_top.val();
+        self.exp_offset.next = self.minus_bias.val();
+        if self.product_top.val() {
+            self.exp_offset.next = self.one_minus_bias.val();
+        }
+        self.normal_exp.d.next = self.product_exp.q.val() + self.exp_offset.val();
         self.normal_class.d.next = self.product_class.q.val();
         self.rounder.category.next = self.normal_class.q.val();
         self.rounder.exp.next = self.normal_exp.q.val();

@@ -41,6 +41,10 @@ pub struct Round<const E: usize, const M: usize, const W: usize, const S: usize,
     tiny: Signal<Local, Bit>,
     huge: Signal<Local, Bit>,
     sign_bit: Signal<Local, Bits<W>>,
+    overflow: Signal<Local, Bit>,
+    underflow: Signal<Local, Bit>,
+    keep: Signal<Local, Bits<W>>,
+    special: Signal<Local, Bits<W>>,
     frac_one: Constant<Bits<M>>,
     frac_half: Constant<Bits<8>>,
     exp_one: Constant<Bits<E>>,
@@ -81,6 +85,10 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: us
             tiny: Default::default(),
             huge: Default::default(),
             sign_bit: Default::default(),
+            overflow: Default::default(),
+            underflow: Default::default(),
+            keep: Default::default(),
+            special: Default::default(),
             frac_one: Constant::new(1.into()),
             frac_half: Constant::new((M / 2).to_bits()),
             exp_one: Constant::new(1.into()),
@@ -132,20 +140,32 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: us
             self.tiny.next = self.negative.val() | (self.exp.val() == self.exp_zero.val());
             self.huge.next = !self.negative.val() & (self.exp.val() >= self.exp_inf.val());
         }
+        // The result's fields by AND/OR (a priority mux over the whole word maps onto mux trees):
+        // NaN > Inf or overflow > zero or underflow > the rounded number.
+        self.overflow.next = !self.category.val().nan
+            & (self.category.val().inf | (self.huge.val() & !self.category.val().zero));
+        self.underflow.next = !self.category.val().nan
+            & !self.overflow.val()
+            & (self.category.val().zero | self.tiny.val());
+        self.keep.next = self.zero_pattern.val();
+        if !(self.category.val().nan | self.overflow.val() | self.underflow.val()) {
+            self.keep.next = !self.zero_pattern.val();
+        }
         self.sign_bit.next = self.zero_pattern.val();
-        if self.category.val().sign {
+        if self.category.val().sign & !self.category.val().nan {
             self.sign_bit.next = self.sign_mask.val();
         }
+        self.special.next = self.zero_pattern.val();
         if self.category.val().nan {
-            self.y.next = self.nan_pattern.val();
-        } else if self.category.val().inf | (self.huge.val() & !self.category.val().zero) {
-            self.y.next = self.sign_bit.val() | self.inf_pattern.val();
-        } else if self.category.val().zero | self.tiny.val() {
-            self.y.next = self.sign_bit.val();
-        } else {
-            self.y.next = self.sign_bit.val()
-                | (bit_cast::<W, E>(self.exp_field.val()) << self.frac_width.val())
-                | bit_cast::<W, M>(self.frac.val());
+            self.special.next = self.nan_pattern.val();
         }
+        if self.overflow.val() {
+            self.special.next = self.inf_pattern.val();
+        }
+        self.y.next = self.sign_bit.val()
+            | self.special.val()
+            | (((bit_cast::<W, E>(self.exp_field.val()) << self.frac_width.val())
+                | bit_cast::<W, M>(self.frac.val()))
+                & self.keep.val());
     }
 }

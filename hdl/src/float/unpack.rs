@@ -9,7 +9,9 @@ pub struct Unpack<const E: usize, const M: usize, const W: usize, const S: usize
     pub sign: Signal<Out, Bit>,
     /// The biased exponent field.
     pub exp: Signal<Out, Bits<E>>,
-    /// The significand with its hidden bit, 0 for a zero or subnormal operand.
+    /// The fraction with its hidden bit (set when the exponent field is not 0). A subnormal's
+    /// is not flushed here: every operator treats it as zero by `zero`, which costs less than
+    /// a mask on every significand bit (most operators decide a zero operand by its class).
     pub sig: Signal<Out, Bits<S>>,
     /// Zero or subnormal (exponent field 0).
     pub zero: Signal<Out, Bit>,
@@ -20,7 +22,6 @@ pub struct Unpack<const E: usize, const M: usize, const W: usize, const S: usize
     sign_position: Constant<Bits<8>>,
     exp_ones: Constant<Bits<E>>,
     hidden_bit: Constant<Bits<S>>,
-    no_sig: Constant<Bits<S>>,
 }
 
 impl<const E: usize, const M: usize, const W: usize, const S: usize> Default
@@ -44,7 +45,6 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize> Default
             sign_position: Constant::new((W - 1).to_bits()),
             exp_ones: Constant::new(Bits::<E>::mask()),
             hidden_bit: Constant::new(Bits::<S>::from(1) << M as u64),
-            no_sig: Constant::new(Bits::<S>::default()),
         }
     }
 }
@@ -58,9 +58,8 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize> Logic for U
         self.zero.next = !self.exp.val().any();
         self.inf.next = (self.exp.val() == self.exp_ones.val()) & !self.frac.val().any();
         self.nan.next = (self.exp.val() == self.exp_ones.val()) & self.frac.val().any();
-        if self.zero.val() {
-            self.sig.next = self.no_sig.val();
-        } else {
+        self.sig.next = bit_cast::<S, M>(self.frac.val());
+        if !self.zero.val() {
             self.sig.next = bit_cast::<S, M>(self.frac.val()) | self.hidden_bit.val();
         }
     }

@@ -430,11 +430,14 @@ macro_rules! mt_lane {
                 }
             }
 
-            /// Verilog of a lane with `depth` registers per operator, top module `top`.
+            /// Verilog of a lane with `depth` registers per operator, top module `top`
+            /// (built on a thread with room for the lane on its stack).
             pub fn mt_lane_verilog(depth: usize) -> String {
-                let mut lane = MtLane::new(depth);
-                lane.connect_all();
-                generate_verilog(&lane)
+                $crate::top::with_build_stack(move || {
+                    let mut lane = MtLane::new(depth);
+                    lane.connect_all();
+                    generate_verilog(&lane)
+                })
             }
         }
     };

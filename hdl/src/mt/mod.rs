@@ -73,7 +73,7 @@ impl LaneOutput {
 }
 
 /// The port plumbing every format's `MtLane` shares, so tests and drivers are written once.
-pub trait Lane: Block + Sized {
+pub trait Lane: Block + Sized + 'static {
     const NAME: &'static str;
     const FORMAT: Format;
     fn new(depth: usize) -> Self;
@@ -91,19 +91,23 @@ pub fn simulate_lane<L: Lane>(
     inputs: &[(bool, MtQuery)],
     flush: usize,
 ) -> Vec<LaneOutput> {
-    let mut lane = L::new(depth);
-    lane.connect_all();
-    let idle = (false, MtQuery::default());
-    (0..inputs.len() + flush)
-        .map(|cycle| {
-            let (valid, q) = inputs.get(cycle).unwrap_or(&idle);
-            lane.set_inputs(*valid, &query_words(q));
-            lane.clock().next = Clock { clk: false };
-            assert!(simulate(&mut lane, 10_000), "lane logic did not settle");
-            let out = lane.outputs();
-            lane.clock().next = Clock { clk: true };
-            assert!(simulate(&mut lane, 10_000), "lane logic did not settle");
-            out
-        })
-        .collect()
+    let inputs = inputs.to_vec();
+    // The lane is built by value: too large for a test thread's default stack.
+    crate::top::with_build_stack(move || {
+        let mut lane = L::new(depth);
+        lane.connect_all();
+        let idle = (false, MtQuery::default());
+        (0..inputs.len() + flush)
+            .map(|cycle| {
+                let (valid, q) = inputs.get(cycle).unwrap_or(&idle);
+                lane.set_inputs(*valid, &query_words(q));
+                lane.clock().next = Clock { clk: false };
+                assert!(simulate(&mut lane, 10_000), "lane logic did not settle");
+                let out = lane.outputs();
+                lane.clock().next = Clock { clk: true };
+                assert!(simulate(&mut lane, 10_000), "lane logic did not settle");
+                out
+            })
+            .collect()
+    })
 }
