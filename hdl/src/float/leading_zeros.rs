@@ -2,8 +2,8 @@
 //! then each 16-bit half's (the first non-zero nibble's count, offset by its place), then
 //! the word's. About four LUT levels, where a priority chain or a smear of ORs maps onto
 //! LUT/MUXF7/MUXF8 chains of ten. Narrower vectors are passed left-aligned. An all-zero word
-//! counts 31: the adder's anticipated count of an exact zero is not used (it knows a zero
-//! result beforehand), but its trailing-zero sticky test relies on a zero significand's 31.
+//! counts 31, a count the adder never uses: it knows a zero result beforehand, and it sets a
+//! zero operand's trailing-zero count to 31 itself (a nonzero significand has its hidden bit).
 
 use rust_hdl::prelude::*;
 
