@@ -73,6 +73,14 @@ fn fp32_one_lane_passes_verilator_and_icarus() {
     lint(&TopConfig::new("fp32", 1, 1), &[]);
 }
 
+/// At depth 5 the lane's word delay lines are block RAM rings (`hdl::mt::delay::RamDelay`).
+#[test]
+fn fp32_depth5_lane_with_ram_delay_lines_passes_verilator_and_icarus() {
+    let config = TopConfig::new("fp32", 5, 1);
+    assert!(top_verilog(&config).unwrap().contains("ram_style"));
+    lint(&config, &[]);
+}
+
 #[test]
 fn fp16_two_lanes_passes_verilator_and_icarus() {
     lint(&TopConfig::new("fp16", 1, 2), &[]);
