@@ -3018,7 +3018,7 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
     output reg  [31:0] v;
     
     // Constant declarations
-    localparam  raw_load = 1'b0;
+    localparam  raw_fp32 = 1'b0;
     localparam  eps = 16'h0;
     localparam  neg_eps = 16'h8000;
     localparam  zero = 16'h0;
@@ -3720,105 +3720,105 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
         load$0$a = query$0;
         loaded$0 = load$0$y;
         raw_word = query$0;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$0 = ((raw_word) & 16'hffff);
         end
         load$1$clock = clock;
         load$1$a = query$1;
         loaded$1 = load$1$y;
         raw_word = query$1;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$1 = ((raw_word) & 16'hffff);
         end
         load$2$clock = clock;
         load$2$a = query$2;
         loaded$2 = load$2$y;
         raw_word = query$2;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$2 = ((raw_word) & 16'hffff);
         end
         load$3$clock = clock;
         load$3$a = query$3;
         loaded$3 = load$3$y;
         raw_word = query$3;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$3 = ((raw_word) & 16'hffff);
         end
         load$4$clock = clock;
         load$4$a = query$4;
         loaded$4 = load$4$y;
         raw_word = query$4;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$4 = ((raw_word) & 16'hffff);
         end
         load$5$clock = clock;
         load$5$a = query$5;
         loaded$5 = load$5$y;
         raw_word = query$5;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$5 = ((raw_word) & 16'hffff);
         end
         load$6$clock = clock;
         load$6$a = query$6;
         loaded$6 = load$6$y;
         raw_word = query$6;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$6 = ((raw_word) & 16'hffff);
         end
         load$7$clock = clock;
         load$7$a = query$7;
         loaded$7 = load$7$y;
         raw_word = query$7;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$7 = ((raw_word) & 16'hffff);
         end
         load$8$clock = clock;
         load$8$a = query$8;
         loaded$8 = load$8$y;
         raw_word = query$8;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$8 = ((raw_word) & 16'hffff);
         end
         load$9$clock = clock;
         load$9$a = query$9;
         loaded$9 = load$9$y;
         raw_word = query$9;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$9 = ((raw_word) & 16'hffff);
         end
         load$10$clock = clock;
         load$10$a = query$10;
         loaded$10 = load$10$y;
         raw_word = query$10;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$10 = ((raw_word) & 16'hffff);
         end
         load$11$clock = clock;
         load$11$a = query$11;
         loaded$11 = load$11$y;
         raw_word = query$11;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$11 = ((raw_word) & 16'hffff);
         end
         load$12$clock = clock;
         load$12$a = query$12;
         loaded$12 = load$12$y;
         raw_word = query$12;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$12 = ((raw_word) & 16'hffff);
         end
         load$13$clock = clock;
         load$13$a = query$13;
         loaded$13 = load$13$y;
         raw_word = query$13;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$13 = ((raw_word) & 16'hffff);
         end
         load$14$clock = clock;
         load$14$a = query$14;
         loaded$14 = load$14$y;
         raw_word = query$14;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$14 = ((raw_word) & 16'hffff);
         end
         edge1$0$clock = clock;
@@ -3980,6 +3980,11 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
         t_at_out$d = t_out$y;
         u_at_out$d = u_out$y;
         v_at_out$d = v_out$y;
+        if (raw_fp32) begin
+            t_at_out$d = ((t_scale$y) & 32'hffffffff);
+            u_at_out$d = ((u_scale$y) & 32'hffffffff);
+            v_at_out$d = ((v_scale$y) & 32'hffffffff);
+        end
         t = t_at_out$q;
         u = u_at_out$q;
         v = v_at_out$q;

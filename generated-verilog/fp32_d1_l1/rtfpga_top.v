@@ -3018,7 +3018,7 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
     output reg  [31:0] v;
     
     // Constant declarations
-    localparam  raw_load = 1'b1;
+    localparam  raw_fp32 = 1'b1;
     localparam  eps = 32'h322bcc77;
     localparam  neg_eps = 32'hb22bcc77;
     localparam  zero = 32'h0;
@@ -3720,105 +3720,105 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
         load$0$a = query$0;
         loaded$0 = load$0$y;
         raw_word = query$0;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$0 = ((raw_word) & 32'hffffffff);
         end
         load$1$clock = clock;
         load$1$a = query$1;
         loaded$1 = load$1$y;
         raw_word = query$1;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$1 = ((raw_word) & 32'hffffffff);
         end
         load$2$clock = clock;
         load$2$a = query$2;
         loaded$2 = load$2$y;
         raw_word = query$2;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$2 = ((raw_word) & 32'hffffffff);
         end
         load$3$clock = clock;
         load$3$a = query$3;
         loaded$3 = load$3$y;
         raw_word = query$3;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$3 = ((raw_word) & 32'hffffffff);
         end
         load$4$clock = clock;
         load$4$a = query$4;
         loaded$4 = load$4$y;
         raw_word = query$4;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$4 = ((raw_word) & 32'hffffffff);
         end
         load$5$clock = clock;
         load$5$a = query$5;
         loaded$5 = load$5$y;
         raw_word = query$5;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$5 = ((raw_word) & 32'hffffffff);
         end
         load$6$clock = clock;
         load$6$a = query$6;
         loaded$6 = load$6$y;
         raw_word = query$6;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$6 = ((raw_word) & 32'hffffffff);
         end
         load$7$clock = clock;
         load$7$a = query$7;
         loaded$7 = load$7$y;
         raw_word = query$7;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$7 = ((raw_word) & 32'hffffffff);
         end
         load$8$clock = clock;
         load$8$a = query$8;
         loaded$8 = load$8$y;
         raw_word = query$8;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$8 = ((raw_word) & 32'hffffffff);
         end
         load$9$clock = clock;
         load$9$a = query$9;
         loaded$9 = load$9$y;
         raw_word = query$9;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$9 = ((raw_word) & 32'hffffffff);
         end
         load$10$clock = clock;
         load$10$a = query$10;
         loaded$10 = load$10$y;
         raw_word = query$10;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$10 = ((raw_word) & 32'hffffffff);
         end
         load$11$clock = clock;
         load$11$a = query$11;
         loaded$11 = load$11$y;
         raw_word = query$11;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$11 = ((raw_word) & 32'hffffffff);
         end
         load$12$clock = clock;
         load$12$a = query$12;
         loaded$12 = load$12$y;
         raw_word = query$12;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$12 = ((raw_word) & 32'hffffffff);
         end
         load$13$clock = clock;
         load$13$a = query$13;
         loaded$13 = load$13$y;
         raw_word = query$13;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$13 = ((raw_word) & 32'hffffffff);
         end
         load$14$clock = clock;
         load$14$a = query$14;
         loaded$14 = load$14$y;
         raw_word = query$14;
-        if (raw_load) begin
+        if (raw_fp32) begin
             loaded$14 = ((raw_word) & 32'hffffffff);
         end
         edge1$0$clock = clock;
@@ -3980,6 +3980,11 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
         t_at_out$d = t_out$y;
         u_at_out$d = u_out$y;
         v_at_out$d = v_out$y;
+        if (raw_fp32) begin
+            t_at_out$d = ((t_scale$y) & 32'hffffffff);
+            u_at_out$d = ((u_scale$y) & 32'hffffffff);
+            v_at_out$d = ((v_scale$y) & 32'hffffffff);
+        end
         t = t_at_out$q;
         u = u_at_out$q;
         v = v_at_out$q;
@@ -75540,6 +75545,9 @@ module rtfpga_core$slots$0$lane$t_at_out(clock,d,q);
     reg  [31:0] regs$0$d;
     wire  [31:0] regs$0$q;
     reg  regs$0$clock;
+    reg  [31:0] regs$1$d;
+    wire  [31:0] regs$1$q;
+    reg  regs$1$clock;
     
     // Local signals
     reg  [31:0] tap;
@@ -75550,6 +75558,11 @@ module rtfpga_core$slots$0$lane$t_at_out(clock,d,q);
         .q(regs$0$q),
         .clock(regs$0$clock)
     );
+    rtfpga_core$slots$0$lane$t_at_out$regs$1 regs$1(
+        .d(regs$1$d),
+        .q(regs$1$q),
+        .clock(regs$1$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -75557,6 +75570,9 @@ module rtfpga_core$slots$0$lane$t_at_out(clock,d,q);
         regs$0$clock = clock;
         regs$0$d = tap;
         tap = regs$0$q;
+        regs$1$clock = clock;
+        regs$1$d = tap;
+        tap = regs$1$q;
         q = tap;
     end
     
@@ -75580,6 +75596,25 @@ module rtfpga_core$slots$0$lane$t_at_out$regs$0(d,q,clock);
     end
           
 endmodule // rtfpga_core$slots$0$lane$t_at_out$regs$0
+
+
+module rtfpga_core$slots$0$lane$t_at_out$regs$1(d,q,clock);
+    
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$t_at_out$regs$1
 
 
 module rtfpga_core$slots$0$lane$t_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
@@ -84833,7 +84868,7 @@ module rtfpga_core$slots$0$lane$t_out$result(clock,d,q);
     output reg  [31:0] q;
     
     // Constant declarations
-    localparam  registered = 1'b1;
+    localparam  registered = 1'b0;
     
     // Stub signals
     reg  [31:0] flop$d;
@@ -95752,6 +95787,9 @@ module rtfpga_core$slots$0$lane$u_at_out(clock,d,q);
     reg  [31:0] regs$0$d;
     wire  [31:0] regs$0$q;
     reg  regs$0$clock;
+    reg  [31:0] regs$1$d;
+    wire  [31:0] regs$1$q;
+    reg  regs$1$clock;
     
     // Local signals
     reg  [31:0] tap;
@@ -95762,6 +95800,11 @@ module rtfpga_core$slots$0$lane$u_at_out(clock,d,q);
         .q(regs$0$q),
         .clock(regs$0$clock)
     );
+    rtfpga_core$slots$0$lane$u_at_out$regs$1 regs$1(
+        .d(regs$1$d),
+        .q(regs$1$q),
+        .clock(regs$1$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -95769,6 +95812,9 @@ module rtfpga_core$slots$0$lane$u_at_out(clock,d,q);
         regs$0$clock = clock;
         regs$0$d = tap;
         tap = regs$0$q;
+        regs$1$clock = clock;
+        regs$1$d = tap;
+        tap = regs$1$q;
         q = tap;
     end
     
@@ -95792,6 +95838,25 @@ module rtfpga_core$slots$0$lane$u_at_out$regs$0(d,q,clock);
     end
           
 endmodule // rtfpga_core$slots$0$lane$u_at_out$regs$0
+
+
+module rtfpga_core$slots$0$lane$u_at_out$regs$1(d,q,clock);
+    
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$u_at_out$regs$1
 
 
 module rtfpga_core$slots$0$lane$u_below_zero(clock,a,b,y);
@@ -105263,7 +105328,7 @@ module rtfpga_core$slots$0$lane$u_out$result(clock,d,q);
     output reg  [31:0] q;
     
     // Constant declarations
-    localparam  registered = 1'b1;
+    localparam  registered = 1'b0;
     
     // Stub signals
     reg  [31:0] flop$d;
@@ -109399,6 +109464,9 @@ module rtfpga_core$slots$0$lane$v_at_out(clock,d,q);
     reg  [31:0] regs$0$d;
     wire  [31:0] regs$0$q;
     reg  regs$0$clock;
+    reg  [31:0] regs$1$d;
+    wire  [31:0] regs$1$q;
+    reg  regs$1$clock;
     
     // Local signals
     reg  [31:0] tap;
@@ -109409,6 +109477,11 @@ module rtfpga_core$slots$0$lane$v_at_out(clock,d,q);
         .q(regs$0$q),
         .clock(regs$0$clock)
     );
+    rtfpga_core$slots$0$lane$v_at_out$regs$1 regs$1(
+        .d(regs$1$d),
+        .q(regs$1$q),
+        .clock(regs$1$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -109416,6 +109489,9 @@ module rtfpga_core$slots$0$lane$v_at_out(clock,d,q);
         regs$0$clock = clock;
         regs$0$d = tap;
         tap = regs$0$q;
+        regs$1$clock = clock;
+        regs$1$d = tap;
+        tap = regs$1$q;
         q = tap;
     end
     
@@ -109439,6 +109515,25 @@ module rtfpga_core$slots$0$lane$v_at_out$regs$0(d,q,clock);
     end
           
 endmodule // rtfpga_core$slots$0$lane$v_at_out$regs$0
+
+
+module rtfpga_core$slots$0$lane$v_at_out$regs$1(d,q,clock);
+    
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$v_at_out$regs$1
 
 
 module rtfpga_core$slots$0$lane$v_below_zero(clock,a,b,y);
@@ -118910,7 +119005,7 @@ module rtfpga_core$slots$0$lane$v_out$result(clock,d,q);
     output reg  [31:0] q;
     
     // Constant declarations
-    localparam  registered = 1'b1;
+    localparam  registered = 1'b0;
     
     // Stub signals
     reg  [31:0] flop$d;

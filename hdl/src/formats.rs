@@ -66,9 +66,11 @@ macro_rules! float_format {
             pub const WIDTH: usize = 1 + $e + $m;
             pub const FORMAT: hw_model::Format = hw_model::Format::Float { exp: $e, man: $m };
             /// fp32 itself: converting an fp32 word only flushes a subnormal to ±0 and makes a
-            /// NaN canonical, which every operator does to its inputs anyway, so the MT lane
-            /// feeds the words to its operators unconverted (no from_f32 stage).
-            pub const RAW_LOAD: bool = $e == 8 && $m == 23;
+            /// NaN canonical, which every operator does to its inputs anyway, and every
+            /// operator's result is already such a word (SPEC in `hw_model::format`), so the MT
+            /// lane feeds the words to its operators and its results out unconverted (no
+            /// from_f32 or to_f32 stage).
+            pub const RAW_FP32: bool = $e == 8 && $m == 23;
             // Width parameters, in the order the operators take them (see their docs):
             // W = 1+E+M, S = M+1, X = E+2 (signed exponent), A = M+4, A1 = M+5.
             pub type Add = FloatAdd<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $e + 2 }, { $m + 4 }, { $m + 5 }, false>;
@@ -147,10 +149,10 @@ macro_rules! dispatch {
             }
         }
 
-        /// Whether the MT lane of `format` takes its fp32 inputs unconverted (`RAW_LOAD`).
-        pub fn raw_load(format: &str) -> Result<bool, crate::operator::OperatorError> {
+        /// Whether the MT lane of `format` takes and gives fp32 words unconverted (`RAW_FP32`).
+        pub fn raw_fp32(format: &str) -> Result<bool, crate::operator::OperatorError> {
             match format {
-                $($name::NAME => Ok($name::RAW_LOAD),)*
+                $($name::NAME => Ok($name::RAW_FP32),)*
                 _ => Err(crate::operator::OperatorError::UnknownFormat(format.to_string())),
             }
         }
@@ -166,3 +168,40 @@ macro_rules! dispatch {
 }
 
 with_formats!(dispatch);
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    /// Specials and edges of fp32, mixed into the random operands.
+    const EDGES: [u32; 10] = [
+        0,
+        0x8000_0000,
+        1,
+        0x007f_ffff,
+        0x0080_0000,
+        0x3f80_0000,
+        0x7f7f_ffff,
+        0x7f80_0000,
+        0xff80_0000,
+        0xffc0_0001,
+    ];
+
+    fn operand() -> impl Strategy<Value = u32> {
+        prop_oneof![any::<u32>(), proptest::sample::select(&EDGES[..])]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(20_000))]
+        /// `RAW_FP32` rests on this: every result of fp32's operators is its own fp32 word
+        /// (no subnormal, a NaN only as the canonical one), so to_f32 would change nothing.
+        #[test]
+        fn fp32_operator_results_are_their_own_fp32_words(a in operand(), b in operand()) {
+            let f = super::fp32::FORMAT;
+            let (a, b) = (u64::from(a), u64::from(b));
+            for r in [f.add(a, b), f.sub(a, b), f.mul(a, b), f.recip(a)] {
+                prop_assert_eq!(u64::from(f.to_f32(r).to_bits()), r, "{:#x} {:#x}", a, b);
+            }
+        }
+    }
+}

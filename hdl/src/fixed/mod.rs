@@ -30,8 +30,8 @@ macro_rules! fixed_format {
             /// Catalogue name of the format (`hw_model::catalogue::lookup`).
             pub const NAME: &str = stringify!($name);
             pub const WIDTH: usize = $i + $f;
-            /// The MT lane converts fp32 inputs into fixed point (see `formats`).
-            pub const RAW_LOAD: bool = false;
+            /// The MT lane converts fp32 inputs into fixed point and back (see `formats`).
+            pub const RAW_FP32: bool = false;
             pub const FORMAT: hw_model::Format = hw_model::Format::Fixed {
                 int: $i,
                 frac: $f,

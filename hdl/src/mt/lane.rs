@@ -16,13 +16,13 @@ macro_rules! mt_lane {
             use rust_hdl::prelude::*;
 
             use super::{
-                max_stages, Add, FromF32, Lt, Mul, Recip, Sub, ToF32, FORMAT, NAME, RAW_LOAD, WIDTH,
+                max_stages, Add, FromF32, Lt, Mul, Recip, Sub, ToF32, FORMAT, NAME, RAW_FP32, WIDTH,
             };
             use $crate::mt::delay::Delay;
             use $crate::mt::schedule::{OpLatencies, Schedule};
 
             fn schedule(depth: usize) -> Schedule {
-                Schedule::new(OpLatencies::for_depth(depth, max_stages).loading(RAW_LOAD))
+                Schedule::new(OpLatencies::for_depth(depth, max_stages).unconverted(RAW_FP32))
             }
 
             /// a × b, each component as a.j·b.k − a.k·b.j (the model's `cross`).
@@ -142,11 +142,11 @@ macro_rules! mt_lane {
                 pub u: Signal<Out, Bits<32>>,
                 pub v: Signal<Out, Bits<32>>,
                 /// query[i] in the format: orig 0..3, dir 3..6, v0 6..9, v1 9..12, v2 12..15
-                /// (`loaded`; the words themselves when the format is `RAW_LOAD`).
+                /// (`loaded`; the words themselves when the format is `RAW_FP32`).
                 load: [FromF32; 15],
                 loaded: [Signal<Local, Bits<WIDTH>>; 15],
                 raw_word: Signal<Local, Bits<32>>,
-                raw_load: Constant<Bit>,
+                raw_fp32: Constant<Bit>,
                 /// e1 = v1 − v0, e2 = v2 − v0, s = orig − v0.
                 edge1: [Sub; 3],
                 edge2: [Sub; 3],
@@ -182,6 +182,7 @@ macro_rules! mt_lane {
                 parallel_at_out: Delay<Bit>,
                 in_range_at_out: Delay<Bit>,
                 sum_above_one_at_out: Delay<Bit>,
+                /// t, u, v in fp32 (the words themselves when the format is `RAW_FP32`).
                 t_out: ToF32,
                 u_out: ToF32,
                 v_out: ToF32,
@@ -214,7 +215,7 @@ macro_rules! mt_lane {
                         load: std::array::from_fn(|_| FromF32::new(ops.from_f32)),
                         loaded: Default::default(),
                         raw_word: Default::default(),
-                        raw_load: Constant::new(RAW_LOAD),
+                        raw_fp32: Constant::new(RAW_FP32),
                         edge1: std::array::from_fn(|_| Sub::new(ops.sub)),
                         edge2: std::array::from_fn(|_| Sub::new(ops.sub)),
                         to_origin: std::array::from_fn(|_| Sub::new(ops.sub)),
@@ -277,7 +278,7 @@ macro_rules! mt_lane {
                         // (Through a word signal: the index inside `bit_cast` would lose
                         // its macro hygiene in hdl_gen's expansion.)
                         self.raw_word.next = self.query[i].val();
-                        if self.raw_load.val() {
+                        if self.raw_fp32.val() {
                             self.loaded[i].next = bit_cast::<WIDTH, 32>(self.raw_word.val());
                         }
                     }
@@ -392,6 +393,11 @@ macro_rules! mt_lane {
                     self.t_at_out.d.next = self.t_out.y.val();
                     self.u_at_out.d.next = self.u_out.y.val();
                     self.v_at_out.d.next = self.v_out.y.val();
+                    if self.raw_fp32.val() {
+                        self.t_at_out.d.next = bit_cast::<32, WIDTH>(self.t_scale.y.val());
+                        self.u_at_out.d.next = bit_cast::<32, WIDTH>(self.u_scale.y.val());
+                        self.v_at_out.d.next = bit_cast::<32, WIDTH>(self.v_scale.y.val());
+                    }
                     self.t.next = self.t_at_out.q.val();
                     self.u.next = self.u_at_out.q.val();
                     self.v.next = self.v_at_out.q.val();

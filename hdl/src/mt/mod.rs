@@ -3,7 +3,8 @@
 //! lines that balance it ([`delay`]).
 //!
 //! A lane takes fp32 at its ports, converts into the format, runs the dataflow of
-//! `hw_model::mt_model` operator for operator and converts t, u, v back to fp32. `depth` is
+//! `hw_model::mt_model` operator for operator and converts t, u, v back to fp32 (fp32 itself
+//! needs neither conversion: `RAW_FP32` in [`formats`]). `depth` is
 //! the pipeline registers per operator: every operator is built with
 //! `min(depth, its max_stages())`, so depths beyond [`max_depth`] change nothing. Parallel
 //! branches are padded with delay lines, so a lane accepts a query every cycle (II = 1) and
@@ -25,7 +26,7 @@ use schedule::{OpLatencies, Schedule};
 /// The lane's timing in catalogue format `format` at `depth`.
 pub fn schedule(format: &str, depth: usize) -> Result<Schedule, OperatorError> {
     let ops = OpLatencies::try_for_depth(depth, |op| formats::max_stages(format, op))?;
-    Ok(Schedule::new(ops.loading(formats::raw_load(format)?)))
+    Ok(Schedule::new(ops.unconverted(formats::raw_fp32(format)?)))
 }
 
 /// Cycles from query to result of a lane in catalogue format `format` at `depth`.
