@@ -6412,7 +6412,6 @@ module rtfpga_core$slots$0$lane$det$first_sum$rounder(category,exp,sig,round,sti
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -6441,10 +6440,9 @@ module rtfpga_core$slots$0$lane$det$first_sum$rounder(category,exp,sig,round,sti
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -6452,11 +6450,11 @@ module rtfpga_core$slots$0$lane$det$first_sum$rounder(category,exp,sig,round,sti
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -7918,7 +7916,6 @@ module rtfpga_core$slots$0$lane$det$products$0$rounder(category,exp,sig,round,st
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -7947,10 +7944,9 @@ module rtfpga_core$slots$0$lane$det$products$0$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -7958,11 +7954,11 @@ module rtfpga_core$slots$0$lane$det$products$0$rounder(category,exp,sig,round,st
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -8800,7 +8796,6 @@ module rtfpga_core$slots$0$lane$det$products$1$rounder(category,exp,sig,round,st
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -8829,10 +8824,9 @@ module rtfpga_core$slots$0$lane$det$products$1$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -8840,11 +8834,11 @@ module rtfpga_core$slots$0$lane$det$products$1$rounder(category,exp,sig,round,st
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -9682,7 +9676,6 @@ module rtfpga_core$slots$0$lane$det$products$2$rounder(category,exp,sig,round,st
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -9711,10 +9704,9 @@ module rtfpga_core$slots$0$lane$det$products$2$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -9722,11 +9714,11 @@ module rtfpga_core$slots$0$lane$det$products$2$rounder(category,exp,sig,round,st
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -12125,7 +12117,6 @@ module rtfpga_core$slots$0$lane$det$sum$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -12154,10 +12145,9 @@ module rtfpga_core$slots$0$lane$det$sum$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -12165,11 +12155,11 @@ module rtfpga_core$slots$0$lane$det$sum$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -16089,7 +16079,6 @@ module rtfpga_core$slots$0$lane$edge1$0$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -16118,10 +16107,9 @@ module rtfpga_core$slots$0$lane$edge1$0$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -16129,11 +16117,11 @@ module rtfpga_core$slots$0$lane$edge1$0$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -19156,7 +19144,6 @@ module rtfpga_core$slots$0$lane$edge1$1$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -19185,10 +19172,9 @@ module rtfpga_core$slots$0$lane$edge1$1$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -19196,11 +19182,11 @@ module rtfpga_core$slots$0$lane$edge1$1$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -22223,7 +22209,6 @@ module rtfpga_core$slots$0$lane$edge1$2$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -22252,10 +22237,9 @@ module rtfpga_core$slots$0$lane$edge1$2$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -22263,11 +22247,11 @@ module rtfpga_core$slots$0$lane$edge1$2$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -25539,7 +25523,6 @@ module rtfpga_core$slots$0$lane$edge2$0$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -25568,10 +25551,9 @@ module rtfpga_core$slots$0$lane$edge2$0$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -25579,11 +25561,11 @@ module rtfpga_core$slots$0$lane$edge2$0$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -28606,7 +28588,6 @@ module rtfpga_core$slots$0$lane$edge2$1$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -28635,10 +28616,9 @@ module rtfpga_core$slots$0$lane$edge2$1$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -28646,11 +28626,11 @@ module rtfpga_core$slots$0$lane$edge2$1$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -31673,7 +31653,6 @@ module rtfpga_core$slots$0$lane$edge2$2$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -31702,10 +31681,9 @@ module rtfpga_core$slots$0$lane$edge2$2$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -31713,11 +31691,11 @@ module rtfpga_core$slots$0$lane$edge2$2$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -34667,7 +34645,6 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -34696,10 +34673,9 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -34707,11 +34683,11 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -35361,7 +35337,6 @@ module rtfpga_core$slots$0$lane$load$0$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -35390,10 +35365,9 @@ module rtfpga_core$slots$0$lane$load$0$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -35401,11 +35375,11 @@ module rtfpga_core$slots$0$lane$load$0$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -35950,7 +35924,6 @@ module rtfpga_core$slots$0$lane$load$1$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -35979,10 +35952,9 @@ module rtfpga_core$slots$0$lane$load$1$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -35990,11 +35962,11 @@ module rtfpga_core$slots$0$lane$load$1$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -36539,7 +36511,6 @@ module rtfpga_core$slots$0$lane$load$10$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -36568,10 +36539,9 @@ module rtfpga_core$slots$0$lane$load$10$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -36579,11 +36549,11 @@ module rtfpga_core$slots$0$lane$load$10$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -37128,7 +37098,6 @@ module rtfpga_core$slots$0$lane$load$11$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -37157,10 +37126,9 @@ module rtfpga_core$slots$0$lane$load$11$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -37168,11 +37136,11 @@ module rtfpga_core$slots$0$lane$load$11$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -37717,7 +37685,6 @@ module rtfpga_core$slots$0$lane$load$12$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -37746,10 +37713,9 @@ module rtfpga_core$slots$0$lane$load$12$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -37757,11 +37723,11 @@ module rtfpga_core$slots$0$lane$load$12$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -38306,7 +38272,6 @@ module rtfpga_core$slots$0$lane$load$13$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -38335,10 +38300,9 @@ module rtfpga_core$slots$0$lane$load$13$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -38346,11 +38310,11 @@ module rtfpga_core$slots$0$lane$load$13$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -38895,7 +38859,6 @@ module rtfpga_core$slots$0$lane$load$14$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -38924,10 +38887,9 @@ module rtfpga_core$slots$0$lane$load$14$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -38935,11 +38897,11 @@ module rtfpga_core$slots$0$lane$load$14$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -39484,7 +39446,6 @@ module rtfpga_core$slots$0$lane$load$2$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -39513,10 +39474,9 @@ module rtfpga_core$slots$0$lane$load$2$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -39524,11 +39484,11 @@ module rtfpga_core$slots$0$lane$load$2$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -40073,7 +40033,6 @@ module rtfpga_core$slots$0$lane$load$3$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -40102,10 +40061,9 @@ module rtfpga_core$slots$0$lane$load$3$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -40113,11 +40071,11 @@ module rtfpga_core$slots$0$lane$load$3$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -40662,7 +40620,6 @@ module rtfpga_core$slots$0$lane$load$4$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -40691,10 +40648,9 @@ module rtfpga_core$slots$0$lane$load$4$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -40702,11 +40658,11 @@ module rtfpga_core$slots$0$lane$load$4$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -41251,7 +41207,6 @@ module rtfpga_core$slots$0$lane$load$5$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -41280,10 +41235,9 @@ module rtfpga_core$slots$0$lane$load$5$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -41291,11 +41245,11 @@ module rtfpga_core$slots$0$lane$load$5$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -41840,7 +41794,6 @@ module rtfpga_core$slots$0$lane$load$6$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -41869,10 +41822,9 @@ module rtfpga_core$slots$0$lane$load$6$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -41880,11 +41832,11 @@ module rtfpga_core$slots$0$lane$load$6$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -42429,7 +42381,6 @@ module rtfpga_core$slots$0$lane$load$7$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -42458,10 +42409,9 @@ module rtfpga_core$slots$0$lane$load$7$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -42469,11 +42419,11 @@ module rtfpga_core$slots$0$lane$load$7$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -43018,7 +42968,6 @@ module rtfpga_core$slots$0$lane$load$8$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -43047,10 +42996,9 @@ module rtfpga_core$slots$0$lane$load$8$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -43058,11 +43006,11 @@ module rtfpga_core$slots$0$lane$load$8$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -43607,7 +43555,6 @@ module rtfpga_core$slots$0$lane$load$9$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -43636,10 +43583,9 @@ module rtfpga_core$slots$0$lane$load$9$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -43647,11 +43593,11 @@ module rtfpga_core$slots$0$lane$load$9$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -46158,7 +46104,6 @@ module rtfpga_core$slots$0$lane$p$diff$0$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -46187,10 +46132,9 @@ module rtfpga_core$slots$0$lane$p$diff$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -46198,11 +46142,11 @@ module rtfpga_core$slots$0$lane$p$diff$0$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -49225,7 +49169,6 @@ module rtfpga_core$slots$0$lane$p$diff$1$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -49254,10 +49197,9 @@ module rtfpga_core$slots$0$lane$p$diff$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -49265,11 +49207,11 @@ module rtfpga_core$slots$0$lane$p$diff$1$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -52292,7 +52234,6 @@ module rtfpga_core$slots$0$lane$p$diff$2$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -52321,10 +52262,9 @@ module rtfpga_core$slots$0$lane$p$diff$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -52332,11 +52272,11 @@ module rtfpga_core$slots$0$lane$p$diff$2$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -53798,7 +53738,6 @@ module rtfpga_core$slots$0$lane$p$left$0$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -53827,10 +53766,9 @@ module rtfpga_core$slots$0$lane$p$left$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -53838,11 +53776,11 @@ module rtfpga_core$slots$0$lane$p$left$0$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -54680,7 +54618,6 @@ module rtfpga_core$slots$0$lane$p$left$1$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -54709,10 +54646,9 @@ module rtfpga_core$slots$0$lane$p$left$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -54720,11 +54656,11 @@ module rtfpga_core$slots$0$lane$p$left$1$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -55562,7 +55498,6 @@ module rtfpga_core$slots$0$lane$p$left$2$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -55591,10 +55526,9 @@ module rtfpga_core$slots$0$lane$p$left$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -55602,11 +55536,11 @@ module rtfpga_core$slots$0$lane$p$left$2$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -56444,7 +56378,6 @@ module rtfpga_core$slots$0$lane$p$right$0$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -56473,10 +56406,9 @@ module rtfpga_core$slots$0$lane$p$right$0$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -56484,11 +56416,11 @@ module rtfpga_core$slots$0$lane$p$right$0$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -57326,7 +57258,6 @@ module rtfpga_core$slots$0$lane$p$right$1$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -57355,10 +57286,9 @@ module rtfpga_core$slots$0$lane$p$right$1$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -57366,11 +57296,11 @@ module rtfpga_core$slots$0$lane$p$right$1$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -58208,7 +58138,6 @@ module rtfpga_core$slots$0$lane$p$right$2$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -58237,10 +58166,9 @@ module rtfpga_core$slots$0$lane$p$right$2$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -58248,11 +58176,11 @@ module rtfpga_core$slots$0$lane$p$right$2$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -60909,7 +60837,6 @@ module rtfpga_core$slots$0$lane$q$diff$0$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -60938,10 +60865,9 @@ module rtfpga_core$slots$0$lane$q$diff$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -60949,11 +60875,11 @@ module rtfpga_core$slots$0$lane$q$diff$0$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -63976,7 +63902,6 @@ module rtfpga_core$slots$0$lane$q$diff$1$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -64005,10 +63930,9 @@ module rtfpga_core$slots$0$lane$q$diff$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -64016,11 +63940,11 @@ module rtfpga_core$slots$0$lane$q$diff$1$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -67043,7 +66967,6 @@ module rtfpga_core$slots$0$lane$q$diff$2$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -67072,10 +66995,9 @@ module rtfpga_core$slots$0$lane$q$diff$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -67083,11 +67005,11 @@ module rtfpga_core$slots$0$lane$q$diff$2$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -68549,7 +68471,6 @@ module rtfpga_core$slots$0$lane$q$left$0$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -68578,10 +68499,9 @@ module rtfpga_core$slots$0$lane$q$left$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -68589,11 +68509,11 @@ module rtfpga_core$slots$0$lane$q$left$0$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -69431,7 +69351,6 @@ module rtfpga_core$slots$0$lane$q$left$1$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -69460,10 +69379,9 @@ module rtfpga_core$slots$0$lane$q$left$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -69471,11 +69389,11 @@ module rtfpga_core$slots$0$lane$q$left$1$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -70313,7 +70231,6 @@ module rtfpga_core$slots$0$lane$q$left$2$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -70342,10 +70259,9 @@ module rtfpga_core$slots$0$lane$q$left$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -70353,11 +70269,11 @@ module rtfpga_core$slots$0$lane$q$left$2$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -71195,7 +71111,6 @@ module rtfpga_core$slots$0$lane$q$right$0$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -71224,10 +71139,9 @@ module rtfpga_core$slots$0$lane$q$right$0$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -71235,11 +71149,11 @@ module rtfpga_core$slots$0$lane$q$right$0$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -72077,7 +71991,6 @@ module rtfpga_core$slots$0$lane$q$right$1$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -72106,10 +72019,9 @@ module rtfpga_core$slots$0$lane$q$right$1$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -72117,11 +72029,11 @@ module rtfpga_core$slots$0$lane$q$right$1$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -72959,7 +72871,6 @@ module rtfpga_core$slots$0$lane$q$right$2$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -72988,10 +72899,9 @@ module rtfpga_core$slots$0$lane$q$right$2$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -72999,11 +72909,11 @@ module rtfpga_core$slots$0$lane$q$right$2$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -76009,7 +75919,6 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$rounder(category,exp,sig,round,s
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -76038,10 +75947,9 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -76049,11 +75957,11 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$rounder(category,exp,sig,round,s
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -77515,7 +77423,6 @@ module rtfpga_core$slots$0$lane$t_num$products$0$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -77544,10 +77451,9 @@ module rtfpga_core$slots$0$lane$t_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -77555,11 +77461,11 @@ module rtfpga_core$slots$0$lane$t_num$products$0$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -78397,7 +78303,6 @@ module rtfpga_core$slots$0$lane$t_num$products$1$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -78426,10 +78331,9 @@ module rtfpga_core$slots$0$lane$t_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -78437,11 +78341,11 @@ module rtfpga_core$slots$0$lane$t_num$products$1$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -79279,7 +79183,6 @@ module rtfpga_core$slots$0$lane$t_num$products$2$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -79308,10 +79211,9 @@ module rtfpga_core$slots$0$lane$t_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -79319,11 +79221,11 @@ module rtfpga_core$slots$0$lane$t_num$products$2$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -81722,7 +81624,6 @@ module rtfpga_core$slots$0$lane$t_num$sum$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -81751,10 +81652,9 @@ module rtfpga_core$slots$0$lane$t_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -81762,11 +81662,11 @@ module rtfpga_core$slots$0$lane$t_num$sum$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -83503,7 +83403,6 @@ module rtfpga_core$slots$0$lane$t_scale$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -83532,10 +83431,9 @@ module rtfpga_core$slots$0$lane$t_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -83543,11 +83441,11 @@ module rtfpga_core$slots$0$lane$t_scale$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -85946,7 +85844,6 @@ module rtfpga_core$slots$0$lane$to_origin$0$rounder(category,exp,sig,round,stick
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -85975,10 +85872,9 @@ module rtfpga_core$slots$0$lane$to_origin$0$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -85986,11 +85882,11 @@ module rtfpga_core$slots$0$lane$to_origin$0$rounder(category,exp,sig,round,stick
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -89013,7 +88909,6 @@ module rtfpga_core$slots$0$lane$to_origin$1$rounder(category,exp,sig,round,stick
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -89042,10 +88937,9 @@ module rtfpga_core$slots$0$lane$to_origin$1$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -89053,11 +88947,11 @@ module rtfpga_core$slots$0$lane$to_origin$1$rounder(category,exp,sig,round,stick
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -92080,7 +91974,6 @@ module rtfpga_core$slots$0$lane$to_origin$2$rounder(category,exp,sig,round,stick
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -92109,10 +92002,9 @@ module rtfpga_core$slots$0$lane$to_origin$2$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -92120,11 +92012,11 @@ module rtfpga_core$slots$0$lane$to_origin$2$rounder(category,exp,sig,round,stick
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -95984,7 +95876,6 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$rounder(category,exp,sig,round,s
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -96013,10 +95904,9 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -96024,11 +95914,11 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$rounder(category,exp,sig,round,s
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -97490,7 +97380,6 @@ module rtfpga_core$slots$0$lane$u_num$products$0$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -97519,10 +97408,9 @@ module rtfpga_core$slots$0$lane$u_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -97530,11 +97418,11 @@ module rtfpga_core$slots$0$lane$u_num$products$0$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -98372,7 +98260,6 @@ module rtfpga_core$slots$0$lane$u_num$products$1$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -98401,10 +98288,9 @@ module rtfpga_core$slots$0$lane$u_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -98412,11 +98298,11 @@ module rtfpga_core$slots$0$lane$u_num$products$1$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -99254,7 +99140,6 @@ module rtfpga_core$slots$0$lane$u_num$products$2$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -99283,10 +99168,9 @@ module rtfpga_core$slots$0$lane$u_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -99294,11 +99178,11 @@ module rtfpga_core$slots$0$lane$u_num$products$2$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -101697,7 +101581,6 @@ module rtfpga_core$slots$0$lane$u_num$sum$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -101726,10 +101609,9 @@ module rtfpga_core$slots$0$lane$u_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -101737,11 +101619,11 @@ module rtfpga_core$slots$0$lane$u_num$sum$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -105039,7 +104921,6 @@ module rtfpga_core$slots$0$lane$u_plus_v$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -105068,10 +104949,9 @@ module rtfpga_core$slots$0$lane$u_plus_v$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -105079,11 +104959,11 @@ module rtfpga_core$slots$0$lane$u_plus_v$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -106545,7 +106425,6 @@ module rtfpga_core$slots$0$lane$u_scale$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -106574,10 +106453,9 @@ module rtfpga_core$slots$0$lane$u_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -106585,11 +106463,11 @@ module rtfpga_core$slots$0$lane$u_scale$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -109358,7 +109236,6 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$rounder(category,exp,sig,round,s
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -109387,10 +109264,9 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -109398,11 +109274,11 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$rounder(category,exp,sig,round,s
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -110864,7 +110740,6 @@ module rtfpga_core$slots$0$lane$v_num$products$0$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -110893,10 +110768,9 @@ module rtfpga_core$slots$0$lane$v_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -110904,11 +110778,11 @@ module rtfpga_core$slots$0$lane$v_num$products$0$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -111746,7 +111620,6 @@ module rtfpga_core$slots$0$lane$v_num$products$1$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -111775,10 +111648,9 @@ module rtfpga_core$slots$0$lane$v_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -111786,11 +111658,11 @@ module rtfpga_core$slots$0$lane$v_num$products$1$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -112628,7 +112500,6 @@ module rtfpga_core$slots$0$lane$v_num$products$2$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -112657,10 +112528,9 @@ module rtfpga_core$slots$0$lane$v_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -112668,11 +112538,11 @@ module rtfpga_core$slots$0$lane$v_num$products$2$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -115071,7 +114941,6 @@ module rtfpga_core$slots$0$lane$v_num$sum$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -115100,10 +114969,9 @@ module rtfpga_core$slots$0$lane$v_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -115111,11 +114979,11 @@ module rtfpga_core$slots$0$lane$v_num$sum$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -116852,7 +116720,6 @@ module rtfpga_core$slots$0$lane$v_scale$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -116881,10 +116748,9 @@ module rtfpga_core$slots$0$lane$v_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -116892,11 +116758,11 @@ module rtfpga_core$slots$0$lane$v_scale$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end

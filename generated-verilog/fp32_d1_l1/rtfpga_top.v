@@ -6503,7 +6503,6 @@ module rtfpga_core$slots$0$lane$det$first_sum$rounder(category,exp,sig,round,sti
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -6532,10 +6531,9 @@ module rtfpga_core$slots$0$lane$det$first_sum$rounder(category,exp,sig,round,sti
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -6543,11 +6541,11 @@ module rtfpga_core$slots$0$lane$det$first_sum$rounder(category,exp,sig,round,sti
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -8009,7 +8007,6 @@ module rtfpga_core$slots$0$lane$det$products$0$rounder(category,exp,sig,round,st
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -8038,10 +8035,9 @@ module rtfpga_core$slots$0$lane$det$products$0$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -8049,11 +8045,11 @@ module rtfpga_core$slots$0$lane$det$products$0$rounder(category,exp,sig,round,st
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -8891,7 +8887,6 @@ module rtfpga_core$slots$0$lane$det$products$1$rounder(category,exp,sig,round,st
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -8920,10 +8915,9 @@ module rtfpga_core$slots$0$lane$det$products$1$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -8931,11 +8925,11 @@ module rtfpga_core$slots$0$lane$det$products$1$rounder(category,exp,sig,round,st
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -9773,7 +9767,6 @@ module rtfpga_core$slots$0$lane$det$products$2$rounder(category,exp,sig,round,st
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -9802,10 +9795,9 @@ module rtfpga_core$slots$0$lane$det$products$2$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -9813,11 +9805,11 @@ module rtfpga_core$slots$0$lane$det$products$2$rounder(category,exp,sig,round,st
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -12307,7 +12299,6 @@ module rtfpga_core$slots$0$lane$det$sum$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -12336,10 +12327,9 @@ module rtfpga_core$slots$0$lane$det$sum$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -12347,11 +12337,11 @@ module rtfpga_core$slots$0$lane$det$sum$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -16362,7 +16352,6 @@ module rtfpga_core$slots$0$lane$edge1$0$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -16391,10 +16380,9 @@ module rtfpga_core$slots$0$lane$edge1$0$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -16402,11 +16390,11 @@ module rtfpga_core$slots$0$lane$edge1$0$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -19520,7 +19508,6 @@ module rtfpga_core$slots$0$lane$edge1$1$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -19549,10 +19536,9 @@ module rtfpga_core$slots$0$lane$edge1$1$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -19560,11 +19546,11 @@ module rtfpga_core$slots$0$lane$edge1$1$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -22678,7 +22664,6 @@ module rtfpga_core$slots$0$lane$edge1$2$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -22707,10 +22692,9 @@ module rtfpga_core$slots$0$lane$edge1$2$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -22718,11 +22702,11 @@ module rtfpga_core$slots$0$lane$edge1$2$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -26085,7 +26069,6 @@ module rtfpga_core$slots$0$lane$edge2$0$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -26114,10 +26097,9 @@ module rtfpga_core$slots$0$lane$edge2$0$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -26125,11 +26107,11 @@ module rtfpga_core$slots$0$lane$edge2$0$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -29243,7 +29225,6 @@ module rtfpga_core$slots$0$lane$edge2$1$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -29272,10 +29253,9 @@ module rtfpga_core$slots$0$lane$edge2$1$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -29283,11 +29263,11 @@ module rtfpga_core$slots$0$lane$edge2$1$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -32401,7 +32381,6 @@ module rtfpga_core$slots$0$lane$edge2$2$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -32430,10 +32409,9 @@ module rtfpga_core$slots$0$lane$edge2$2$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -32441,11 +32419,11 @@ module rtfpga_core$slots$0$lane$edge2$2$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -35395,7 +35373,6 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -35424,10 +35401,9 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -35435,11 +35411,11 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -36809,7 +36785,6 @@ module rtfpga_core$slots$0$lane$load$0$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -36838,10 +36813,9 @@ module rtfpga_core$slots$0$lane$load$0$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -36849,11 +36823,11 @@ module rtfpga_core$slots$0$lane$load$0$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -37398,7 +37372,6 @@ module rtfpga_core$slots$0$lane$load$1$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -37427,10 +37400,9 @@ module rtfpga_core$slots$0$lane$load$1$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -37438,11 +37410,11 @@ module rtfpga_core$slots$0$lane$load$1$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -37987,7 +37959,6 @@ module rtfpga_core$slots$0$lane$load$10$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -38016,10 +37987,9 @@ module rtfpga_core$slots$0$lane$load$10$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -38027,11 +37997,11 @@ module rtfpga_core$slots$0$lane$load$10$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -38576,7 +38546,6 @@ module rtfpga_core$slots$0$lane$load$11$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -38605,10 +38574,9 @@ module rtfpga_core$slots$0$lane$load$11$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -38616,11 +38584,11 @@ module rtfpga_core$slots$0$lane$load$11$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -39165,7 +39133,6 @@ module rtfpga_core$slots$0$lane$load$12$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -39194,10 +39161,9 @@ module rtfpga_core$slots$0$lane$load$12$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -39205,11 +39171,11 @@ module rtfpga_core$slots$0$lane$load$12$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -39754,7 +39720,6 @@ module rtfpga_core$slots$0$lane$load$13$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -39783,10 +39748,9 @@ module rtfpga_core$slots$0$lane$load$13$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -39794,11 +39758,11 @@ module rtfpga_core$slots$0$lane$load$13$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -40343,7 +40307,6 @@ module rtfpga_core$slots$0$lane$load$14$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -40372,10 +40335,9 @@ module rtfpga_core$slots$0$lane$load$14$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -40383,11 +40345,11 @@ module rtfpga_core$slots$0$lane$load$14$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -40932,7 +40894,6 @@ module rtfpga_core$slots$0$lane$load$2$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -40961,10 +40922,9 @@ module rtfpga_core$slots$0$lane$load$2$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -40972,11 +40932,11 @@ module rtfpga_core$slots$0$lane$load$2$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -41521,7 +41481,6 @@ module rtfpga_core$slots$0$lane$load$3$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -41550,10 +41509,9 @@ module rtfpga_core$slots$0$lane$load$3$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -41561,11 +41519,11 @@ module rtfpga_core$slots$0$lane$load$3$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -42110,7 +42068,6 @@ module rtfpga_core$slots$0$lane$load$4$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -42139,10 +42096,9 @@ module rtfpga_core$slots$0$lane$load$4$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -42150,11 +42106,11 @@ module rtfpga_core$slots$0$lane$load$4$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -42699,7 +42655,6 @@ module rtfpga_core$slots$0$lane$load$5$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -42728,10 +42683,9 @@ module rtfpga_core$slots$0$lane$load$5$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -42739,11 +42693,11 @@ module rtfpga_core$slots$0$lane$load$5$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -43288,7 +43242,6 @@ module rtfpga_core$slots$0$lane$load$6$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -43317,10 +43270,9 @@ module rtfpga_core$slots$0$lane$load$6$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -43328,11 +43280,11 @@ module rtfpga_core$slots$0$lane$load$6$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -43877,7 +43829,6 @@ module rtfpga_core$slots$0$lane$load$7$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -43906,10 +43857,9 @@ module rtfpga_core$slots$0$lane$load$7$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -43917,11 +43867,11 @@ module rtfpga_core$slots$0$lane$load$7$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -44466,7 +44416,6 @@ module rtfpga_core$slots$0$lane$load$8$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -44495,10 +44444,9 @@ module rtfpga_core$slots$0$lane$load$8$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -44506,11 +44454,11 @@ module rtfpga_core$slots$0$lane$load$8$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -45055,7 +45003,6 @@ module rtfpga_core$slots$0$lane$load$9$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -45084,10 +45031,9 @@ module rtfpga_core$slots$0$lane$load$9$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -45095,11 +45041,11 @@ module rtfpga_core$slots$0$lane$load$9$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -47697,7 +47643,6 @@ module rtfpga_core$slots$0$lane$p$diff$0$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -47726,10 +47671,9 @@ module rtfpga_core$slots$0$lane$p$diff$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -47737,11 +47681,11 @@ module rtfpga_core$slots$0$lane$p$diff$0$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -50855,7 +50799,6 @@ module rtfpga_core$slots$0$lane$p$diff$1$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -50884,10 +50827,9 @@ module rtfpga_core$slots$0$lane$p$diff$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -50895,11 +50837,11 @@ module rtfpga_core$slots$0$lane$p$diff$1$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -54013,7 +53955,6 @@ module rtfpga_core$slots$0$lane$p$diff$2$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -54042,10 +53983,9 @@ module rtfpga_core$slots$0$lane$p$diff$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -54053,11 +53993,11 @@ module rtfpga_core$slots$0$lane$p$diff$2$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -55519,7 +55459,6 @@ module rtfpga_core$slots$0$lane$p$left$0$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -55548,10 +55487,9 @@ module rtfpga_core$slots$0$lane$p$left$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -55559,11 +55497,11 @@ module rtfpga_core$slots$0$lane$p$left$0$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -56401,7 +56339,6 @@ module rtfpga_core$slots$0$lane$p$left$1$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -56430,10 +56367,9 @@ module rtfpga_core$slots$0$lane$p$left$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -56441,11 +56377,11 @@ module rtfpga_core$slots$0$lane$p$left$1$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -57283,7 +57219,6 @@ module rtfpga_core$slots$0$lane$p$left$2$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -57312,10 +57247,9 @@ module rtfpga_core$slots$0$lane$p$left$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -57323,11 +57257,11 @@ module rtfpga_core$slots$0$lane$p$left$2$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -58165,7 +58099,6 @@ module rtfpga_core$slots$0$lane$p$right$0$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -58194,10 +58127,9 @@ module rtfpga_core$slots$0$lane$p$right$0$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -58205,11 +58137,11 @@ module rtfpga_core$slots$0$lane$p$right$0$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -59047,7 +58979,6 @@ module rtfpga_core$slots$0$lane$p$right$1$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -59076,10 +59007,9 @@ module rtfpga_core$slots$0$lane$p$right$1$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -59087,11 +59017,11 @@ module rtfpga_core$slots$0$lane$p$right$1$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -59929,7 +59859,6 @@ module rtfpga_core$slots$0$lane$p$right$2$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -59958,10 +59887,9 @@ module rtfpga_core$slots$0$lane$p$right$2$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -59969,11 +59897,11 @@ module rtfpga_core$slots$0$lane$p$right$2$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -62721,7 +62649,6 @@ module rtfpga_core$slots$0$lane$q$diff$0$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -62750,10 +62677,9 @@ module rtfpga_core$slots$0$lane$q$diff$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -62761,11 +62687,11 @@ module rtfpga_core$slots$0$lane$q$diff$0$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -65879,7 +65805,6 @@ module rtfpga_core$slots$0$lane$q$diff$1$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -65908,10 +65833,9 @@ module rtfpga_core$slots$0$lane$q$diff$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -65919,11 +65843,11 @@ module rtfpga_core$slots$0$lane$q$diff$1$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -69037,7 +68961,6 @@ module rtfpga_core$slots$0$lane$q$diff$2$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -69066,10 +68989,9 @@ module rtfpga_core$slots$0$lane$q$diff$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -69077,11 +68999,11 @@ module rtfpga_core$slots$0$lane$q$diff$2$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -70543,7 +70465,6 @@ module rtfpga_core$slots$0$lane$q$left$0$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -70572,10 +70493,9 @@ module rtfpga_core$slots$0$lane$q$left$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -70583,11 +70503,11 @@ module rtfpga_core$slots$0$lane$q$left$0$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -71425,7 +71345,6 @@ module rtfpga_core$slots$0$lane$q$left$1$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -71454,10 +71373,9 @@ module rtfpga_core$slots$0$lane$q$left$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -71465,11 +71383,11 @@ module rtfpga_core$slots$0$lane$q$left$1$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -72307,7 +72225,6 @@ module rtfpga_core$slots$0$lane$q$left$2$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -72336,10 +72253,9 @@ module rtfpga_core$slots$0$lane$q$left$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -72347,11 +72263,11 @@ module rtfpga_core$slots$0$lane$q$left$2$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -73189,7 +73105,6 @@ module rtfpga_core$slots$0$lane$q$right$0$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -73218,10 +73133,9 @@ module rtfpga_core$slots$0$lane$q$right$0$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -73229,11 +73143,11 @@ module rtfpga_core$slots$0$lane$q$right$0$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -74071,7 +73985,6 @@ module rtfpga_core$slots$0$lane$q$right$1$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -74100,10 +74013,9 @@ module rtfpga_core$slots$0$lane$q$right$1$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -74111,11 +74023,11 @@ module rtfpga_core$slots$0$lane$q$right$1$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -74953,7 +74865,6 @@ module rtfpga_core$slots$0$lane$q$right$2$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -74982,10 +74893,9 @@ module rtfpga_core$slots$0$lane$q$right$2$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -74993,11 +74903,11 @@ module rtfpga_core$slots$0$lane$q$right$2$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -78124,7 +78034,6 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$rounder(category,exp,sig,round,s
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -78153,10 +78062,9 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -78164,11 +78072,11 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$rounder(category,exp,sig,round,s
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -79630,7 +79538,6 @@ module rtfpga_core$slots$0$lane$t_num$products$0$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -79659,10 +79566,9 @@ module rtfpga_core$slots$0$lane$t_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -79670,11 +79576,11 @@ module rtfpga_core$slots$0$lane$t_num$products$0$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -80512,7 +80418,6 @@ module rtfpga_core$slots$0$lane$t_num$products$1$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -80541,10 +80446,9 @@ module rtfpga_core$slots$0$lane$t_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -80552,11 +80456,11 @@ module rtfpga_core$slots$0$lane$t_num$products$1$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -81394,7 +81298,6 @@ module rtfpga_core$slots$0$lane$t_num$products$2$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -81423,10 +81326,9 @@ module rtfpga_core$slots$0$lane$t_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -81434,11 +81336,11 @@ module rtfpga_core$slots$0$lane$t_num$products$2$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -83928,7 +83830,6 @@ module rtfpga_core$slots$0$lane$t_num$sum$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -83957,10 +83858,9 @@ module rtfpga_core$slots$0$lane$t_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -83968,11 +83868,11 @@ module rtfpga_core$slots$0$lane$t_num$sum$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -85709,7 +85609,6 @@ module rtfpga_core$slots$0$lane$t_scale$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -85738,10 +85637,9 @@ module rtfpga_core$slots$0$lane$t_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -85749,11 +85647,11 @@ module rtfpga_core$slots$0$lane$t_scale$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -88243,7 +88141,6 @@ module rtfpga_core$slots$0$lane$to_origin$0$rounder(category,exp,sig,round,stick
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -88272,10 +88169,9 @@ module rtfpga_core$slots$0$lane$to_origin$0$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -88283,11 +88179,11 @@ module rtfpga_core$slots$0$lane$to_origin$0$rounder(category,exp,sig,round,stick
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -91401,7 +91297,6 @@ module rtfpga_core$slots$0$lane$to_origin$1$rounder(category,exp,sig,round,stick
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -91430,10 +91325,9 @@ module rtfpga_core$slots$0$lane$to_origin$1$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -91441,11 +91335,11 @@ module rtfpga_core$slots$0$lane$to_origin$1$rounder(category,exp,sig,round,stick
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -94559,7 +94453,6 @@ module rtfpga_core$slots$0$lane$to_origin$2$rounder(category,exp,sig,round,stick
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -94588,10 +94481,9 @@ module rtfpga_core$slots$0$lane$to_origin$2$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -94599,11 +94491,11 @@ module rtfpga_core$slots$0$lane$to_origin$2$rounder(category,exp,sig,round,stick
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -98584,7 +98476,6 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$rounder(category,exp,sig,round,s
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -98613,10 +98504,9 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -98624,11 +98514,11 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$rounder(category,exp,sig,round,s
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -100090,7 +99980,6 @@ module rtfpga_core$slots$0$lane$u_num$products$0$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -100119,10 +100008,9 @@ module rtfpga_core$slots$0$lane$u_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -100130,11 +100018,11 @@ module rtfpga_core$slots$0$lane$u_num$products$0$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -100972,7 +100860,6 @@ module rtfpga_core$slots$0$lane$u_num$products$1$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -101001,10 +100888,9 @@ module rtfpga_core$slots$0$lane$u_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -101012,11 +100898,11 @@ module rtfpga_core$slots$0$lane$u_num$products$1$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -101854,7 +101740,6 @@ module rtfpga_core$slots$0$lane$u_num$products$2$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -101883,10 +101768,9 @@ module rtfpga_core$slots$0$lane$u_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -101894,11 +101778,11 @@ module rtfpga_core$slots$0$lane$u_num$products$2$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -104388,7 +104272,6 @@ module rtfpga_core$slots$0$lane$u_num$sum$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -104417,10 +104300,9 @@ module rtfpga_core$slots$0$lane$u_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -104428,11 +104310,11 @@ module rtfpga_core$slots$0$lane$u_num$sum$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -107821,7 +107703,6 @@ module rtfpga_core$slots$0$lane$u_plus_v$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -107850,10 +107731,9 @@ module rtfpga_core$slots$0$lane$u_plus_v$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -107861,11 +107741,11 @@ module rtfpga_core$slots$0$lane$u_plus_v$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -109327,7 +109207,6 @@ module rtfpga_core$slots$0$lane$u_scale$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -109356,10 +109235,9 @@ module rtfpga_core$slots$0$lane$u_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -109367,11 +109245,11 @@ module rtfpga_core$slots$0$lane$u_scale$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -112261,7 +112139,6 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$rounder(category,exp,sig,round,s
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -112290,10 +112167,9 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -112301,11 +112177,11 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$rounder(category,exp,sig,round,s
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -113767,7 +113643,6 @@ module rtfpga_core$slots$0$lane$v_num$products$0$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -113796,10 +113671,9 @@ module rtfpga_core$slots$0$lane$v_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -113807,11 +113681,11 @@ module rtfpga_core$slots$0$lane$v_num$products$0$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -114649,7 +114523,6 @@ module rtfpga_core$slots$0$lane$v_num$products$1$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -114678,10 +114551,9 @@ module rtfpga_core$slots$0$lane$v_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -114689,11 +114561,11 @@ module rtfpga_core$slots$0$lane$v_num$products$1$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -115531,7 +115403,6 @@ module rtfpga_core$slots$0$lane$v_num$products$2$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -115560,10 +115431,9 @@ module rtfpga_core$slots$0$lane$v_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -115571,11 +115441,11 @@ module rtfpga_core$slots$0$lane$v_num$products$2$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -118065,7 +117935,6 @@ module rtfpga_core$slots$0$lane$v_num$sum$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -118094,10 +117963,9 @@ module rtfpga_core$slots$0$lane$v_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -118105,11 +117973,11 @@ module rtfpga_core$slots$0$lane$v_num$sum$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -119846,7 +119714,6 @@ module rtfpga_core$slots$0$lane$v_scale$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
-    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -119875,10 +119742,9 @@ module rtfpga_core$slots$0$lane$v_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
-        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
+        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
+        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -119886,11 +119752,11 @@ module rtfpga_core$slots$0$lane$v_scale$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (category[(64'h1)+:(1)]) begin
-            special = nan_pattern;
-        end
         if (overflow) begin
             special = inf_pattern;
+        end
+        if (category[(64'h1)+:(1)]) begin
+            special = nan_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
