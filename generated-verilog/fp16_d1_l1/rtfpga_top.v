@@ -6412,6 +6412,7 @@ module rtfpga_core$slots$0$lane$det$first_sum$rounder(category,exp,sig,round,sti
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -6440,9 +6441,10 @@ module rtfpga_core$slots$0$lane$det$first_sum$rounder(category,exp,sig,round,sti
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -6450,11 +6452,11 @@ module rtfpga_core$slots$0$lane$det$first_sum$rounder(category,exp,sig,round,sti
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -7916,6 +7918,7 @@ module rtfpga_core$slots$0$lane$det$products$0$rounder(category,exp,sig,round,st
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -7944,9 +7947,10 @@ module rtfpga_core$slots$0$lane$det$products$0$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -7954,11 +7958,11 @@ module rtfpga_core$slots$0$lane$det$products$0$rounder(category,exp,sig,round,st
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -8796,6 +8800,7 @@ module rtfpga_core$slots$0$lane$det$products$1$rounder(category,exp,sig,round,st
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -8824,9 +8829,10 @@ module rtfpga_core$slots$0$lane$det$products$1$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -8834,11 +8840,11 @@ module rtfpga_core$slots$0$lane$det$products$1$rounder(category,exp,sig,round,st
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -9676,6 +9682,7 @@ module rtfpga_core$slots$0$lane$det$products$2$rounder(category,exp,sig,round,st
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -9704,9 +9711,10 @@ module rtfpga_core$slots$0$lane$det$products$2$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -9714,11 +9722,11 @@ module rtfpga_core$slots$0$lane$det$products$2$rounder(category,exp,sig,round,st
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -12117,6 +12125,7 @@ module rtfpga_core$slots$0$lane$det$sum$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -12145,9 +12154,10 @@ module rtfpga_core$slots$0$lane$det$sum$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -12155,11 +12165,11 @@ module rtfpga_core$slots$0$lane$det$sum$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -16079,6 +16089,7 @@ module rtfpga_core$slots$0$lane$edge1$0$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -16107,9 +16118,10 @@ module rtfpga_core$slots$0$lane$edge1$0$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -16117,11 +16129,11 @@ module rtfpga_core$slots$0$lane$edge1$0$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -19144,6 +19156,7 @@ module rtfpga_core$slots$0$lane$edge1$1$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -19172,9 +19185,10 @@ module rtfpga_core$slots$0$lane$edge1$1$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -19182,11 +19196,11 @@ module rtfpga_core$slots$0$lane$edge1$1$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -22209,6 +22223,7 @@ module rtfpga_core$slots$0$lane$edge1$2$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -22237,9 +22252,10 @@ module rtfpga_core$slots$0$lane$edge1$2$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -22247,11 +22263,11 @@ module rtfpga_core$slots$0$lane$edge1$2$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -25523,6 +25539,7 @@ module rtfpga_core$slots$0$lane$edge2$0$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -25551,9 +25568,10 @@ module rtfpga_core$slots$0$lane$edge2$0$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -25561,11 +25579,11 @@ module rtfpga_core$slots$0$lane$edge2$0$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -28588,6 +28606,7 @@ module rtfpga_core$slots$0$lane$edge2$1$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -28616,9 +28635,10 @@ module rtfpga_core$slots$0$lane$edge2$1$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -28626,11 +28646,11 @@ module rtfpga_core$slots$0$lane$edge2$1$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -31653,6 +31673,7 @@ module rtfpga_core$slots$0$lane$edge2$2$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -31681,9 +31702,10 @@ module rtfpga_core$slots$0$lane$edge2$2$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -31691,11 +31713,11 @@ module rtfpga_core$slots$0$lane$edge2$2$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -34645,6 +34667,7 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -34673,9 +34696,10 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -34683,11 +34707,11 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -35337,6 +35361,7 @@ module rtfpga_core$slots$0$lane$load$0$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -35365,9 +35390,10 @@ module rtfpga_core$slots$0$lane$load$0$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -35375,11 +35401,11 @@ module rtfpga_core$slots$0$lane$load$0$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -35924,6 +35950,7 @@ module rtfpga_core$slots$0$lane$load$1$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -35952,9 +35979,10 @@ module rtfpga_core$slots$0$lane$load$1$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -35962,11 +35990,11 @@ module rtfpga_core$slots$0$lane$load$1$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -36511,6 +36539,7 @@ module rtfpga_core$slots$0$lane$load$10$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -36539,9 +36568,10 @@ module rtfpga_core$slots$0$lane$load$10$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -36549,11 +36579,11 @@ module rtfpga_core$slots$0$lane$load$10$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -37098,6 +37128,7 @@ module rtfpga_core$slots$0$lane$load$11$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -37126,9 +37157,10 @@ module rtfpga_core$slots$0$lane$load$11$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -37136,11 +37168,11 @@ module rtfpga_core$slots$0$lane$load$11$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -37685,6 +37717,7 @@ module rtfpga_core$slots$0$lane$load$12$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -37713,9 +37746,10 @@ module rtfpga_core$slots$0$lane$load$12$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -37723,11 +37757,11 @@ module rtfpga_core$slots$0$lane$load$12$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -38272,6 +38306,7 @@ module rtfpga_core$slots$0$lane$load$13$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -38300,9 +38335,10 @@ module rtfpga_core$slots$0$lane$load$13$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -38310,11 +38346,11 @@ module rtfpga_core$slots$0$lane$load$13$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -38859,6 +38895,7 @@ module rtfpga_core$slots$0$lane$load$14$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -38887,9 +38924,10 @@ module rtfpga_core$slots$0$lane$load$14$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -38897,11 +38935,11 @@ module rtfpga_core$slots$0$lane$load$14$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -39446,6 +39484,7 @@ module rtfpga_core$slots$0$lane$load$2$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -39474,9 +39513,10 @@ module rtfpga_core$slots$0$lane$load$2$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -39484,11 +39524,11 @@ module rtfpga_core$slots$0$lane$load$2$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -40033,6 +40073,7 @@ module rtfpga_core$slots$0$lane$load$3$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -40061,9 +40102,10 @@ module rtfpga_core$slots$0$lane$load$3$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -40071,11 +40113,11 @@ module rtfpga_core$slots$0$lane$load$3$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -40620,6 +40662,7 @@ module rtfpga_core$slots$0$lane$load$4$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -40648,9 +40691,10 @@ module rtfpga_core$slots$0$lane$load$4$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -40658,11 +40702,11 @@ module rtfpga_core$slots$0$lane$load$4$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -41207,6 +41251,7 @@ module rtfpga_core$slots$0$lane$load$5$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -41235,9 +41280,10 @@ module rtfpga_core$slots$0$lane$load$5$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -41245,11 +41291,11 @@ module rtfpga_core$slots$0$lane$load$5$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -41794,6 +41840,7 @@ module rtfpga_core$slots$0$lane$load$6$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -41822,9 +41869,10 @@ module rtfpga_core$slots$0$lane$load$6$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -41832,11 +41880,11 @@ module rtfpga_core$slots$0$lane$load$6$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -42381,6 +42429,7 @@ module rtfpga_core$slots$0$lane$load$7$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -42409,9 +42458,10 @@ module rtfpga_core$slots$0$lane$load$7$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -42419,11 +42469,11 @@ module rtfpga_core$slots$0$lane$load$7$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -42968,6 +43018,7 @@ module rtfpga_core$slots$0$lane$load$8$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -42996,9 +43047,10 @@ module rtfpga_core$slots$0$lane$load$8$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -43006,11 +43058,11 @@ module rtfpga_core$slots$0$lane$load$8$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -43555,6 +43607,7 @@ module rtfpga_core$slots$0$lane$load$9$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -43583,9 +43636,10 @@ module rtfpga_core$slots$0$lane$load$9$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -43593,11 +43647,11 @@ module rtfpga_core$slots$0$lane$load$9$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -46104,6 +46158,7 @@ module rtfpga_core$slots$0$lane$p$diff$0$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -46132,9 +46187,10 @@ module rtfpga_core$slots$0$lane$p$diff$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -46142,11 +46198,11 @@ module rtfpga_core$slots$0$lane$p$diff$0$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -49169,6 +49225,7 @@ module rtfpga_core$slots$0$lane$p$diff$1$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -49197,9 +49254,10 @@ module rtfpga_core$slots$0$lane$p$diff$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -49207,11 +49265,11 @@ module rtfpga_core$slots$0$lane$p$diff$1$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -52234,6 +52292,7 @@ module rtfpga_core$slots$0$lane$p$diff$2$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -52262,9 +52321,10 @@ module rtfpga_core$slots$0$lane$p$diff$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -52272,11 +52332,11 @@ module rtfpga_core$slots$0$lane$p$diff$2$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -53738,6 +53798,7 @@ module rtfpga_core$slots$0$lane$p$left$0$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -53766,9 +53827,10 @@ module rtfpga_core$slots$0$lane$p$left$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -53776,11 +53838,11 @@ module rtfpga_core$slots$0$lane$p$left$0$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -54618,6 +54680,7 @@ module rtfpga_core$slots$0$lane$p$left$1$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -54646,9 +54709,10 @@ module rtfpga_core$slots$0$lane$p$left$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -54656,11 +54720,11 @@ module rtfpga_core$slots$0$lane$p$left$1$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -55498,6 +55562,7 @@ module rtfpga_core$slots$0$lane$p$left$2$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -55526,9 +55591,10 @@ module rtfpga_core$slots$0$lane$p$left$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -55536,11 +55602,11 @@ module rtfpga_core$slots$0$lane$p$left$2$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -56378,6 +56444,7 @@ module rtfpga_core$slots$0$lane$p$right$0$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -56406,9 +56473,10 @@ module rtfpga_core$slots$0$lane$p$right$0$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -56416,11 +56484,11 @@ module rtfpga_core$slots$0$lane$p$right$0$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -57258,6 +57326,7 @@ module rtfpga_core$slots$0$lane$p$right$1$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -57286,9 +57355,10 @@ module rtfpga_core$slots$0$lane$p$right$1$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -57296,11 +57366,11 @@ module rtfpga_core$slots$0$lane$p$right$1$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -58138,6 +58208,7 @@ module rtfpga_core$slots$0$lane$p$right$2$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -58166,9 +58237,10 @@ module rtfpga_core$slots$0$lane$p$right$2$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -58176,11 +58248,11 @@ module rtfpga_core$slots$0$lane$p$right$2$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -60837,6 +60909,7 @@ module rtfpga_core$slots$0$lane$q$diff$0$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -60865,9 +60938,10 @@ module rtfpga_core$slots$0$lane$q$diff$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -60875,11 +60949,11 @@ module rtfpga_core$slots$0$lane$q$diff$0$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -63902,6 +63976,7 @@ module rtfpga_core$slots$0$lane$q$diff$1$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -63930,9 +64005,10 @@ module rtfpga_core$slots$0$lane$q$diff$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -63940,11 +64016,11 @@ module rtfpga_core$slots$0$lane$q$diff$1$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -66967,6 +67043,7 @@ module rtfpga_core$slots$0$lane$q$diff$2$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -66995,9 +67072,10 @@ module rtfpga_core$slots$0$lane$q$diff$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -67005,11 +67083,11 @@ module rtfpga_core$slots$0$lane$q$diff$2$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -68471,6 +68549,7 @@ module rtfpga_core$slots$0$lane$q$left$0$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -68499,9 +68578,10 @@ module rtfpga_core$slots$0$lane$q$left$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -68509,11 +68589,11 @@ module rtfpga_core$slots$0$lane$q$left$0$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -69351,6 +69431,7 @@ module rtfpga_core$slots$0$lane$q$left$1$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -69379,9 +69460,10 @@ module rtfpga_core$slots$0$lane$q$left$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -69389,11 +69471,11 @@ module rtfpga_core$slots$0$lane$q$left$1$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -70231,6 +70313,7 @@ module rtfpga_core$slots$0$lane$q$left$2$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -70259,9 +70342,10 @@ module rtfpga_core$slots$0$lane$q$left$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -70269,11 +70353,11 @@ module rtfpga_core$slots$0$lane$q$left$2$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -71111,6 +71195,7 @@ module rtfpga_core$slots$0$lane$q$right$0$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -71139,9 +71224,10 @@ module rtfpga_core$slots$0$lane$q$right$0$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -71149,11 +71235,11 @@ module rtfpga_core$slots$0$lane$q$right$0$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -71991,6 +72077,7 @@ module rtfpga_core$slots$0$lane$q$right$1$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -72019,9 +72106,10 @@ module rtfpga_core$slots$0$lane$q$right$1$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -72029,11 +72117,11 @@ module rtfpga_core$slots$0$lane$q$right$1$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -72871,6 +72959,7 @@ module rtfpga_core$slots$0$lane$q$right$2$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -72899,9 +72988,10 @@ module rtfpga_core$slots$0$lane$q$right$2$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -72909,11 +72999,11 @@ module rtfpga_core$slots$0$lane$q$right$2$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -75919,6 +76009,7 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$rounder(category,exp,sig,round,s
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -75947,9 +76038,10 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -75957,11 +76049,11 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$rounder(category,exp,sig,round,s
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -77423,6 +77515,7 @@ module rtfpga_core$slots$0$lane$t_num$products$0$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -77451,9 +77544,10 @@ module rtfpga_core$slots$0$lane$t_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -77461,11 +77555,11 @@ module rtfpga_core$slots$0$lane$t_num$products$0$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -78303,6 +78397,7 @@ module rtfpga_core$slots$0$lane$t_num$products$1$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -78331,9 +78426,10 @@ module rtfpga_core$slots$0$lane$t_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -78341,11 +78437,11 @@ module rtfpga_core$slots$0$lane$t_num$products$1$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -79183,6 +79279,7 @@ module rtfpga_core$slots$0$lane$t_num$products$2$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -79211,9 +79308,10 @@ module rtfpga_core$slots$0$lane$t_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -79221,11 +79319,11 @@ module rtfpga_core$slots$0$lane$t_num$products$2$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -81624,6 +81722,7 @@ module rtfpga_core$slots$0$lane$t_num$sum$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -81652,9 +81751,10 @@ module rtfpga_core$slots$0$lane$t_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -81662,11 +81762,11 @@ module rtfpga_core$slots$0$lane$t_num$sum$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -83403,6 +83503,7 @@ module rtfpga_core$slots$0$lane$t_scale$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -83431,9 +83532,10 @@ module rtfpga_core$slots$0$lane$t_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -83441,11 +83543,11 @@ module rtfpga_core$slots$0$lane$t_scale$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -85844,6 +85946,7 @@ module rtfpga_core$slots$0$lane$to_origin$0$rounder(category,exp,sig,round,stick
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -85872,9 +85975,10 @@ module rtfpga_core$slots$0$lane$to_origin$0$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -85882,11 +85986,11 @@ module rtfpga_core$slots$0$lane$to_origin$0$rounder(category,exp,sig,round,stick
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -88909,6 +89013,7 @@ module rtfpga_core$slots$0$lane$to_origin$1$rounder(category,exp,sig,round,stick
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -88937,9 +89042,10 @@ module rtfpga_core$slots$0$lane$to_origin$1$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -88947,11 +89053,11 @@ module rtfpga_core$slots$0$lane$to_origin$1$rounder(category,exp,sig,round,stick
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -91974,6 +92080,7 @@ module rtfpga_core$slots$0$lane$to_origin$2$rounder(category,exp,sig,round,stick
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -92002,9 +92109,10 @@ module rtfpga_core$slots$0$lane$to_origin$2$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -92012,11 +92120,11 @@ module rtfpga_core$slots$0$lane$to_origin$2$rounder(category,exp,sig,round,stick
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -95876,6 +95984,7 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$rounder(category,exp,sig,round,s
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -95904,9 +96013,10 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -95914,11 +96024,11 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$rounder(category,exp,sig,round,s
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -97380,6 +97490,7 @@ module rtfpga_core$slots$0$lane$u_num$products$0$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -97408,9 +97519,10 @@ module rtfpga_core$slots$0$lane$u_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -97418,11 +97530,11 @@ module rtfpga_core$slots$0$lane$u_num$products$0$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -98260,6 +98372,7 @@ module rtfpga_core$slots$0$lane$u_num$products$1$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -98288,9 +98401,10 @@ module rtfpga_core$slots$0$lane$u_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -98298,11 +98412,11 @@ module rtfpga_core$slots$0$lane$u_num$products$1$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -99140,6 +99254,7 @@ module rtfpga_core$slots$0$lane$u_num$products$2$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -99168,9 +99283,10 @@ module rtfpga_core$slots$0$lane$u_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -99178,11 +99294,11 @@ module rtfpga_core$slots$0$lane$u_num$products$2$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -101581,6 +101697,7 @@ module rtfpga_core$slots$0$lane$u_num$sum$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -101609,9 +101726,10 @@ module rtfpga_core$slots$0$lane$u_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -101619,11 +101737,11 @@ module rtfpga_core$slots$0$lane$u_num$sum$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -104921,6 +105039,7 @@ module rtfpga_core$slots$0$lane$u_plus_v$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -104949,9 +105068,10 @@ module rtfpga_core$slots$0$lane$u_plus_v$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -104959,11 +105079,11 @@ module rtfpga_core$slots$0$lane$u_plus_v$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -106425,6 +106545,7 @@ module rtfpga_core$slots$0$lane$u_scale$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -106453,9 +106574,10 @@ module rtfpga_core$slots$0$lane$u_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -106463,11 +106585,11 @@ module rtfpga_core$slots$0$lane$u_scale$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -109236,6 +109358,7 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$rounder(category,exp,sig,round,s
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -109264,9 +109387,10 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -109274,11 +109398,11 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$rounder(category,exp,sig,round,s
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -110740,6 +110864,7 @@ module rtfpga_core$slots$0$lane$v_num$products$0$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -110768,9 +110893,10 @@ module rtfpga_core$slots$0$lane$v_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -110778,11 +110904,11 @@ module rtfpga_core$slots$0$lane$v_num$products$0$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -111620,6 +111746,7 @@ module rtfpga_core$slots$0$lane$v_num$products$1$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -111648,9 +111775,10 @@ module rtfpga_core$slots$0$lane$v_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -111658,11 +111786,11 @@ module rtfpga_core$slots$0$lane$v_num$products$1$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -112500,6 +112628,7 @@ module rtfpga_core$slots$0$lane$v_num$products$2$rounder(category,exp,sig,round,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -112528,9 +112657,10 @@ module rtfpga_core$slots$0$lane$v_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -112538,11 +112668,11 @@ module rtfpga_core$slots$0$lane$v_num$products$2$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -114941,6 +115071,7 @@ module rtfpga_core$slots$0$lane$v_num$sum$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -114969,9 +115100,10 @@ module rtfpga_core$slots$0$lane$v_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -114979,11 +115111,11 @@ module rtfpga_core$slots$0$lane$v_num$sum$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end
@@ -116720,6 +116852,7 @@ module rtfpga_core$slots$0$lane$v_scale$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [15:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [15:0] keep;
     reg  [15:0] special;
     
@@ -116748,9 +116881,10 @@ module rtfpga_core$slots$0$lane$v_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -116758,11 +116892,11 @@ module rtfpga_core$slots$0$lane$v_scale$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 16'hffff) << frac_width) | ((frac) & 16'hffff)) & keep);
     end

@@ -6503,6 +6503,7 @@ module rtfpga_core$slots$0$lane$det$first_sum$rounder(category,exp,sig,round,sti
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -6531,9 +6532,10 @@ module rtfpga_core$slots$0$lane$det$first_sum$rounder(category,exp,sig,round,sti
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -6541,11 +6543,11 @@ module rtfpga_core$slots$0$lane$det$first_sum$rounder(category,exp,sig,round,sti
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -8007,6 +8009,7 @@ module rtfpga_core$slots$0$lane$det$products$0$rounder(category,exp,sig,round,st
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -8035,9 +8038,10 @@ module rtfpga_core$slots$0$lane$det$products$0$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -8045,11 +8049,11 @@ module rtfpga_core$slots$0$lane$det$products$0$rounder(category,exp,sig,round,st
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -8887,6 +8891,7 @@ module rtfpga_core$slots$0$lane$det$products$1$rounder(category,exp,sig,round,st
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -8915,9 +8920,10 @@ module rtfpga_core$slots$0$lane$det$products$1$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -8925,11 +8931,11 @@ module rtfpga_core$slots$0$lane$det$products$1$rounder(category,exp,sig,round,st
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -9767,6 +9773,7 @@ module rtfpga_core$slots$0$lane$det$products$2$rounder(category,exp,sig,round,st
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -9795,9 +9802,10 @@ module rtfpga_core$slots$0$lane$det$products$2$rounder(category,exp,sig,round,st
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -9805,11 +9813,11 @@ module rtfpga_core$slots$0$lane$det$products$2$rounder(category,exp,sig,round,st
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -12299,6 +12307,7 @@ module rtfpga_core$slots$0$lane$det$sum$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -12327,9 +12336,10 @@ module rtfpga_core$slots$0$lane$det$sum$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -12337,11 +12347,11 @@ module rtfpga_core$slots$0$lane$det$sum$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -16352,6 +16362,7 @@ module rtfpga_core$slots$0$lane$edge1$0$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -16380,9 +16391,10 @@ module rtfpga_core$slots$0$lane$edge1$0$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -16390,11 +16402,11 @@ module rtfpga_core$slots$0$lane$edge1$0$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -19508,6 +19520,7 @@ module rtfpga_core$slots$0$lane$edge1$1$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -19536,9 +19549,10 @@ module rtfpga_core$slots$0$lane$edge1$1$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -19546,11 +19560,11 @@ module rtfpga_core$slots$0$lane$edge1$1$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -22664,6 +22678,7 @@ module rtfpga_core$slots$0$lane$edge1$2$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -22692,9 +22707,10 @@ module rtfpga_core$slots$0$lane$edge1$2$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -22702,11 +22718,11 @@ module rtfpga_core$slots$0$lane$edge1$2$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -26069,6 +26085,7 @@ module rtfpga_core$slots$0$lane$edge2$0$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -26097,9 +26114,10 @@ module rtfpga_core$slots$0$lane$edge2$0$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -26107,11 +26125,11 @@ module rtfpga_core$slots$0$lane$edge2$0$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -29225,6 +29243,7 @@ module rtfpga_core$slots$0$lane$edge2$1$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -29253,9 +29272,10 @@ module rtfpga_core$slots$0$lane$edge2$1$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -29263,11 +29283,11 @@ module rtfpga_core$slots$0$lane$edge2$1$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -32381,6 +32401,7 @@ module rtfpga_core$slots$0$lane$edge2$2$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -32409,9 +32430,10 @@ module rtfpga_core$slots$0$lane$edge2$2$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -32419,11 +32441,11 @@ module rtfpga_core$slots$0$lane$edge2$2$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -35373,6 +35395,7 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -35401,9 +35424,10 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -35411,11 +35435,11 @@ module rtfpga_core$slots$0$lane$inv_det$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -36785,6 +36809,7 @@ module rtfpga_core$slots$0$lane$load$0$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -36813,9 +36838,10 @@ module rtfpga_core$slots$0$lane$load$0$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -36823,11 +36849,11 @@ module rtfpga_core$slots$0$lane$load$0$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -37372,6 +37398,7 @@ module rtfpga_core$slots$0$lane$load$1$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -37400,9 +37427,10 @@ module rtfpga_core$slots$0$lane$load$1$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -37410,11 +37438,11 @@ module rtfpga_core$slots$0$lane$load$1$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -37959,6 +37987,7 @@ module rtfpga_core$slots$0$lane$load$10$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -37987,9 +38016,10 @@ module rtfpga_core$slots$0$lane$load$10$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -37997,11 +38027,11 @@ module rtfpga_core$slots$0$lane$load$10$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -38546,6 +38576,7 @@ module rtfpga_core$slots$0$lane$load$11$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -38574,9 +38605,10 @@ module rtfpga_core$slots$0$lane$load$11$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -38584,11 +38616,11 @@ module rtfpga_core$slots$0$lane$load$11$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -39133,6 +39165,7 @@ module rtfpga_core$slots$0$lane$load$12$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -39161,9 +39194,10 @@ module rtfpga_core$slots$0$lane$load$12$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -39171,11 +39205,11 @@ module rtfpga_core$slots$0$lane$load$12$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -39720,6 +39754,7 @@ module rtfpga_core$slots$0$lane$load$13$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -39748,9 +39783,10 @@ module rtfpga_core$slots$0$lane$load$13$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -39758,11 +39794,11 @@ module rtfpga_core$slots$0$lane$load$13$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -40307,6 +40343,7 @@ module rtfpga_core$slots$0$lane$load$14$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -40335,9 +40372,10 @@ module rtfpga_core$slots$0$lane$load$14$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -40345,11 +40383,11 @@ module rtfpga_core$slots$0$lane$load$14$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -40894,6 +40932,7 @@ module rtfpga_core$slots$0$lane$load$2$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -40922,9 +40961,10 @@ module rtfpga_core$slots$0$lane$load$2$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -40932,11 +40972,11 @@ module rtfpga_core$slots$0$lane$load$2$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -41481,6 +41521,7 @@ module rtfpga_core$slots$0$lane$load$3$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -41509,9 +41550,10 @@ module rtfpga_core$slots$0$lane$load$3$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -41519,11 +41561,11 @@ module rtfpga_core$slots$0$lane$load$3$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -42068,6 +42110,7 @@ module rtfpga_core$slots$0$lane$load$4$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -42096,9 +42139,10 @@ module rtfpga_core$slots$0$lane$load$4$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -42106,11 +42150,11 @@ module rtfpga_core$slots$0$lane$load$4$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -42655,6 +42699,7 @@ module rtfpga_core$slots$0$lane$load$5$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -42683,9 +42728,10 @@ module rtfpga_core$slots$0$lane$load$5$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -42693,11 +42739,11 @@ module rtfpga_core$slots$0$lane$load$5$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -43242,6 +43288,7 @@ module rtfpga_core$slots$0$lane$load$6$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -43270,9 +43317,10 @@ module rtfpga_core$slots$0$lane$load$6$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -43280,11 +43328,11 @@ module rtfpga_core$slots$0$lane$load$6$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -43829,6 +43877,7 @@ module rtfpga_core$slots$0$lane$load$7$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -43857,9 +43906,10 @@ module rtfpga_core$slots$0$lane$load$7$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -43867,11 +43917,11 @@ module rtfpga_core$slots$0$lane$load$7$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -44416,6 +44466,7 @@ module rtfpga_core$slots$0$lane$load$8$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -44444,9 +44495,10 @@ module rtfpga_core$slots$0$lane$load$8$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -44454,11 +44506,11 @@ module rtfpga_core$slots$0$lane$load$8$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -45003,6 +45055,7 @@ module rtfpga_core$slots$0$lane$load$9$rounder(category,exp,sig,round,sticky,y);
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -45031,9 +45084,10 @@ module rtfpga_core$slots$0$lane$load$9$rounder(category,exp,sig,round,sticky,y);
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -45041,11 +45095,11 @@ module rtfpga_core$slots$0$lane$load$9$rounder(category,exp,sig,round,sticky,y);
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -47643,6 +47697,7 @@ module rtfpga_core$slots$0$lane$p$diff$0$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -47671,9 +47726,10 @@ module rtfpga_core$slots$0$lane$p$diff$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -47681,11 +47737,11 @@ module rtfpga_core$slots$0$lane$p$diff$0$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -50799,6 +50855,7 @@ module rtfpga_core$slots$0$lane$p$diff$1$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -50827,9 +50884,10 @@ module rtfpga_core$slots$0$lane$p$diff$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -50837,11 +50895,11 @@ module rtfpga_core$slots$0$lane$p$diff$1$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -53955,6 +54013,7 @@ module rtfpga_core$slots$0$lane$p$diff$2$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -53983,9 +54042,10 @@ module rtfpga_core$slots$0$lane$p$diff$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -53993,11 +54053,11 @@ module rtfpga_core$slots$0$lane$p$diff$2$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -55459,6 +55519,7 @@ module rtfpga_core$slots$0$lane$p$left$0$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -55487,9 +55548,10 @@ module rtfpga_core$slots$0$lane$p$left$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -55497,11 +55559,11 @@ module rtfpga_core$slots$0$lane$p$left$0$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -56339,6 +56401,7 @@ module rtfpga_core$slots$0$lane$p$left$1$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -56367,9 +56430,10 @@ module rtfpga_core$slots$0$lane$p$left$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -56377,11 +56441,11 @@ module rtfpga_core$slots$0$lane$p$left$1$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -57219,6 +57283,7 @@ module rtfpga_core$slots$0$lane$p$left$2$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -57247,9 +57312,10 @@ module rtfpga_core$slots$0$lane$p$left$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -57257,11 +57323,11 @@ module rtfpga_core$slots$0$lane$p$left$2$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -58099,6 +58165,7 @@ module rtfpga_core$slots$0$lane$p$right$0$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -58127,9 +58194,10 @@ module rtfpga_core$slots$0$lane$p$right$0$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -58137,11 +58205,11 @@ module rtfpga_core$slots$0$lane$p$right$0$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -58979,6 +59047,7 @@ module rtfpga_core$slots$0$lane$p$right$1$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -59007,9 +59076,10 @@ module rtfpga_core$slots$0$lane$p$right$1$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -59017,11 +59087,11 @@ module rtfpga_core$slots$0$lane$p$right$1$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -59859,6 +59929,7 @@ module rtfpga_core$slots$0$lane$p$right$2$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -59887,9 +59958,10 @@ module rtfpga_core$slots$0$lane$p$right$2$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -59897,11 +59969,11 @@ module rtfpga_core$slots$0$lane$p$right$2$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -62649,6 +62721,7 @@ module rtfpga_core$slots$0$lane$q$diff$0$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -62677,9 +62750,10 @@ module rtfpga_core$slots$0$lane$q$diff$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -62687,11 +62761,11 @@ module rtfpga_core$slots$0$lane$q$diff$0$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -65805,6 +65879,7 @@ module rtfpga_core$slots$0$lane$q$diff$1$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -65833,9 +65908,10 @@ module rtfpga_core$slots$0$lane$q$diff$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -65843,11 +65919,11 @@ module rtfpga_core$slots$0$lane$q$diff$1$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -68961,6 +69037,7 @@ module rtfpga_core$slots$0$lane$q$diff$2$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -68989,9 +69066,10 @@ module rtfpga_core$slots$0$lane$q$diff$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -68999,11 +69077,11 @@ module rtfpga_core$slots$0$lane$q$diff$2$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -70465,6 +70543,7 @@ module rtfpga_core$slots$0$lane$q$left$0$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -70493,9 +70572,10 @@ module rtfpga_core$slots$0$lane$q$left$0$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -70503,11 +70583,11 @@ module rtfpga_core$slots$0$lane$q$left$0$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -71345,6 +71425,7 @@ module rtfpga_core$slots$0$lane$q$left$1$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -71373,9 +71454,10 @@ module rtfpga_core$slots$0$lane$q$left$1$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -71383,11 +71465,11 @@ module rtfpga_core$slots$0$lane$q$left$1$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -72225,6 +72307,7 @@ module rtfpga_core$slots$0$lane$q$left$2$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -72253,9 +72336,10 @@ module rtfpga_core$slots$0$lane$q$left$2$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -72263,11 +72347,11 @@ module rtfpga_core$slots$0$lane$q$left$2$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -73105,6 +73189,7 @@ module rtfpga_core$slots$0$lane$q$right$0$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -73133,9 +73218,10 @@ module rtfpga_core$slots$0$lane$q$right$0$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -73143,11 +73229,11 @@ module rtfpga_core$slots$0$lane$q$right$0$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -73985,6 +74071,7 @@ module rtfpga_core$slots$0$lane$q$right$1$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -74013,9 +74100,10 @@ module rtfpga_core$slots$0$lane$q$right$1$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -74023,11 +74111,11 @@ module rtfpga_core$slots$0$lane$q$right$1$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -74865,6 +74953,7 @@ module rtfpga_core$slots$0$lane$q$right$2$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -74893,9 +74982,10 @@ module rtfpga_core$slots$0$lane$q$right$2$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -74903,11 +74993,11 @@ module rtfpga_core$slots$0$lane$q$right$2$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -78034,6 +78124,7 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$rounder(category,exp,sig,round,s
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -78062,9 +78153,10 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -78072,11 +78164,11 @@ module rtfpga_core$slots$0$lane$t_num$first_sum$rounder(category,exp,sig,round,s
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -79538,6 +79630,7 @@ module rtfpga_core$slots$0$lane$t_num$products$0$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -79566,9 +79659,10 @@ module rtfpga_core$slots$0$lane$t_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -79576,11 +79670,11 @@ module rtfpga_core$slots$0$lane$t_num$products$0$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -80418,6 +80512,7 @@ module rtfpga_core$slots$0$lane$t_num$products$1$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -80446,9 +80541,10 @@ module rtfpga_core$slots$0$lane$t_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -80456,11 +80552,11 @@ module rtfpga_core$slots$0$lane$t_num$products$1$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -81298,6 +81394,7 @@ module rtfpga_core$slots$0$lane$t_num$products$2$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -81326,9 +81423,10 @@ module rtfpga_core$slots$0$lane$t_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -81336,11 +81434,11 @@ module rtfpga_core$slots$0$lane$t_num$products$2$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -83830,6 +83928,7 @@ module rtfpga_core$slots$0$lane$t_num$sum$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -83858,9 +83957,10 @@ module rtfpga_core$slots$0$lane$t_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -83868,11 +83968,11 @@ module rtfpga_core$slots$0$lane$t_num$sum$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -85609,6 +85709,7 @@ module rtfpga_core$slots$0$lane$t_scale$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -85637,9 +85738,10 @@ module rtfpga_core$slots$0$lane$t_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -85647,11 +85749,11 @@ module rtfpga_core$slots$0$lane$t_scale$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -88141,6 +88243,7 @@ module rtfpga_core$slots$0$lane$to_origin$0$rounder(category,exp,sig,round,stick
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -88169,9 +88272,10 @@ module rtfpga_core$slots$0$lane$to_origin$0$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -88179,11 +88283,11 @@ module rtfpga_core$slots$0$lane$to_origin$0$rounder(category,exp,sig,round,stick
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -91297,6 +91401,7 @@ module rtfpga_core$slots$0$lane$to_origin$1$rounder(category,exp,sig,round,stick
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -91325,9 +91430,10 @@ module rtfpga_core$slots$0$lane$to_origin$1$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -91335,11 +91441,11 @@ module rtfpga_core$slots$0$lane$to_origin$1$rounder(category,exp,sig,round,stick
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -94453,6 +94559,7 @@ module rtfpga_core$slots$0$lane$to_origin$2$rounder(category,exp,sig,round,stick
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -94481,9 +94588,10 @@ module rtfpga_core$slots$0$lane$to_origin$2$rounder(category,exp,sig,round,stick
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -94491,11 +94599,11 @@ module rtfpga_core$slots$0$lane$to_origin$2$rounder(category,exp,sig,round,stick
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -98476,6 +98584,7 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$rounder(category,exp,sig,round,s
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -98504,9 +98613,10 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -98514,11 +98624,11 @@ module rtfpga_core$slots$0$lane$u_num$first_sum$rounder(category,exp,sig,round,s
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -99980,6 +100090,7 @@ module rtfpga_core$slots$0$lane$u_num$products$0$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -100008,9 +100119,10 @@ module rtfpga_core$slots$0$lane$u_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -100018,11 +100130,11 @@ module rtfpga_core$slots$0$lane$u_num$products$0$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -100860,6 +100972,7 @@ module rtfpga_core$slots$0$lane$u_num$products$1$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -100888,9 +101001,10 @@ module rtfpga_core$slots$0$lane$u_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -100898,11 +101012,11 @@ module rtfpga_core$slots$0$lane$u_num$products$1$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -101740,6 +101854,7 @@ module rtfpga_core$slots$0$lane$u_num$products$2$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -101768,9 +101883,10 @@ module rtfpga_core$slots$0$lane$u_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -101778,11 +101894,11 @@ module rtfpga_core$slots$0$lane$u_num$products$2$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -104272,6 +104388,7 @@ module rtfpga_core$slots$0$lane$u_num$sum$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -104300,9 +104417,10 @@ module rtfpga_core$slots$0$lane$u_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -104310,11 +104428,11 @@ module rtfpga_core$slots$0$lane$u_num$sum$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -107703,6 +107821,7 @@ module rtfpga_core$slots$0$lane$u_plus_v$rounder(category,exp,sig,round,sticky,y
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -107731,9 +107850,10 @@ module rtfpga_core$slots$0$lane$u_plus_v$rounder(category,exp,sig,round,sticky,y
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -107741,11 +107861,11 @@ module rtfpga_core$slots$0$lane$u_plus_v$rounder(category,exp,sig,round,sticky,y
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -109207,6 +109327,7 @@ module rtfpga_core$slots$0$lane$u_scale$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -109235,9 +109356,10 @@ module rtfpga_core$slots$0$lane$u_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -109245,11 +109367,11 @@ module rtfpga_core$slots$0$lane$u_scale$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -112139,6 +112261,7 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$rounder(category,exp,sig,round,s
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -112167,9 +112290,10 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$rounder(category,exp,sig,round,s
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -112177,11 +112301,11 @@ module rtfpga_core$slots$0$lane$v_num$first_sum$rounder(category,exp,sig,round,s
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -113643,6 +113767,7 @@ module rtfpga_core$slots$0$lane$v_num$products$0$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -113671,9 +113796,10 @@ module rtfpga_core$slots$0$lane$v_num$products$0$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -113681,11 +113807,11 @@ module rtfpga_core$slots$0$lane$v_num$products$0$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -114523,6 +114649,7 @@ module rtfpga_core$slots$0$lane$v_num$products$1$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -114551,9 +114678,10 @@ module rtfpga_core$slots$0$lane$v_num$products$1$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -114561,11 +114689,11 @@ module rtfpga_core$slots$0$lane$v_num$products$1$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -115403,6 +115531,7 @@ module rtfpga_core$slots$0$lane$v_num$products$2$rounder(category,exp,sig,round,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -115431,9 +115560,10 @@ module rtfpga_core$slots$0$lane$v_num$products$2$rounder(category,exp,sig,round,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -115441,11 +115571,11 @@ module rtfpga_core$slots$0$lane$v_num$products$2$rounder(category,exp,sig,round,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -117935,6 +118065,7 @@ module rtfpga_core$slots$0$lane$v_num$sum$rounder(category,exp,sig,round,sticky,
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -117963,9 +118094,10 @@ module rtfpga_core$slots$0$lane$v_num$sum$rounder(category,exp,sig,round,sticky,
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -117973,11 +118105,11 @@ module rtfpga_core$slots$0$lane$v_num$sum$rounder(category,exp,sig,round,sticky,
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end
@@ -119714,6 +119846,7 @@ module rtfpga_core$slots$0$lane$v_scale$rounder(category,exp,sig,round,sticky,y)
     reg  huge;
     reg  [31:0] sign_bit;
     reg  overflow;
+    reg  underflow;
     reg  [31:0] keep;
     reg  [31:0] special;
     
@@ -119742,9 +119875,10 @@ module rtfpga_core$slots$0$lane$v_scale$rounder(category,exp,sig,round,sticky,y)
             tiny = negative | (exp == exp_zero);
             huge = ~negative & (exp >= exp_inf);
         end
-        overflow = category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]);
+        overflow = ~category[(64'h1)+:(1)] & (category[(64'h2)+:(1)] | (huge & ~category[(64'h3)+:(1)]));
+        underflow = ~category[(64'h1)+:(1)] & ~overflow & (category[(64'h3)+:(1)] | tiny);
         keep = zero_pattern;
-        if (~(category[(64'h1)+:(1)] | category[(64'h2)+:(1)] | category[(64'h3)+:(1)] | huge | tiny)) begin
+        if (~(category[(64'h1)+:(1)] | overflow | underflow)) begin
             keep = ~zero_pattern;
         end
         sign_bit = zero_pattern;
@@ -119752,11 +119886,11 @@ module rtfpga_core$slots$0$lane$v_scale$rounder(category,exp,sig,round,sticky,y)
             sign_bit = sign_mask;
         end
         special = zero_pattern;
-        if (overflow) begin
-            special = inf_pattern;
-        end
         if (category[(64'h1)+:(1)]) begin
             special = nan_pattern;
+        end
+        if (overflow) begin
+            special = inf_pattern;
         end
         y = sign_bit | special | (((((exp_field) & 32'hffffffff) << frac_width) | ((frac) & 32'hffffffff)) & keep);
     end

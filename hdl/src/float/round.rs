@@ -42,6 +42,7 @@ pub struct Round<const E: usize, const M: usize, const W: usize, const S: usize,
     huge: Signal<Local, Bit>,
     sign_bit: Signal<Local, Bits<W>>,
     overflow: Signal<Local, Bit>,
+    underflow: Signal<Local, Bit>,
     keep: Signal<Local, Bits<W>>,
     special: Signal<Local, Bits<W>>,
     frac_one: Constant<Bits<M>>,
@@ -85,6 +86,7 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: us
             huge: Default::default(),
             sign_bit: Default::default(),
             overflow: Default::default(),
+            underflow: Default::default(),
             keep: Default::default(),
             special: Default::default(),
             frac_one: Constant::new(1.into()),
@@ -139,18 +141,14 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: us
             self.huge.next = !self.negative.val() & (self.exp.val() >= self.exp_inf.val());
         }
         // The result's fields by AND/OR (a priority mux over the whole word maps onto mux trees):
-        // NaN > Inf or overflow > zero or underflow > the rounded number. The rounded fields
-        // are kept only when none of those applies; the special pattern is Inf's, then NaN's
-        // over it.
-        self.overflow.next =
-            self.category.val().inf | (self.huge.val() & !self.category.val().zero);
+        // NaN > Inf or overflow > zero or underflow > the rounded number.
+        self.overflow.next = !self.category.val().nan
+            & (self.category.val().inf | (self.huge.val() & !self.category.val().zero));
+        self.underflow.next = !self.category.val().nan
+            & !self.overflow.val()
+            & (self.category.val().zero | self.tiny.val());
         self.keep.next = self.zero_pattern.val();
-        if !(self.category.val().nan
-            | self.category.val().inf
-            | self.category.val().zero
-            | self.huge.val()
-            | self.tiny.val())
-        {
+        if !(self.category.val().nan | self.overflow.val() | self.underflow.val()) {
             self.keep.next = !self.zero_pattern.val();
         }
         self.sign_bit.next = self.zero_pattern.val();
@@ -158,11 +156,11 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: us
             self.sign_bit.next = self.sign_mask.val();
         }
         self.special.next = self.zero_pattern.val();
-        if self.overflow.val() {
-            self.special.next = self.inf_pattern.val();
-        }
         if self.category.val().nan {
             self.special.next = self.nan_pattern.val();
+        }
+        if self.overflow.val() {
+            self.special.next = self.inf_pattern.val();
         }
         self.y.next = self.sign_bit.val()
             | self.special.val()
