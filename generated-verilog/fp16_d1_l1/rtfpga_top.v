@@ -3106,50 +3106,75 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
     reg  [15:0] to_origin$2$a;
     reg  [15:0] to_origin$2$b;
     wire  [15:0] to_origin$2$y;
+    reg  dir_ring$clock;
+    wire  [5:0] dir_ring$at;
+    reg  dot_ring$clock;
+    wire  [5:0] dot_ring$at;
+    reg  third_ring$clock;
+    wire  [5:0] third_ring$at;
+    reg  numerator_ring$clock;
+    wire  [5:0] numerator_ring$at;
+    reg  result_ring$clock;
+    wire  [5:0] result_ring$at;
     reg  dir_at_cross$0$clock;
     reg  [15:0] dir_at_cross$0$d;
+    reg  [5:0] dir_at_cross$0$at;
     wire  [15:0] dir_at_cross$0$q;
     reg  dir_at_cross$1$clock;
     reg  [15:0] dir_at_cross$1$d;
+    reg  [5:0] dir_at_cross$1$at;
     wire  [15:0] dir_at_cross$1$q;
     reg  dir_at_cross$2$clock;
     reg  [15:0] dir_at_cross$2$d;
+    reg  [5:0] dir_at_cross$2$at;
     wire  [15:0] dir_at_cross$2$q;
     reg  dir_at_dot$0$clock;
     reg  [15:0] dir_at_dot$0$d;
+    reg  [5:0] dir_at_dot$0$at;
     wire  [15:0] dir_at_dot$0$q;
     reg  dir_at_dot$1$clock;
     reg  [15:0] dir_at_dot$1$d;
+    reg  [5:0] dir_at_dot$1$at;
     wire  [15:0] dir_at_dot$1$q;
     reg  dir_at_dot$2$clock;
     reg  [15:0] dir_at_dot$2$d;
+    reg  [5:0] dir_at_dot$2$at;
     wire  [15:0] dir_at_dot$2$q;
     reg  edge1_at_dot$0$clock;
     reg  [15:0] edge1_at_dot$0$d;
+    reg  [5:0] edge1_at_dot$0$at;
     wire  [15:0] edge1_at_dot$0$q;
     reg  edge1_at_dot$1$clock;
     reg  [15:0] edge1_at_dot$1$d;
+    reg  [5:0] edge1_at_dot$1$at;
     wire  [15:0] edge1_at_dot$1$q;
     reg  edge1_at_dot$2$clock;
     reg  [15:0] edge1_at_dot$2$d;
+    reg  [5:0] edge1_at_dot$2$at;
     wire  [15:0] edge1_at_dot$2$q;
     reg  edge2_at_dot$0$clock;
     reg  [15:0] edge2_at_dot$0$d;
+    reg  [5:0] edge2_at_dot$0$at;
     wire  [15:0] edge2_at_dot$0$q;
     reg  edge2_at_dot$1$clock;
     reg  [15:0] edge2_at_dot$1$d;
+    reg  [5:0] edge2_at_dot$1$at;
     wire  [15:0] edge2_at_dot$1$q;
     reg  edge2_at_dot$2$clock;
     reg  [15:0] edge2_at_dot$2$d;
+    reg  [5:0] edge2_at_dot$2$at;
     wire  [15:0] edge2_at_dot$2$q;
     reg  to_origin_at_dot$0$clock;
     reg  [15:0] to_origin_at_dot$0$d;
+    reg  [5:0] to_origin_at_dot$0$at;
     wire  [15:0] to_origin_at_dot$0$q;
     reg  to_origin_at_dot$1$clock;
     reg  [15:0] to_origin_at_dot$1$d;
+    reg  [5:0] to_origin_at_dot$1$at;
     wire  [15:0] to_origin_at_dot$1$q;
     reg  to_origin_at_dot$2$clock;
     reg  [15:0] to_origin_at_dot$2$d;
+    reg  [5:0] to_origin_at_dot$2$at;
     wire  [15:0] to_origin_at_dot$2$q;
     reg  p$clock;
     reg  [15:0] p$a$0;
@@ -3178,6 +3203,7 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
     reg  [15:0] det$b$0;
     reg  [15:0] det$b$1;
     reg  [15:0] det$b$2;
+    reg  [5:0] det$third_at;
     wire  [15:0] det$y;
     reg  u_num$clock;
     reg  [15:0] u_num$a$0;
@@ -3186,6 +3212,7 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
     reg  [15:0] u_num$b$0;
     reg  [15:0] u_num$b$1;
     reg  [15:0] u_num$b$2;
+    reg  [5:0] u_num$third_at;
     wire  [15:0] u_num$y;
     reg  v_num$clock;
     reg  [15:0] v_num$a$0;
@@ -3194,6 +3221,7 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
     reg  [15:0] v_num$b$0;
     reg  [15:0] v_num$b$1;
     reg  [15:0] v_num$b$2;
+    reg  [5:0] v_num$third_at;
     wire  [15:0] v_num$y;
     reg  t_num$clock;
     reg  [15:0] t_num$a$0;
@@ -3202,18 +3230,22 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
     reg  [15:0] t_num$b$0;
     reg  [15:0] t_num$b$1;
     reg  [15:0] t_num$b$2;
+    reg  [5:0] t_num$third_at;
     wire  [15:0] t_num$y;
     reg  inv_det$clock;
     reg  [15:0] inv_det$a;
     wire  [15:0] inv_det$y;
     reg  u_num_at_scale$clock;
     reg  [15:0] u_num_at_scale$d;
+    reg  [5:0] u_num_at_scale$at;
     wire  [15:0] u_num_at_scale$q;
     reg  v_num_at_scale$clock;
     reg  [15:0] v_num_at_scale$d;
+    reg  [5:0] v_num_at_scale$at;
     wire  [15:0] v_num_at_scale$q;
     reg  t_num_at_scale$clock;
     reg  [15:0] t_num_at_scale$d;
+    reg  [5:0] t_num_at_scale$at;
     wire  [15:0] t_num_at_scale$q;
     reg  u_scale$clock;
     reg  [15:0] u_scale$a;
@@ -3279,12 +3311,15 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
     wire  [31:0] v_out$y;
     reg  t_at_out$clock;
     reg  [31:0] t_at_out$d;
+    reg  [5:0] t_at_out$at;
     wire  [31:0] t_at_out$q;
     reg  u_at_out$clock;
     reg  [31:0] u_at_out$d;
+    reg  [5:0] u_at_out$at;
     wire  [31:0] u_at_out$q;
     reg  v_at_out$clock;
     reg  [31:0] v_at_out$d;
+    reg  [5:0] v_at_out$at;
     wire  [31:0] v_at_out$q;
     reg  valid_at_out$clock;
     reg  valid_at_out$d;
@@ -3438,79 +3473,114 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
         .b(to_origin$2$b),
         .y(to_origin$2$y)
     );
+    rtfpga_core$slots$0$lane$dir_ring dir_ring(
+        .clock(dir_ring$clock),
+        .at(dir_ring$at)
+    );
+    rtfpga_core$slots$0$lane$dot_ring dot_ring(
+        .clock(dot_ring$clock),
+        .at(dot_ring$at)
+    );
+    rtfpga_core$slots$0$lane$third_ring third_ring(
+        .clock(third_ring$clock),
+        .at(third_ring$at)
+    );
+    rtfpga_core$slots$0$lane$numerator_ring numerator_ring(
+        .clock(numerator_ring$clock),
+        .at(numerator_ring$at)
+    );
+    rtfpga_core$slots$0$lane$result_ring result_ring(
+        .clock(result_ring$clock),
+        .at(result_ring$at)
+    );
     rtfpga_core$slots$0$lane$dir_at_cross$0 dir_at_cross$0(
         .clock(dir_at_cross$0$clock),
         .d(dir_at_cross$0$d),
+        .at(dir_at_cross$0$at),
         .q(dir_at_cross$0$q)
     );
     rtfpga_core$slots$0$lane$dir_at_cross$1 dir_at_cross$1(
         .clock(dir_at_cross$1$clock),
         .d(dir_at_cross$1$d),
+        .at(dir_at_cross$1$at),
         .q(dir_at_cross$1$q)
     );
     rtfpga_core$slots$0$lane$dir_at_cross$2 dir_at_cross$2(
         .clock(dir_at_cross$2$clock),
         .d(dir_at_cross$2$d),
+        .at(dir_at_cross$2$at),
         .q(dir_at_cross$2$q)
     );
     rtfpga_core$slots$0$lane$dir_at_dot$0 dir_at_dot$0(
         .clock(dir_at_dot$0$clock),
         .d(dir_at_dot$0$d),
+        .at(dir_at_dot$0$at),
         .q(dir_at_dot$0$q)
     );
     rtfpga_core$slots$0$lane$dir_at_dot$1 dir_at_dot$1(
         .clock(dir_at_dot$1$clock),
         .d(dir_at_dot$1$d),
+        .at(dir_at_dot$1$at),
         .q(dir_at_dot$1$q)
     );
     rtfpga_core$slots$0$lane$dir_at_dot$2 dir_at_dot$2(
         .clock(dir_at_dot$2$clock),
         .d(dir_at_dot$2$d),
+        .at(dir_at_dot$2$at),
         .q(dir_at_dot$2$q)
     );
     rtfpga_core$slots$0$lane$edge1_at_dot$0 edge1_at_dot$0(
         .clock(edge1_at_dot$0$clock),
         .d(edge1_at_dot$0$d),
+        .at(edge1_at_dot$0$at),
         .q(edge1_at_dot$0$q)
     );
     rtfpga_core$slots$0$lane$edge1_at_dot$1 edge1_at_dot$1(
         .clock(edge1_at_dot$1$clock),
         .d(edge1_at_dot$1$d),
+        .at(edge1_at_dot$1$at),
         .q(edge1_at_dot$1$q)
     );
     rtfpga_core$slots$0$lane$edge1_at_dot$2 edge1_at_dot$2(
         .clock(edge1_at_dot$2$clock),
         .d(edge1_at_dot$2$d),
+        .at(edge1_at_dot$2$at),
         .q(edge1_at_dot$2$q)
     );
     rtfpga_core$slots$0$lane$edge2_at_dot$0 edge2_at_dot$0(
         .clock(edge2_at_dot$0$clock),
         .d(edge2_at_dot$0$d),
+        .at(edge2_at_dot$0$at),
         .q(edge2_at_dot$0$q)
     );
     rtfpga_core$slots$0$lane$edge2_at_dot$1 edge2_at_dot$1(
         .clock(edge2_at_dot$1$clock),
         .d(edge2_at_dot$1$d),
+        .at(edge2_at_dot$1$at),
         .q(edge2_at_dot$1$q)
     );
     rtfpga_core$slots$0$lane$edge2_at_dot$2 edge2_at_dot$2(
         .clock(edge2_at_dot$2$clock),
         .d(edge2_at_dot$2$d),
+        .at(edge2_at_dot$2$at),
         .q(edge2_at_dot$2$q)
     );
     rtfpga_core$slots$0$lane$to_origin_at_dot$0 to_origin_at_dot$0(
         .clock(to_origin_at_dot$0$clock),
         .d(to_origin_at_dot$0$d),
+        .at(to_origin_at_dot$0$at),
         .q(to_origin_at_dot$0$q)
     );
     rtfpga_core$slots$0$lane$to_origin_at_dot$1 to_origin_at_dot$1(
         .clock(to_origin_at_dot$1$clock),
         .d(to_origin_at_dot$1$d),
+        .at(to_origin_at_dot$1$at),
         .q(to_origin_at_dot$1$q)
     );
     rtfpga_core$slots$0$lane$to_origin_at_dot$2 to_origin_at_dot$2(
         .clock(to_origin_at_dot$2$clock),
         .d(to_origin_at_dot$2$d),
+        .at(to_origin_at_dot$2$at),
         .q(to_origin_at_dot$2$q)
     );
     rtfpga_core$slots$0$lane$p p(
@@ -3545,6 +3615,7 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
         .b$0(det$b$0),
         .b$1(det$b$1),
         .b$2(det$b$2),
+        .third_at(det$third_at),
         .y(det$y)
     );
     rtfpga_core$slots$0$lane$u_num u_num(
@@ -3555,6 +3626,7 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
         .b$0(u_num$b$0),
         .b$1(u_num$b$1),
         .b$2(u_num$b$2),
+        .third_at(u_num$third_at),
         .y(u_num$y)
     );
     rtfpga_core$slots$0$lane$v_num v_num(
@@ -3565,6 +3637,7 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
         .b$0(v_num$b$0),
         .b$1(v_num$b$1),
         .b$2(v_num$b$2),
+        .third_at(v_num$third_at),
         .y(v_num$y)
     );
     rtfpga_core$slots$0$lane$t_num t_num(
@@ -3575,6 +3648,7 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
         .b$0(t_num$b$0),
         .b$1(t_num$b$1),
         .b$2(t_num$b$2),
+        .third_at(t_num$third_at),
         .y(t_num$y)
     );
     rtfpga_core$slots$0$lane$inv_det inv_det(
@@ -3585,16 +3659,19 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
     rtfpga_core$slots$0$lane$u_num_at_scale u_num_at_scale(
         .clock(u_num_at_scale$clock),
         .d(u_num_at_scale$d),
+        .at(u_num_at_scale$at),
         .q(u_num_at_scale$q)
     );
     rtfpga_core$slots$0$lane$v_num_at_scale v_num_at_scale(
         .clock(v_num_at_scale$clock),
         .d(v_num_at_scale$d),
+        .at(v_num_at_scale$at),
         .q(v_num_at_scale$q)
     );
     rtfpga_core$slots$0$lane$t_num_at_scale t_num_at_scale(
         .clock(t_num_at_scale$clock),
         .d(t_num_at_scale$d),
+        .at(t_num_at_scale$at),
         .q(t_num_at_scale$q)
     );
     rtfpga_core$slots$0$lane$u_scale u_scale(
@@ -3696,16 +3773,19 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
     rtfpga_core$slots$0$lane$t_at_out t_at_out(
         .clock(t_at_out$clock),
         .d(t_at_out$d),
+        .at(t_at_out$at),
         .q(t_at_out$q)
     );
     rtfpga_core$slots$0$lane$u_at_out u_at_out(
         .clock(u_at_out$clock),
         .d(u_at_out$d),
+        .at(u_at_out$at),
         .q(u_at_out$q)
     );
     rtfpga_core$slots$0$lane$v_at_out v_at_out(
         .clock(v_at_out$clock),
         .d(v_at_out$d),
+        .at(v_at_out$at),
         .q(v_at_out$q)
     );
     rtfpga_core$slots$0$lane$valid_at_out valid_at_out(
@@ -3821,6 +3901,11 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
         if (raw_fp32) begin
             loaded$14 = ((raw_word) & 16'hffff);
         end
+        dir_ring$clock = clock;
+        dot_ring$clock = clock;
+        third_ring$clock = clock;
+        numerator_ring$clock = clock;
+        result_ring$clock = clock;
         edge1$0$clock = clock;
         edge2$0$clock = clock;
         to_origin$0$clock = clock;
@@ -3829,6 +3914,11 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
         edge1_at_dot$0$clock = clock;
         edge2_at_dot$0$clock = clock;
         to_origin_at_dot$0$clock = clock;
+        dir_at_cross$0$at = dir_ring$at;
+        dir_at_dot$0$at = dot_ring$at;
+        edge1_at_dot$0$at = dot_ring$at;
+        edge2_at_dot$0$at = dot_ring$at;
+        to_origin_at_dot$0$at = dot_ring$at;
         to_origin$0$a = loaded$0;
         dir_at_cross$0$d = loaded$3;
         to_origin$0$b = loaded$6;
@@ -3860,6 +3950,11 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
         edge1_at_dot$1$clock = clock;
         edge2_at_dot$1$clock = clock;
         to_origin_at_dot$1$clock = clock;
+        dir_at_cross$1$at = dir_ring$at;
+        dir_at_dot$1$at = dot_ring$at;
+        edge1_at_dot$1$at = dot_ring$at;
+        edge2_at_dot$1$at = dot_ring$at;
+        to_origin_at_dot$1$at = dot_ring$at;
         to_origin$1$a = loaded$1;
         dir_at_cross$1$d = loaded$4;
         to_origin$1$b = loaded$7;
@@ -3891,6 +3986,11 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
         edge1_at_dot$2$clock = clock;
         edge2_at_dot$2$clock = clock;
         to_origin_at_dot$2$clock = clock;
+        dir_at_cross$2$at = dir_ring$at;
+        dir_at_dot$2$at = dot_ring$at;
+        edge1_at_dot$2$at = dot_ring$at;
+        edge2_at_dot$2$at = dot_ring$at;
+        to_origin_at_dot$2$at = dot_ring$at;
         to_origin$2$a = loaded$2;
         dir_at_cross$2$d = loaded$5;
         to_origin$2$b = loaded$8;
@@ -3920,11 +4020,18 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
         u_num$clock = clock;
         v_num$clock = clock;
         t_num$clock = clock;
+        det$third_at = third_ring$at;
+        u_num$third_at = third_ring$at;
+        v_num$third_at = third_ring$at;
+        t_num$third_at = third_ring$at;
         inv_det$clock = clock;
         inv_det$a = det$y;
         u_num_at_scale$clock = clock;
         v_num_at_scale$clock = clock;
         t_num_at_scale$clock = clock;
+        u_num_at_scale$at = numerator_ring$at;
+        v_num_at_scale$at = numerator_ring$at;
+        t_num_at_scale$at = numerator_ring$at;
         u_num_at_scale$d = u_num$y;
         v_num_at_scale$d = v_num$y;
         t_num_at_scale$d = t_num$y;
@@ -3977,6 +4084,9 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
         t_at_out$clock = clock;
         u_at_out$clock = clock;
         v_at_out$clock = clock;
+        t_at_out$at = result_ring$at;
+        u_at_out$at = result_ring$at;
+        v_at_out$at = result_ring$at;
         t_at_out$d = t_out$y;
         u_at_out$d = u_out$y;
         v_at_out$d = v_out$y;
@@ -3996,7 +4106,7 @@ module rtfpga_core$slots$0$lane(clock,valid_in,query$0,query$1,query$2,query$3,q
 endmodule // rtfpga_core$slots$0$lane
 
 
-module rtfpga_core$slots$0$lane$det(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
+module rtfpga_core$slots$0$lane$det(clock,a$0,a$1,a$2,b$0,b$1,b$2,third_at,y);
     
     // Module arguments
     input wire  clock;
@@ -4006,6 +4116,7 @@ module rtfpga_core$slots$0$lane$det(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
     input wire  [15:0] b$0;
     input wire  [15:0] b$1;
     input wire  [15:0] b$2;
+    input wire  [5:0] third_at;
     output reg  [15:0] y;
     
     // Stub signals
@@ -4027,6 +4138,7 @@ module rtfpga_core$slots$0$lane$det(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
     wire  [15:0] first_sum$y;
     reg  third_at_sum$clock;
     reg  [15:0] third_at_sum$d;
+    reg  [5:0] third_at_sum$at;
     wire  [15:0] third_at_sum$q;
     reg  sum$clock;
     reg  [15:0] sum$a;
@@ -4061,6 +4173,7 @@ module rtfpga_core$slots$0$lane$det(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
     rtfpga_core$slots$0$lane$det$third_at_sum third_at_sum(
         .clock(third_at_sum$clock),
         .d(third_at_sum$d),
+        .at(third_at_sum$at),
         .q(third_at_sum$q)
     );
     rtfpga_core$slots$0$lane$det$sum sum(
@@ -4083,6 +4196,7 @@ module rtfpga_core$slots$0$lane$det(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
         products$2$b = b$2;
         first_sum$clock = clock;
         third_at_sum$clock = clock;
+        third_at_sum$at = third_at;
         sum$clock = clock;
         first_sum$a = products$0$y;
         first_sum$b = products$1$y;
@@ -12875,7 +12989,37 @@ module rtfpga_core$slots$0$lane$det$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
 endmodule // rtfpga_core$slots$0$lane$det$sum$unpack_b
 
 
-module rtfpga_core$slots$0$lane$det$third_at_sum(clock,d,q);
+module rtfpga_core$slots$0$lane$det$third_at_sum(clock,d,at,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    input wire  [5:0] at;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$det$third_at_sum$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
+    );
+    
+    // Update code
+    always @(*) begin
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$det$third_at_sum
+
+
+module rtfpga_core$slots$0$lane$det$third_at_sum$regs(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -12891,7 +13035,7 @@ module rtfpga_core$slots$0$lane$det$third_at_sum(clock,d,q);
     reg  [15:0] tap;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$det$third_at_sum$regs$0 regs$0(
+    rtfpga_core$slots$0$lane$det$third_at_sum$regs$regs$0 regs$0(
         .d(regs$0$d),
         .q(regs$0$q),
         .clock(regs$0$clock)
@@ -12906,10 +13050,10 @@ module rtfpga_core$slots$0$lane$det$third_at_sum(clock,d,q);
         q = tap;
     end
     
-endmodule // rtfpga_core$slots$0$lane$det$third_at_sum
+endmodule // rtfpga_core$slots$0$lane$det$third_at_sum$regs
 
 
-module rtfpga_core$slots$0$lane$det$third_at_sum$regs$0(d,q,clock);
+module rtfpga_core$slots$0$lane$det$third_at_sum$regs$regs$0(d,q,clock);
     
     // Module arguments
     input wire  [15:0] d;
@@ -12925,7 +13069,7 @@ module rtfpga_core$slots$0$lane$det$third_at_sum$regs$0(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$det$third_at_sum$regs$0
+endmodule // rtfpga_core$slots$0$lane$det$third_at_sum$regs$regs$0
 
 
 module rtfpga_core$slots$0$lane$det_above_neg_eps(clock,a,b,y);
@@ -13364,60 +13508,37 @@ module rtfpga_core$slots$0$lane$det_below_eps$unpack_b(x,sign,exp,sig,zero,inf,n
 endmodule // rtfpga_core$slots$0$lane$det_below_eps$unpack_b
 
 
-module rtfpga_core$slots$0$lane$dir_at_cross$0(clock,d,q);
+module rtfpga_core$slots$0$lane$dir_at_cross$0(clock,d,at,q);
     
     // Module arguments
     input wire  clock;
     input wire  [15:0] d;
+    input wire  [5:0] at;
     output reg  [15:0] q;
     
     // Stub signals
-    reg  [15:0] regs$0$d;
-    wire  [15:0] regs$0$q;
-    reg  regs$0$clock;
-    
-    // Local signals
-    reg  [15:0] tap;
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$dir_at_cross$0$regs$0 regs$0(
-        .d(regs$0$d),
-        .q(regs$0$q),
-        .clock(regs$0$clock)
+    rtfpga_core$slots$0$lane$dir_at_cross$0$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
     );
     
     // Update code
     always @(*) begin
-        tap = d;
-        regs$0$clock = clock;
-        regs$0$d = tap;
-        tap = regs$0$q;
-        q = tap;
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$dir_at_cross$0
 
 
-module rtfpga_core$slots$0$lane$dir_at_cross$0$regs$0(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$dir_at_cross$0$regs$0
-
-
-module rtfpga_core$slots$0$lane$dir_at_cross$1(clock,d,q);
+module rtfpga_core$slots$0$lane$dir_at_cross$0$regs(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -13433,7 +13554,7 @@ module rtfpga_core$slots$0$lane$dir_at_cross$1(clock,d,q);
     reg  [15:0] tap;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$dir_at_cross$1$regs$0 regs$0(
+    rtfpga_core$slots$0$lane$dir_at_cross$0$regs$regs$0 regs$0(
         .d(regs$0$d),
         .q(regs$0$q),
         .clock(regs$0$clock)
@@ -13446,31 +13567,61 @@ module rtfpga_core$slots$0$lane$dir_at_cross$1(clock,d,q);
         regs$0$d = tap;
         tap = regs$0$q;
         q = tap;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$dir_at_cross$0$regs
+
+
+module rtfpga_core$slots$0$lane$dir_at_cross$0$regs$regs$0(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$dir_at_cross$0$regs$regs$0
+
+
+module rtfpga_core$slots$0$lane$dir_at_cross$1(clock,d,at,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    input wire  [5:0] at;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$dir_at_cross$1$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
+    );
+    
+    // Update code
+    always @(*) begin
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$dir_at_cross$1
 
 
-module rtfpga_core$slots$0$lane$dir_at_cross$1$regs$0(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$dir_at_cross$1$regs$0
-
-
-module rtfpga_core$slots$0$lane$dir_at_cross$2(clock,d,q);
+module rtfpga_core$slots$0$lane$dir_at_cross$1$regs(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -13486,7 +13637,7 @@ module rtfpga_core$slots$0$lane$dir_at_cross$2(clock,d,q);
     reg  [15:0] tap;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$dir_at_cross$2$regs$0 regs$0(
+    rtfpga_core$slots$0$lane$dir_at_cross$1$regs$regs$0 regs$0(
         .d(regs$0$d),
         .q(regs$0$q),
         .clock(regs$0$clock)
@@ -13499,12 +13650,95 @@ module rtfpga_core$slots$0$lane$dir_at_cross$2(clock,d,q);
         regs$0$d = tap;
         tap = regs$0$q;
         q = tap;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$dir_at_cross$1$regs
+
+
+module rtfpga_core$slots$0$lane$dir_at_cross$1$regs$regs$0(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$dir_at_cross$1$regs$regs$0
+
+
+module rtfpga_core$slots$0$lane$dir_at_cross$2(clock,d,at,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    input wire  [5:0] at;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$dir_at_cross$2$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
+    );
+    
+    // Update code
+    always @(*) begin
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$dir_at_cross$2
 
 
-module rtfpga_core$slots$0$lane$dir_at_cross$2$regs$0(d,q,clock);
+module rtfpga_core$slots$0$lane$dir_at_cross$2$regs(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  [15:0] regs$0$d;
+    wire  [15:0] regs$0$q;
+    reg  regs$0$clock;
+    
+    // Local signals
+    reg  [15:0] tap;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$dir_at_cross$2$regs$regs$0 regs$0(
+        .d(regs$0$d),
+        .q(regs$0$q),
+        .clock(regs$0$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        tap = d;
+        regs$0$clock = clock;
+        regs$0$d = tap;
+        tap = regs$0$q;
+        q = tap;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$dir_at_cross$2$regs
+
+
+module rtfpga_core$slots$0$lane$dir_at_cross$2$regs$regs$0(d,q,clock);
     
     // Module arguments
     input wire  [15:0] d;
@@ -13520,93 +13754,40 @@ module rtfpga_core$slots$0$lane$dir_at_cross$2$regs$0(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$dir_at_cross$2$regs$0
+endmodule // rtfpga_core$slots$0$lane$dir_at_cross$2$regs$regs$0
 
 
-module rtfpga_core$slots$0$lane$dir_at_dot$0(clock,d,q);
+module rtfpga_core$slots$0$lane$dir_at_dot$0(clock,d,at,q);
     
     // Module arguments
     input wire  clock;
     input wire  [15:0] d;
+    input wire  [5:0] at;
     output reg  [15:0] q;
     
     // Stub signals
-    reg  [15:0] regs$0$d;
-    wire  [15:0] regs$0$q;
-    reg  regs$0$clock;
-    reg  [15:0] regs$1$d;
-    wire  [15:0] regs$1$q;
-    reg  regs$1$clock;
-    
-    // Local signals
-    reg  [15:0] tap;
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$dir_at_dot$0$regs$0 regs$0(
-        .d(regs$0$d),
-        .q(regs$0$q),
-        .clock(regs$0$clock)
-    );
-    rtfpga_core$slots$0$lane$dir_at_dot$0$regs$1 regs$1(
-        .d(regs$1$d),
-        .q(regs$1$q),
-        .clock(regs$1$clock)
+    rtfpga_core$slots$0$lane$dir_at_dot$0$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
     );
     
     // Update code
     always @(*) begin
-        tap = d;
-        regs$0$clock = clock;
-        regs$0$d = tap;
-        tap = regs$0$q;
-        regs$1$clock = clock;
-        regs$1$d = tap;
-        tap = regs$1$q;
-        q = tap;
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$dir_at_dot$0
 
 
-module rtfpga_core$slots$0$lane$dir_at_dot$0$regs$0(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$dir_at_dot$0$regs$0
-
-
-module rtfpga_core$slots$0$lane$dir_at_dot$0$regs$1(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$dir_at_dot$0$regs$1
-
-
-module rtfpga_core$slots$0$lane$dir_at_dot$1(clock,d,q);
+module rtfpga_core$slots$0$lane$dir_at_dot$0$regs(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -13625,12 +13806,12 @@ module rtfpga_core$slots$0$lane$dir_at_dot$1(clock,d,q);
     reg  [15:0] tap;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$dir_at_dot$1$regs$0 regs$0(
+    rtfpga_core$slots$0$lane$dir_at_dot$0$regs$regs$0 regs$0(
         .d(regs$0$d),
         .q(regs$0$q),
         .clock(regs$0$clock)
     );
-    rtfpga_core$slots$0$lane$dir_at_dot$1$regs$1 regs$1(
+    rtfpga_core$slots$0$lane$dir_at_dot$0$regs$regs$1 regs$1(
         .d(regs$1$d),
         .q(regs$1$q),
         .clock(regs$1$clock)
@@ -13646,50 +13827,80 @@ module rtfpga_core$slots$0$lane$dir_at_dot$1(clock,d,q);
         regs$1$d = tap;
         tap = regs$1$q;
         q = tap;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$dir_at_dot$0$regs
+
+
+module rtfpga_core$slots$0$lane$dir_at_dot$0$regs$regs$0(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$dir_at_dot$0$regs$regs$0
+
+
+module rtfpga_core$slots$0$lane$dir_at_dot$0$regs$regs$1(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$dir_at_dot$0$regs$regs$1
+
+
+module rtfpga_core$slots$0$lane$dir_at_dot$1(clock,d,at,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    input wire  [5:0] at;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$dir_at_dot$1$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
+    );
+    
+    // Update code
+    always @(*) begin
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$dir_at_dot$1
 
 
-module rtfpga_core$slots$0$lane$dir_at_dot$1$regs$0(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$dir_at_dot$1$regs$0
-
-
-module rtfpga_core$slots$0$lane$dir_at_dot$1$regs$1(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$dir_at_dot$1$regs$1
-
-
-module rtfpga_core$slots$0$lane$dir_at_dot$2(clock,d,q);
+module rtfpga_core$slots$0$lane$dir_at_dot$1$regs(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -13708,12 +13919,12 @@ module rtfpga_core$slots$0$lane$dir_at_dot$2(clock,d,q);
     reg  [15:0] tap;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$dir_at_dot$2$regs$0 regs$0(
+    rtfpga_core$slots$0$lane$dir_at_dot$1$regs$regs$0 regs$0(
         .d(regs$0$d),
         .q(regs$0$q),
         .clock(regs$0$clock)
     );
-    rtfpga_core$slots$0$lane$dir_at_dot$2$regs$1 regs$1(
+    rtfpga_core$slots$0$lane$dir_at_dot$1$regs$regs$1 regs$1(
         .d(regs$1$d),
         .q(regs$1$q),
         .clock(regs$1$clock)
@@ -13731,10 +13942,123 @@ module rtfpga_core$slots$0$lane$dir_at_dot$2(clock,d,q);
         q = tap;
     end
     
+endmodule // rtfpga_core$slots$0$lane$dir_at_dot$1$regs
+
+
+module rtfpga_core$slots$0$lane$dir_at_dot$1$regs$regs$0(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$dir_at_dot$1$regs$regs$0
+
+
+module rtfpga_core$slots$0$lane$dir_at_dot$1$regs$regs$1(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$dir_at_dot$1$regs$regs$1
+
+
+module rtfpga_core$slots$0$lane$dir_at_dot$2(clock,d,at,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    input wire  [5:0] at;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$dir_at_dot$2$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
+    );
+    
+    // Update code
+    always @(*) begin
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
+    end
+    
 endmodule // rtfpga_core$slots$0$lane$dir_at_dot$2
 
 
-module rtfpga_core$slots$0$lane$dir_at_dot$2$regs$0(d,q,clock);
+module rtfpga_core$slots$0$lane$dir_at_dot$2$regs(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  [15:0] regs$0$d;
+    wire  [15:0] regs$0$q;
+    reg  regs$0$clock;
+    reg  [15:0] regs$1$d;
+    wire  [15:0] regs$1$q;
+    reg  regs$1$clock;
+    
+    // Local signals
+    reg  [15:0] tap;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$dir_at_dot$2$regs$regs$0 regs$0(
+        .d(regs$0$d),
+        .q(regs$0$q),
+        .clock(regs$0$clock)
+    );
+    rtfpga_core$slots$0$lane$dir_at_dot$2$regs$regs$1 regs$1(
+        .d(regs$1$d),
+        .q(regs$1$q),
+        .clock(regs$1$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        tap = d;
+        regs$0$clock = clock;
+        regs$0$d = tap;
+        tap = regs$0$q;
+        regs$1$clock = clock;
+        regs$1$d = tap;
+        tap = regs$1$q;
+        q = tap;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$dir_at_dot$2$regs
+
+
+module rtfpga_core$slots$0$lane$dir_at_dot$2$regs$regs$0(d,q,clock);
     
     // Module arguments
     input wire  [15:0] d;
@@ -13750,10 +14074,10 @@ module rtfpga_core$slots$0$lane$dir_at_dot$2$regs$0(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$dir_at_dot$2$regs$0
+endmodule // rtfpga_core$slots$0$lane$dir_at_dot$2$regs$regs$0
 
 
-module rtfpga_core$slots$0$lane$dir_at_dot$2$regs$1(d,q,clock);
+module rtfpga_core$slots$0$lane$dir_at_dot$2$regs$regs$1(d,q,clock);
     
     // Module arguments
     input wire  [15:0] d;
@@ -13769,7 +14093,35 @@ module rtfpga_core$slots$0$lane$dir_at_dot$2$regs$1(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$dir_at_dot$2$regs$1
+endmodule // rtfpga_core$slots$0$lane$dir_at_dot$2$regs$regs$1
+
+
+module rtfpga_core$slots$0$lane$dir_ring(clock,at);
+    
+    // Module arguments
+    input wire  clock;
+    output reg  [5:0] at;
+    
+    // Update code (custom)
+    reg [0:0] count;
+    initial count = 1'd0;
+    always @(posedge clock) count <= (count == 1'd0) ? 1'd0 : count + 1'd1;
+    always @(*) at = {5'd0, count};
+endmodule // rtfpga_core$slots$0$lane$dir_ring
+
+
+module rtfpga_core$slots$0$lane$dot_ring(clock,at);
+    
+    // Module arguments
+    input wire  clock;
+    output reg  [5:0] at;
+    
+    // Update code (custom)
+    reg [0:0] count;
+    initial count = 1'd0;
+    always @(posedge clock) count <= (count == 1'd0) ? 1'd0 : count + 1'd1;
+    always @(*) at = {5'd0, count};
+endmodule // rtfpga_core$slots$0$lane$dot_ring
 
 
 module rtfpga_core$slots$0$lane$edge1$0(clock,a,b,y);
@@ -22973,90 +23325,37 @@ module rtfpga_core$slots$0$lane$edge1$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
 endmodule // rtfpga_core$slots$0$lane$edge1$2$unpack_b
 
 
-module rtfpga_core$slots$0$lane$edge1_at_dot$0(clock,d,q);
+module rtfpga_core$slots$0$lane$edge1_at_dot$0(clock,d,at,q);
     
     // Module arguments
     input wire  clock;
     input wire  [15:0] d;
+    input wire  [5:0] at;
     output reg  [15:0] q;
     
     // Stub signals
-    reg  [15:0] regs$0$d;
-    wire  [15:0] regs$0$q;
-    reg  regs$0$clock;
-    reg  [15:0] regs$1$d;
-    wire  [15:0] regs$1$q;
-    reg  regs$1$clock;
-    
-    // Local signals
-    reg  [15:0] tap;
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$edge1_at_dot$0$regs$0 regs$0(
-        .d(regs$0$d),
-        .q(regs$0$q),
-        .clock(regs$0$clock)
-    );
-    rtfpga_core$slots$0$lane$edge1_at_dot$0$regs$1 regs$1(
-        .d(regs$1$d),
-        .q(regs$1$q),
-        .clock(regs$1$clock)
+    rtfpga_core$slots$0$lane$edge1_at_dot$0$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
     );
     
     // Update code
     always @(*) begin
-        tap = d;
-        regs$0$clock = clock;
-        regs$0$d = tap;
-        tap = regs$0$q;
-        regs$1$clock = clock;
-        regs$1$d = tap;
-        tap = regs$1$q;
-        q = tap;
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$0
 
 
-module rtfpga_core$slots$0$lane$edge1_at_dot$0$regs$0(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$0$regs$0
-
-
-module rtfpga_core$slots$0$lane$edge1_at_dot$0$regs$1(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$0$regs$1
-
-
-module rtfpga_core$slots$0$lane$edge1_at_dot$1(clock,d,q);
+module rtfpga_core$slots$0$lane$edge1_at_dot$0$regs(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -23075,12 +23374,12 @@ module rtfpga_core$slots$0$lane$edge1_at_dot$1(clock,d,q);
     reg  [15:0] tap;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$edge1_at_dot$1$regs$0 regs$0(
+    rtfpga_core$slots$0$lane$edge1_at_dot$0$regs$regs$0 regs$0(
         .d(regs$0$d),
         .q(regs$0$q),
         .clock(regs$0$clock)
     );
-    rtfpga_core$slots$0$lane$edge1_at_dot$1$regs$1 regs$1(
+    rtfpga_core$slots$0$lane$edge1_at_dot$0$regs$regs$1 regs$1(
         .d(regs$1$d),
         .q(regs$1$q),
         .clock(regs$1$clock)
@@ -23096,50 +23395,80 @@ module rtfpga_core$slots$0$lane$edge1_at_dot$1(clock,d,q);
         regs$1$d = tap;
         tap = regs$1$q;
         q = tap;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$0$regs
+
+
+module rtfpga_core$slots$0$lane$edge1_at_dot$0$regs$regs$0(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$0$regs$regs$0
+
+
+module rtfpga_core$slots$0$lane$edge1_at_dot$0$regs$regs$1(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$0$regs$regs$1
+
+
+module rtfpga_core$slots$0$lane$edge1_at_dot$1(clock,d,at,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    input wire  [5:0] at;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$edge1_at_dot$1$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
+    );
+    
+    // Update code
+    always @(*) begin
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$1
 
 
-module rtfpga_core$slots$0$lane$edge1_at_dot$1$regs$0(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$1$regs$0
-
-
-module rtfpga_core$slots$0$lane$edge1_at_dot$1$regs$1(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$1$regs$1
-
-
-module rtfpga_core$slots$0$lane$edge1_at_dot$2(clock,d,q);
+module rtfpga_core$slots$0$lane$edge1_at_dot$1$regs(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -23158,12 +23487,12 @@ module rtfpga_core$slots$0$lane$edge1_at_dot$2(clock,d,q);
     reg  [15:0] tap;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$edge1_at_dot$2$regs$0 regs$0(
+    rtfpga_core$slots$0$lane$edge1_at_dot$1$regs$regs$0 regs$0(
         .d(regs$0$d),
         .q(regs$0$q),
         .clock(regs$0$clock)
     );
-    rtfpga_core$slots$0$lane$edge1_at_dot$2$regs$1 regs$1(
+    rtfpga_core$slots$0$lane$edge1_at_dot$1$regs$regs$1 regs$1(
         .d(regs$1$d),
         .q(regs$1$q),
         .clock(regs$1$clock)
@@ -23181,10 +23510,123 @@ module rtfpga_core$slots$0$lane$edge1_at_dot$2(clock,d,q);
         q = tap;
     end
     
+endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$1$regs
+
+
+module rtfpga_core$slots$0$lane$edge1_at_dot$1$regs$regs$0(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$1$regs$regs$0
+
+
+module rtfpga_core$slots$0$lane$edge1_at_dot$1$regs$regs$1(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$1$regs$regs$1
+
+
+module rtfpga_core$slots$0$lane$edge1_at_dot$2(clock,d,at,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    input wire  [5:0] at;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$edge1_at_dot$2$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
+    );
+    
+    // Update code
+    always @(*) begin
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
+    end
+    
 endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$2
 
 
-module rtfpga_core$slots$0$lane$edge1_at_dot$2$regs$0(d,q,clock);
+module rtfpga_core$slots$0$lane$edge1_at_dot$2$regs(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  [15:0] regs$0$d;
+    wire  [15:0] regs$0$q;
+    reg  regs$0$clock;
+    reg  [15:0] regs$1$d;
+    wire  [15:0] regs$1$q;
+    reg  regs$1$clock;
+    
+    // Local signals
+    reg  [15:0] tap;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$edge1_at_dot$2$regs$regs$0 regs$0(
+        .d(regs$0$d),
+        .q(regs$0$q),
+        .clock(regs$0$clock)
+    );
+    rtfpga_core$slots$0$lane$edge1_at_dot$2$regs$regs$1 regs$1(
+        .d(regs$1$d),
+        .q(regs$1$q),
+        .clock(regs$1$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        tap = d;
+        regs$0$clock = clock;
+        regs$0$d = tap;
+        tap = regs$0$q;
+        regs$1$clock = clock;
+        regs$1$d = tap;
+        tap = regs$1$q;
+        q = tap;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$2$regs
+
+
+module rtfpga_core$slots$0$lane$edge1_at_dot$2$regs$regs$0(d,q,clock);
     
     // Module arguments
     input wire  [15:0] d;
@@ -23200,10 +23642,10 @@ module rtfpga_core$slots$0$lane$edge1_at_dot$2$regs$0(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$2$regs$0
+endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$2$regs$regs$0
 
 
-module rtfpga_core$slots$0$lane$edge1_at_dot$2$regs$1(d,q,clock);
+module rtfpga_core$slots$0$lane$edge1_at_dot$2$regs$regs$1(d,q,clock);
     
     // Module arguments
     input wire  [15:0] d;
@@ -23219,7 +23661,7 @@ module rtfpga_core$slots$0$lane$edge1_at_dot$2$regs$1(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$2$regs$1
+endmodule // rtfpga_core$slots$0$lane$edge1_at_dot$2$regs$regs$1
 
 
 module rtfpga_core$slots$0$lane$edge2$0(clock,a,b,y);
@@ -32423,90 +32865,37 @@ module rtfpga_core$slots$0$lane$edge2$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
 endmodule // rtfpga_core$slots$0$lane$edge2$2$unpack_b
 
 
-module rtfpga_core$slots$0$lane$edge2_at_dot$0(clock,d,q);
+module rtfpga_core$slots$0$lane$edge2_at_dot$0(clock,d,at,q);
     
     // Module arguments
     input wire  clock;
     input wire  [15:0] d;
+    input wire  [5:0] at;
     output reg  [15:0] q;
     
     // Stub signals
-    reg  [15:0] regs$0$d;
-    wire  [15:0] regs$0$q;
-    reg  regs$0$clock;
-    reg  [15:0] regs$1$d;
-    wire  [15:0] regs$1$q;
-    reg  regs$1$clock;
-    
-    // Local signals
-    reg  [15:0] tap;
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$edge2_at_dot$0$regs$0 regs$0(
-        .d(regs$0$d),
-        .q(regs$0$q),
-        .clock(regs$0$clock)
-    );
-    rtfpga_core$slots$0$lane$edge2_at_dot$0$regs$1 regs$1(
-        .d(regs$1$d),
-        .q(regs$1$q),
-        .clock(regs$1$clock)
+    rtfpga_core$slots$0$lane$edge2_at_dot$0$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
     );
     
     // Update code
     always @(*) begin
-        tap = d;
-        regs$0$clock = clock;
-        regs$0$d = tap;
-        tap = regs$0$q;
-        regs$1$clock = clock;
-        regs$1$d = tap;
-        tap = regs$1$q;
-        q = tap;
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$0
 
 
-module rtfpga_core$slots$0$lane$edge2_at_dot$0$regs$0(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$0$regs$0
-
-
-module rtfpga_core$slots$0$lane$edge2_at_dot$0$regs$1(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$0$regs$1
-
-
-module rtfpga_core$slots$0$lane$edge2_at_dot$1(clock,d,q);
+module rtfpga_core$slots$0$lane$edge2_at_dot$0$regs(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -32525,12 +32914,12 @@ module rtfpga_core$slots$0$lane$edge2_at_dot$1(clock,d,q);
     reg  [15:0] tap;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$edge2_at_dot$1$regs$0 regs$0(
+    rtfpga_core$slots$0$lane$edge2_at_dot$0$regs$regs$0 regs$0(
         .d(regs$0$d),
         .q(regs$0$q),
         .clock(regs$0$clock)
     );
-    rtfpga_core$slots$0$lane$edge2_at_dot$1$regs$1 regs$1(
+    rtfpga_core$slots$0$lane$edge2_at_dot$0$regs$regs$1 regs$1(
         .d(regs$1$d),
         .q(regs$1$q),
         .clock(regs$1$clock)
@@ -32546,50 +32935,80 @@ module rtfpga_core$slots$0$lane$edge2_at_dot$1(clock,d,q);
         regs$1$d = tap;
         tap = regs$1$q;
         q = tap;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$0$regs
+
+
+module rtfpga_core$slots$0$lane$edge2_at_dot$0$regs$regs$0(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$0$regs$regs$0
+
+
+module rtfpga_core$slots$0$lane$edge2_at_dot$0$regs$regs$1(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$0$regs$regs$1
+
+
+module rtfpga_core$slots$0$lane$edge2_at_dot$1(clock,d,at,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    input wire  [5:0] at;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$edge2_at_dot$1$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
+    );
+    
+    // Update code
+    always @(*) begin
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$1
 
 
-module rtfpga_core$slots$0$lane$edge2_at_dot$1$regs$0(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$1$regs$0
-
-
-module rtfpga_core$slots$0$lane$edge2_at_dot$1$regs$1(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$1$regs$1
-
-
-module rtfpga_core$slots$0$lane$edge2_at_dot$2(clock,d,q);
+module rtfpga_core$slots$0$lane$edge2_at_dot$1$regs(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -32608,12 +33027,12 @@ module rtfpga_core$slots$0$lane$edge2_at_dot$2(clock,d,q);
     reg  [15:0] tap;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$edge2_at_dot$2$regs$0 regs$0(
+    rtfpga_core$slots$0$lane$edge2_at_dot$1$regs$regs$0 regs$0(
         .d(regs$0$d),
         .q(regs$0$q),
         .clock(regs$0$clock)
     );
-    rtfpga_core$slots$0$lane$edge2_at_dot$2$regs$1 regs$1(
+    rtfpga_core$slots$0$lane$edge2_at_dot$1$regs$regs$1 regs$1(
         .d(regs$1$d),
         .q(regs$1$q),
         .clock(regs$1$clock)
@@ -32631,10 +33050,123 @@ module rtfpga_core$slots$0$lane$edge2_at_dot$2(clock,d,q);
         q = tap;
     end
     
+endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$1$regs
+
+
+module rtfpga_core$slots$0$lane$edge2_at_dot$1$regs$regs$0(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$1$regs$regs$0
+
+
+module rtfpga_core$slots$0$lane$edge2_at_dot$1$regs$regs$1(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$1$regs$regs$1
+
+
+module rtfpga_core$slots$0$lane$edge2_at_dot$2(clock,d,at,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    input wire  [5:0] at;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$edge2_at_dot$2$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
+    );
+    
+    // Update code
+    always @(*) begin
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
+    end
+    
 endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$2
 
 
-module rtfpga_core$slots$0$lane$edge2_at_dot$2$regs$0(d,q,clock);
+module rtfpga_core$slots$0$lane$edge2_at_dot$2$regs(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  [15:0] regs$0$d;
+    wire  [15:0] regs$0$q;
+    reg  regs$0$clock;
+    reg  [15:0] regs$1$d;
+    wire  [15:0] regs$1$q;
+    reg  regs$1$clock;
+    
+    // Local signals
+    reg  [15:0] tap;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$edge2_at_dot$2$regs$regs$0 regs$0(
+        .d(regs$0$d),
+        .q(regs$0$q),
+        .clock(regs$0$clock)
+    );
+    rtfpga_core$slots$0$lane$edge2_at_dot$2$regs$regs$1 regs$1(
+        .d(regs$1$d),
+        .q(regs$1$q),
+        .clock(regs$1$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        tap = d;
+        regs$0$clock = clock;
+        regs$0$d = tap;
+        tap = regs$0$q;
+        regs$1$clock = clock;
+        regs$1$d = tap;
+        tap = regs$1$q;
+        q = tap;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$2$regs
+
+
+module rtfpga_core$slots$0$lane$edge2_at_dot$2$regs$regs$0(d,q,clock);
     
     // Module arguments
     input wire  [15:0] d;
@@ -32650,10 +33182,10 @@ module rtfpga_core$slots$0$lane$edge2_at_dot$2$regs$0(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$2$regs$0
+endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$2$regs$regs$0
 
 
-module rtfpga_core$slots$0$lane$edge2_at_dot$2$regs$1(d,q,clock);
+module rtfpga_core$slots$0$lane$edge2_at_dot$2$regs$regs$1(d,q,clock);
     
     // Module arguments
     input wire  [15:0] d;
@@ -32669,7 +33201,7 @@ module rtfpga_core$slots$0$lane$edge2_at_dot$2$regs$1(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$2$regs$1
+endmodule // rtfpga_core$slots$0$lane$edge2_at_dot$2$regs$regs$1
 
 
 module rtfpga_core$slots$0$lane$in_range_at_out(clock,d,q);
@@ -43694,6 +44226,20 @@ module rtfpga_core$slots$0$lane$load$9$unpack(x,sign,exp,sig,zero,inf,nan);
     end
     
 endmodule // rtfpga_core$slots$0$lane$load$9$unpack
+
+
+module rtfpga_core$slots$0$lane$numerator_ring(clock,at);
+    
+    // Module arguments
+    input wire  clock;
+    output reg  [5:0] at;
+    
+    // Update code (custom)
+    reg [0:0] count;
+    initial count = 1'd0;
+    always @(posedge clock) count <= (count == 1'd0) ? 1'd0 : count + 1'd1;
+    always @(*) at = {5'd0, count};
+endmodule // rtfpga_core$slots$0$lane$numerator_ring
 
 
 module rtfpga_core$slots$0$lane$p(clock,a$0,a$1,a$2,b$0,b$1,b$2,y$0,y$1,y$2);
@@ -73085,6 +73631,20 @@ module rtfpga_core$slots$0$lane$q$right$2$unpack_b(x,sign,exp,sig,zero,inf,nan);
 endmodule // rtfpga_core$slots$0$lane$q$right$2$unpack_b
 
 
+module rtfpga_core$slots$0$lane$result_ring(clock,at);
+    
+    // Module arguments
+    input wire  clock;
+    output reg  [5:0] at;
+    
+    // Update code (custom)
+    reg [0:0] count;
+    initial count = 1'd0;
+    always @(posedge clock) count <= (count == 1'd0) ? 1'd0 : count + 1'd1;
+    always @(*) at = {5'd0, count};
+endmodule // rtfpga_core$slots$0$lane$result_ring
+
+
 module rtfpga_core$slots$0$lane$sum_above_one(clock,a,b,y);
     
     // Module arguments
@@ -73540,7 +74100,37 @@ module rtfpga_core$slots$0$lane$t_above_zero$unpack_b(x,sign,exp,sig,zero,inf,na
 endmodule // rtfpga_core$slots$0$lane$t_above_zero$unpack_b
 
 
-module rtfpga_core$slots$0$lane$t_at_out(clock,d,q);
+module rtfpga_core$slots$0$lane$t_at_out(clock,d,at,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [31:0] d;
+    input wire  [5:0] at;
+    output reg  [31:0] q;
+    
+    // Stub signals
+    reg  regs$clock;
+    reg  [31:0] regs$d;
+    wire  [31:0] regs$q;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$t_at_out$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
+    );
+    
+    // Update code
+    always @(*) begin
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$t_at_out
+
+
+module rtfpga_core$slots$0$lane$t_at_out$regs(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -73556,7 +74146,7 @@ module rtfpga_core$slots$0$lane$t_at_out(clock,d,q);
     reg  [31:0] tap;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$t_at_out$regs$0 regs$0(
+    rtfpga_core$slots$0$lane$t_at_out$regs$regs$0 regs$0(
         .d(regs$0$d),
         .q(regs$0$q),
         .clock(regs$0$clock)
@@ -73571,10 +74161,10 @@ module rtfpga_core$slots$0$lane$t_at_out(clock,d,q);
         q = tap;
     end
     
-endmodule // rtfpga_core$slots$0$lane$t_at_out
+endmodule // rtfpga_core$slots$0$lane$t_at_out$regs
 
 
-module rtfpga_core$slots$0$lane$t_at_out$regs$0(d,q,clock);
+module rtfpga_core$slots$0$lane$t_at_out$regs$regs$0(d,q,clock);
     
     // Module arguments
     input wire  [31:0] d;
@@ -73590,10 +74180,10 @@ module rtfpga_core$slots$0$lane$t_at_out$regs$0(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$t_at_out$regs$0
+endmodule // rtfpga_core$slots$0$lane$t_at_out$regs$regs$0
 
 
-module rtfpga_core$slots$0$lane$t_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
+module rtfpga_core$slots$0$lane$t_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,third_at,y);
     
     // Module arguments
     input wire  clock;
@@ -73603,6 +74193,7 @@ module rtfpga_core$slots$0$lane$t_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
     input wire  [15:0] b$0;
     input wire  [15:0] b$1;
     input wire  [15:0] b$2;
+    input wire  [5:0] third_at;
     output reg  [15:0] y;
     
     // Stub signals
@@ -73624,6 +74215,7 @@ module rtfpga_core$slots$0$lane$t_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
     wire  [15:0] first_sum$y;
     reg  third_at_sum$clock;
     reg  [15:0] third_at_sum$d;
+    reg  [5:0] third_at_sum$at;
     wire  [15:0] third_at_sum$q;
     reg  sum$clock;
     reg  [15:0] sum$a;
@@ -73658,6 +74250,7 @@ module rtfpga_core$slots$0$lane$t_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
     rtfpga_core$slots$0$lane$t_num$third_at_sum third_at_sum(
         .clock(third_at_sum$clock),
         .d(third_at_sum$d),
+        .at(third_at_sum$at),
         .q(third_at_sum$q)
     );
     rtfpga_core$slots$0$lane$t_num$sum sum(
@@ -73680,6 +74273,7 @@ module rtfpga_core$slots$0$lane$t_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
         products$2$b = b$2;
         first_sum$clock = clock;
         third_at_sum$clock = clock;
+        third_at_sum$at = third_at;
         sum$clock = clock;
         first_sum$a = products$0$y;
         first_sum$b = products$1$y;
@@ -82472,60 +83066,37 @@ module rtfpga_core$slots$0$lane$t_num$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
 endmodule // rtfpga_core$slots$0$lane$t_num$sum$unpack_b
 
 
-module rtfpga_core$slots$0$lane$t_num$third_at_sum(clock,d,q);
+module rtfpga_core$slots$0$lane$t_num$third_at_sum(clock,d,at,q);
     
     // Module arguments
     input wire  clock;
     input wire  [15:0] d;
+    input wire  [5:0] at;
     output reg  [15:0] q;
     
     // Stub signals
-    reg  [15:0] regs$0$d;
-    wire  [15:0] regs$0$q;
-    reg  regs$0$clock;
-    
-    // Local signals
-    reg  [15:0] tap;
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$t_num$third_at_sum$regs$0 regs$0(
-        .d(regs$0$d),
-        .q(regs$0$q),
-        .clock(regs$0$clock)
+    rtfpga_core$slots$0$lane$t_num$third_at_sum$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
     );
     
     // Update code
     always @(*) begin
-        tap = d;
-        regs$0$clock = clock;
-        regs$0$d = tap;
-        tap = regs$0$q;
-        q = tap;
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$t_num$third_at_sum
 
 
-module rtfpga_core$slots$0$lane$t_num$third_at_sum$regs$0(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$t_num$third_at_sum$regs$0
-
-
-module rtfpga_core$slots$0$lane$t_num_at_scale(clock,d,q);
+module rtfpga_core$slots$0$lane$t_num$third_at_sum$regs(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -82541,7 +83112,7 @@ module rtfpga_core$slots$0$lane$t_num_at_scale(clock,d,q);
     reg  [15:0] tap;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$t_num_at_scale$regs$0 regs$0(
+    rtfpga_core$slots$0$lane$t_num$third_at_sum$regs$regs$0 regs$0(
         .d(regs$0$d),
         .q(regs$0$q),
         .clock(regs$0$clock)
@@ -82556,10 +83127,10 @@ module rtfpga_core$slots$0$lane$t_num_at_scale(clock,d,q);
         q = tap;
     end
     
-endmodule // rtfpga_core$slots$0$lane$t_num_at_scale
+endmodule // rtfpga_core$slots$0$lane$t_num$third_at_sum$regs
 
 
-module rtfpga_core$slots$0$lane$t_num_at_scale$regs$0(d,q,clock);
+module rtfpga_core$slots$0$lane$t_num$third_at_sum$regs$regs$0(d,q,clock);
     
     // Module arguments
     input wire  [15:0] d;
@@ -82575,7 +83146,90 @@ module rtfpga_core$slots$0$lane$t_num_at_scale$regs$0(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$t_num_at_scale$regs$0
+endmodule // rtfpga_core$slots$0$lane$t_num$third_at_sum$regs$regs$0
+
+
+module rtfpga_core$slots$0$lane$t_num_at_scale(clock,d,at,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    input wire  [5:0] at;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$t_num_at_scale$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
+    );
+    
+    // Update code
+    always @(*) begin
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$t_num_at_scale
+
+
+module rtfpga_core$slots$0$lane$t_num_at_scale$regs(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  [15:0] regs$0$d;
+    wire  [15:0] regs$0$q;
+    reg  regs$0$clock;
+    
+    // Local signals
+    reg  [15:0] tap;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$t_num_at_scale$regs$regs$0 regs$0(
+        .d(regs$0$d),
+        .q(regs$0$q),
+        .clock(regs$0$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        tap = d;
+        regs$0$clock = clock;
+        regs$0$d = tap;
+        tap = regs$0$q;
+        q = tap;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$t_num_at_scale$regs
+
+
+module rtfpga_core$slots$0$lane$t_num_at_scale$regs$regs$0(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$t_num_at_scale$regs$regs$0
 
 
 module rtfpga_core$slots$0$lane$t_out(clock,a,y);
@@ -83627,6 +84281,20 @@ module rtfpga_core$slots$0$lane$t_scale$unpack_b(x,sign,exp,sig,zero,inf,nan);
     end
     
 endmodule // rtfpga_core$slots$0$lane$t_scale$unpack_b
+
+
+module rtfpga_core$slots$0$lane$third_ring(clock,at);
+    
+    // Module arguments
+    input wire  clock;
+    output reg  [5:0] at;
+    
+    // Update code (custom)
+    reg [0:0] count;
+    initial count = 1'd0;
+    always @(posedge clock) count <= (count == 1'd0) ? 1'd0 : count + 1'd1;
+    always @(*) at = {5'd0, count};
+endmodule // rtfpga_core$slots$0$lane$third_ring
 
 
 module rtfpga_core$slots$0$lane$to_origin$0(clock,a,b,y);
@@ -92830,90 +93498,37 @@ module rtfpga_core$slots$0$lane$to_origin$2$unpack_b(x,sign,exp,sig,zero,inf,nan
 endmodule // rtfpga_core$slots$0$lane$to_origin$2$unpack_b
 
 
-module rtfpga_core$slots$0$lane$to_origin_at_dot$0(clock,d,q);
+module rtfpga_core$slots$0$lane$to_origin_at_dot$0(clock,d,at,q);
     
     // Module arguments
     input wire  clock;
     input wire  [15:0] d;
+    input wire  [5:0] at;
     output reg  [15:0] q;
     
     // Stub signals
-    reg  [15:0] regs$0$d;
-    wire  [15:0] regs$0$q;
-    reg  regs$0$clock;
-    reg  [15:0] regs$1$d;
-    wire  [15:0] regs$1$q;
-    reg  regs$1$clock;
-    
-    // Local signals
-    reg  [15:0] tap;
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$to_origin_at_dot$0$regs$0 regs$0(
-        .d(regs$0$d),
-        .q(regs$0$q),
-        .clock(regs$0$clock)
-    );
-    rtfpga_core$slots$0$lane$to_origin_at_dot$0$regs$1 regs$1(
-        .d(regs$1$d),
-        .q(regs$1$q),
-        .clock(regs$1$clock)
+    rtfpga_core$slots$0$lane$to_origin_at_dot$0$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
     );
     
     // Update code
     always @(*) begin
-        tap = d;
-        regs$0$clock = clock;
-        regs$0$d = tap;
-        tap = regs$0$q;
-        regs$1$clock = clock;
-        regs$1$d = tap;
-        tap = regs$1$q;
-        q = tap;
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$0
 
 
-module rtfpga_core$slots$0$lane$to_origin_at_dot$0$regs$0(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$0$regs$0
-
-
-module rtfpga_core$slots$0$lane$to_origin_at_dot$0$regs$1(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$0$regs$1
-
-
-module rtfpga_core$slots$0$lane$to_origin_at_dot$1(clock,d,q);
+module rtfpga_core$slots$0$lane$to_origin_at_dot$0$regs(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -92932,12 +93547,12 @@ module rtfpga_core$slots$0$lane$to_origin_at_dot$1(clock,d,q);
     reg  [15:0] tap;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$to_origin_at_dot$1$regs$0 regs$0(
+    rtfpga_core$slots$0$lane$to_origin_at_dot$0$regs$regs$0 regs$0(
         .d(regs$0$d),
         .q(regs$0$q),
         .clock(regs$0$clock)
     );
-    rtfpga_core$slots$0$lane$to_origin_at_dot$1$regs$1 regs$1(
+    rtfpga_core$slots$0$lane$to_origin_at_dot$0$regs$regs$1 regs$1(
         .d(regs$1$d),
         .q(regs$1$q),
         .clock(regs$1$clock)
@@ -92953,50 +93568,80 @@ module rtfpga_core$slots$0$lane$to_origin_at_dot$1(clock,d,q);
         regs$1$d = tap;
         tap = regs$1$q;
         q = tap;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$0$regs
+
+
+module rtfpga_core$slots$0$lane$to_origin_at_dot$0$regs$regs$0(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$0$regs$regs$0
+
+
+module rtfpga_core$slots$0$lane$to_origin_at_dot$0$regs$regs$1(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$0$regs$regs$1
+
+
+module rtfpga_core$slots$0$lane$to_origin_at_dot$1(clock,d,at,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    input wire  [5:0] at;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$to_origin_at_dot$1$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
+    );
+    
+    // Update code
+    always @(*) begin
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$1
 
 
-module rtfpga_core$slots$0$lane$to_origin_at_dot$1$regs$0(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$1$regs$0
-
-
-module rtfpga_core$slots$0$lane$to_origin_at_dot$1$regs$1(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$1$regs$1
-
-
-module rtfpga_core$slots$0$lane$to_origin_at_dot$2(clock,d,q);
+module rtfpga_core$slots$0$lane$to_origin_at_dot$1$regs(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -93015,12 +93660,12 @@ module rtfpga_core$slots$0$lane$to_origin_at_dot$2(clock,d,q);
     reg  [15:0] tap;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$to_origin_at_dot$2$regs$0 regs$0(
+    rtfpga_core$slots$0$lane$to_origin_at_dot$1$regs$regs$0 regs$0(
         .d(regs$0$d),
         .q(regs$0$q),
         .clock(regs$0$clock)
     );
-    rtfpga_core$slots$0$lane$to_origin_at_dot$2$regs$1 regs$1(
+    rtfpga_core$slots$0$lane$to_origin_at_dot$1$regs$regs$1 regs$1(
         .d(regs$1$d),
         .q(regs$1$q),
         .clock(regs$1$clock)
@@ -93038,10 +93683,123 @@ module rtfpga_core$slots$0$lane$to_origin_at_dot$2(clock,d,q);
         q = tap;
     end
     
+endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$1$regs
+
+
+module rtfpga_core$slots$0$lane$to_origin_at_dot$1$regs$regs$0(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$1$regs$regs$0
+
+
+module rtfpga_core$slots$0$lane$to_origin_at_dot$1$regs$regs$1(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$1$regs$regs$1
+
+
+module rtfpga_core$slots$0$lane$to_origin_at_dot$2(clock,d,at,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    input wire  [5:0] at;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$to_origin_at_dot$2$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
+    );
+    
+    // Update code
+    always @(*) begin
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
+    end
+    
 endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$2
 
 
-module rtfpga_core$slots$0$lane$to_origin_at_dot$2$regs$0(d,q,clock);
+module rtfpga_core$slots$0$lane$to_origin_at_dot$2$regs(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  [15:0] regs$0$d;
+    wire  [15:0] regs$0$q;
+    reg  regs$0$clock;
+    reg  [15:0] regs$1$d;
+    wire  [15:0] regs$1$q;
+    reg  regs$1$clock;
+    
+    // Local signals
+    reg  [15:0] tap;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$to_origin_at_dot$2$regs$regs$0 regs$0(
+        .d(regs$0$d),
+        .q(regs$0$q),
+        .clock(regs$0$clock)
+    );
+    rtfpga_core$slots$0$lane$to_origin_at_dot$2$regs$regs$1 regs$1(
+        .d(regs$1$d),
+        .q(regs$1$q),
+        .clock(regs$1$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        tap = d;
+        regs$0$clock = clock;
+        regs$0$d = tap;
+        tap = regs$0$q;
+        regs$1$clock = clock;
+        regs$1$d = tap;
+        tap = regs$1$q;
+        q = tap;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$2$regs
+
+
+module rtfpga_core$slots$0$lane$to_origin_at_dot$2$regs$regs$0(d,q,clock);
     
     // Module arguments
     input wire  [15:0] d;
@@ -93057,10 +93815,10 @@ module rtfpga_core$slots$0$lane$to_origin_at_dot$2$regs$0(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$2$regs$0
+endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$2$regs$regs$0
 
 
-module rtfpga_core$slots$0$lane$to_origin_at_dot$2$regs$1(d,q,clock);
+module rtfpga_core$slots$0$lane$to_origin_at_dot$2$regs$regs$1(d,q,clock);
     
     // Module arguments
     input wire  [15:0] d;
@@ -93076,7 +93834,7 @@ module rtfpga_core$slots$0$lane$to_origin_at_dot$2$regs$1(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$2$regs$1
+endmodule // rtfpga_core$slots$0$lane$to_origin_at_dot$2$regs$regs$1
 
 
 module rtfpga_core$slots$0$lane$u_above_one(clock,a,b,y);
@@ -93297,7 +94055,37 @@ module rtfpga_core$slots$0$lane$u_above_one$unpack_b(x,sign,exp,sig,zero,inf,nan
 endmodule // rtfpga_core$slots$0$lane$u_above_one$unpack_b
 
 
-module rtfpga_core$slots$0$lane$u_at_out(clock,d,q);
+module rtfpga_core$slots$0$lane$u_at_out(clock,d,at,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [31:0] d;
+    input wire  [5:0] at;
+    output reg  [31:0] q;
+    
+    // Stub signals
+    reg  regs$clock;
+    reg  [31:0] regs$d;
+    wire  [31:0] regs$q;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$u_at_out$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
+    );
+    
+    // Update code
+    always @(*) begin
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$u_at_out
+
+
+module rtfpga_core$slots$0$lane$u_at_out$regs(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -93313,7 +94101,7 @@ module rtfpga_core$slots$0$lane$u_at_out(clock,d,q);
     reg  [31:0] tap;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$u_at_out$regs$0 regs$0(
+    rtfpga_core$slots$0$lane$u_at_out$regs$regs$0 regs$0(
         .d(regs$0$d),
         .q(regs$0$q),
         .clock(regs$0$clock)
@@ -93328,10 +94116,10 @@ module rtfpga_core$slots$0$lane$u_at_out(clock,d,q);
         q = tap;
     end
     
-endmodule // rtfpga_core$slots$0$lane$u_at_out
+endmodule // rtfpga_core$slots$0$lane$u_at_out$regs
 
 
-module rtfpga_core$slots$0$lane$u_at_out$regs$0(d,q,clock);
+module rtfpga_core$slots$0$lane$u_at_out$regs$regs$0(d,q,clock);
     
     // Module arguments
     input wire  [31:0] d;
@@ -93347,7 +94135,7 @@ module rtfpga_core$slots$0$lane$u_at_out$regs$0(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$u_at_out$regs$0
+endmodule // rtfpga_core$slots$0$lane$u_at_out$regs$regs$0
 
 
 module rtfpga_core$slots$0$lane$u_below_zero(clock,a,b,y);
@@ -93568,7 +94356,7 @@ module rtfpga_core$slots$0$lane$u_below_zero$unpack_b(x,sign,exp,sig,zero,inf,na
 endmodule // rtfpga_core$slots$0$lane$u_below_zero$unpack_b
 
 
-module rtfpga_core$slots$0$lane$u_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
+module rtfpga_core$slots$0$lane$u_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,third_at,y);
     
     // Module arguments
     input wire  clock;
@@ -93578,6 +94366,7 @@ module rtfpga_core$slots$0$lane$u_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
     input wire  [15:0] b$0;
     input wire  [15:0] b$1;
     input wire  [15:0] b$2;
+    input wire  [5:0] third_at;
     output reg  [15:0] y;
     
     // Stub signals
@@ -93599,6 +94388,7 @@ module rtfpga_core$slots$0$lane$u_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
     wire  [15:0] first_sum$y;
     reg  third_at_sum$clock;
     reg  [15:0] third_at_sum$d;
+    reg  [5:0] third_at_sum$at;
     wire  [15:0] third_at_sum$q;
     reg  sum$clock;
     reg  [15:0] sum$a;
@@ -93633,6 +94423,7 @@ module rtfpga_core$slots$0$lane$u_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
     rtfpga_core$slots$0$lane$u_num$third_at_sum third_at_sum(
         .clock(third_at_sum$clock),
         .d(third_at_sum$d),
+        .at(third_at_sum$at),
         .q(third_at_sum$q)
     );
     rtfpga_core$slots$0$lane$u_num$sum sum(
@@ -93655,6 +94446,7 @@ module rtfpga_core$slots$0$lane$u_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
         products$2$b = b$2;
         first_sum$clock = clock;
         third_at_sum$clock = clock;
+        third_at_sum$at = third_at;
         sum$clock = clock;
         first_sum$a = products$0$y;
         first_sum$b = products$1$y;
@@ -102447,60 +103239,37 @@ module rtfpga_core$slots$0$lane$u_num$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
 endmodule // rtfpga_core$slots$0$lane$u_num$sum$unpack_b
 
 
-module rtfpga_core$slots$0$lane$u_num$third_at_sum(clock,d,q);
+module rtfpga_core$slots$0$lane$u_num$third_at_sum(clock,d,at,q);
     
     // Module arguments
     input wire  clock;
     input wire  [15:0] d;
+    input wire  [5:0] at;
     output reg  [15:0] q;
     
     // Stub signals
-    reg  [15:0] regs$0$d;
-    wire  [15:0] regs$0$q;
-    reg  regs$0$clock;
-    
-    // Local signals
-    reg  [15:0] tap;
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$u_num$third_at_sum$regs$0 regs$0(
-        .d(regs$0$d),
-        .q(regs$0$q),
-        .clock(regs$0$clock)
+    rtfpga_core$slots$0$lane$u_num$third_at_sum$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
     );
     
     // Update code
     always @(*) begin
-        tap = d;
-        regs$0$clock = clock;
-        regs$0$d = tap;
-        tap = regs$0$q;
-        q = tap;
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$u_num$third_at_sum
 
 
-module rtfpga_core$slots$0$lane$u_num$third_at_sum$regs$0(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$u_num$third_at_sum$regs$0
-
-
-module rtfpga_core$slots$0$lane$u_num_at_scale(clock,d,q);
+module rtfpga_core$slots$0$lane$u_num$third_at_sum$regs(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -102516,7 +103285,7 @@ module rtfpga_core$slots$0$lane$u_num_at_scale(clock,d,q);
     reg  [15:0] tap;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$u_num_at_scale$regs$0 regs$0(
+    rtfpga_core$slots$0$lane$u_num$third_at_sum$regs$regs$0 regs$0(
         .d(regs$0$d),
         .q(regs$0$q),
         .clock(regs$0$clock)
@@ -102531,10 +103300,10 @@ module rtfpga_core$slots$0$lane$u_num_at_scale(clock,d,q);
         q = tap;
     end
     
-endmodule // rtfpga_core$slots$0$lane$u_num_at_scale
+endmodule // rtfpga_core$slots$0$lane$u_num$third_at_sum$regs
 
 
-module rtfpga_core$slots$0$lane$u_num_at_scale$regs$0(d,q,clock);
+module rtfpga_core$slots$0$lane$u_num$third_at_sum$regs$regs$0(d,q,clock);
     
     // Module arguments
     input wire  [15:0] d;
@@ -102550,7 +103319,90 @@ module rtfpga_core$slots$0$lane$u_num_at_scale$regs$0(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$u_num_at_scale$regs$0
+endmodule // rtfpga_core$slots$0$lane$u_num$third_at_sum$regs$regs$0
+
+
+module rtfpga_core$slots$0$lane$u_num_at_scale(clock,d,at,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    input wire  [5:0] at;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$u_num_at_scale$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
+    );
+    
+    // Update code
+    always @(*) begin
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$u_num_at_scale
+
+
+module rtfpga_core$slots$0$lane$u_num_at_scale$regs(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  [15:0] regs$0$d;
+    wire  [15:0] regs$0$q;
+    reg  regs$0$clock;
+    
+    // Local signals
+    reg  [15:0] tap;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$u_num_at_scale$regs$regs$0 regs$0(
+        .d(regs$0$d),
+        .q(regs$0$q),
+        .clock(regs$0$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        tap = d;
+        regs$0$clock = clock;
+        regs$0$d = tap;
+        tap = regs$0$q;
+        q = tap;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$u_num_at_scale$regs
+
+
+module rtfpga_core$slots$0$lane$u_num_at_scale$regs$regs$0(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$u_num_at_scale$regs$regs$0
 
 
 module rtfpga_core$slots$0$lane$u_out(clock,a,y);
@@ -106671,7 +107523,37 @@ module rtfpga_core$slots$0$lane$u_scale$unpack_b(x,sign,exp,sig,zero,inf,nan);
 endmodule // rtfpga_core$slots$0$lane$u_scale$unpack_b
 
 
-module rtfpga_core$slots$0$lane$v_at_out(clock,d,q);
+module rtfpga_core$slots$0$lane$v_at_out(clock,d,at,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [31:0] d;
+    input wire  [5:0] at;
+    output reg  [31:0] q;
+    
+    // Stub signals
+    reg  regs$clock;
+    reg  [31:0] regs$d;
+    wire  [31:0] regs$q;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$v_at_out$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
+    );
+    
+    // Update code
+    always @(*) begin
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$v_at_out
+
+
+module rtfpga_core$slots$0$lane$v_at_out$regs(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -106687,7 +107569,7 @@ module rtfpga_core$slots$0$lane$v_at_out(clock,d,q);
     reg  [31:0] tap;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$v_at_out$regs$0 regs$0(
+    rtfpga_core$slots$0$lane$v_at_out$regs$regs$0 regs$0(
         .d(regs$0$d),
         .q(regs$0$q),
         .clock(regs$0$clock)
@@ -106702,10 +107584,10 @@ module rtfpga_core$slots$0$lane$v_at_out(clock,d,q);
         q = tap;
     end
     
-endmodule // rtfpga_core$slots$0$lane$v_at_out
+endmodule // rtfpga_core$slots$0$lane$v_at_out$regs
 
 
-module rtfpga_core$slots$0$lane$v_at_out$regs$0(d,q,clock);
+module rtfpga_core$slots$0$lane$v_at_out$regs$regs$0(d,q,clock);
     
     // Module arguments
     input wire  [31:0] d;
@@ -106721,7 +107603,7 @@ module rtfpga_core$slots$0$lane$v_at_out$regs$0(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$v_at_out$regs$0
+endmodule // rtfpga_core$slots$0$lane$v_at_out$regs$regs$0
 
 
 module rtfpga_core$slots$0$lane$v_below_zero(clock,a,b,y);
@@ -106942,7 +107824,7 @@ module rtfpga_core$slots$0$lane$v_below_zero$unpack_b(x,sign,exp,sig,zero,inf,na
 endmodule // rtfpga_core$slots$0$lane$v_below_zero$unpack_b
 
 
-module rtfpga_core$slots$0$lane$v_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
+module rtfpga_core$slots$0$lane$v_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,third_at,y);
     
     // Module arguments
     input wire  clock;
@@ -106952,6 +107834,7 @@ module rtfpga_core$slots$0$lane$v_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
     input wire  [15:0] b$0;
     input wire  [15:0] b$1;
     input wire  [15:0] b$2;
+    input wire  [5:0] third_at;
     output reg  [15:0] y;
     
     // Stub signals
@@ -106973,6 +107856,7 @@ module rtfpga_core$slots$0$lane$v_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
     wire  [15:0] first_sum$y;
     reg  third_at_sum$clock;
     reg  [15:0] third_at_sum$d;
+    reg  [5:0] third_at_sum$at;
     wire  [15:0] third_at_sum$q;
     reg  sum$clock;
     reg  [15:0] sum$a;
@@ -107007,6 +107891,7 @@ module rtfpga_core$slots$0$lane$v_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
     rtfpga_core$slots$0$lane$v_num$third_at_sum third_at_sum(
         .clock(third_at_sum$clock),
         .d(third_at_sum$d),
+        .at(third_at_sum$at),
         .q(third_at_sum$q)
     );
     rtfpga_core$slots$0$lane$v_num$sum sum(
@@ -107029,6 +107914,7 @@ module rtfpga_core$slots$0$lane$v_num(clock,a$0,a$1,a$2,b$0,b$1,b$2,y);
         products$2$b = b$2;
         first_sum$clock = clock;
         third_at_sum$clock = clock;
+        third_at_sum$at = third_at;
         sum$clock = clock;
         first_sum$a = products$0$y;
         first_sum$b = products$1$y;
@@ -115821,60 +116707,37 @@ module rtfpga_core$slots$0$lane$v_num$sum$unpack_b(x,sign,exp,sig,zero,inf,nan);
 endmodule // rtfpga_core$slots$0$lane$v_num$sum$unpack_b
 
 
-module rtfpga_core$slots$0$lane$v_num$third_at_sum(clock,d,q);
+module rtfpga_core$slots$0$lane$v_num$third_at_sum(clock,d,at,q);
     
     // Module arguments
     input wire  clock;
     input wire  [15:0] d;
+    input wire  [5:0] at;
     output reg  [15:0] q;
     
     // Stub signals
-    reg  [15:0] regs$0$d;
-    wire  [15:0] regs$0$q;
-    reg  regs$0$clock;
-    
-    // Local signals
-    reg  [15:0] tap;
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$v_num$third_at_sum$regs$0 regs$0(
-        .d(regs$0$d),
-        .q(regs$0$q),
-        .clock(regs$0$clock)
+    rtfpga_core$slots$0$lane$v_num$third_at_sum$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
     );
     
     // Update code
     always @(*) begin
-        tap = d;
-        regs$0$clock = clock;
-        regs$0$d = tap;
-        tap = regs$0$q;
-        q = tap;
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
     end
     
 endmodule // rtfpga_core$slots$0$lane$v_num$third_at_sum
 
 
-module rtfpga_core$slots$0$lane$v_num$third_at_sum$regs$0(d,q,clock);
-    
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slots$0$lane$v_num$third_at_sum$regs$0
-
-
-module rtfpga_core$slots$0$lane$v_num_at_scale(clock,d,q);
+module rtfpga_core$slots$0$lane$v_num$third_at_sum$regs(clock,d,q);
     
     // Module arguments
     input wire  clock;
@@ -115890,7 +116753,7 @@ module rtfpga_core$slots$0$lane$v_num_at_scale(clock,d,q);
     reg  [15:0] tap;
     
     // Sub module instances
-    rtfpga_core$slots$0$lane$v_num_at_scale$regs$0 regs$0(
+    rtfpga_core$slots$0$lane$v_num$third_at_sum$regs$regs$0 regs$0(
         .d(regs$0$d),
         .q(regs$0$q),
         .clock(regs$0$clock)
@@ -115905,10 +116768,10 @@ module rtfpga_core$slots$0$lane$v_num_at_scale(clock,d,q);
         q = tap;
     end
     
-endmodule // rtfpga_core$slots$0$lane$v_num_at_scale
+endmodule // rtfpga_core$slots$0$lane$v_num$third_at_sum$regs
 
 
-module rtfpga_core$slots$0$lane$v_num_at_scale$regs$0(d,q,clock);
+module rtfpga_core$slots$0$lane$v_num$third_at_sum$regs$regs$0(d,q,clock);
     
     // Module arguments
     input wire  [15:0] d;
@@ -115924,7 +116787,90 @@ module rtfpga_core$slots$0$lane$v_num_at_scale$regs$0(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slots$0$lane$v_num_at_scale$regs$0
+endmodule // rtfpga_core$slots$0$lane$v_num$third_at_sum$regs$regs$0
+
+
+module rtfpga_core$slots$0$lane$v_num_at_scale(clock,d,at,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    input wire  [5:0] at;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  regs$clock;
+    reg  [15:0] regs$d;
+    wire  [15:0] regs$q;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$v_num_at_scale$regs regs(
+        .clock(regs$clock),
+        .d(regs$d),
+        .q(regs$q)
+    );
+    
+    // Update code
+    always @(*) begin
+        regs$clock = clock;
+        regs$d = d;
+        q = regs$q;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$v_num_at_scale
+
+
+module rtfpga_core$slots$0$lane$v_num_at_scale$regs(clock,d,q);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    
+    // Stub signals
+    reg  [15:0] regs$0$d;
+    wire  [15:0] regs$0$q;
+    reg  regs$0$clock;
+    
+    // Local signals
+    reg  [15:0] tap;
+    
+    // Sub module instances
+    rtfpga_core$slots$0$lane$v_num_at_scale$regs$regs$0 regs$0(
+        .d(regs$0$d),
+        .q(regs$0$q),
+        .clock(regs$0$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        tap = d;
+        regs$0$clock = clock;
+        regs$0$d = tap;
+        tap = regs$0$q;
+        q = tap;
+    end
+    
+endmodule // rtfpga_core$slots$0$lane$v_num_at_scale$regs
+
+
+module rtfpga_core$slots$0$lane$v_num_at_scale$regs$regs$0(d,q,clock);
+    
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slots$0$lane$v_num_at_scale$regs$regs$0
 
 
 module rtfpga_core$slots$0$lane$v_out(clock,a,y);

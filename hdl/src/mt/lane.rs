@@ -18,7 +18,7 @@ macro_rules! mt_lane {
             use super::{
                 max_stages, Add, FromF32, Lt, Mul, Recip, Sub, ToF32, FORMAT, NAME, RAW_FP32, WIDTH,
             };
-            use $crate::mt::delay::Delay;
+            use $crate::mt::delay::{Delay, Ring, RingPosition, WordDelay};
             use $crate::mt::schedule::{OpLatencies, Schedule};
 
             fn schedule(depth: usize) -> Schedule {
@@ -83,10 +83,12 @@ macro_rules! mt_lane {
                 pub clock: Signal<In, Clock>,
                 pub a: [Signal<In, Bits<WIDTH>>; 3],
                 pub b: [Signal<In, Bits<WIDTH>>; 3],
+                /// The position of the lane's ring for `third_at_sum`.
+                pub third_at: Signal<In, RingPosition>,
                 pub y: Signal<Out, Bits<WIDTH>>,
                 products: [Mul; 3],
                 first_sum: Add,
-                third_at_sum: Delay<Bits<WIDTH>>,
+                third_at_sum: WordDelay<Bits<WIDTH>>,
                 sum: Add,
             }
 
@@ -97,10 +99,11 @@ macro_rules! mt_lane {
                         clock: Default::default(),
                         a: Default::default(),
                         b: Default::default(),
+                        third_at: Default::default(),
                         y: Default::default(),
                         products: std::array::from_fn(|_| Mul::new(ops.mul)),
                         first_sum: Add::new(ops.add),
-                        third_at_sum: Delay::new(schedule.third_product()),
+                        third_at_sum: WordDelay::new(schedule.third_product()),
                         sum: Add::new(ops.add),
                     }
                 }
@@ -116,6 +119,7 @@ macro_rules! mt_lane {
                     }
                     self.first_sum.clock.next = self.clock.val();
                     self.third_at_sum.clock.next = self.clock.val();
+                    self.third_at_sum.at.next = self.third_at.val();
                     self.sum.clock.next = self.clock.val();
                     self.first_sum.a.next = self.products[0].y.val();
                     self.first_sum.b.next = self.products[1].y.val();
@@ -151,11 +155,17 @@ macro_rules! mt_lane {
                 edge1: [Sub; 3],
                 edge2: [Sub; 3],
                 to_origin: [Sub; 3],
-                dir_at_cross: [Delay<Bits<WIDTH>>; 3],
-                dir_at_dot: [Delay<Bits<WIDTH>>; 3],
-                edge1_at_dot: [Delay<Bits<WIDTH>>; 3],
-                edge2_at_dot: [Delay<Bits<WIDTH>>; 3],
-                to_origin_at_dot: [Delay<Bits<WIDTH>>; 3],
+                /// The ring positions of the block RAM delay lines, one counter per length.
+                dir_ring: Ring,
+                dot_ring: Ring,
+                third_ring: Ring,
+                numerator_ring: Ring,
+                result_ring: Ring,
+                dir_at_cross: [WordDelay<Bits<WIDTH>>; 3],
+                dir_at_dot: [WordDelay<Bits<WIDTH>>; 3],
+                edge1_at_dot: [WordDelay<Bits<WIDTH>>; 3],
+                edge2_at_dot: [WordDelay<Bits<WIDTH>>; 3],
+                to_origin_at_dot: [WordDelay<Bits<WIDTH>>; 3],
                 /// p = dir × e2, q = s × e1.
                 p: Cross,
                 q: Cross,
@@ -165,9 +175,9 @@ macro_rules! mt_lane {
                 v_num: Dot,
                 t_num: Dot,
                 inv_det: Recip,
-                u_num_at_scale: Delay<Bits<WIDTH>>,
-                v_num_at_scale: Delay<Bits<WIDTH>>,
-                t_num_at_scale: Delay<Bits<WIDTH>>,
+                u_num_at_scale: WordDelay<Bits<WIDTH>>,
+                v_num_at_scale: WordDelay<Bits<WIDTH>>,
+                t_num_at_scale: WordDelay<Bits<WIDTH>>,
                 u_scale: Mul,
                 v_scale: Mul,
                 t_scale: Mul,
@@ -186,9 +196,9 @@ macro_rules! mt_lane {
                 t_out: ToF32,
                 u_out: ToF32,
                 v_out: ToF32,
-                t_at_out: Delay<Bits<32>>,
-                u_at_out: Delay<Bits<32>>,
-                v_at_out: Delay<Bits<32>>,
+                t_at_out: WordDelay<Bits<32>>,
+                u_at_out: WordDelay<Bits<32>>,
+                v_at_out: WordDelay<Bits<32>>,
                 valid_at_out: Delay<Bit>,
                 eps: Constant<Bits<WIDTH>>,
                 neg_eps: Constant<Bits<WIDTH>>,
@@ -200,7 +210,7 @@ macro_rules! mt_lane {
                 pub fn new(depth: usize) -> Self {
                     let s = schedule(depth);
                     let ops = &s.ops;
-                    let delays = |cycles: usize| std::array::from_fn(|_| Delay::new(cycles));
+                    let delays = |cycles: usize| std::array::from_fn(|_| WordDelay::new(cycles));
                     let eps = FORMAT.from_f32(hw_model::mt::DET_EPSILON);
                     let constant = |bits: u64| Constant::new(bits.into());
                     Self {
@@ -219,6 +229,11 @@ macro_rules! mt_lane {
                         edge1: std::array::from_fn(|_| Sub::new(ops.sub)),
                         edge2: std::array::from_fn(|_| Sub::new(ops.sub)),
                         to_origin: std::array::from_fn(|_| Sub::new(ops.sub)),
+                        dir_ring: Ring::new(s.dir_to_cross()),
+                        dot_ring: Ring::new(s.edge_to_dot()),
+                        third_ring: Ring::new(s.third_product()),
+                        numerator_ring: Ring::new(s.numerator_to_scale()),
+                        result_ring: Ring::new(s.result_to_out()),
                         dir_at_cross: delays(s.dir_to_cross()),
                         dir_at_dot: delays(s.edge_to_dot()),
                         edge1_at_dot: delays(s.edge_to_dot()),
@@ -231,9 +246,9 @@ macro_rules! mt_lane {
                         v_num: Dot::new(&s),
                         t_num: Dot::new(&s),
                         inv_det: Recip::new(ops.recip),
-                        u_num_at_scale: Delay::new(s.numerator_to_scale()),
-                        v_num_at_scale: Delay::new(s.numerator_to_scale()),
-                        t_num_at_scale: Delay::new(s.numerator_to_scale()),
+                        u_num_at_scale: WordDelay::new(s.numerator_to_scale()),
+                        v_num_at_scale: WordDelay::new(s.numerator_to_scale()),
+                        t_num_at_scale: WordDelay::new(s.numerator_to_scale()),
                         u_scale: Mul::new(ops.mul),
                         v_scale: Mul::new(ops.mul),
                         t_scale: Mul::new(ops.mul),
@@ -251,9 +266,9 @@ macro_rules! mt_lane {
                         t_out: ToF32::new(ops.to_f32),
                         u_out: ToF32::new(ops.to_f32),
                         v_out: ToF32::new(ops.to_f32),
-                        t_at_out: Delay::new(s.result_to_out()),
-                        u_at_out: Delay::new(s.result_to_out()),
-                        v_at_out: Delay::new(s.result_to_out()),
+                        t_at_out: WordDelay::new(s.result_to_out()),
+                        u_at_out: WordDelay::new(s.result_to_out()),
+                        v_at_out: WordDelay::new(s.result_to_out()),
                         valid_at_out: Delay::new(s.latency),
                         eps: constant(eps),
                         neg_eps: constant(FORMAT.neg(eps)),
@@ -282,6 +297,11 @@ macro_rules! mt_lane {
                             self.loaded[i].next = bit_cast::<WIDTH, 32>(self.raw_word.val());
                         }
                     }
+                    self.dir_ring.clock.next = self.clock.val();
+                    self.dot_ring.clock.next = self.clock.val();
+                    self.third_ring.clock.next = self.clock.val();
+                    self.numerator_ring.clock.next = self.clock.val();
+                    self.result_ring.clock.next = self.clock.val();
                     for i in 0..3 {
                         self.edge1[i].clock.next = self.clock.val();
                         self.edge2[i].clock.next = self.clock.val();
@@ -291,6 +311,11 @@ macro_rules! mt_lane {
                         self.edge1_at_dot[i].clock.next = self.clock.val();
                         self.edge2_at_dot[i].clock.next = self.clock.val();
                         self.to_origin_at_dot[i].clock.next = self.clock.val();
+                        self.dir_at_cross[i].at.next = self.dir_ring.at.val();
+                        self.dir_at_dot[i].at.next = self.dot_ring.at.val();
+                        self.edge1_at_dot[i].at.next = self.dot_ring.at.val();
+                        self.edge2_at_dot[i].at.next = self.dot_ring.at.val();
+                        self.to_origin_at_dot[i].at.next = self.dot_ring.at.val();
                         // The loads of orig, dir, v0, v1, v2 component i.
                         self.to_origin[i].a.next = self.loaded[i].val();
                         self.dir_at_cross[i].d.next = self.loaded[3 + i].val();
@@ -324,12 +349,19 @@ macro_rules! mt_lane {
                     self.u_num.clock.next = self.clock.val();
                     self.v_num.clock.next = self.clock.val();
                     self.t_num.clock.next = self.clock.val();
+                    self.det.third_at.next = self.third_ring.at.val();
+                    self.u_num.third_at.next = self.third_ring.at.val();
+                    self.v_num.third_at.next = self.third_ring.at.val();
+                    self.t_num.third_at.next = self.third_ring.at.val();
                     // u, v, t = numerator · (1/det).
                     self.inv_det.clock.next = self.clock.val();
                     self.inv_det.a.next = self.det.y.val();
                     self.u_num_at_scale.clock.next = self.clock.val();
                     self.v_num_at_scale.clock.next = self.clock.val();
                     self.t_num_at_scale.clock.next = self.clock.val();
+                    self.u_num_at_scale.at.next = self.numerator_ring.at.val();
+                    self.v_num_at_scale.at.next = self.numerator_ring.at.val();
+                    self.t_num_at_scale.at.next = self.numerator_ring.at.val();
                     self.u_num_at_scale.d.next = self.u_num.y.val();
                     self.v_num_at_scale.d.next = self.v_num.y.val();
                     self.t_num_at_scale.d.next = self.t_num.y.val();
@@ -390,6 +422,9 @@ macro_rules! mt_lane {
                     self.t_at_out.clock.next = self.clock.val();
                     self.u_at_out.clock.next = self.clock.val();
                     self.v_at_out.clock.next = self.clock.val();
+                    self.t_at_out.at.next = self.result_ring.at.val();
+                    self.u_at_out.at.next = self.result_ring.at.val();
+                    self.v_at_out.at.next = self.result_ring.at.val();
                     self.t_at_out.d.next = self.t_out.y.val();
                     self.u_at_out.d.next = self.u_out.y.val();
                     self.v_at_out.d.next = self.v_out.y.val();
