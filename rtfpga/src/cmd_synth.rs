@@ -75,22 +75,34 @@ fn print(
     fit: Option<LaneFit>,
     json: bool,
 ) -> Result<()> {
+    // The design as synthesised, against the device: near the limit this, not the 1-/2-lane
+    // estimate (which carries two syntheses' noise), decides.
+    let usage = Usage::of(report);
+    let fits = XC7Z020.holds(usage);
     if json {
-        let v =
-            serde_json::json!({"design": label, "latency": latency, "report": report, "fit": fit});
+        let v = serde_json::json!({"design": label, "latency": latency, "report": report,
+            "usage": usage, "fits": fits, "fit": fit});
         println!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(());
     }
     println!("{}", SynthReport::markdown_header());
     println!("{}", report.markdown_row(label));
     println!("\nlatency: {latency} cycles");
+    let d = XC7Z020;
+    let pct = |used: u64, of: u64| 100.0 * used as f64 / of as f64;
+    println!(
+        "this design on an {}: {} ({} of {} LUT incl. SRL = {:.1} %, {} of {} FF, {} of {} DSP48E1, {} of {} RAMB18)",
+        d.name,
+        if fits { "fits" } else { "does not fit" },
+        usage.lut, d.lut, pct(usage.lut, d.lut), usage.ff, d.ff, usage.dsp48e1, d.dsp48e1, usage.bram18, d.bram18
+    );
     if let Some(f) = fit {
         println!(
             "per lane: {} LUT, {} FF, {} DSP48E1, {} RAMB18; fixed part: {} LUT, {} FF, {} DSP48E1, {} RAMB18",
             f.per_lane.lut, f.per_lane.ff, f.per_lane.dsp48e1, f.per_lane.bram18, f.fixed.lut, f.fixed.ff, f.fixed.dsp48e1, f.fixed.bram18
         );
         println!(
-            "lanes that fit an {}: {} (limited by {})",
+            "lanes that fit an {} (estimated from the 1- and 2-lane designs): {} (limited by {})",
             f.device, f.lanes, f.limit
         );
     }

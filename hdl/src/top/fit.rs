@@ -26,6 +26,16 @@ pub const XC7Z020: Device = Device {
     bram18: 280,
 };
 
+impl Device {
+    /// Whether `usage` fits: every resource within the device's.
+    pub fn holds(&self, usage: Usage) -> bool {
+        usage.lut <= self.lut
+            && usage.ff <= self.ff
+            && usage.dsp48e1 <= self.dsp48e1
+            && usage.bram18 <= self.bram18
+    }
+}
+
 /// What a design uses of the resources a [`Device`] lists.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct Usage {
@@ -130,6 +140,34 @@ pub fn synthesize_top(config: &TopConfig, options: &SynthOptions) -> Result<Synt
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_design_fits_when_every_resource_does() {
+        let full = Usage {
+            lut: XC7Z020.lut,
+            ff: XC7Z020.ff,
+            dsp48e1: XC7Z020.dsp48e1,
+            bram18: XC7Z020.bram18,
+        };
+        assert!(XC7Z020.holds(full));
+        assert!(XC7Z020.holds(Usage::default()));
+        assert!(!XC7Z020.holds(Usage {
+            lut: full.lut + 1,
+            ..full
+        }));
+        assert!(!XC7Z020.holds(Usage {
+            ff: full.ff + 1,
+            ..full
+        }));
+        assert!(!XC7Z020.holds(Usage {
+            dsp48e1: full.dsp48e1 + 1,
+            ..full
+        }));
+        assert!(!XC7Z020.holds(Usage {
+            bram18: full.bram18 + 1,
+            ..full
+        }));
+    }
 
     #[test]
     fn the_scarcest_resource_sets_the_lane_count() {
