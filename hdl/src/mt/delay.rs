@@ -12,7 +12,7 @@ use rust_hdl::prelude::*;
 /// The shortest line that goes into block RAM: a ring of at least two words, the RAM's read
 /// register and an output register.
 pub const RAM_MIN_CYCLES: usize = 4;
-/// The narrowest line that goes into block RAM (flags stay in SRLs).
+/// The narrowest word line that goes into block RAM (narrower ones stay in SRLs).
 pub const RAM_MIN_BITS: usize = 8;
 /// Width of a ring position: a block RAM line holds at most 2^RING_BITS words.
 pub const RING_BITS: usize = 6;
@@ -297,7 +297,7 @@ mod tests {
 
     #[test]
     fn word_lines_delay_by_the_requested_cycles() {
-        for cycles in [0, 1, 2, 3, 4, 5, 8, 33, 66, 67] {
+        for cycles in 0..=67 {
             word_lag(cycles, cycles);
         }
     }
