@@ -26,8 +26,15 @@ pub struct Args {
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32)> {
-    let (w, h) = s.split_once('x').with_context(|| format!("size `{s}`: expected WxH, e.g. 320x180"))?;
-    let (w, h): (u32, u32) = (w.parse().with_context(|| format!("size `{s}`: bad width"))?, h.parse().with_context(|| format!("size `{s}`: bad height"))?);
+    let (w, h) = s
+        .split_once('x')
+        .with_context(|| format!("size `{s}`: expected WxH, e.g. 320x180"))?;
+    let (w, h): (u32, u32) = (
+        w.parse()
+            .with_context(|| format!("size `{s}`: bad width"))?,
+        h.parse()
+            .with_context(|| format!("size `{s}`: bad height"))?,
+    );
     if w == 0 || h == 0 {
         bail!("size `{s}`: width and height must be positive");
     }
@@ -35,14 +42,31 @@ fn parse_size(s: &str) -> Result<(u32, u32)> {
 }
 
 pub fn run(a: Args) -> Result<()> {
-    let sizes = a.sizes.split(',').map(parse_size).collect::<Result<Vec<_>>>()?;
-    let scenes = a.scenes.iter().map(|s| Scene::load(s)).collect::<Result<Vec<_>, _>>()?;
+    let sizes = a
+        .sizes
+        .split(',')
+        .map(parse_size)
+        .collect::<Result<Vec<_>>>()?;
+    let scenes = a
+        .scenes
+        .iter()
+        .map(|s| Scene::load(s))
+        .collect::<Result<Vec<_>, _>>()?;
     let isect = engine::make(a.engine, &a.hw)?;
-    println!("engine: {}, threads: {}, best of {}", isect.name(), rayon::current_num_threads(), a.repeat.max(1));
+    println!(
+        "engine: {}, threads: {}, best of {}",
+        isect.name(),
+        rayon::current_num_threads(),
+        a.repeat.max(1)
+    );
     println!("\n| scene | triangles | size | time (s) | rays | Mrays/s | MT tests |\n|---|---|---|---|---|---|---|");
     for scene in &scenes {
         for &(w, h) in &sizes {
-            let opts = RenderOptions { width: Some(w), height: Some(h), ..Default::default() };
+            let opts = RenderOptions {
+                width: Some(w),
+                height: Some(h),
+                ..Default::default()
+            };
             let mut best = None::<sw_renderer::render::RenderStats>;
             for _ in 0..a.repeat.max(1) {
                 let stats = render(scene, isect.as_ref(), &opts)?.stats;

@@ -17,17 +17,27 @@ pub struct Args {
 }
 
 fn open(p: &PathBuf) -> Result<image::RgbImage> {
-    Ok(image::open(p).with_context(|| format!("reading {}", p.display()))?.to_rgb8())
+    Ok(image::open(p)
+        .with_context(|| format!("reading {}", p.display()))?
+        .to_rgb8())
 }
 
 pub fn run(a: Args) -> Result<()> {
     let (ia, ib) = (open(&a.a)?, open(&a.b)?);
     let stats = compare::compare(&ia, &ib)?;
     if let Some(d) = &a.diff {
-        save_png(&compare::diff_heatmap(&ia, &ib)?, d).with_context(|| format!("writing {}", d.display()))?;
+        save_png(&compare::diff_heatmap(&ia, &ib)?, d)
+            .with_context(|| format!("writing {}", d.display()))?;
     }
-    println!("differing_pixels={} max_abs_error={}", stats.differing_pixels, stats.max_abs_error);
-    let psnr = if stats.psnr_db.is_infinite() { "inf".to_string() } else { format!("{:.4}", stats.psnr_db) };
+    println!(
+        "differing_pixels={} max_abs_error={}",
+        stats.differing_pixels, stats.max_abs_error
+    );
+    let psnr = if stats.psnr_db.is_infinite() {
+        "inf".to_string()
+    } else {
+        format!("{:.4}", stats.psnr_db)
+    };
     println!("psnr_db={psnr}");
     Ok(())
 }

@@ -24,9 +24,20 @@ pub fn run(a: Args) -> Result<()> {
     for f in cat {
         let kind = match f.format {
             hw_model::Format::Float { exp, man } => format!("float E{exp} M{man}"),
-            hw_model::Format::Fixed { int, frac, quant, overflow } => format!("fixed <{},{}> {quant:?} {overflow:?}", int + frac, int),
+            hw_model::Format::Fixed {
+                int,
+                frac,
+                quant,
+                overflow,
+            } => format!("fixed <{},{}> {quant:?} {overflow:?}", int + frac, int),
         };
-        println!("| {} | {} | {} | {} |", f.name, kind, f.format.width(), f.description);
+        println!(
+            "| {} | {} | {} | {} |",
+            f.name,
+            kind,
+            f.format.width(),
+            f.description
+        );
     }
     Ok(())
 }

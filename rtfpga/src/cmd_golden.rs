@@ -14,6 +14,9 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<()> {
     sw_renderer::golden::write_all(&a.out)?;
-    println!("wrote golden images and manifest.toml to {}", a.out.display());
+    println!(
+        "wrote golden images and manifest.toml to {}",
+        a.out.display()
+    );
     Ok(())
 }

@@ -35,7 +35,12 @@ pub struct Args {
 pub fn run(a: Args) -> Result<()> {
     let scene = Scene::load(&a.scene)?;
     let isect = engine::make(a.engine, &a.hw)?;
-    let opts = RenderOptions { width: a.width, height: a.height, progress: !a.quiet, ..Default::default() };
+    let opts = RenderOptions {
+        width: a.width,
+        height: a.height,
+        progress: !a.quiet,
+        ..Default::default()
+    };
     let out = render(&scene, isect.as_ref(), &opts)?;
     save_png(&out.image, &a.out).with_context(|| format!("writing {}", a.out.display()))?;
     let s = &out.stats;

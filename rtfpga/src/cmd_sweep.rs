@@ -61,7 +61,11 @@ pub fn run(a: Args) -> Result<()> {
         );
         return Ok(());
     }
-    let opts = LocalRun { threads: a.jobs, progress: !a.quiet, program: program() };
+    let opts = LocalRun {
+        threads: a.jobs,
+        progress: !a.quiet,
+        program: program(),
+    };
     let results = sweep::run_local(&config, &a.out, &opts)?;
     summary(&results, &Layout::new(&a.out));
     Ok(())
@@ -88,9 +92,16 @@ fn summary(results: &Results, layout: &Layout) {
         layout.results("json").display(),
         layout.results("md").display()
     );
-    let hardware: Vec<_> =
-        results.quality.iter().filter(|q| !results.model_formats.contains(&q.format)).cloned().collect();
+    let hardware: Vec<_> = results
+        .quality
+        .iter()
+        .filter(|q| !results.model_formats.contains(&q.format))
+        .cloned()
+        .collect();
     if let Some(q) = sweep::table::smallest_format_above(&hardware, 40.0) {
-        println!("smallest format with PSNR >= 40 dB on every scene: {} ({} bits)", q.format, q.bits);
+        println!(
+            "smallest format with PSNR >= 40 dB on every scene: {} ({} bits)",
+            q.format, q.bits
+        );
     }
 }

@@ -75,18 +75,33 @@ pub fn run(a: Args) -> Result<()> {
 fn record(a: RecordArgs) -> Result<()> {
     let scene = Scene::load(&a.scene)?;
     let rec = Recorder::new(&F32Intersector);
-    let opts = RenderOptions { width: a.width, height: a.height, ..Default::default() };
+    let opts = RenderOptions {
+        width: a.width,
+        height: a.height,
+        ..Default::default()
+    };
     render(&scene, &rec, &opts)?;
     let queries = rec.into_queries();
     write_trace(&a.out, &queries)?;
-    println!("scene={} queries={} file={}", scene.name, queries.len(), a.out.display());
+    println!(
+        "scene={} queries={} file={}",
+        scene.name,
+        queries.len(),
+        a.out.display()
+    );
     Ok(())
 }
 
 /// Replays `queries` into `isect` with a progress bar; prints and returns the results.
 fn timed(isect: &dyn Intersector, queries: &[MtQuery], quiet: bool) -> Vec<MtResult> {
-    let bar = if quiet { ProgressBar::hidden() } else { ProgressBar::new(queries.len() as u64) };
-    if let Ok(style) = ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} queries {elapsed}/{eta}") {
+    let bar = if quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new(queries.len() as u64)
+    };
+    if let Ok(style) =
+        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} queries {elapsed}/{eta}")
+    {
         bar.set_style(style);
     }
     bar.set_message(isect.name());
@@ -105,7 +120,9 @@ fn timed(isect: &dyn Intersector, queries: &[MtQuery], quiet: bool) -> Vec<MtRes
 
 fn replay_trace(a: ReplayArgs) -> Result<()> {
     let queries = read_trace(&a.trace)?;
-    let model = ModelIntersector { format: hw_model::lookup(&a.hw.format)? };
+    let model = ModelIntersector {
+        format: hw_model::lookup(&a.hw.format)?,
+    };
     let want = (a.engine != ReplayEngine::Hw).then(|| timed(&model, &queries, a.quiet));
     if a.engine == ReplayEngine::Model {
         return Ok(());

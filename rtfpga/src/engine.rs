@@ -35,8 +35,13 @@ pub struct HwConfig {
 pub fn make(kind: EngineKind, hw: &HwConfig) -> Result<Box<dyn Intersector>> {
     Ok(match kind {
         EngineKind::F32 => Box::new(F32Intersector),
-        EngineKind::Model => Box::new(ModelIntersector { format: hw_model::lookup(&hw.format)? }),
-        EngineKind::Hw => Box::new(FailFast(HwIntersector::new(&hw.top_config(), Mode::Stream)?)),
+        EngineKind::Model => Box::new(ModelIntersector {
+            format: hw_model::lookup(&hw.format)?,
+        }),
+        EngineKind::Hw => Box::new(FailFast(HwIntersector::new(
+            &hw.top_config(),
+            Mode::Stream,
+        )?)),
     })
 }
 

@@ -2,7 +2,6 @@
 //! number formats, generate and measure the hardware. The CLI contract is in
 //! `docs/architecture.md`; each subcommand lives in its own module.
 
-mod engine;
 mod cmd_bench;
 mod cmd_compare;
 mod cmd_cosim;
@@ -10,15 +9,20 @@ mod cmd_formats;
 mod cmd_golden;
 mod cmd_project;
 mod cmd_render;
-mod cmd_synth;
 mod cmd_sweep;
-mod cmd_verilog;
+mod cmd_synth;
 mod cmd_trace;
+mod cmd_verilog;
+mod engine;
 
 use clap::{Parser, Subcommand};
 
 #[derive(Parser)]
-#[command(name = "rtfpga", version, about = "FPGA ray-triangle intersection accelerator toolkit")]
+#[command(
+    name = "rtfpga",
+    version,
+    about = "FPGA ray-triangle intersection accelerator toolkit"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

@@ -58,12 +58,20 @@ pub struct AxiLiteMaster {
 }
 
 fn protocol(accel: &Accel, message: String) -> CosimError {
-    CosimError::Protocol { bus: "AXI4-Lite", cycle: accel.cycles(), message }
+    CosimError::Protocol {
+        bus: "AXI4-Lite",
+        cycle: accel.cycles(),
+        message,
+    }
 }
 
 impl AxiLiteMaster {
     pub fn new(completion: Completion) -> Self {
-        AxiLiteMaster { completion, stats: BusStats::default(), interrupts_enabled: false }
+        AxiLiteMaster {
+            completion,
+            stats: BusStats::default(),
+            interrupts_enabled: false,
+        }
     }
 
     /// Runs cycles until `done` says so (checked after each cycle), within [`BUDGET`].
@@ -80,11 +88,19 @@ impl AxiLiteMaster {
                 return Ok(());
             }
         }
-        Err(CosimError::Timeout { what: what(), cycles: BUDGET })
+        Err(CosimError::Timeout {
+            what: what(),
+            cycles: BUDGET,
+        })
     }
 
     /// One write; returns the response code (`regmap::RESP_*`).
-    pub fn write_resp(&mut self, accel: &mut Accel, addr: usize, data: u32) -> Result<u32, CosimError> {
+    pub fn write_resp(
+        &mut self,
+        accel: &mut Accel,
+        addr: usize,
+        data: u32,
+    ) -> Result<u32, CosimError> {
         accel.set(In::AwAddr, addr as u32);
         accel.set(In::WData, data);
         accel.set(In::WStrb, 0xF);
@@ -147,7 +163,10 @@ impl AxiLiteMaster {
     pub fn write(&mut self, accel: &mut Accel, addr: usize, data: u32) -> Result<(), CosimError> {
         match self.write_resp(accel, addr, data)? {
             regmap::RESP_OKAY => Ok(()),
-            resp => Err(protocol(accel, format!("write to {addr:#04x} answered bresp {resp:#b}"))),
+            resp => Err(protocol(
+                accel,
+                format!("write to {addr:#04x} answered bresp {resp:#b}"),
+            )),
         }
     }
 
@@ -155,7 +174,10 @@ impl AxiLiteMaster {
     pub fn read(&mut self, accel: &mut Accel, addr: usize) -> Result<u32, CosimError> {
         match self.read_resp(accel, addr)? {
             (data, regmap::RESP_OKAY) => Ok(data),
-            (_, resp) => Err(protocol(accel, format!("read of {addr:#04x} answered rresp {resp:#b}"))),
+            (_, resp) => Err(protocol(
+                accel,
+                format!("read of {addr:#04x} answered rresp {resp:#b}"),
+            )),
         }
     }
 
@@ -175,12 +197,19 @@ impl AxiLiteMaster {
                 let start = accel.cycles();
                 while self.read(accel, regmap::CONTROL)? & regmap::AP_DONE == 0 {
                     if accel.cycles() - start > BUDGET {
-                        return Err(CosimError::Timeout { what: "polling ap_done".into(), cycles: BUDGET });
+                        return Err(CosimError::Timeout {
+                            what: "polling ap_done".into(),
+                            cycles: BUDGET,
+                        });
                     }
                 }
             }
             Completion::Interrupt => {
-                self.until(accel, || "waiting for the interrupt line".into(), |a| a.get(Out::Interrupt) == 1)?;
+                self.until(
+                    accel,
+                    || "waiting for the interrupt line".into(),
+                    |a| a.get(Out::Interrupt) == 1,
+                )?;
                 // Writing 1 toggles the ISR's done bit back to 0, which drops the line.
                 self.write(accel, regmap::ISR, regmap::INT_DONE)?;
             }

@@ -6,10 +6,10 @@ pub mod axil_master;
 pub mod cosim_error;
 pub mod error;
 pub mod hw_intersector;
+pub mod projection;
 pub mod stream_driver;
 pub mod sweep;
 pub mod trace;
-pub mod projection;
 pub mod verilator;
 
 pub use error::SimError;

@@ -54,12 +54,23 @@ fn load_beat(accel: &mut Accel, queries: &[MtQuery], beat: usize) {
 }
 
 /// Checks output beat `beat` as sampled now and stores its results.
-fn take_beat(accel: &Accel, beat: usize, beats: usize, results: &mut [MtResult]) -> Result<(), CosimError> {
+fn take_beat(
+    accel: &Accel,
+    beat: usize,
+    beats: usize,
+    results: &mut [MtResult],
+) -> Result<(), CosimError> {
     let lanes = accel.lanes();
-    let protocol = |message: String| CosimError::Protocol { bus: "AXI4-Stream", cycle: accel.cycles(), message };
+    let protocol = |message: String| CosimError::Protocol {
+        bus: "AXI4-Stream",
+        cycle: accel.cycles(),
+        message,
+    };
     let last = accel.get(Out::MTLast) == 1;
     if last != (beat + 1 == beats) {
-        return Err(protocol(format!("m_axis_tlast = {last} on output beat {beat} of {beats}")));
+        return Err(protocol(format!(
+            "m_axis_tlast = {last} on output beat {beat} of {beats}"
+        )));
     }
     for lane in 0..lanes {
         let index = beat * lanes + lane;
@@ -82,7 +93,9 @@ fn take_beat(accel: &Accel, beat: usize, beats: usize, results: &mut [MtResult])
                 };
             }
             None if valid => {
-                return Err(protocol(format!("output beat {beat} lane {lane} is valid but its input slot was empty")))
+                return Err(protocol(format!(
+                    "output beat {beat} lane {lane} is valid but its input slot was empty"
+                )))
             }
             None => {}
         }
@@ -140,12 +153,20 @@ pub fn stream_batch(
         }
         if accel.cycles() - last_progress > budget {
             return Err(CosimError::Timeout {
-                what: format!("stream batch of {} queries: {sent} of {beats} beats sent, {received} results", queries.len()),
+                what: format!(
+                    "stream batch of {} queries: {sent} of {beats} beats sent, {received} results",
+                    queries.len()
+                ),
                 cycles: budget,
             });
         }
     }
     accel.set(In::STValid, 0);
     accel.set(In::STLast, 0);
-    Ok(StreamStats { tests: queries.len() as u64, cycles: accel.cycles() - start, beats: beats as u64, input_stalls: stalls })
+    Ok(StreamStats {
+        tests: queries.len() as u64,
+        cycles: accel.cycles() - start,
+        beats: beats as u64,
+        input_stalls: stalls,
+    })
 }

@@ -17,7 +17,10 @@ pub const HEADER_BYTES: usize = 8 + 4 + 4 + 8;
 pub const RECORD_BYTES: usize = 15 * 4;
 
 fn trace_error(path: &Path, message: impl Into<String>) -> CosimError {
-    CosimError::Trace { path: path.to_path_buf(), message: message.into() }
+    CosimError::Trace {
+        path: path.to_path_buf(),
+        message: message.into(),
+    }
 }
 
 /// The 15 fields of a query in record order.
@@ -49,17 +52,41 @@ pub fn read_trace(path: &Path) -> Result<Vec<MtQuery>, CosimError> {
         .and_then(|mut f| f.read_to_end(&mut bytes))
         .map_err(|e| trace_error(path, format!("cannot read: {e}")))?;
     if bytes.len() < HEADER_BYTES {
-        return Err(trace_error(path, format!("{} bytes: shorter than the {HEADER_BYTES}-byte header", bytes.len())));
+        return Err(trace_error(
+            path,
+            format!(
+                "{} bytes: shorter than the {HEADER_BYTES}-byte header",
+                bytes.len()
+            ),
+        ));
     }
     if bytes[..8] != MAGIC {
-        return Err(trace_error(path, format!("bytes 0–7 are {:?}, expected the magic \"RTFTRACE\"", &bytes[..8])));
+        return Err(trace_error(
+            path,
+            format!(
+                "bytes 0–7 are {:?}, expected the magic \"RTFTRACE\"",
+                &bytes[..8]
+            ),
+        ));
     }
     let word = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().expect("4 bytes"));
     if word(8) != VERSION {
-        return Err(trace_error(path, format!("version {} at byte 8, this program reads version {VERSION}", word(8))));
+        return Err(trace_error(
+            path,
+            format!(
+                "version {} at byte 8, this program reads version {VERSION}",
+                word(8)
+            ),
+        ));
     }
     if word(12) != 0 {
-        return Err(trace_error(path, format!("flags {:#x} at byte 12: no flags are defined, expected 0", word(12))));
+        return Err(trace_error(
+            path,
+            format!(
+                "flags {:#x} at byte 12: no flags are defined, expected 0",
+                word(12)
+            ),
+        ));
     }
     let count = u64::from_le_bytes(bytes[16..24].try_into().expect("8 bytes"));
     let body = bytes.len() - HEADER_BYTES;
@@ -74,7 +101,13 @@ pub fn read_trace(path: &Path) -> Result<Vec<MtQuery>, CosimError> {
         .map(|r| {
             let f = |k: usize| f32::from_le_bytes(r[4 * k..4 * k + 4].try_into().expect("4 bytes"));
             let v = |k: usize| [f(3 * k), f(3 * k + 1), f(3 * k + 2)];
-            MtQuery { orig: v(0), dir: v(1), v0: v(2), v1: v(3), v2: v(4) }
+            MtQuery {
+                orig: v(0),
+                dir: v(1),
+                v0: v(2),
+                v1: v(3),
+                v2: v(4),
+            }
         })
         .collect())
 }
@@ -87,12 +120,17 @@ pub struct Recorder<'a> {
 
 impl<'a> Recorder<'a> {
     pub fn new(inner: &'a dyn Intersector) -> Self {
-        Recorder { inner, queries: Mutex::new(Vec::new()) }
+        Recorder {
+            inner,
+            queries: Mutex::new(Vec::new()),
+        }
     }
 
     /// The queries recorded so far (batches in the order they arrived).
     pub fn into_queries(self) -> Vec<MtQuery> {
-        self.queries.into_inner().unwrap_or_else(|poisoned| poisoned.into_inner())
+        self.queries
+            .into_inner()
+            .unwrap_or_else(|poisoned| poisoned.into_inner())
     }
 }
 
@@ -102,7 +140,10 @@ impl Intersector for Recorder<'_> {
     }
 
     fn intersect_batch(&self, queries: &[MtQuery], results: &mut [MtResult]) {
-        self.queries.lock().unwrap_or_else(|poisoned| poisoned.into_inner()).extend_from_slice(queries);
+        self.queries
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner())
+            .extend_from_slice(queries);
         self.inner.intersect_batch(queries, results);
     }
 }
@@ -112,12 +153,19 @@ pub const REPLAY_BATCH: usize = 4096;
 
 /// Answers `queries` with `isect` in batches of [`REPLAY_BATCH`], on rayon's threads;
 /// `progress` is called with the number of queries of each finished batch.
-pub fn replay(isect: &dyn Intersector, queries: &[MtQuery], progress: &(dyn Fn(usize) + Sync)) -> Vec<MtResult> {
+pub fn replay(
+    isect: &dyn Intersector,
+    queries: &[MtQuery],
+    progress: &(dyn Fn(usize) + Sync),
+) -> Vec<MtResult> {
     let mut results = vec![MtResult::default(); queries.len()];
-    queries.par_chunks(REPLAY_BATCH).zip(results.par_chunks_mut(REPLAY_BATCH)).for_each(|(q, r)| {
-        isect.intersect_batch(q, r);
-        progress(q.len());
-    });
+    queries
+        .par_chunks(REPLAY_BATCH)
+        .zip(results.par_chunks_mut(REPLAY_BATCH))
+        .for_each(|(q, r)| {
+            isect.intersect_batch(q, r);
+            progress(q.len());
+        });
     results
 }
 
@@ -134,14 +182,22 @@ pub struct Difference {
 
 impl std::fmt::Display for Difference {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "query {}: {} = {} vs {}", self.index, self.field, self.a, self.b)
+        write!(
+            f,
+            "query {}: {} = {} vs {}",
+            self.index, self.field, self.a, self.b
+        )
     }
 }
 
 /// The first query whose results differ in any bit, and the first differing field.
 pub fn first_difference(a: &[MtResult], b: &[MtResult]) -> Option<Difference> {
     assert_eq!(a.len(), b.len(), "result lists of one trace");
-    let (index, (x, y)) = a.iter().zip(b).enumerate().find(|(_, (x, y))| !x.same_bits(y))?;
+    let (index, (x, y)) = a
+        .iter()
+        .zip(b)
+        .enumerate()
+        .find(|(_, (x, y))| !x.same_bits(y))?;
     let float = |v: f32| format!("{v:e} ({:#010x})", v.to_bits());
     let (field, a, b) = if x.hit != y.hit {
         ("hit", x.hit.to_string(), y.hit.to_string())
@@ -161,7 +217,13 @@ mod tests {
     use sw_renderer::intersect::F32Intersector;
 
     fn query(k: f32) -> MtQuery {
-        MtQuery { orig: [k, 1.0, 2.0], dir: [0.0, -0.0, f32::NAN], v0: [3.0; 3], v1: [k; 3], v2: [f32::INFINITY, 1e-40, -k] }
+        MtQuery {
+            orig: [k, 1.0, 2.0],
+            dir: [0.0, -0.0, f32::NAN],
+            v0: [3.0; 3],
+            v1: [k; 3],
+            v2: [f32::INFINITY, 1e-40, -k],
+        }
     }
 
     #[test]
@@ -170,10 +232,16 @@ mod tests {
         let path = dir.path().join("t.trace");
         let queries: Vec<MtQuery> = (0..100).map(|k| query(k as f32 * 0.37)).collect();
         write_trace(&path, &queries).unwrap();
-        assert_eq!(std::fs::metadata(&path).unwrap().len() as usize, HEADER_BYTES + 100 * RECORD_BYTES);
+        assert_eq!(
+            std::fs::metadata(&path).unwrap().len() as usize,
+            HEADER_BYTES + 100 * RECORD_BYTES
+        );
         let back = read_trace(&path).unwrap();
         let bits = |q: &MtQuery| fields(q).map(f32::to_bits).collect::<Vec<_>>();
-        assert_eq!(back.iter().map(bits).collect::<Vec<_>>(), queries.iter().map(bits).collect::<Vec<_>>());
+        assert_eq!(
+            back.iter().map(bits).collect::<Vec<_>>(),
+            queries.iter().map(bits).collect::<Vec<_>>()
+        );
     }
 
     #[test]
@@ -198,7 +266,9 @@ mod tests {
         let mut bad = good;
         bad[12] = 1;
         check(&bad, "flags");
-        let e = read_trace(&dir.path().join("missing")).unwrap_err().to_string();
+        let e = read_trace(&dir.path().join("missing"))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("cannot read"), "{e}");
     }
 
@@ -216,14 +286,26 @@ mod tests {
 
     #[test]
     fn first_difference_names_the_query_and_field() {
-        let a = vec![MtResult { hit: true, t: 1.0, u: 0.5, v: 0.25 }; 5];
+        let a = vec![
+            MtResult {
+                hit: true,
+                t: 1.0,
+                u: 0.5,
+                v: 0.25
+            };
+            5
+        ];
         let mut b = a.clone();
         assert_eq!(first_difference(&a, &b), None);
         b[3].u = 0.5000001;
         b[4].hit = false;
         let d = first_difference(&a, &b).unwrap();
         assert_eq!((d.index, d.field), (3, "u"));
-        assert!(d.to_string().starts_with("query 3: u = 5e-1 (0x3f000000) vs"), "{d}");
+        assert!(
+            d.to_string()
+                .starts_with("query 3: u = 5e-1 (0x3f000000) vs"),
+            "{d}"
+        );
         b[3].u = 0.5;
         assert_eq!(first_difference(&a, &b).unwrap().field, "hit");
     }

@@ -16,10 +16,18 @@ use sw_renderer::scene::Scene;
 /// The queries of two built-in scenes rendered at 40×22, through a trace file.
 fn recorded_queries() -> Vec<MtQuery> {
     let rec = Recorder::new(&F32Intersector);
-    let opts = RenderOptions { width: Some(40), height: Some(22), ..RenderOptions::default() };
+    let opts = RenderOptions {
+        width: Some(40),
+        height: Some(22),
+        ..RenderOptions::default()
+    };
     let mut expected = 0;
     for name in ["simple_plane", "glasses"] {
-        expected += render(&Scene::load(name).unwrap(), &rec, &opts).unwrap().stats.trace.mt_queries;
+        expected += render(&Scene::load(name).unwrap(), &rec, &opts)
+            .unwrap()
+            .stats
+            .trace
+            .mt_queries;
     }
     let queries = rec.into_queries();
     assert_eq!(queries.len() as u64, expected);
@@ -30,7 +38,9 @@ fn recorded_queries() -> Vec<MtQuery> {
 }
 
 fn check(format: &str, configs: [(usize, usize); 2], queries: &[MtQuery]) {
-    let model = ModelIntersector { format: hw_model::lookup(format).unwrap() };
+    let model = ModelIntersector {
+        format: hw_model::lookup(format).unwrap(),
+    };
     let want = replay(&model, queries, &|_| {});
     for (depth, lanes) in configs {
         let hw = HwIntersector::new(&TopConfig::new(format, depth, lanes), Mode::Stream).unwrap();
@@ -42,9 +52,16 @@ fn check(format: &str, configs: [(usize, usize); 2], queries: &[MtQuery]) {
         if let Some(d) = first_difference(&got, &want) {
             panic!("{format} d{depth} l{lanes}: hardware vs model differ at {d}");
         }
-        println!("{format} d{depth} l{lanes}: {} queries identical, {:.0} tests/s per core", queries.len(), hw.stats().tests_per_sec());
+        println!(
+            "{format} d{depth} l{lanes}: {} queries identical, {:.0} tests/s per core",
+            queries.len(),
+            hw.stats().tests_per_sec()
+        );
     }
-    assert!(want.iter().filter(|r| r.hit).count() > queries.len() / 50, "too few hits to mean anything");
+    assert!(
+        want.iter().filter(|r| r.hit).count() > queries.len() / 50,
+        "too few hits to mean anything"
+    );
 }
 
 #[test]

@@ -25,12 +25,18 @@ fn thesis_scene_dirs() -> Option<Vec<PathBuf>> {
 #[test]
 fn fp32_hardware_renders_equal_the_software_renders() {
     let Some(dirs) = thesis_scene_dirs() else {
-        eprintln!("NOTICE: ../shared/scenes/thesis is absent; the thesis scene co-simulation is skipped");
+        eprintln!(
+            "NOTICE: ../shared/scenes/thesis is absent; the thesis scene co-simulation is skipped"
+        );
         return;
     };
     assert_eq!(dirs.len(), 7, "{dirs:?}");
     let hw = HwIntersector::new(&TopConfig::new("fp32", 1, 1), Mode::Stream).unwrap();
-    let opts = RenderOptions { width: Some(48), height: Some(27), ..RenderOptions::default() };
+    let opts = RenderOptions {
+        width: Some(48),
+        height: Some(27),
+        ..RenderOptions::default()
+    };
     for dir in &dirs {
         let scene = Scene::load(dir.to_str().unwrap()).unwrap();
         let before = hw.stats().tests;
@@ -40,7 +46,12 @@ fn fp32_hardware_renders_equal_the_software_renders() {
         let diff = compare(&hw_image, &sw.image).unwrap();
         assert_eq!(diff.differing_pixels, 0, "{}: {diff:?}", dir.display());
         assert!(diff.psnr_db.is_infinite());
-        assert_eq!(hw.stats().tests - before, sw.stats.trace.mt_queries, "{}", dir.display());
+        assert_eq!(
+            hw.stats().tests - before,
+            sw.stats.trace.mt_queries,
+            "{}",
+            dir.display()
+        );
     }
     let s = hw.stats();
     println!(

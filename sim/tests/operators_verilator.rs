@@ -165,7 +165,9 @@ fn fp32_mul_and_fp16_add_match_the_model() {
         check::<fp16::Add>("fp16 add", s, &vectors(f, 50_000, 2), |a, b| f.add(a, b));
         let f = fx32_16_rnd_sat::FORMAT;
         let s = stages.min(fx32_16_rnd_sat::Mul::max_stages());
-        check::<fx32_16_rnd_sat::Mul>("fx32_16_rnd_sat mul", s, &vectors(f, 50_000, 3), |a, b| f.mul(a, b));
+        check::<fx32_16_rnd_sat::Mul>("fx32_16_rnd_sat mul", s, &vectors(f, 50_000, 3), |a, b| {
+            f.mul(a, b)
+        });
     }
 }
 
@@ -177,13 +179,20 @@ fn fp32_mul_and_fp16_add_match_the_model() {
 fn recip_of_every_fraction_matches_the_model() {
     let f = fp24::FORMAT;
     let every: Vec<[u64; 2]> = (0..1u64 << 24).map(|a| [a, 0]).collect();
-    check::<fp24::Recip>("fp24 recip", fp24::Recip::max_stages(), &every, |a, _| f.recip(a));
+    check::<fp24::Recip>("fp24 recip", fp24::Recip::max_stages(), &every, |a, _| {
+        f.recip(a)
+    });
     let f = fp32::FORMAT;
     let fractions: Vec<[u64; 2]> = [127u64, 1, 253, 0x1fe]
         .iter()
         .flat_map(|&e| (0..1u64 << 23).map(move |m| [(e << 23) | m, 0]))
         .collect();
-    check::<fp32::Recip>("fp32 recip", fp32::Recip::max_stages(), &fractions, |a, _| f.recip(a));
+    check::<fp32::Recip>(
+        "fp32 recip",
+        fp32::Recip::max_stages(),
+        &fractions,
+        |a, _| f.recip(a),
+    );
 }
 
 /// The subtractor's leading-zero anticipation and its one-place correction on every pair of
@@ -218,7 +227,11 @@ fn add_and_sub_with_every_fp16_subnormal_match_the_model() {
         .collect();
     let others: Vec<u64> = [0u64, 1, 2, 30, 31]
         .iter()
-        .flat_map(|&exp| (0..1u64 << 10).step_by(4).map(move |frac| (exp << 10) | frac))
+        .flat_map(|&exp| {
+            (0..1u64 << 10)
+                .step_by(4)
+                .map(move |frac| (exp << 10) | frac)
+        })
         .flat_map(|x| [x, x | 1 << 15])
         .collect();
     let pairs: Vec<[u64; 2]> = subnormals

@@ -24,7 +24,11 @@ fn config_file(dir: &Path, name: &str, text: &str) -> PathBuf {
 }
 
 fn local(threads: usize) -> LocalRun {
-    LocalRun { threads, progress: false, program: "rtfpga".into() }
+    LocalRun {
+        threads,
+        progress: false,
+        program: "rtfpga".into(),
+    }
 }
 
 const TINY: &str = r#"
@@ -40,7 +44,10 @@ stages = ["quality", "projection"]
 #[test]
 fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
     let dir = tempfile::tempdir().unwrap();
-    let text = format!("{TINY}\n[projection]\nthesis_scenes = {:?}\n", thesis_scenes().display().to_string());
+    let text = format!(
+        "{TINY}\n[projection]\nthesis_scenes = {:?}\n",
+        thesis_scenes().display().to_string()
+    );
     let path = config_file(dir.path(), "tiny.toml", &text);
     let config = sweep::load(&path).unwrap();
     assert_eq!(config.points.len(), 4);
@@ -48,7 +55,14 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
     let results = sweep::run_local(&config, &out, &local(2)).unwrap();
     let layout = Layout::new(&out);
 
-    for file in ["manifest.json", "jobs.txt", "sweep.json", "results.csv", "results.json", "results.md"] {
+    for file in [
+        "manifest.json",
+        "jobs.txt",
+        "sweep.json",
+        "results.csv",
+        "results.json",
+        "results.md",
+    ] {
         assert!(out.join(file).is_file(), "{file} missing");
     }
     for ext in ["png", "svg"] {
@@ -57,20 +71,28 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
     for format in ["fp32", "fx16_10"] {
         let grid = image::open(layout.grid(format)).unwrap();
         // Two scenes stacked, render and heat-map side by side (4-pixel gaps).
-        assert_eq!((grid.width(), grid.height()), (2 * 48 + 3 * 4, 2 * 27 + 3 * 4));
+        assert_eq!(
+            (grid.width(), grid.height()),
+            (2 * 48 + 3 * 4, 2 * 27 + 3 * 4)
+        );
     }
 
     // The manifest: prepare, one quality job per format, one job per point, merge.
     let jobs = std::fs::read_to_string(layout.jobs_txt()).unwrap();
     assert_eq!(jobs.lines().count(), 2 + 4);
-    assert!(jobs.lines().all(|l| l.starts_with("rtfpga sweep-job --config ") && l.contains(" --job ")));
+    assert!(jobs
+        .lines()
+        .all(|l| l.starts_with("rtfpga sweep-job --config ") && l.contains(" --job ")));
 
     // fp32 is the reference's arithmetic: identical; the 16-bit fixed format is not.
     let q = |f: &str| results.quality.iter().find(|q| q.format == f).unwrap();
     assert_eq!(q("fp32").min_psnr_db(), f64::INFINITY);
     assert!(q("fp32").scenes.iter().all(|s| s.differing_pixels == 0));
     let coarse = q("fx16_10").min_psnr_db();
-    assert!(coarse.is_finite() && coarse < 40.0, "fx16_10 min PSNR {coarse}");
+    assert!(
+        coarse.is_finite() && coarse < 40.0,
+        "fx16_10 min PSNR {coarse}"
+    );
     assert!(q("fx16_10").max_differing_share() > 0.0);
 
     // Rows: quality comes from the format, cycles per test from the lanes, and the frame
@@ -82,9 +104,16 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
         assert_eq!(r.cycles_per_test, 1.0 / r.lanes as f64);
         assert_eq!(r.latency, hdl::mt::latency(&r.format, r.depth).unwrap());
         let frame = r.projected_frame_s.unwrap();
-        assert!(frame > 0.0 && frame < arm, "{}: frame {frame} s, ARM {arm} s", r.id);
+        assert!(
+            frame > 0.0 && frame < arm,
+            "{}: frame {frame} s, ARM {arm} s",
+            r.id
+        );
         assert!((r.speedup_vs_arm.unwrap() - arm / frame).abs() < 1e-9);
-        assert!(r.lut.is_none() && r.resources.is_none(), "synthesis was not configured");
+        assert!(
+            r.lut.is_none() && r.resources.is_none(),
+            "synthesis was not configured"
+        );
     }
 
     // The files say the same as the returned results.
@@ -92,16 +121,26 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
     assert_eq!(json.rows.len(), results.rows.len());
     for (a, b) in json.rows.iter().zip(&results.rows) {
         // serde_json may round the last bit of a float.
-        let close = |x: Option<f64>, y: Option<f64>| (x.unwrap() - y.unwrap()).abs() <= 1e-12 * y.unwrap();
+        let close =
+            |x: Option<f64>, y: Option<f64>| (x.unwrap() - y.unwrap()).abs() <= 1e-12 * y.unwrap();
         assert!(a.id == b.id && a.min_psnr_db == b.min_psnr_db && a.lanes == b.lanes);
-        assert!(close(a.projected_frame_s, b.projected_frame_s) && close(a.speedup_vs_arm, b.speedup_vs_arm));
+        assert!(
+            close(a.projected_frame_s, b.projected_frame_s)
+                && close(a.speedup_vs_arm, b.speedup_vs_arm)
+        );
     }
     let csv = std::fs::read_to_string(layout.results("csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 4);
-    assert!(csv.lines().any(|l| l.starts_with("fp32_d1_l1,fp32,32,1,1,") && l.contains(",inf,")));
+    assert!(csv
+        .lines()
+        .any(|l| l.starts_with("fp32_d1_l1,fp32,32,1,1,") && l.contains(",inf,")));
     let md = std::fs::read_to_string(layout.results("md")).unwrap();
     for r in &results.rows {
-        assert!(md.contains(&format!("| {} |", r.id)), "{} not in results.md", r.id);
+        assert!(
+            md.contains(&format!("| {} |", r.id)),
+            "{} not in results.md",
+            r.id
+        );
     }
     assert!(md.contains("Smallest hardware format with PSNR ≥ 40 dB on every scene: **fp32**"));
 
@@ -111,10 +150,21 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
     sweep::run_job(&config, &layout, &job).unwrap();
     let again: QualityResult = read_json(&layout.quality_result("fx16_10")).unwrap();
     assert_eq!(
-        before.scenes.iter().map(|s| (s.psnr_db, s.differing_pixels)).collect::<Vec<_>>(),
-        again.scenes.iter().map(|s| (s.psnr_db, s.differing_pixels)).collect::<Vec<_>>()
+        before
+            .scenes
+            .iter()
+            .map(|s| (s.psnr_db, s.differing_pixels))
+            .collect::<Vec<_>>(),
+        again
+            .scenes
+            .iter()
+            .map(|s| (s.psnr_db, s.differing_pixels))
+            .collect::<Vec<_>>()
     );
-    assert!(Job::parse("quality/fp16", &config).is_err(), "fp16 is not in this sweep");
+    assert!(
+        Job::parse("quality/fp16", &config).is_err(),
+        "fp16 is not in this sweep"
+    );
     assert!(Job::parse("point/fp32_d9_l1", &config).is_err());
 
     // The merge refuses to run with a result missing, naming it.
@@ -132,10 +182,16 @@ fn bad_path() -> PathBuf {
 /// The error of `text` (a tiny config with one change).
 #[test]
 fn synthesis_selection_is_the_product_of_its_subsets_plus_the_listed_points() {
-    let text = format!("{TINY}stages = [\"synth\"]\n[synth]\nlanes = [1]\npoints = [\"fp32_d1_l2\"]\n")
-        .replace("stages = [\"quality\", \"projection\"]\n", "");
+    let text =
+        format!("{TINY}stages = [\"synth\"]\n[synth]\nlanes = [1]\npoints = [\"fp32_d1_l2\"]\n")
+            .replace("stages = [\"quality\", \"projection\"]\n", "");
     let config = sweep::parse(&text, &bad_path()).unwrap();
-    let chosen: Vec<String> = config.points.iter().filter(|p| config.synthesises(p)).map(|p| p.id()).collect();
+    let chosen: Vec<String> = config
+        .points
+        .iter()
+        .filter(|p| config.synthesises(p))
+        .map(|p| p.id())
+        .collect();
     assert_eq!(chosen, ["fp32_d1_l1", "fp32_d1_l2", "fx16_10_d1_l1"]);
 }
 
@@ -146,7 +202,13 @@ fn rejection(text: &str) -> ConfigError {
 fn with(key_line: &str) -> String {
     let key = key_line.split('=').next().unwrap().trim();
     TINY.lines()
-        .map(|l| if l.split('=').next().unwrap().trim() == key { key_line } else { l })
+        .map(|l| {
+            if l.split('=').next().unwrap().trim() == key {
+                key_line
+            } else {
+                l
+            }
+        })
         .collect::<Vec<_>>()
         .join("\n")
 }
@@ -157,9 +219,19 @@ fn bad_configurations_are_rejected_with_file_line_and_key() {
     sweep::parse(TINY, &bad_path()).unwrap();
 
     let e = rejection(&with(r#"formats = ["fp32", "fp33"]"#));
-    assert_eq!((e.file.as_str(), e.line, e.key.as_str()), (bad_path().to_str().unwrap(), 2, "formats"));
-    assert!(e.message.contains("unknown format `fp33`") && e.message.contains("fp16"), "{e}");
-    assert!(e.to_string().ends_with(&format!("bad.toml:2: `formats`: {}", e.message)), "{e}");
+    assert_eq!(
+        (e.file.as_str(), e.line, e.key.as_str()),
+        (bad_path().to_str().unwrap(), 2, "formats")
+    );
+    assert!(
+        e.message.contains("unknown format `fp33`") && e.message.contains("fp16"),
+        "{e}"
+    );
+    assert!(
+        e.to_string()
+            .ends_with(&format!("bad.toml:2: `formats`: {}", e.message)),
+        "{e}"
+    );
 
     let e = rejection(&with("lanes = [1, 0]"));
     assert_eq!((e.line, e.key.as_str()), (4, "lanes"));
@@ -170,16 +242,24 @@ fn bad_configurations_are_rejected_with_file_line_and_key() {
 
     // A format's operators have registers for depth 0..=max only: a depth beyond both formats'
     // maxima is refused for the first of them, fp32.
-    let max = hdl::mt::max_depth("fp32").unwrap().max(hdl::mt::max_depth("fx16_10").unwrap());
+    let max = hdl::mt::max_depth("fp32")
+        .unwrap()
+        .max(hdl::mt::max_depth("fx16_10").unwrap());
     let e = rejection(&with(&format!("depths = [1, {}]", max + 1)));
     assert_eq!((e.line, e.key.as_str()), (3, "depths"));
-    assert!(e.message.contains("impossible depth") && e.message.contains("format fp32"), "{e}");
+    assert!(
+        e.message.contains("impossible depth") && e.message.contains("format fp32"),
+        "{e}"
+    );
     let e = rejection(&with(r#"depths = ["deep"]"#));
     assert!(e.message.contains("\"max\""), "{e}");
 
     let e = rejection(&with(r#"scenes = ["simple_plane", "no_such_scene"]"#));
     assert_eq!((e.line, e.key.as_str()), (5, "scenes"));
-    assert!(e.message.contains("no_such_scene") && e.message.contains("glass_pen"), "{e}");
+    assert!(
+        e.message.contains("no_such_scene") && e.message.contains("glass_pen"),
+        "{e}"
+    );
 
     for empty in ["formats = []", "depths = []", "lanes = []", "scenes = []"] {
         let e = rejection(&with(empty));
@@ -190,23 +270,39 @@ fn bad_configurations_are_rejected_with_file_line_and_key() {
     let e = rejection(&with("width = 0"));
     assert_eq!(e.key, "width");
     let e = rejection(&with(r#"stages = ["quality", "render"]"#));
-    assert!(e.key == "stages" && e.message.contains("unknown stage `render`"), "{e}");
+    assert!(
+        e.key == "stages" && e.message.contains("unknown stage `render`"),
+        "{e}"
+    );
     let e = rejection(&format!("{TINY}\n[cosim]\npoints = [\"fp16_d1_l1\"]\n"));
     assert_eq!((e.line, e.key.as_str()), (11, "cosim.points"));
-    assert!(e.message.contains("fp32_d1_l1"), "lists the sweep's points: {e}");
+    assert!(
+        e.message.contains("fp32_d1_l1"),
+        "lists the sweep's points: {e}"
+    );
     let e = rejection(&format!("{TINY}\n[synth]\nformats = [\"fp64\"]\n"));
     assert_eq!(e.key, "synth.formats");
-    let e = rejection(&format!("{TINY}\n[synth]\npoints = [\"fp32_d1_l1\", \"fp16_d1_l2\"]\n"));
+    let e = rejection(&format!(
+        "{TINY}\n[synth]\npoints = [\"fp32_d1_l1\", \"fp16_d1_l2\"]\n"
+    ));
     assert_eq!((e.line, e.key.as_str()), (11, "synth.points"));
-    assert!(e.message.contains("`fp16_d1_l2`") && e.message.contains("fx16_10_d1_l2"), "{e}");
+    assert!(
+        e.message.contains("`fp16_d1_l2`") && e.message.contains("fx16_10_d1_l2"),
+        "{e}"
+    );
     let e = rejection(&format!("{TINY}\nmodel_formats = [\"e0m0x\"]\n"));
     assert_eq!(e.key, "model_formats");
 
-    let e = rejection(&format!("{TINY}\n[projection]\nthesis_scenes = \"nowhere\"\n"));
+    let e = rejection(&format!(
+        "{TINY}\n[projection]\nthesis_scenes = \"nowhere\"\n"
+    ));
     assert_eq!((e.line, e.key.as_str()), (10, "projection.thesis_scenes"));
     assert!(e.message.contains("nowhere"), "{e}");
     let e = rejection(&format!("{TINY}\n[projection]\nhp_ports = 7\n"));
-    assert!(e.key == "projection" && e.message.contains("HP ports"), "{e}");
+    assert!(
+        e.key == "projection" && e.message.contains("HP ports"),
+        "{e}"
+    );
 
     // Unknown keys and type errors are syntax errors with their line.
     let e = rejection(&format!("{TINY}\ncolour = true\n"));
@@ -249,14 +345,27 @@ points = ["fx16_13_d0_l1"]
     let point: PointResult = read_json(&layout.point_result("fx16_13_d0_l1")).unwrap();
     let synth = point.synth.clone().expect("synthesised");
     assert!(!point.synth_cached);
-    assert!(synth.lut > 1000 && synth.ff > 100 && synth.dsp48e1 > 0 && synth.logic_depth > 0, "{synth:?}");
-    assert!(layout.point_dir("fx16_13_d0_l1").join("verilog/rtfpga_top.v").is_file());
+    assert!(
+        synth.lut > 1000 && synth.ff > 100 && synth.dsp48e1 > 0 && synth.logic_depth > 0,
+        "{synth:?}"
+    );
+    assert!(layout
+        .point_dir("fx16_13_d0_l1")
+        .join("verilog/rtfpga_top.v")
+        .is_file());
     assert_eq!(point.cosim_identical(), Some(true));
     let c = &point.cosim[0];
     assert!(c.tests > 0 && c.cycles >= c.tests, "{c:?}");
 
     let row = &results.rows[0];
-    assert_eq!((row.lut, row.dsp48e1, row.logic_depth), (Some(synth.lut), Some(synth.dsp48e1), Some(synth.logic_depth)));
+    assert_eq!(
+        (row.lut, row.dsp48e1, row.logic_depth),
+        (
+            Some(synth.lut),
+            Some(synth.dsp48e1),
+            Some(synth.logic_depth)
+        )
+    );
     assert!(row.cycles_measured && row.cycles_per_test == c.cycles_per_test);
     assert_eq!(row.lanes_fit, None, "a fit needs the 2-lane design too");
 

@@ -98,7 +98,11 @@ impl Arith for FixedFormat {
             return self.max() as u64 & self.mask();
         }
         // floor(N / x) with a positive divisor: N/x = (−N)/(−x).
-        let (num, div) = if x > 0 { (1i128 << (2 * self.frac), x) } else { (-(1i128 << (2 * self.frac)), -x) };
+        let (num, div) = if x > 0 {
+            (1i128 << (2 * self.frac), x)
+        } else {
+            (-(1i128 << (2 * self.frac)), -x)
+        };
         let floor = num.div_euclid(div);
         let rem = num.rem_euclid(div) as u128;
         self.fit(self.quantise(floor, rem, div as u128))
@@ -117,7 +121,11 @@ impl Arith for FixedFormat {
                 let k = e + self.frac as i32;
                 if k >= 0 {
                     // Above 2^64 units the low W bits are all zero (Wrap) or the value clamps (Sat).
-                    let shifted = if k > 64 { signed.signum() << 64 } else { signed << k };
+                    let shifted = if k > 64 {
+                        signed.signum() << 64
+                    } else {
+                        signed << k
+                    };
                     self.fit(shifted)
                 } else {
                     let sh = (-k as u32).min(SHIFT_CAP);

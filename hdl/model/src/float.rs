@@ -152,8 +152,10 @@ impl FloatFormat {
         let carry = (keep >> p) as u32; // rounded up to 2^p
         let keep = keep >> carry;
         // keep's unit is 2^(e + BITS − lz − p + carry); its leading bit sits `man` above.
-        let biased =
-            e + W::BITS as i32 - lz as i32 - p as i32 + carry as i32 + self.man as i32 + self.bias();
+        let biased = e + W::BITS as i32 - lz as i32 - p as i32
+            + carry as i32
+            + self.man as i32
+            + self.bias();
         if biased >= self.exp_ones() as i32 {
             self.inf(sign)
         } else if biased <= 0 {
@@ -178,7 +180,11 @@ impl FloatFormat {
     #[inline]
     fn parts(self, bits: u64) -> (bool, u64, i32) {
         let ef = self.exp_field(bits);
-        (bits & self.sign_bit() != 0, (bits & self.frac_mask()) | (1u64 << self.man), ef as i32 - self.bias())
+        (
+            bits & self.sign_bit() != 0,
+            (bits & self.frac_mask()) | (1u64 << self.man),
+            ef as i32 - self.bias(),
+        )
     }
 
     /// The exact sum of finite nonzero `x`, `y` with |x| ≥ |y|, rounded once.
@@ -237,7 +243,11 @@ impl Arith for FloatFormat {
             (Finite { .. }, Finite { .. }) => {
                 // Order by magnitude: the aligned difference is then never negative.
                 let magnitude = !self.sign_bit();
-                let (x, y) = if a & magnitude >= b & magnitude { (a, b) } else { (b, a) };
+                let (x, y) = if a & magnitude >= b & magnitude {
+                    (a, b)
+                } else {
+                    (b, a)
+                };
                 if 2 * self.man + 5 <= 64 {
                     self.add_ordered::<u64>(x, y)
                 } else {
@@ -262,10 +272,20 @@ impl Arith for FloatFormat {
             (Inf(sa), Inf(sb) | Finite { sign: sb, .. }) | (Finite { sign: sa, .. }, Inf(sb)) => {
                 self.inf(sa != sb)
             }
-            (Zero(sa), Zero(sb) | Finite { sign: sb, .. }) | (Finite { sign: sa, .. }, Zero(sb)) => {
-                self.zero(sa != sb)
-            }
-            (Finite { sign: sa, sig: ma, e: ea }, Finite { sign: sb, sig: mb, e: eb }) => {
+            (Zero(sa), Zero(sb) | Finite { sign: sb, .. })
+            | (Finite { sign: sa, .. }, Zero(sb)) => self.zero(sa != sb),
+            (
+                Finite {
+                    sign: sa,
+                    sig: ma,
+                    e: ea,
+                },
+                Finite {
+                    sign: sb,
+                    sig: mb,
+                    e: eb,
+                },
+            ) => {
                 if self.man < 32 {
                     self.round_pack(sa != sb, ma * mb, ea + eb, false)
                 } else {

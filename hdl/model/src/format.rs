@@ -59,8 +59,16 @@ pub enum Overflow {
 /// A number format of the hardware datapath.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Format {
-    Float { exp: u32, man: u32 },
-    Fixed { int: u32, frac: u32, quant: Quant, overflow: Overflow },
+    Float {
+        exp: u32,
+        man: u32,
+    },
+    Fixed {
+        int: u32,
+        frac: u32,
+        quant: Quant,
+        overflow: Overflow,
+    },
 }
 
 #[derive(Debug, Error, PartialEq, Eq)]
@@ -92,11 +100,17 @@ impl Format {
             }
             Format::Fixed { int: 0, .. } => "0 integer bits; the sign needs at least 1".to_string(),
             Format::Fixed { int, frac, .. } if !(2..=64).contains(&(int as u64 + frac as u64)) => {
-                format!("{} bits in total; a fixed-point format needs 2 to 64", int as u64 + frac as u64)
+                format!(
+                    "{} bits in total; a fixed-point format needs 2 to 64",
+                    int as u64 + frac as u64
+                )
             }
             _ => return Ok(()),
         };
-        Err(FormatError::Impossible { name: self.to_string(), why })
+        Err(FormatError::Impossible {
+            name: self.to_string(),
+            why,
+        })
     }
 
     #[inline]
@@ -148,7 +162,17 @@ impl Format {
     pub(crate) fn kind(&self) -> Kind {
         match *self {
             Format::Float { exp, man } => Kind::Float(FloatFormat { exp, man }),
-            Format::Fixed { int, frac, quant, overflow } => Kind::Fixed(FixedFormat { int, frac, quant, overflow }),
+            Format::Fixed {
+                int,
+                frac,
+                quant,
+                overflow,
+            } => Kind::Fixed(FixedFormat {
+                int,
+                frac,
+                quant,
+                overflow,
+            }),
         }
     }
 }
@@ -200,7 +224,12 @@ impl fmt::Display for Format {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
             Format::Float { exp, man } => write!(f, "e{exp}m{man}"),
-            Format::Fixed { int, frac, quant, overflow } => {
+            Format::Fixed {
+                int,
+                frac,
+                quant,
+                overflow,
+            } => {
                 write!(f, "fx<{},{}>", int as u64 + frac as u64, int)?;
                 if quant == Quant::Rnd {
                     f.write_str("_rnd")?;

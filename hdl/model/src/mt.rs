@@ -56,12 +56,19 @@ fn cross<A: Arith>(f: A, a: &V, b: &V) -> V {
 /// (a.x·b.x + a.y·b.y) + a.z·b.z.
 #[inline]
 fn dot<A: Arith>(f: A, a: &V, b: &V) -> u64 {
-    f.add(f.add(f.mul(a[0], b[0]), f.mul(a[1], b[1])), f.mul(a[2], b[2]))
+    f.add(
+        f.add(f.mul(a[0], b[0]), f.mul(a[1], b[1])),
+        f.mul(a[2], b[2]),
+    )
 }
 
 #[inline]
 fn load<A: Arith>(f: A, x: &[f32; 3]) -> V {
-    [f.convert_in_f32(x[0]), f.convert_in_f32(x[1]), f.convert_in_f32(x[2])]
+    [
+        f.convert_in_f32(x[0]),
+        f.convert_in_f32(x[1]),
+        f.convert_in_f32(x[2]),
+    ]
 }
 
 /// The test in `format`: fp32 inputs converted in, every operation rounded in the format,
@@ -84,7 +91,11 @@ fn mt_in<A: Arith>(f: A, q: &MtQuery) -> MtResult {
     let v = f.mul(dot(f, &dir, &qv), inv);
     let t = f.mul(dot(f, &e2, &qv), inv);
 
-    let (zero, one, eps) = (f.convert_in_f32(0.0), f.convert_in_f32(1.0), f.convert_in_f32(DET_EPSILON));
+    let (zero, one, eps) = (
+        f.convert_in_f32(0.0),
+        f.convert_in_f32(1.0),
+        f.convert_in_f32(DET_EPSILON),
+    );
     let parallel = f.lt(det, eps) && f.lt(f.neg(eps), det);
     let hit = !parallel
         && !f.lt(u, zero)
@@ -92,5 +103,10 @@ fn mt_in<A: Arith>(f: A, q: &MtQuery) -> MtResult {
         && !f.lt(v, zero)
         && !f.lt(one, f.add(u, v))
         && f.lt(zero, t);
-    MtResult { hit, t: f.convert_out_f32(t), u: f.convert_out_f32(u), v: f.convert_out_f32(v) }
+    MtResult {
+        hit,
+        t: f.convert_out_f32(t),
+        u: f.convert_out_f32(u),
+        v: f.convert_out_f32(v),
+    }
 }

@@ -24,12 +24,14 @@ fn layouts() -> Vec<(u32, u32)> {
 
 fn all_modes(width: u32, int: u32) -> impl Iterator<Item = Format> {
     [Quant::Trn, Quant::Rnd].into_iter().flat_map(move |quant| {
-        [Overflow::Wrap, Overflow::Sat].into_iter().map(move |overflow| Format::Fixed {
-            int,
-            frac: width - int,
-            quant,
-            overflow,
-        })
+        [Overflow::Wrap, Overflow::Sat]
+            .into_iter()
+            .map(move |overflow| Format::Fixed {
+                int,
+                frac: width - int,
+                quant,
+                overflow,
+            })
     })
 }
 
@@ -44,7 +46,17 @@ struct Spec {
 impl Spec {
     fn of(format: &Format) -> Spec {
         match *format {
-            Format::Fixed { int, frac, quant, overflow } => Spec { w: int + frac, f: frac, quant, overflow },
+            Format::Fixed {
+                int,
+                frac,
+                quant,
+                overflow,
+            } => Spec {
+                w: int + frac,
+                f: frac,
+                quant,
+                overflow,
+            },
             Format::Float { .. } => unreachable!(),
         }
     }
@@ -90,13 +102,28 @@ impl Spec {
         }
     }
     fn edges(&self) -> Vec<u64> {
-        let mut v = vec![0, 1, self.max(), self.min(), self.min() + 1, -1, self.max() - 1];
+        let mut v = vec![
+            0,
+            1,
+            self.max(),
+            self.min(),
+            self.min() + 1,
+            -1,
+            self.max() - 1,
+        ];
         if self.f >= 1 {
             v.push(1i128 << (self.f - 1)); // 1/2
             v.push(-(1i128 << (self.f - 1)));
         }
-        v.extend([1i128 << self.f, -(1i128 << self.f), 3i128 << self.f.saturating_sub(1)]); // 1, −1, 1.5
-        v.into_iter().filter(|x| (self.min()..=self.max()).contains(x)).map(|x| self.encode(x)).collect()
+        v.extend([
+            1i128 << self.f,
+            -(1i128 << self.f),
+            3i128 << self.f.saturating_sub(1),
+        ]); // 1, −1, 1.5
+        v.into_iter()
+            .filter(|x| (self.min()..=self.max()).contains(x))
+            .map(|x| self.encode(x))
+            .collect()
     }
     fn random(&self, r: &mut impl Rng) -> u64 {
         let bits = r.gen::<u64>() & (u64::MAX >> (64 - self.w));
@@ -114,21 +141,40 @@ fn check_all(format: &Format, s: &Spec, a: u64, b: u64) {
     assert_eq!(format.add(a, b), s.fit(x + y), "add {}", ctx());
     assert_eq!(format.sub(a, b), s.fit(x - y), "sub {}", ctx());
     assert_eq!(format.neg(a), s.fit(-x), "neg {}", ctx());
-    assert_eq!(format.mul(a, b), s.fit(s.quantise(x * y, 1i128 << s.f)), "mul {}", ctx());
+    assert_eq!(
+        format.mul(a, b),
+        s.fit(s.quantise(x * y, 1i128 << s.f)),
+        "mul {}",
+        ctx()
+    );
     let recip = if x == 0 {
         s.encode(s.max())
     } else {
         // 1/x in units of 2^-f is 2^(2f)/x; make the denominator positive
         let num = 1i128 << (2 * s.f);
-        s.fit(if x > 0 { s.quantise(num, x) } else { s.quantise(-num, -x) })
+        s.fit(if x > 0 {
+            s.quantise(num, x)
+        } else {
+            s.quantise(-num, -x)
+        })
     };
     assert_eq!(format.recip(a), recip, "recip {}", ctx());
     assert_eq!(format.lt(a, b), x < y, "lt {}", ctx());
     assert!(!format.is_nan(a));
     // to_f32: `as f32` from an integer rounds once (RNE); the power-of-two scale is exact.
     let want = (x as f32) * 2f32.powi(-(s.f as i32));
-    assert_eq!(format.to_f32(a).to_bits(), want.to_bits(), "to_f32 {}", ctx());
-    assert_eq!(format.to_f64(a), x as f64 * 2f64.powi(-(s.f as i32)), "to_f64 {}", ctx());
+    assert_eq!(
+        format.to_f32(a).to_bits(),
+        want.to_bits(),
+        "to_f32 {}",
+        ctx()
+    );
+    assert_eq!(
+        format.to_f64(a),
+        x as f64 * 2f64.powi(-(s.f as i32)),
+        "to_f64 {}",
+        ctx()
+    );
 }
 
 #[test]
@@ -178,13 +224,41 @@ fn from_f32_oracle(s: &Spec, x: f32) -> u64 {
 #[test]
 fn from_f32_quantises_and_fits_in_every_mode() {
     let mut r = rng(12);
-    let specials = [0.0f32, -0.0, 1.0, -1.0, 0.5, -0.5, 1.5, -1.5, 2.5, -2.5, f32::INFINITY, f32::NEG_INFINITY,
-        f32::NAN, f32::MAX, f32::MIN, f32::MIN_POSITIVE, -f32::MIN_POSITIVE, 1e-45, -1e-45, 1e-8, -1e-8];
+    let specials = [
+        0.0f32,
+        -0.0,
+        1.0,
+        -1.0,
+        0.5,
+        -0.5,
+        1.5,
+        -1.5,
+        2.5,
+        -2.5,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::NAN,
+        f32::MAX,
+        f32::MIN,
+        f32::MIN_POSITIVE,
+        -f32::MIN_POSITIVE,
+        1e-45,
+        -1e-45,
+        1e-8,
+        -1e-8,
+    ];
     for (w, i) in layouts() {
         for format in all_modes(w, i) {
             let s = Spec::of(&format);
             let lsb = 2f32.powi(-(s.f as i32));
-            let extra = [lsb / 2.0, -lsb / 2.0, lsb * 1.5, -lsb * 1.5, lsb * 0.75, -lsb * 0.25];
+            let extra = [
+                lsb / 2.0,
+                -lsb / 2.0,
+                lsb * 1.5,
+                -lsb * 1.5,
+                lsb * 0.75,
+                -lsb * 0.25,
+            ];
             let randoms = (0..4_000).map(|k| {
                 if k % 2 == 0 {
                     f32::from_bits(r.gen())
@@ -196,10 +270,19 @@ fn from_f32_quantises_and_fits_in_every_mode() {
             });
             for x in specials.into_iter().chain(extra).chain(randoms) {
                 let want = from_f32_oracle(&s, x);
-                assert_eq!(format.from_f32(x), want, "{format} from_f32({x:e} = {:#x})", x.to_bits());
+                assert_eq!(
+                    format.from_f32(x),
+                    want,
+                    "{format} from_f32({x:e} = {:#x})",
+                    x.to_bits()
+                );
                 // values of the format survive a round trip through fp32 when fp32 holds them
                 if w <= 24 {
-                    assert_eq!(format.from_f32(format.to_f32(want)), want, "{format} round trip {want:#x}");
+                    assert_eq!(
+                        format.from_f32(format.to_f32(want)),
+                        want,
+                        "{format} round trip {want:#x}"
+                    );
                 }
             }
         }
@@ -222,7 +305,12 @@ fn soak_catalogue_fixed_1m_per_op() {
             let (a, b) = (s.random(&mut r), s.random(&mut r));
             check_all(&named.format, &s, a, b);
             let x = f32::from_bits(r.gen());
-            assert_eq!(named.format.from_f32(x), from_f32_oracle(&s, x), "{} from_f32({x:e})", named.name);
+            assert_eq!(
+                named.format.from_f32(x),
+                from_f32_oracle(&s, x),
+                "{} from_f32({x:e})",
+                named.name
+            );
         }
     }
 }

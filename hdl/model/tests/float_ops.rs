@@ -11,8 +11,19 @@ use rand::rngs::StdRng;
 use rand::Rng;
 
 /// Formats whose exact results f64 holds within double-rounding safety (man ≤ 23, exp ≤ 8).
-const ORACLE_FORMATS: &[(u32, u32)] =
-    &[(8, 23), (8, 15), (8, 7), (5, 10), (2, 1), (3, 2), (4, 3), (6, 12), (7, 20), (8, 1), (3, 23)];
+const ORACLE_FORMATS: &[(u32, u32)] = &[
+    (8, 23),
+    (8, 15),
+    (8, 7),
+    (5, 10),
+    (2, 1),
+    (3, 2),
+    (4, 3),
+    (6, 12),
+    (7, 20),
+    (8, 1),
+    (3, 23),
+];
 
 #[derive(Clone, Copy, Debug)]
 enum Op {
@@ -46,7 +57,10 @@ fn check_against_f64(format: &Format, op: Op, a: u64, b: u64) {
     let (e, m) = em(format);
     let got = model(format, op, a, b);
     let want = round_f64(exact(op, decode(a, e, m), decode(b, e, m)), e, m);
-    assert_eq!(got, want, "{format} {op:?}({a:#x}, {b:#x}): got {got:#x}, want {want:#x}");
+    assert_eq!(
+        got, want,
+        "{format} {op:?}({a:#x}, {b:#x}): got {got:#x}, want {want:#x}"
+    );
 }
 
 fn operand_pair(r: &mut StdRng, e: u32, m: u32) -> (u64, u64) {
@@ -109,7 +123,7 @@ fn known_fp32_results() {
     assert_eq!(f.recip(0x7f80_0000), 0);
     assert_eq!(f.recip(0x7f7f_ffff), 0); // 1/max ≈ 2^-128: flushed
     assert_eq!(f.recip(0x4040_0000), 0x3eaa_aaab); // 1/3
-    // neg flips the sign only
+                                                   // neg flips the sign only
     assert_eq!(f.neg(0x3f80_0000), 0xbf80_0000);
 }
 
@@ -133,14 +147,26 @@ fn native_f32(op: Op, a: f32, b: f32) -> f32 {
 /// The one allowed difference from native IEEE rounding + flushing: an exact result just
 /// below the minimum normal that native rounding lifts to ±min normal, which the format
 /// (rounding with an unbounded exponent) sees as tiny and flushes.
-fn in_ftz_window(got: u64, want: u64, min_normal_bits: u64, sign_bit: u64, exact_below_min: bool) -> bool {
-    got & !sign_bit == 0 && want & !sign_bit == min_normal_bits && got == want & sign_bit && exact_below_min
+fn in_ftz_window(
+    got: u64,
+    want: u64,
+    min_normal_bits: u64,
+    sign_bit: u64,
+    exact_below_min: bool,
+) -> bool {
+    got & !sign_bit == 0
+        && want & !sign_bit == min_normal_bits
+        && got == want & sign_bit
+        && exact_below_min
 }
 
 /// fp32 against native f32 with inputs and outputs flushed; true if the pair hit the window.
 fn check_fp32_native(op: Op, a: u64, b: u64) -> bool {
     let format = Format::Float { exp: 8, man: 23 };
-    let (fa, fb) = (ftz32(f32::from_bits(a as u32)), ftz32(f32::from_bits(b as u32)));
+    let (fa, fb) = (
+        ftz32(f32::from_bits(a as u32)),
+        ftz32(f32::from_bits(b as u32)),
+    );
     let native = ftz32(native_f32(op, fa, fb));
     let got = model(&format, op, a, b);
     if native.is_nan() {
@@ -153,7 +179,13 @@ fn check_fp32_native(op: Op, a: u64, b: u64) -> bool {
     }
     let exact = exact(op, fa as f64, fb as f64).abs();
     assert!(
-        in_ftz_window(got, want, 0x0080_0000, 1 << 31, exact < f32::MIN_POSITIVE as f64),
+        in_ftz_window(
+            got,
+            want,
+            0x0080_0000,
+            1 << 31,
+            exact < f32::MIN_POSITIVE as f64
+        ),
         "{op:?}({a:#x}, {b:#x}): got {got:#x}, native {want:#x}"
     );
     true
@@ -163,12 +195,30 @@ fn check_fp32_native(op: Op, a: u64, b: u64) -> bool {
 fn fp32_matches_native_f32_with_ftz() {
     let mut r = rng(2);
     let edges = float_edges(8, 23);
-    let mut pairs: Vec<(u64, u64)> = edges.iter().flat_map(|&a| edges.iter().map(move |&b| (a, b))).collect();
+    let mut pairs: Vec<(u64, u64)> = edges
+        .iter()
+        .flat_map(|&a| edges.iter().map(move |&b| (a, b)))
+        .collect();
     pairs.extend((0..100_000).map(|_| operand_pair(&mut r, 8, 23)));
     // Results just below min normal: products of min-normal-ish by just-below-one values.
-    pairs.extend((0..2_000).map(|_| (0x0080_0000 | r.gen_range(0..8u64), 0x3f7f_fff0 | r.gen_range(0..16u64))));
-    let window: usize = pairs.iter().map(|&(a, b)| OPS.iter().filter(|&&op| check_fp32_native(op, a, b)).count()).sum();
-    assert!(window > 0, "the test never reached the FTZ window it means to exercise");
+    pairs.extend((0..2_000).map(|_| {
+        (
+            0x0080_0000 | r.gen_range(0..8u64),
+            0x3f7f_fff0 | r.gen_range(0..16u64),
+        )
+    }));
+    let window: usize = pairs
+        .iter()
+        .map(|&(a, b)| {
+            OPS.iter()
+                .filter(|&&op| check_fp32_native(op, a, b))
+                .count()
+        })
+        .sum();
+    assert!(
+        window > 0,
+        "the test never reached the FTZ window it means to exercise"
+    );
 }
 
 /// The soak: 1M random operand pairs per operator and catalogue float format against exact
@@ -179,7 +229,9 @@ fn fp32_matches_native_f32_with_ftz() {
 fn soak_catalogue_floats_1m_per_op() {
     let mut r = rng(7);
     for named in hw_model::catalogue() {
-        let Format::Float { exp, man } = named.format else { continue };
+        let Format::Float { exp, man } = named.format else {
+            continue;
+        };
         for _ in 0..1_000_000 {
             let (a, b) = operand_pair(&mut r, exp, man);
             for op in OPS {
@@ -198,17 +250,24 @@ fn soak_catalogue_floats_1m_per_op() {
 #[test]
 fn fp16_matches_half_crate_with_ftz() {
     let format = Format::Float { exp: 5, man: 10 };
-    let ftz16 = |x: f16| if x.is_normal() || x.is_nan() || x.is_infinite() || x.to_bits() & 0x7fff == 0 {
-        x
-    } else {
-        f16::from_bits(x.to_bits() & 0x8000)
+    let ftz16 = |x: f16| {
+        if x.is_normal() || x.is_nan() || x.is_infinite() || x.to_bits() & 0x7fff == 0 {
+            x
+        } else {
+            f16::from_bits(x.to_bits() & 0x8000)
+        }
     };
     let mut r = rng(3);
-    let mut pairs: Vec<(u64, u64)> = (0..0x1_0000u64).map(|a| (a, r.gen::<u16>() as u64)).collect();
+    let mut pairs: Vec<(u64, u64)> = (0..0x1_0000u64)
+        .map(|a| (a, r.gen::<u16>() as u64))
+        .collect();
     pairs.extend((0..50_000).map(|_| operand_pair(&mut r, 5, 10)));
     for (a, b) in pairs {
         for op in OPS {
-            let (ha, hb) = (ftz16(f16::from_bits(a as u16)), ftz16(f16::from_bits(b as u16)));
+            let (ha, hb) = (
+                ftz16(f16::from_bits(a as u16)),
+                ftz16(f16::from_bits(b as u16)),
+            );
             let native = ftz16(match op {
                 Op::Add => ha + hb,
                 Op::Sub => ha - hb,
@@ -221,7 +280,8 @@ fn fp16_matches_half_crate_with_ftz() {
                 continue;
             }
             let want = native.to_bits() as u64;
-            let exact_below = exact(op, ha.to_f64(), hb.to_f64()).abs() < f16::MIN_POSITIVE.to_f64();
+            let exact_below =
+                exact(op, ha.to_f64(), hb.to_f64()).abs() < f16::MIN_POSITIVE.to_f64();
             assert!(
                 got == want || in_ftz_window(got, want, 0x0400, 0x8000, exact_below),
                 "{op:?}({a:#x}, {b:#x}): got {got:#x}, half {want:#x}"
@@ -234,10 +294,19 @@ fn fp16_matches_half_crate_with_ftz() {
 #[test]
 fn fp64_matches_native_f64_with_ftz() {
     let format = Format::Float { exp: 11, man: 52 };
-    let ftz64 = |x: f64| if x.is_subnormal() { 0.0f64.copysign(x) } else { x };
+    let ftz64 = |x: f64| {
+        if x.is_subnormal() {
+            0.0f64.copysign(x)
+        } else {
+            x
+        }
+    };
     let mut r = rng(4);
     let edges = float_edges(11, 52);
-    let mut pairs: Vec<(u64, u64)> = edges.iter().flat_map(|&a| edges.iter().map(move |&b| (a, b))).collect();
+    let mut pairs: Vec<(u64, u64)> = edges
+        .iter()
+        .flat_map(|&a| edges.iter().map(move |&b| (a, b)))
+        .collect();
     pairs.extend((0..50_000).map(|_| operand_pair(&mut r, 11, 52)));
     for (a, b) in pairs {
         for op in OPS {
@@ -264,7 +333,10 @@ fn lt_matches_f64_comparison() {
     for &(e, m) in ORACLE_FORMATS.iter().chain(&[(11, 52)]) {
         let format = Format::Float { exp: e, man: m };
         let edges = float_edges(e, m);
-        let mut pairs: Vec<(u64, u64)> = edges.iter().flat_map(|&a| edges.iter().map(move |&b| (a, b))).collect();
+        let mut pairs: Vec<(u64, u64)> = edges
+            .iter()
+            .flat_map(|&a| edges.iter().map(move |&b| (a, b)))
+            .collect();
         pairs.extend((0..10_000).map(|_| operand_pair(&mut r, e, m)));
         for (a, b) in pairs {
             let want = decode(a, e, m) < decode(b, e, m);
@@ -283,18 +355,37 @@ fn f32_conversions_round_once_and_round_trip() {
             // from_f32: flush a subnormal input, then one rounding
             let x = f32::from_bits(r.gen());
             let want = round_f64(ftz32(x) as f64, e, m);
-            assert_eq!(format.from_f32(x), want, "{format} from_f32({:#x})", x.to_bits());
+            assert_eq!(
+                format.from_f32(x),
+                want,
+                "{format} from_f32({:#x})",
+                x.to_bits()
+            );
             // to_f32 of a format value: one rounding to fp32 (exact when the format fits)
             let bits = random_float(&mut r, e, m, 0);
             let got = format.to_f32(bits).to_bits() as u64;
-            assert_eq!(got, round_f64(decode(bits, e, m), 8, 23), "{format} to_f32({bits:#x})");
+            assert_eq!(
+                got,
+                round_f64(decode(bits, e, m), 8, 23),
+                "{format} to_f32({bits:#x})"
+            );
             // to_f64 is exact; from_f64 ∘ to_f64 is the identity on non-NaN values
-            assert_eq!(format.to_f64(bits).to_bits(), decode(bits, e, m).to_bits(), "{format} to_f64({bits:#x})");
+            assert_eq!(
+                format.to_f64(bits).to_bits(),
+                decode(bits, e, m).to_bits(),
+                "{format} to_f64({bits:#x})"
+            );
             if !decode(bits, e, m).is_nan() {
-                assert_eq!(format.from_f64(format.to_f64(bits)), round_f64(decode(bits, e, m), e, m));
+                assert_eq!(
+                    format.from_f64(format.to_f64(bits)),
+                    round_f64(decode(bits, e, m), e, m)
+                );
             }
             if e <= 8 && m <= 23 {
-                assert_eq!(format.from_f32(format.to_f32(bits)), round_f64(decode(bits, e, m), e, m));
+                assert_eq!(
+                    format.from_f32(format.to_f32(bits)),
+                    round_f64(decode(bits, e, m), e, m)
+                );
             }
         }
     }

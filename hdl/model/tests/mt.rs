@@ -20,7 +20,11 @@ impl Watch {
         x
     }
     fn sub(&mut self, a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
-        [self.n(a[0] - b[0]), self.n(a[1] - b[1]), self.n(a[2] - b[2])]
+        [
+            self.n(a[0] - b[0]),
+            self.n(a[1] - b[1]),
+            self.n(a[2] - b[2]),
+        ]
     }
     fn mul(&mut self, a: f32, b: f32) -> f32 {
         self.n(a * b)
@@ -64,7 +68,12 @@ fn mt_native(q: &MtQuery) -> (MtResult, bool) {
     let t = w.n(t);
     let uv = w.n(u + v);
     let eps = 1e-8f32;
-    let hit = !(det < eps && -eps < det) && !(u < 0.0) && !(1.0 < u) && !(v < 0.0) && !(1.0 < uv) && 0.0 < t;
+    let hit = !(det < eps && -eps < det)
+        && !(u < 0.0)
+        && !(1.0 < u)
+        && !(v < 0.0)
+        && !(1.0 < uv)
+        && 0.0 < t;
     (MtResult { hit, t, u, v }, w.0)
 }
 
@@ -75,7 +84,11 @@ fn same(a: &MtResult, b: &MtResult) -> bool {
 }
 
 fn point(r: &mut StdRng, span: f32) -> [f32; 3] {
-    [r.gen_range(-span..span), r.gen_range(-span..span), r.gen_range(-span..span)]
+    [
+        r.gen_range(-span..span),
+        r.gen_range(-span..span),
+        r.gen_range(-span..span),
+    ]
 }
 
 /// Rays aimed near random triangles (about half hit), at scales from tiny to huge, plus
@@ -85,11 +98,18 @@ pub fn random_query(r: &mut StdRng) -> MtQuery {
     let (v0, v1, v2) = (point(r, span), point(r, span), point(r, span));
     let orig = point(r, span * 4.0);
     let (a, b) = (r.gen_range(-0.2f32..1.0), r.gen_range(-0.2f32..1.0));
-    let target: [f32; 3] = std::array::from_fn(|k| v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]));
+    let target: [f32; 3] =
+        std::array::from_fn(|k| v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]));
     let mut dir: [f32; 3] = std::array::from_fn(|k| target[k] - orig[k]);
     let len = dir.iter().map(|x| x * x).sum::<f32>().sqrt();
     dir.iter_mut().for_each(|x| *x /= len);
-    let mut q = MtQuery { orig, dir, v0, v1, v2 };
+    let mut q = MtQuery {
+        orig,
+        dir,
+        v0,
+        v1,
+        v2,
+    };
     match r.gen_range(0..10) {
         0 => q.v2 = q.v1, // degenerate: det = 0
         1 => q.dir = std::array::from_fn(|_| f32::from_bits(r.gen())),
@@ -111,12 +131,18 @@ fn fp32_model_equals_native_f32_without_subnormals() {
             skipped += 1;
             continue;
         }
-        assert!(same(&model, &native), "{q:?}: model {model:?}, native {native:?}");
+        assert!(
+            same(&model, &native),
+            "{q:?}: model {model:?}, native {native:?}"
+        );
         compared += 1;
         hits += native.hit as u32;
     }
     eprintln!("compared {compared}, skipped (subnormal somewhere) {skipped}, hits {hits}");
-    assert!(compared > 90_000 && hits > 15_000, "the query generator lost its coverage");
+    assert!(
+        compared > 90_000 && hits > 15_000,
+        "the query generator lost its coverage"
+    );
 }
 
 #[test]
@@ -129,11 +155,21 @@ fn every_catalogue_format_computes_an_exact_case_exactly() {
         v1: [1.0, 0.0, 0.0],
         v2: [0.0, 1.0, 0.0],
     };
-    let outside = MtQuery { orig: [0.75, 0.5, 2.0], ..q };
-    let behind = MtQuery { orig: [0.25, 0.5, -2.0], ..q };
+    let outside = MtQuery {
+        orig: [0.75, 0.5, 2.0],
+        ..q
+    };
+    let behind = MtQuery {
+        orig: [0.25, 0.5, -2.0],
+        ..q
+    };
     for named in catalogue() {
         let r = mt_model(&named.format, &q);
-        assert!(r.hit && (r.t, r.u, r.v) == (2.0, 0.25, 0.5), "{}: {r:?}", named.name);
+        assert!(
+            r.hit && (r.t, r.u, r.v) == (2.0, 0.25, 0.5),
+            "{}: {r:?}",
+            named.name
+        );
         let r = mt_model(&named.format, &outside);
         assert!(!r.hit && (r.u, r.v) == (0.75, 0.5), "{}: {r:?}", named.name);
         let r = mt_model(&named.format, &behind);
@@ -149,7 +185,13 @@ fn narrow_formats_deviate_from_fp32_on_general_queries() {
     let queries: Vec<MtQuery> = (0..2_000).map(|_| random_query(&mut r)).collect();
     for name in ["bf16", "fp16", "fx16_10", "fx32_16_rnd_sat"] {
         let format = hw_model::lookup(name).unwrap();
-        let differ = queries.iter().filter(|q| !same(&mt_model(&format, q), &mt_model(&fp32, q))).count();
-        assert!(differ > 100, "{name}: only {differ} of 2000 queries differ from fp32");
+        let differ = queries
+            .iter()
+            .filter(|q| !same(&mt_model(&format, q), &mt_model(&fp32, q)))
+            .count();
+        assert!(
+            differ > 100,
+            "{name}: only {differ} of 2000 queries differ from fp32"
+        );
     }
 }

@@ -95,7 +95,11 @@ pub struct SweepConfig {
 impl SweepConfig {
     /// Every format the quality stage renders: the hardware formats, then the model-only ones.
     pub fn quality_formats(&self) -> Vec<String> {
-        self.formats.iter().chain(&self.model_formats).cloned().collect()
+        self.formats
+            .iter()
+            .chain(&self.model_formats)
+            .cloned()
+            .collect()
     }
 
     pub fn runs(&self, stage: Stage) -> bool {
@@ -213,7 +217,11 @@ impl Source<'_> {
         }
     }
 
-    fn non_empty<'l, T>(&self, list: &'l List<T>, key: &str) -> Result<&'l [Spanned<T>], ConfigError> {
+    fn non_empty<'l, T>(
+        &self,
+        list: &'l List<T>,
+        key: &str,
+    ) -> Result<&'l [Spanned<T>], ConfigError> {
         if list.get_ref().is_empty() {
             return Err(self.err(list, key, "empty list: expected at least one entry"));
         }
@@ -247,10 +255,7 @@ pub fn parse(text: &str, path: &Path) -> Result<SweepConfig, ConfigError> {
             message: e.message().to_string(),
         }
     })?;
-    let base = path
-        .parent()
-        .map(Path::to_path_buf)
-        .unwrap_or_default();
+    let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
     let base = std::path::absolute(&base).unwrap_or(base);
 
     let formats = check_formats(&src, &raw.formats, "formats")?;
@@ -267,7 +272,9 @@ pub fn parse(text: &str, path: &Path) -> Result<SweepConfig, ConfigError> {
             for &(l, spanned) in &lanes {
                 let config = TopConfig::new(format, depth, l);
                 // The hardware's own rules (format, depth and lane checks above name the line).
-                config.validate().map_err(|e| src.err(spanned, "lanes", e.to_string()))?;
+                config
+                    .validate()
+                    .map_err(|e| src.err(spanned, "lanes", e.to_string()))?;
                 let p = Point::new(format, depth, l);
                 if !points.contains(&p) {
                     points.push(p);
@@ -327,11 +334,15 @@ fn check_formats(src: &Source, list: &List<String>, key: &str) -> Result<Vec<Str
     let mut out = Vec::new();
     for f in src.non_empty(list, key)? {
         if !hdl::formats::NAMES.contains(&f.get_ref().as_str()) {
-            return Err(src.err(f, key, format!(
-                "unknown format `{}`: expected one of {}",
-                f.get_ref(),
-                hdl::formats::NAMES.join(", ")
-            )));
+            return Err(src.err(
+                f,
+                key,
+                format!(
+                    "unknown format `{}`: expected one of {}",
+                    f.get_ref(),
+                    hdl::formats::NAMES.join(", ")
+                ),
+            ));
         }
         if !out.contains(f.get_ref()) {
             out.push(f.get_ref().clone());
@@ -340,22 +351,38 @@ fn check_formats(src: &Source, list: &List<String>, key: &str) -> Result<Vec<Str
     Ok(out)
 }
 
-fn check_model_formats(src: &Source, list: &List<String>, hardware: &[String]) -> Result<Vec<String>, ConfigError> {
+fn check_model_formats(
+    src: &Source,
+    list: &List<String>,
+    hardware: &[String],
+) -> Result<Vec<String>, ConfigError> {
     let mut out = Vec::new();
     for f in src.non_empty(list, "model_formats")? {
         let name = f.get_ref();
         if let Err(e) = hw_model::lookup(name) {
-            return Err(src.err(f, "model_formats", format!("{e} (or a generic spelling such as e8m19)")));
+            return Err(src.err(
+                f,
+                "model_formats",
+                format!("{e} (or a generic spelling such as e8m19)"),
+            ));
         }
         if hardware.contains(name) || out.contains(name) {
-            return Err(src.err(f, "model_formats", format!("format `{name}` is listed twice")));
+            return Err(src.err(
+                f,
+                "model_formats",
+                format!("format `{name}` is listed twice"),
+            ));
         }
         out.push(name.clone());
     }
     Ok(out)
 }
 
-fn check_lanes<'l>(src: &Source, list: &'l List<usize>, key: &str) -> Result<Vec<(usize, &'l Spanned<usize>)>, ConfigError> {
+fn check_lanes<'l>(
+    src: &Source,
+    list: &'l List<usize>,
+    key: &str,
+) -> Result<Vec<(usize, &'l Spanned<usize>)>, ConfigError> {
     let mut out: Vec<(usize, &Spanned<usize>)> = Vec::new();
     for l in src.non_empty(list, key)? {
         let n = *l.get_ref();
@@ -372,7 +399,12 @@ fn check_lanes<'l>(src: &Source, list: &'l List<usize>, key: &str) -> Result<Vec
     Ok(out)
 }
 
-fn resolve_depth(src: &Source, d: &Spanned<DepthSpec>, format: &str, key: &str) -> Result<usize, ConfigError> {
+fn resolve_depth(
+    src: &Source,
+    d: &Spanned<DepthSpec>,
+    format: &str,
+    key: &str,
+) -> Result<usize, ConfigError> {
     let max = hdl::mt::max_depth(format).map_err(|e| src.err(d, key, e.to_string()))?;
     match d.get_ref() {
         DepthSpec::Number(n) if *n > max => Err(src.err(d, key, format!(
@@ -386,7 +418,11 @@ fn resolve_depth(src: &Source, d: &Spanned<DepthSpec>, format: &str, key: &str) 
     }
 }
 
-fn check_scenes(src: &Source, list: &List<String>, base: &Path) -> Result<Vec<SceneSpec>, ConfigError> {
+fn check_scenes(
+    src: &Source,
+    list: &List<String>,
+    base: &Path,
+) -> Result<Vec<SceneSpec>, ConfigError> {
     let mut out: Vec<SceneSpec> = Vec::new();
     for s in src.non_empty(list, "scenes")? {
         let name = s.get_ref();
@@ -403,32 +439,50 @@ fn check_scenes(src: &Source, list: &List<String>, base: &Path) -> Result<Vec<Sc
             }
             p.display().to_string()
         };
-        Scene::load(&spec).map_err(|e| src.err(s, "scenes", format!("scene `{name}` does not load: {e}")))?;
+        Scene::load(&spec)
+            .map_err(|e| src.err(s, "scenes", format!("scene `{name}` does not load: {e}")))?;
         let stem = Path::new(name)
             .file_stem()
             .map(|s| s.to_string_lossy().to_string())
             .unwrap_or_else(|| name.clone());
         let label: String = stem
             .chars()
-            .map(|c| if c.is_ascii_alphanumeric() || c == '_' || c == '-' { c } else { '_' })
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
+                    c
+                } else {
+                    '_'
+                }
+            })
             .collect();
         if out.iter().any(|o| o.label == label) {
-            return Err(src.err(s, "scenes", format!(
-                "scene `{name}` is listed twice (or two scenes share the name `{label}`)"
-            )));
+            return Err(src.err(
+                s,
+                "scenes",
+                format!("scene `{name}` is listed twice (or two scenes share the name `{label}`)"),
+            ));
         }
         out.push(SceneSpec { label, spec });
     }
     Ok(out)
 }
 
-fn synth_selection(src: &Source, raw: &RawSynth, points: &[Point]) -> Result<Vec<String>, ConfigError> {
+fn synth_selection(
+    src: &Source,
+    raw: &RawSynth,
+    points: &[Point],
+) -> Result<Vec<String>, ConfigError> {
     let formats = match &raw.formats {
         Some(list) => Some(check_formats(src, list, "synth.formats")?),
         None => None,
     };
     let lanes = match &raw.lanes {
-        Some(list) => Some(check_lanes(src, list, "synth.lanes")?.into_iter().map(|(n, _)| n).collect::<Vec<_>>()),
+        Some(list) => Some(
+            check_lanes(src, list, "synth.lanes")?
+                .into_iter()
+                .map(|(n, _)| n)
+                .collect::<Vec<_>>(),
+        ),
         None => None,
     };
     let mut selected = Vec::new();
@@ -458,16 +512,25 @@ fn synth_selection(src: &Source, raw: &RawSynth, points: &[Point]) -> Result<Vec
 }
 
 /// The ids of `list`, each checked to be a point of the sweep.
-fn point_ids(src: &Source, list: &Option<List<String>>, points: &[Point], key: &str) -> Result<Vec<String>, ConfigError> {
+fn point_ids(
+    src: &Source,
+    list: &Option<List<String>>,
+    points: &[Point],
+    key: &str,
+) -> Result<Vec<String>, ConfigError> {
     let mut ids = Vec::new();
     for id in list.iter().flat_map(|l| l.get_ref()) {
         if !points.iter().any(|p| &p.id() == id.get_ref()) {
             let known: Vec<String> = points.iter().map(Point::id).collect();
-            return Err(src.err(id, key, format!(
-                "`{}` is not a point of this sweep: expected one of {}",
-                id.get_ref(),
-                known.join(", ")
-            )));
+            return Err(src.err(
+                id,
+                key,
+                format!(
+                    "`{}` is not a point of this sweep: expected one of {}",
+                    id.get_ref(),
+                    known.join(", ")
+                ),
+            ));
         }
         ids.push(id.get_ref().clone());
     }
@@ -486,16 +549,21 @@ fn cosim_selection(
         Some(list) => {
             let mut chosen = Vec::new();
             for s in src.non_empty(list, "cosim.scenes")? {
-                let label_of = |spec: &SceneSpec| spec.label == *s.get_ref() || spec.spec == *s.get_ref();
+                let label_of =
+                    |spec: &SceneSpec| spec.label == *s.get_ref() || spec.spec == *s.get_ref();
                 match scenes.iter().find(|spec| label_of(spec)) {
                     Some(spec) => chosen.push(spec.clone()),
                     None => {
                         let known: Vec<&str> = scenes.iter().map(|s| s.label.as_str()).collect();
-                        return Err(src.err(s, "cosim.scenes", format!(
-                            "`{}` is not a scene of this sweep: expected one of {}",
-                            s.get_ref(),
-                            known.join(", ")
-                        )));
+                        return Err(src.err(
+                            s,
+                            "cosim.scenes",
+                            format!(
+                                "`{}` is not a scene of this sweep: expected one of {}",
+                                s.get_ref(),
+                                known.join(", ")
+                            ),
+                        ));
                     }
                 }
             }
@@ -528,7 +596,10 @@ fn projection_settings(
     };
     let settings = ProjectionSettings {
         thesis_scenes,
-        scene: r.scene.clone().unwrap_or_else(|| "Simple_plane_scene".into()),
+        scene: r
+            .scene
+            .clone()
+            .unwrap_or_else(|| "Simple_plane_scene".into()),
         width: r.width.unwrap_or(1920),
         height: r.height.unwrap_or(1080),
         fpl_mhz: r.fpl_mhz.unwrap_or(100.0),
@@ -546,7 +617,9 @@ fn projection_settings(
             scene_dir.display()
         )));
     }
-    let latency = hdl::mt::latency(&first.format, first.depth).map_err(|e| err("projection", e.to_string()))?;
-    stream_design(&settings, first, latency, 1.0 / first.lanes as f64).map_err(|e| err("projection", format!("{e:#}")))?;
+    let latency = hdl::mt::latency(&first.format, first.depth)
+        .map_err(|e| err("projection", e.to_string()))?;
+    stream_design(&settings, first, latency, 1.0 / first.lanes as f64)
+        .map_err(|e| err("projection", format!("{e:#}")))?;
     Ok(settings)
 }

@@ -12,8 +12,18 @@ use super::layout::parent_dir;
 const GAP: u32 = 4;
 
 pub fn write_grid(rows: &[[RgbImage; 2]], path: &Path) -> Result<()> {
-    let cell_w = rows.iter().flatten().map(RgbImage::width).max().unwrap_or(0);
-    let cell_h = rows.iter().flatten().map(RgbImage::height).max().unwrap_or(0);
+    let cell_w = rows
+        .iter()
+        .flatten()
+        .map(RgbImage::width)
+        .max()
+        .unwrap_or(0);
+    let cell_h = rows
+        .iter()
+        .flatten()
+        .map(RgbImage::height)
+        .max()
+        .unwrap_or(0);
     let cols = 2;
     let mut grid = RgbImage::from_pixel(
         cols * cell_w + (cols + 1) * GAP,

@@ -75,21 +75,28 @@ pub fn run(config: &SweepConfig, layout: &Layout, point: &Point) -> Result<Point
     let mut synth = None;
     let mut synth_cached = false;
     if config.runs(Stage::Verilog) || config.synthesises(point) {
-        let generated = generate(&top).with_context(|| format!("generating the Verilog of {id}"))?;
-        let verilog = generated.file(VERILOG_FILE).context("generated files lack the Verilog")?;
+        let generated =
+            generate(&top).with_context(|| format!("generating the Verilog of {id}"))?;
+        let verilog = generated
+            .file(VERILOG_FILE)
+            .context("generated files lack the Verilog")?;
         verilog_bytes = Some(verilog.len() as u64);
         stream_latency = Some(generated.summary.stream_latency);
         if config.keep_verilog {
             generated.write_to(&layout.point_dir(&id).join("verilog"))?;
         }
         if config.synthesises(point) {
-            let (record, cached) =
-                synthesize_cached(layout, &id, verilog).with_context(|| format!("synthesising {id}"))?;
+            let (record, cached) = synthesize_cached(layout, &id, verilog)
+                .with_context(|| format!("synthesising {id}"))?;
             synth = Some(record);
             synth_cached = cached;
         }
     }
-    let cosim = if config.cosimulates(point) { cosimulate(config, layout, point)? } else { Vec::new() };
+    let cosim = if config.cosimulates(point) {
+        cosimulate(config, layout, point)?
+    } else {
+        Vec::new()
+    };
     let result = PointResult {
         point: point.clone(),
         bits: point.bits(),
@@ -108,16 +115,21 @@ pub fn run(config: &SweepConfig, layout: &Layout, point: &Point) -> Result<Point
 fn cosimulate(config: &SweepConfig, layout: &Layout, point: &Point) -> Result<Vec<CosimRecord>> {
     let hw = HwIntersector::new(&point.top_config(), Mode::Stream)
         .with_context(|| format!("building the Verilated model of {}", point.id()))?;
-    let model = ModelIntersector { format: hw_model::lookup(&point.format)? };
+    let model = ModelIntersector {
+        format: hw_model::lookup(&point.format)?,
+    };
     let mut records = Vec::new();
     for scene in &config.cosim_scenes {
         let before = hw.stats();
         let out = render_scene(config, scene, &hw)?;
         if let Some(e) = hw.take_error() {
-            return Err(e).with_context(|| format!("co-simulating {} on {}", point.id(), scene.label));
+            return Err(e)
+                .with_context(|| format!("co-simulating {} on {}", point.id(), scene.label));
         }
         let after = hw.stats();
-        let png = layout.point_dir(&point.id()).join(format!("cosim_{}.png", scene.label));
+        let png = layout
+            .point_dir(&point.id())
+            .join(format!("cosim_{}.png", scene.label));
         parent_dir(&png)?;
         save_png(&out.image, &png)?;
         let expected = render_scene(config, scene, &model)?;

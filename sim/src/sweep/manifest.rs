@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Context, Result};
 use serde::{Deserialize, Serialize};
 
-use super::config::{SweepConfig, Stage};
+use super::config::{Stage, SweepConfig};
 use super::layout::{write_json, Layout};
 
 /// One unit of work.
@@ -79,10 +79,15 @@ pub fn jobs(config: &SweepConfig) -> Vec<Job> {
         } else {
             3
         };
-        (class, std::cmp::Reverse(p.lanes), std::cmp::Reverse(p.bits()))
+        (
+            class,
+            std::cmp::Reverse(p.lanes),
+            std::cmp::Reverse(p.bits()),
+        )
     });
-    let (slow, fast): (Vec<_>, Vec<_>) =
-        points.into_iter().partition(|p| config.synthesises(p) || config.cosimulates(p));
+    let (slow, fast): (Vec<_>, Vec<_>) = points
+        .into_iter()
+        .partition(|p| config.synthesises(p) || config.cosimulates(p));
     let mut jobs: Vec<Job> = slow.into_iter().map(|p| Job::Point(p.id())).collect();
     if config.runs(Stage::Quality) {
         jobs.extend(config.quality_formats().into_iter().map(Job::Quality));
@@ -92,7 +97,9 @@ pub fn jobs(config: &SweepConfig) -> Vec<Job> {
 }
 
 fn quote(s: &str) -> String {
-    if s.chars().all(|c| c.is_ascii_alphanumeric() || "/._-+=:".contains(c)) {
+    if s.chars()
+        .all(|c| c.is_ascii_alphanumeric() || "/._-+=:".contains(c))
+    {
         s.to_string()
     } else {
         format!("'{}'", s.replace('\'', r"'\''"))
@@ -118,7 +125,11 @@ pub fn manifest(config: &SweepConfig, out: &Path, program: &str) -> Manifest {
         jobs: jobs(config).iter().map(line).collect(),
         merge: JobLine {
             id: "merge".into(),
-            command: format!("{} sweep-merge {}", quote(program), quote(&out.display().to_string())),
+            command: format!(
+                "{} sweep-merge {}",
+                quote(program),
+                quote(&out.display().to_string())
+            ),
         },
     }
 }

@@ -44,7 +44,11 @@ pub fn merge(layout: &Layout) -> Result<Results> {
             missing.join(", ")
         );
     }
-    let projector = if config.runs(Stage::Projection) { Some(Projector::new(&config.projection)?) } else { None };
+    let projector = if config.runs(Stage::Projection) {
+        Some(Projector::new(&config.projection)?)
+    } else {
+        None
+    };
 
     let mut rows = Vec::new();
     for p in &points {
@@ -57,9 +61,10 @@ pub fn merge(layout: &Layout) -> Result<Results> {
         };
         let (usage, source) = match (&p.synth, &fit) {
             (Some(s), _) => (Some(s.usage()), Some(ResourceSource::Yosys)),
-            (None, Some(f)) => {
-                (Some(Usage::with_lanes(f.fixed, f.per_lane, p.point.lanes as u64)), Some(ResourceSource::Estimate))
-            }
+            (None, Some(f)) => (
+                Some(Usage::with_lanes(f.fixed, f.per_lane, p.point.lanes as u64)),
+                Some(ResourceSource::Estimate),
+            ),
             (None, None) => (None, None),
         };
         rows.push(Row {
@@ -95,7 +100,10 @@ pub fn merge(layout: &Layout) -> Result<Results> {
         arm_only_s: projector.as_ref().map(Projector::arm_only_s),
         projected_frame: projector.as_ref().map(|_| {
             let s = &config.projection;
-            format!("{} at {}x{}, f_PL {} MHz", s.scene, s.width, s.height, s.fpl_mhz)
+            format!(
+                "{} at {}x{}, f_PL {} MHz",
+                s.scene, s.width, s.height, s.fpl_mhz
+            )
         }),
         scenes: config.scenes.iter().map(|s| s.label.clone()).collect(),
         image_size: format!("{}x{}", config.width, config.height),
@@ -107,7 +115,10 @@ pub fn merge(layout: &Layout) -> Result<Results> {
     Ok(results)
 }
 
-fn read_or_note<T: serde::de::DeserializeOwned>(path: &std::path::Path, missing: &mut Vec<String>) -> Option<T> {
+fn read_or_note<T: serde::de::DeserializeOwned>(
+    path: &std::path::Path,
+    missing: &mut Vec<String>,
+) -> Option<T> {
     if !path.exists() {
         missing.push(path.display().to_string());
         return None;
@@ -139,7 +150,13 @@ fn lane_fit(points: &[PointResult], p: &PointResult) -> Option<(LaneFit, Option<
     let mut pairs: Vec<(&PointResult, Usage, Usage)> = points
         .iter()
         .filter(|o| o.point.lanes == 1)
-        .filter_map(|o| Some((o, o.synth.as_ref()?.usage(), usage(&o.point.format, o.point.depth, 2)?)))
+        .filter_map(|o| {
+            Some((
+                o,
+                o.synth.as_ref()?.usage(),
+                usage(&o.point.format, o.point.depth, 2)?,
+            ))
+        })
         .collect();
     pairs.sort_by_cached_key(|(o, _, _)| {
         (
@@ -157,7 +174,10 @@ fn lane_fit(points: &[PointResult], p: &PointResult) -> Option<(LaneFit, Option<
         return Some((fit_from(one, two, &XC7Z020), None));
     }
     let fixed = fit_from(pair_one, two, &XC7Z020).fixed;
-    Some((fit_with_fixed(one, fixed, &XC7Z020), Some(format!("{f}_d{d}"))))
+    Some((
+        fit_with_fixed(one, fixed, &XC7Z020),
+        Some(format!("{f}_d{d}")),
+    ))
 }
 
 #[cfg(test)]
@@ -166,7 +186,13 @@ mod tests {
     use crate::sweep::point::Point;
     use crate::sweep::synth_cache::SynthRecord;
 
-    fn synthesised(format: &str, depth: usize, lanes: usize, lut: u64, dsp48e1: u64) -> PointResult {
+    fn synthesised(
+        format: &str,
+        depth: usize,
+        lanes: usize,
+        lut: u64,
+        dsp48e1: u64,
+    ) -> PointResult {
         let point = Point::new(format, depth, lanes);
         PointResult {
             bits: point.bits(),
@@ -209,24 +235,46 @@ mod tests {
         ];
         let fit = |i: usize| lane_fit(&points, &points[i]).unwrap();
         let (own, from) = fit(0);
-        assert_eq!((own.fixed.lut, own.per_lane.lut, from), (2000, 10_000, None));
+        assert_eq!(
+            (own.fixed.lut, own.per_lane.lut, from),
+            (2000, 10_000, None)
+        );
         let (borrowed, from) = fit(2);
-        assert_eq!(from.as_deref(), Some("fp32_d9"), "depth 9 is nearer to 6 than depth 1");
+        assert_eq!(
+            from.as_deref(),
+            Some("fp32_d9"),
+            "depth 9 is nearer to 6 than depth 1"
+        );
         assert_eq!((borrowed.fixed.lut, borrowed.per_lane.lut), (5000, 6000));
         // No bf16 pair: the float of the same width (fp16, fixed part 1000) before the fixed
         // format of the same width.
         let (borrowed, from) = fit(9);
-        assert_eq!((from.as_deref(), borrowed.fixed.lut, borrowed.per_lane.lut), (Some("fp16_d6"), 1000, 5000));
+        assert_eq!(
+            (from.as_deref(), borrowed.fixed.lut, borrowed.per_lane.lut),
+            (Some("fp16_d6"), 1000, 5000)
+        );
         let (_, from) = fit(10);
-        assert_eq!(from.as_deref(), Some("fx16_10_d1"), "a fixed format borrows from a fixed format");
+        assert_eq!(
+            from.as_deref(),
+            Some("fx16_10_d1"),
+            "a fixed format borrows from a fixed format"
+        );
         // A point whose 1-lane design was not synthesised has no fit, nor one without any pair.
         let mut unsynthesised = points[2].clone();
         unsynthesised.synth = None;
-        assert!(lane_fit(&[unsynthesised.clone(), points[0].clone(), points[1].clone()], &unsynthesised).is_none());
+        assert!(lane_fit(
+            &[unsynthesised.clone(), points[0].clone(), points[1].clone()],
+            &unsynthesised
+        )
+        .is_none());
         assert!(lane_fit(&points[9..10], &points[9]).is_none());
         // A 2-lane design without its 1-lane one is no pair: the next one is taken.
         let mut lone_two = points.clone();
         lone_two[7].synth = None;
-        assert_eq!(lane_fit(&lone_two, &lone_two[10]).unwrap().1.as_deref(), Some("fp16_d6"), "fx16_10 has no pair left");
+        assert_eq!(
+            lane_fit(&lone_two, &lone_two[10]).unwrap().1.as_deref(),
+            Some("fp16_d6"),
+            "fx16_10 has no pair left"
+        );
     }
 }

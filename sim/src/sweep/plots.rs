@@ -28,14 +28,31 @@ fn capped(v: f64, ceiling: f64) -> f64 {
 
 pub fn write_all(results: &Results, layout: &Layout) -> Result<()> {
     if !results.quality.is_empty() {
-        save(layout, "psnr_vs_bits", |a| psnr_vs_bits(a, results), |a| psnr_vs_bits(a, results))?;
+        save(
+            layout,
+            "psnr_vs_bits",
+            |a| psnr_vs_bits(a, results),
+            |a| psnr_vs_bits(a, results),
+        )?;
     }
     if results.rows.iter().any(|r| r.lut.is_some()) {
-        save(layout, "resources_vs_lanes", |a| resources_vs_lanes(a, &results.rows), |a| {
-            resources_vs_lanes(a, &results.rows)
-        })?;
-        if results.rows.iter().any(|r| r.min_psnr_db.is_some() && r.dsp48e1.is_some()) {
-            save(layout, "pareto_psnr_dsp", |a| pareto(a, &results.rows), |a| pareto(a, &results.rows))?;
+        save(
+            layout,
+            "resources_vs_lanes",
+            |a| resources_vs_lanes(a, &results.rows),
+            |a| resources_vs_lanes(a, &results.rows),
+        )?;
+        if results
+            .rows
+            .iter()
+            .any(|r| r.min_psnr_db.is_some() && r.dsp48e1.is_some())
+        {
+            save(
+                layout,
+                "pareto_psnr_dsp",
+                |a| pareto(a, &results.rows),
+                |a| pareto(a, &results.rows),
+            )?;
         }
     }
     Ok(())
@@ -70,7 +87,14 @@ where
     let ceiling = psnr_ceiling(r.quality.iter().map(|q| q.min_psnr_db()));
     let max_bits = r.quality.iter().map(|q| q.bits).max().unwrap_or(32) + 2;
     let mut chart = ChartBuilder::on(area)
-        .caption(format!("Worst-scene PSNR vs format width ({} scenes, {}); top row = identical", r.scenes.len(), r.image_size), ("sans-serif", 20))
+        .caption(
+            format!(
+                "Worst-scene PSNR vs format width ({} scenes, {}); top row = identical",
+                r.scenes.len(),
+                r.image_size
+            ),
+            ("sans-serif", 20),
+        )
         .margin(15)
         .x_label_area_size(40)
         .y_label_area_size(55)
@@ -94,8 +118,16 @@ where
         let y = capped(q.min_psnr_db(), ceiling);
         let n = seen.entry(q.bits).or_insert(0);
         // Fixed point blue, floating point green; model-only formats hollow.
-        let colour = if q.format.starts_with("fx") { BLUE } else { RGBColor(0, 150, 0) };
-        let style = if r.model_formats.contains(&q.format) { colour.stroke_width(2) } else { colour.filled() };
+        let colour = if q.format.starts_with("fx") {
+            BLUE
+        } else {
+            RGBColor(0, 150, 0)
+        };
+        let style = if r.model_formats.contains(&q.format) {
+            colour.stroke_width(2)
+        } else {
+            colour.filled()
+        };
         let offset = (5, -12 - 12 * *n);
         *n += 1;
         chart
@@ -104,7 +136,12 @@ where
                 + Text::new(q.format.clone(), offset, ("sans-serif", 12))])
             .map_err(err)?;
     }
-    chart.configure_series_labels().background_style(WHITE).border_style(BLACK).draw().map_err(err)?;
+    chart
+        .configure_series_labels()
+        .background_style(WHITE)
+        .border_style(BLACK)
+        .draw()
+        .map_err(err)?;
     Ok(())
 }
 
@@ -120,10 +157,17 @@ where
     XC::ValueType: Clone + 'static,
 {
     chart
-        .draw_series(LineSeries::new([(from.clone(), ceiling), (to, ceiling)], BLACK.mix(0.3)))
+        .draw_series(LineSeries::new(
+            [(from.clone(), ceiling), (to, ceiling)],
+            BLACK.mix(0.3),
+        ))
         .map_err(err)?;
     chart
-        .draw_series([Text::new("identical to f32 (PSNR = inf)", (from, ceiling + 3.0), ("sans-serif", 12))])
+        .draw_series([Text::new(
+            "identical to f32 (PSNR = inf)",
+            (from, ceiling + 3.0),
+            ("sans-serif", 12),
+        )])
         .map_err(err)?;
     Ok(())
 }
@@ -134,34 +178,60 @@ where
 {
     let mut series: BTreeMap<String, Vec<&Row>> = BTreeMap::new();
     for row in rows.iter().filter(|r| r.lut.is_some()) {
-        series.entry(format!("{} d{}", row.format, row.depth)).or_default().push(row);
+        series
+            .entry(format!("{} d{}", row.format, row.depth))
+            .or_default()
+            .push(row);
     }
     let max_lanes = rows.iter().map(|r| r.lanes).max().unwrap_or(1) as u32;
     let (left, right) = area.split_horizontally(SIZE.0 / 2);
     let panels: [(&DrawingArea<DB, Shift>, &str, fn(&Row) -> Option<u64>, u64); 2] = [
         (&left, "LUT", |r| r.lut, hdl::top::fit::XC7Z020.lut),
-        (&right, "DSP48E1", |r| r.dsp48e1, hdl::top::fit::XC7Z020.dsp48e1),
+        (
+            &right,
+            "DSP48E1",
+            |r| r.dsp48e1,
+            hdl::top::fit::XC7Z020.dsp48e1,
+        ),
     ];
     for (panel, name, value, device) in panels {
-        let top = rows.iter().filter_map(value).max().unwrap_or(1).max(device / 4);
+        let top = rows
+            .iter()
+            .filter_map(value)
+            .max()
+            .unwrap_or(1)
+            .max(device / 4);
         let mut chart = ChartBuilder::on(panel)
-            .caption(format!("{name} vs lanes (XC7Z020: {device})"), ("sans-serif", 18))
+            .caption(
+                format!("{name} vs lanes (XC7Z020: {device})"),
+                ("sans-serif", 18),
+            )
             .margin(10)
             .x_label_area_size(35)
             .y_label_area_size(60)
             .build_cartesian_2d(0u32..max_lanes + 1, 0u64..top + top / 10)
             .map_err(err)?;
-        chart.configure_mesh().x_desc("lanes").y_desc(name).draw().map_err(err)?;
+        chart
+            .configure_mesh()
+            .x_desc("lanes")
+            .y_desc(name)
+            .draw()
+            .map_err(err)?;
         for (i, (label, points)) in series.iter().enumerate() {
             let colour = Palette99::pick(i).to_rgba();
-            let mut pts: Vec<(u32, u64)> = points.iter().filter_map(|r| Some((r.lanes as u32, value(r)?))).collect();
+            let mut pts: Vec<(u32, u64)> = points
+                .iter()
+                .filter_map(|r| Some((r.lanes as u32, value(r)?)))
+                .collect();
             pts.sort();
             chart
                 .draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))
                 .map_err(err)?
                 .label(label.clone())
                 .legend(move |(x, y)| PathElement::new([(x, y), (x + 15, y)], colour));
-            chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 3, colour.filled()))).map_err(err)?;
+            chart
+                .draw_series(pts.into_iter().map(|p| Circle::new(p, 3, colour.filled())))
+                .map_err(err)?;
         }
         chart
             .configure_series_labels()
@@ -178,10 +248,16 @@ where
 /// Points with both quality and DSP48E1, and the front: no other point has at least the
 /// PSNR for fewer DSP48E1 (ties in DSP: the better PSNR).
 pub fn pareto_front(rows: &[Row]) -> Vec<&Row> {
-    let mut candidates: Vec<&Row> =
-        rows.iter().filter(|r| r.min_psnr_db.is_some() && r.dsp48e1.is_some()).collect();
+    let mut candidates: Vec<&Row> = rows
+        .iter()
+        .filter(|r| r.min_psnr_db.is_some() && r.dsp48e1.is_some())
+        .collect();
     candidates.sort_by(|a, b| {
-        a.dsp48e1.cmp(&b.dsp48e1).then(b.min_psnr_db.partial_cmp(&a.min_psnr_db).unwrap_or(std::cmp::Ordering::Equal))
+        a.dsp48e1.cmp(&b.dsp48e1).then(
+            b.min_psnr_db
+                .partial_cmp(&a.min_psnr_db)
+                .unwrap_or(std::cmp::Ordering::Equal),
+        )
     });
     let mut front: Vec<&Row> = Vec::new();
     for r in candidates {
@@ -196,28 +272,52 @@ fn pareto<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, rows: &[Row]) -> Re
 where
     DB::ErrorType: 'static,
 {
-    let with: Vec<&Row> = rows.iter().filter(|r| r.min_psnr_db.is_some() && r.dsp48e1.is_some()).collect();
+    let with: Vec<&Row> = rows
+        .iter()
+        .filter(|r| r.min_psnr_db.is_some() && r.dsp48e1.is_some())
+        .collect();
     let psnr = |r: &Row| r.min_psnr_db.map_or(0.0, |p| p.0);
     let ceiling = psnr_ceiling(with.iter().map(|r| psnr(r)));
     let max_dsp = with.iter().filter_map(|r| r.dsp48e1).max().unwrap_or(1);
     let mut chart = ChartBuilder::on(area)
-        .caption("Quality vs DSP48E1: every point, Pareto front in red; top row = identical", ("sans-serif", 20))
+        .caption(
+            "Quality vs DSP48E1: every point, Pareto front in red; top row = identical",
+            ("sans-serif", 20),
+        )
         .margin(15)
         .x_label_area_size(40)
         .y_label_area_size(55)
         .build_cartesian_2d(0u64..max_dsp + max_dsp / 10 + 1, 0.0..ceiling + 5.0)
         .map_err(err)?;
-    chart.configure_mesh().x_desc("DSP48E1").y_desc("min PSNR over scenes (dB)").draw().map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc("DSP48E1")
+        .y_desc("min PSNR over scenes (dB)")
+        .draw()
+        .map_err(err)?;
     identical_line(&mut chart, 0u64, max_dsp + max_dsp / 10 + 1, ceiling)?;
     chart
-        .draw_series(with.iter().map(|r| Circle::new((r.dsp48e1.unwrap_or(0), capped(psnr(r), ceiling)), 3, BLUE.mix(0.5).filled())))
+        .draw_series(with.iter().map(|r| {
+            Circle::new(
+                (r.dsp48e1.unwrap_or(0), capped(psnr(r), ceiling)),
+                3,
+                BLUE.mix(0.5).filled(),
+            )
+        }))
         .map_err(err)?;
     let front = pareto_front(rows);
-    let line: Vec<(u64, f64)> = front.iter().map(|r| (r.dsp48e1.unwrap_or(0), capped(psnr(r), ceiling))).collect();
-    chart.draw_series(LineSeries::new(line.clone(), RED.stroke_width(2))).map_err(err)?;
+    let line: Vec<(u64, f64)> = front
+        .iter()
+        .map(|r| (r.dsp48e1.unwrap_or(0), capped(psnr(r), ceiling)))
+        .collect();
+    chart
+        .draw_series(LineSeries::new(line.clone(), RED.stroke_width(2)))
+        .map_err(err)?;
     for (r, p) in front.iter().zip(line) {
         chart
-            .draw_series([EmptyElement::at(p) + Circle::new((0, 0), 5, RED.filled()) + Text::new(r.id.clone(), (6, -14), ("sans-serif", 12))])
+            .draw_series([EmptyElement::at(p)
+                + Circle::new((0, 0), 5, RED.filled())
+                + Text::new(r.id.clone(), (6, -14), ("sans-serif", 12))])
             .map_err(err)?;
     }
     Ok(())

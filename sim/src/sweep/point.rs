@@ -13,7 +13,11 @@ pub struct Point {
 
 impl Point {
     pub fn new(format: &str, depth: usize, lanes: usize) -> Point {
-        Point { format: format.to_string(), depth, lanes }
+        Point {
+            format: format.to_string(),
+            depth,
+            lanes,
+        }
     }
 
     pub fn top_config(&self) -> TopConfig {

@@ -4,7 +4,9 @@
 
 use anyhow::{Context, Result};
 
-use crate::projection::{calibrate, project, Board, Design, Frontend, Traversal, Workload, Workloads};
+use crate::projection::{
+    calibrate, project, Board, Design, Frontend, Traversal, Workload, Workloads,
+};
 
 use super::config::ProjectionSettings;
 use super::point::Point;
@@ -31,9 +33,18 @@ impl Projector {
             .context("calibrating the ZedBoard model on the thesis' measurements")?;
         let workload = workloads
             .get(&settings.scene, settings.width, settings.height)
-            .with_context(|| format!("counting the work of {} at {}x{}", settings.scene, settings.width, settings.height))?
+            .with_context(|| {
+                format!(
+                    "counting the work of {} at {}x{}",
+                    settings.scene, settings.width, settings.height
+                )
+            })?
             .clone();
-        Ok(Projector { settings: settings.clone(), board: calibration.board, workload })
+        Ok(Projector {
+            settings: settings.clone(),
+            board: calibration.board,
+            workload,
+        })
     }
 
     /// The modelled ARM-only (software) time of the projected frame, brute force as the thesis.
@@ -41,15 +52,28 @@ impl Projector {
         self.board.arm_only_s(&self.workload, Traversal::BruteForce)
     }
 
-    pub fn project(&self, point: &Point, latency: usize, cycles_per_test: f64) -> Result<Projected> {
+    pub fn project(
+        &self,
+        point: &Point,
+        latency: usize,
+        cycles_per_test: f64,
+    ) -> Result<Projected> {
         let design = stream_design(&self.settings, point, latency, cycles_per_test)?;
         let frame_s = project(&self.workload, &design, &self.board)?.total_s();
-        Ok(Projected { frame_s, speedup_vs_arm: self.arm_only_s() / frame_s })
+        Ok(Projected {
+            frame_s,
+            speedup_vs_arm: self.arm_only_s() / frame_s,
+        })
     }
 }
 
 /// The stream design of `point` on the board `settings` describe, checked.
-pub fn stream_design(s: &ProjectionSettings, point: &Point, latency: usize, cycles_per_test: f64) -> Result<Design> {
+pub fn stream_design(
+    s: &ProjectionSettings,
+    point: &Point,
+    latency: usize,
+    cycles_per_test: f64,
+) -> Result<Design> {
     let d = Design {
         frontend: Frontend::Stream {
             lanes: u32::try_from(point.lanes)?,

@@ -41,16 +41,24 @@ pub struct QualityResult {
 impl QualityResult {
     /// The worst scene's PSNR.
     pub fn min_psnr_db(&self) -> f64 {
-        self.scenes.iter().map(|s| s.psnr_db.0).fold(f64::INFINITY, f64::min)
+        self.scenes
+            .iter()
+            .map(|s| s.psnr_db.0)
+            .fold(f64::INFINITY, f64::min)
     }
 
     pub fn max_differing_share(&self) -> f64 {
-        self.scenes.iter().map(|s| s.differing_share).fold(0.0, f64::max)
+        self.scenes
+            .iter()
+            .map(|s| s.differing_share)
+            .fold(0.0, f64::max)
     }
 }
 
 pub fn run(config: &SweepConfig, layout: &Layout, format: &str) -> Result<QualityResult> {
-    let isect = ModelIntersector { format: hw_model::lookup(format)? };
+    let isect = ModelIntersector {
+        format: hw_model::lookup(format)?,
+    };
     let mut scenes = Vec::new();
     let mut grid_rows = Vec::new();
     for scene in &config.scenes {
@@ -77,7 +85,11 @@ pub fn run(config: &SweepConfig, layout: &Layout, format: &str) -> Result<Qualit
         });
     }
     write_grid(&grid_rows, &layout.grid(format))?;
-    let result = QualityResult { format: format.to_string(), bits: format_bits(format), scenes };
+    let result = QualityResult {
+        format: format.to_string(),
+        bits: format_bits(format),
+        scenes,
+    };
     write_json(&layout.quality_result(format), &result)?;
     Ok(result)
 }
@@ -109,7 +121,9 @@ impl<'de> Deserialize<'de> for Psnr {
         match PsnrRepr::deserialize(d)? {
             PsnrRepr::Number(x) => Ok(Psnr(x)),
             PsnrRepr::Word(w) if w == "inf" => Ok(Psnr(f64::INFINITY)),
-            PsnrRepr::Word(w) => Err(serde::de::Error::custom(format!("PSNR `{w}`: expected a number or \"inf\""))),
+            PsnrRepr::Word(w) => Err(serde::de::Error::custom(format!(
+                "PSNR `{w}`: expected a number or \"inf\""
+            ))),
         }
     }
 }

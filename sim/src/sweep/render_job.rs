@@ -10,14 +10,19 @@ use super::config::{SceneSpec, SweepConfig};
 use super::layout::{parent_dir, Layout};
 
 /// Renders `scene` at the sweep's size through `isect`.
-pub fn render_scene(config: &SweepConfig, scene: &SceneSpec, isect: &dyn Intersector) -> Result<RenderOutput> {
+pub fn render_scene(
+    config: &SweepConfig,
+    scene: &SceneSpec,
+    isect: &dyn Intersector,
+) -> Result<RenderOutput> {
     let loaded = scene.load()?;
     let opts = RenderOptions {
         width: Some(config.width),
         height: Some(config.height),
         ..Default::default()
     };
-    render(&loaded, isect, &opts).with_context(|| format!("rendering {} ({})", scene.label, isect.name()))
+    render(&loaded, isect, &opts)
+        .with_context(|| format!("rendering {} ({})", scene.label, isect.name()))
 }
 
 /// The `prepare` job: the f32 reference of every scene, saved as PNG.
@@ -35,7 +40,10 @@ pub fn prepare(config: &SweepConfig, layout: &Layout) -> Result<()> {
 pub fn reference(layout: &Layout, scene: &SceneSpec) -> Result<RgbImage> {
     let path = layout.reference(&scene.label);
     let image = image::open(&path).with_context(|| {
-        format!("reading the reference render {} (run the `prepare` job first)", path.display())
+        format!(
+            "reading the reference render {} (run the `prepare` job first)",
+            path.display()
+        )
     })?;
     Ok(image.to_rgb8())
 }

@@ -52,7 +52,9 @@ pub fn run_local(config: &SweepConfig, out: &Path, opts: &LocalRun) -> Result<Re
     } else {
         ProgressBar::hidden()
     };
-    if let Ok(style) = ProgressStyle::with_template("sweep [{bar:40}] {pos}/{len} jobs {elapsed}/{eta} {msg}") {
+    if let Ok(style) =
+        ProgressStyle::with_template("sweep [{bar:40}] {pos}/{len} jobs {elapsed}/{eta} {msg}")
+    {
         bar.set_style(style);
     }
     bar.set_message("prepare (reference renders)");
@@ -70,7 +72,10 @@ pub fn run_local(config: &SweepConfig, out: &Path, opts: &LocalRun) -> Result<Re
                     if let Err(e) = run_job(config, &layout, job) {
                         // Also without a terminal (a hidden bar prints nothing).
                         bar.suspend(|| eprintln!("job {} failed: {e:#}", job.id()));
-                        failures.lock().unwrap_or_else(|p| p.into_inner()).push(job.id());
+                        failures
+                            .lock()
+                            .unwrap_or_else(|p| p.into_inner())
+                            .push(job.id());
                     }
                     bar.inc(1);
                 }
@@ -80,7 +85,12 @@ pub fn run_local(config: &SweepConfig, out: &Path, opts: &LocalRun) -> Result<Re
     let failures = failures.into_inner().unwrap_or_else(|p| p.into_inner());
     if !failures.is_empty() {
         bar.abandon();
-        bail!("{} job(s) failed: {} (re-run them from {})", failures.len(), failures.join(", "), layout.manifest().display());
+        bail!(
+            "{} job(s) failed: {} (re-run them from {})",
+            failures.len(),
+            failures.join(", "),
+            layout.manifest().display()
+        );
     }
     bar.set_message("merge");
     let results = merge(&layout)?;

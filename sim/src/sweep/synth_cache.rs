@@ -30,12 +30,20 @@ pub struct SynthRecord {
 
 impl SynthRecord {
     pub fn usage(&self) -> Usage {
-        Usage { lut: self.lut, ff: self.ff, dsp48e1: self.dsp48e1, bram18: self.bram18 }
+        Usage {
+            lut: self.lut,
+            ff: self.ff,
+            dsp48e1: self.dsp48e1,
+            bram18: self.bram18,
+        }
     }
 }
 
 fn sha256_hex(text: &str) -> String {
-    Sha256::digest(text.as_bytes()).iter().map(|b| format!("{b:02x}")).collect()
+    Sha256::digest(text.as_bytes())
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
 }
 
 /// The report of point `id` with Verilog `verilog`: from the cache when the Verilog is the

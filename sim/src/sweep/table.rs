@@ -71,7 +71,8 @@ pub struct Results {
 
 pub fn write_csv(rows: &[Row], path: &Path) -> Result<()> {
     parent_dir(path)?;
-    let mut w = csv::Writer::from_path(path).with_context(|| format!("writing {}", path.display()))?;
+    let mut w =
+        csv::Writer::from_path(path).with_context(|| format!("writing {}", path.display()))?;
     for r in rows {
         w.serialize(r)?;
     }
@@ -94,7 +95,12 @@ pub fn smallest_format_above(quality: &[QualityResult], db: f64) -> Option<&Qual
 pub fn markdown(results: &Results) -> Result<String> {
     let mut s = String::new();
     writeln!(s, "# Sweep results\n")?;
-    writeln!(s, "Scenes ({}): {}\n", results.image_size, results.scenes.join(", "))?;
+    writeln!(
+        s,
+        "Scenes ({}): {}\n",
+        results.image_size,
+        results.scenes.join(", ")
+    )?;
     if let Some(arm) = results.arm_only_s {
         writeln!(
             s,
@@ -112,7 +118,10 @@ pub fn markdown(results: &Results) -> Result<String> {
             Some(ResourceSource::Estimate) => "estimate",
             None => "—",
         };
-        let borrowed = r.fixed_part_from.as_ref().map_or(String::new(), |from| format!(" †{from}"));
+        let borrowed = r
+            .fixed_part_from
+            .as_ref()
+            .map_or(String::new(), |from| format!(" †{from}"));
         let fit = match (&r.lanes_fit, &r.fit_limit) {
             (Some(n), Some(l)) => format!("{n} ({l}){borrowed}"),
             _ => "—".into(),
@@ -141,7 +150,10 @@ pub fn markdown(results: &Results) -> Result<String> {
         )?;
     }
     if !results.quality.is_empty() {
-        writeln!(s, "\n## Quality per scene (model engine vs f32; PSNR dB / differing pixels)\n")?;
+        writeln!(
+            s,
+            "\n## Quality per scene (model engine vs f32; PSNR dB / differing pixels)\n"
+        )?;
         write!(s, "| format | bits |")?;
         for scene in &results.scenes {
             write!(s, " {scene} |")?;
@@ -149,16 +161,26 @@ pub fn markdown(results: &Results) -> Result<String> {
         writeln!(s, " min PSNR |")?;
         writeln!(s, "|---|---:|{}---:|", "---|".repeat(results.scenes.len()))?;
         for q in &results.quality {
-            let tag = if results.model_formats.contains(&q.format) { " (model only)" } else { "" };
+            let tag = if results.model_formats.contains(&q.format) {
+                " (model only)"
+            } else {
+                ""
+            };
             write!(s, "| {}{tag} | {} |", q.format, q.bits)?;
             for sq in &q.scenes {
                 write!(s, " {} / {:.2} % |", sq.psnr_db, 100.0 * sq.differing_share)?;
             }
             writeln!(s, " {} |", Psnr(q.min_psnr_db()))?;
         }
-        let (hardware, model): (Vec<QualityResult>, Vec<QualityResult>) =
-            results.quality.iter().cloned().partition(|q| !results.model_formats.contains(&q.format));
-        for (what, list) in [("hardware format", &hardware), ("model-only format", &model)] {
+        let (hardware, model): (Vec<QualityResult>, Vec<QualityResult>) = results
+            .quality
+            .iter()
+            .cloned()
+            .partition(|q| !results.model_formats.contains(&q.format));
+        for (what, list) in [
+            ("hardware format", &hardware),
+            ("model-only format", &model),
+        ] {
             if list.is_empty() {
                 continue;
             }

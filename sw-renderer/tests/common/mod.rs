@@ -28,11 +28,19 @@ pub fn brute_force_trace(
 ) -> Option<Hit> {
     let mut isect_t = bound;
     let mut best = None;
-    let objects = tris.iter().map(|t| t.object as usize + 1).max().unwrap_or(0);
+    let objects = tris
+        .iter()
+        .map(|t| t.object as usize + 1)
+        .max()
+        .unwrap_or(0);
     for k in 0..objects {
         let mut t_near = f32::MAX;
         let mut found = None;
-        for (i, tri) in tris.iter().enumerate().filter(|(_, t)| t.object as usize == k) {
+        for (i, tri) in tris
+            .iter()
+            .enumerate()
+            .filter(|(_, t)| t.object as usize == k)
+        {
             let r = mt_f32(&query(orig, dir, tri));
             if r.hit && r.t < t_near {
                 t_near = r.t;

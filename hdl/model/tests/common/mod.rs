@@ -25,12 +25,20 @@ pub fn canonical_nan(exp: u32, man: u32) -> u64 {
 /// The value of float bits with subnormals flushed (sign kept), as an f64 (exact for man ≤ 52,
 /// exponents within f64's range).
 pub fn decode(bits: u64, exp: u32, man: u32) -> f64 {
-    let sign = if bits >> (exp + man) & 1 == 1 { -1.0 } else { 1.0 };
+    let sign = if bits >> (exp + man) & 1 == 1 {
+        -1.0
+    } else {
+        1.0
+    };
     let ef = (bits >> man) & ((1u64 << exp) - 1);
     let frac = bits & ((1u64 << man) - 1);
     let bias = (1i32 << (exp - 1)) - 1;
     if ef == (1u64 << exp) - 1 {
-        return if frac == 0 { sign * f64::INFINITY } else { f64::NAN };
+        return if frac == 0 {
+            sign * f64::INFINITY
+        } else {
+            f64::NAN
+        };
     }
     if ef == 0 {
         return sign * 0.0;
@@ -107,7 +115,12 @@ pub fn float_edges(exp: u32, man: u32) -> Vec<u64> {
     if bias > man as u64 + 2 {
         // half an ulp of 1 (an exact tie when added to 1), its neighbours, and 2^(man+1)
         let half_ulp = (bias - man as u64 - 1) << man;
-        v.extend([half_ulp, half_ulp | 1, half_ulp - (1 << man), (bias + man as u64 + 1) << man]);
+        v.extend([
+            half_ulp,
+            half_ulp | 1,
+            half_ulp - (1 << man),
+            (bias + man as u64 + 1) << man,
+        ]);
     }
     let positives = v.clone();
     v.extend(positives.iter().map(|b| b | s));
@@ -129,21 +142,32 @@ pub fn random_float(r: &mut StdRng, exp: u32, man: u32, near: u64) -> u64 {
         }
         3 => {
             // exponent within a few of `near`'s, random fraction and sign
-            let ne = ((near >> man) & exp_ones) as i64 + r.gen_range(-(man as i64) - 3..=man as i64 + 3);
+            let ne =
+                ((near >> man) & exp_ones) as i64 + r.gen_range(-(man as i64) - 3..=man as i64 + 3);
             let ef = ne.clamp(1, exp_ones as i64 - 1) as u64;
-            (r.gen::<u64>() & ((1u64 << man) - 1)) | (ef << man) | ((r.gen::<u64>() & 1) << (exp + man))
+            (r.gen::<u64>() & ((1u64 << man) - 1))
+                | (ef << man)
+                | ((r.gen::<u64>() & 1) << (exp + man))
         }
         4 => {
             // extreme exponents
-            let ef = if r.gen() { r.gen_range(0..4.min(exp_ones)) } else { exp_ones - r.gen_range(0..4.min(exp_ones)) };
-            (r.gen::<u64>() & ((1u64 << man) - 1)) | (ef << man) | ((r.gen::<u64>() & 1) << (exp + man))
+            let ef = if r.gen() {
+                r.gen_range(0..4.min(exp_ones))
+            } else {
+                exp_ones - r.gen_range(0..4.min(exp_ones))
+            };
+            (r.gen::<u64>() & ((1u64 << man) - 1))
+                | (ef << man)
+                | ((r.gen::<u64>() & 1) << (exp + man))
         }
         _ => {
             // ordinary magnitudes around 1
             let bias = (1i64 << (exp - 1)) - 1;
             let span = (bias - 1).min(20);
             let ef = (bias + r.gen_range(-span..=span)) as u64;
-            (r.gen::<u64>() & ((1u64 << man) - 1)) | (ef << man) | ((r.gen::<u64>() & 1) << (exp + man))
+            (r.gen::<u64>() & ((1u64 << man) - 1))
+                | (ef << man)
+                | ((r.gen::<u64>() & 1) << (exp + man))
         }
     }
 }
