@@ -75,9 +75,11 @@ pub struct Args {
     /// With --calibration: skip the slow scenes (Glass pen, Glasses, All materials).
     #[arg(long)]
     quick: bool,
-    /// Directory of the thesis scenes the model is calibrated on.
-    #[arg(long, default_value = "../shared/scenes/thesis")]
-    thesis_scenes: PathBuf,
+    /// Directory of the thesis scenes the model is calibrated on [default:
+    /// $RTFPGA_THESIS_SCENES, else ../shared/scenes/thesis beside the source tree rtfpga was
+    /// built from].
+    #[arg(long)]
+    thesis_scenes: Option<PathBuf>,
 }
 
 pub fn run(a: Args) -> Result<()> {
@@ -85,13 +87,23 @@ pub fn run(a: Args) -> Result<()> {
         bail!("nothing to do: give --scene to project a frame and/or --calibration");
     }
     let design = design(&a)?;
-    if !a.thesis_scenes.is_dir() {
+    let thesis_scenes = match &a.thesis_scenes {
+        Some(dir) => dir.clone(),
+        None => sw_renderer::thesis_scenes::locate()?.with_context(|| {
+            format!(
+                "{} (looked for {}); or give --thesis-scenes",
+                sw_renderer::thesis_scenes::NOT_FOUND,
+                sw_renderer::thesis_scenes::fallback_dir().display()
+            )
+        })?,
+    };
+    if !thesis_scenes.is_dir() {
         bail!(
             "thesis scenes: {} is not a directory (set --thesis-scenes)",
-            a.thesis_scenes.display()
+            thesis_scenes.display()
         );
     }
-    let mut workloads = Workloads::new(&a.thesis_scenes);
+    let mut workloads = Workloads::new(&thesis_scenes);
     let quick = a.quick;
     let calibration = projection::calibrate(&mut workloads, |m| {
         !quick

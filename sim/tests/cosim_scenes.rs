@@ -1,36 +1,28 @@
-//! fp32 hardware renders of the thesis' 7 scenes (../shared/scenes/thesis/, skipped with a
-//! notice when absent) through the Verilated accelerator in stream mode equal the software
-//! renders pixel for pixel (PSNR inf). 48×27 keeps the run short; the model build (fp32,
-//! depth 1, one lane, ~1 min) is cached on disk.
+//! fp32 hardware renders of the thesis' 7 scenes (found by `sw_renderer::thesis_scenes`;
+//! skipped with a `SKIPPED` line on stderr when absent) through the Verilated accelerator in
+//! stream mode equal the software renders pixel for pixel (PSNR inf). 48×27 keeps the run
+//! short; the model build (fp32, depth 1, one lane, ~1 min) is cached on disk.
 
 use hdl::top::TopConfig;
 use sim::hw_intersector::{HwIntersector, Mode};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use sw_renderer::compare::compare;
 use sw_renderer::intersect::F32Intersector;
 use sw_renderer::render::{render, RenderOptions};
 use sw_renderer::scene::Scene;
-
-fn thesis_scene_dirs() -> Option<Vec<PathBuf>> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/scenes/thesis");
-    let mut dirs: Vec<PathBuf> = std::fs::read_dir(&root)
-        .ok()?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.join("objects.txt").is_file())
-        .collect();
-    dirs.sort();
-    Some(dirs)
-}
+use sw_renderer::thesis_scenes;
 
 #[test]
 fn fp32_hardware_renders_equal_the_software_renders() {
-    let Some(dirs) = thesis_scene_dirs() else {
-        eprintln!(
-            "NOTICE: ../shared/scenes/thesis is absent; the thesis scene co-simulation is skipped"
-        );
+    let Some(root) =
+        thesis_scenes::for_test("cosim_scenes::fp32_hardware_renders_equal_the_software_renders")
+    else {
         return;
     };
-    assert_eq!(dirs.len(), 7, "{dirs:?}");
+    let dirs: Vec<PathBuf> = thesis_scenes::SCENE_DIRS
+        .iter()
+        .map(|name| root.join(name))
+        .collect();
     let hw = HwIntersector::new(&TopConfig::new("fp32", 1, 1), Mode::Stream).unwrap();
     let opts = RenderOptions {
         width: Some(48),

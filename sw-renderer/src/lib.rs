@@ -12,5 +12,6 @@ pub mod model_engine;
 pub mod render;
 pub mod scene;
 pub mod shade;
+pub mod thesis_scenes;
 pub mod trace;
 pub mod world;

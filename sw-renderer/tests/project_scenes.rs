@@ -1,5 +1,5 @@
 //! The project's own scenes: procedural meshes, the TOML scene format and the built-in scenes
-//! (`scenes/*.toml`), checked against the thesis' scenes when `/work/shared` is present.
+//! (`scenes/*.toml`), checked against the thesis' scenes when they are found (`sw_renderer::thesis_scenes`).
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -11,6 +11,7 @@ use sw_renderer::scene::procedural::{self, Backdrop};
 use sw_renderer::scene::{
     builtin, thesis, toml_scene, LightKind, Mat44, MaterialKind, Mesh, Scene, SceneError,
 };
+use sw_renderer::thesis_scenes;
 
 // ---------------------------------------------------------------- mesh checks
 
@@ -824,17 +825,6 @@ const BUILTINS: [&str; 7] = [
     "all_materials",
 ];
 
-/// The thesis' scene directories, in the order of BUILTINS.
-const THESIS_SCENES: [&str; 7] = [
-    "Glass_pen_scene",
-    "Simple_plane_scene",
-    "Glasses_scene",
-    "Glasses_point_scene",
-    "Simple_plane2_scene",
-    "Utah_teapot_scene",
-    "All_materials_scene",
-];
-
 fn builtin(name: &str) -> Scene {
     builtin::load(name)
         .unwrap_or_else(|| panic!("no built-in {name}"))
@@ -949,17 +939,9 @@ fn builtins_carry_the_thesis_numbers() {
 
 // ---------------------------------------------------------------- against the thesis' scenes
 
-fn thesis_dir() -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/scenes/thesis");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!(
-            "notice: {} not found, comparison with the thesis' scenes skipped",
-            dir.display()
-        );
-        None
-    }
+/// The thesis scenes, or None after a `SKIPPED project_scenes::<test>` line.
+fn thesis_dir(test: &str) -> Option<PathBuf> {
+    thesis_scenes::for_test(&format!("project_scenes::{test}"))
 }
 
 /// p·M with the homogeneous divide, as the renderer places vertices.
@@ -998,8 +980,10 @@ fn boxes_by_material(scene: &Scene) -> Vec<(String, Vec3, Vec3)> {
 
 #[test]
 fn builtins_resemble_the_thesis_scenes() {
-    let Some(dir) = thesis_dir() else { return };
-    for (ours, theirs) in BUILTINS.into_iter().zip(THESIS_SCENES) {
+    let Some(dir) = thesis_dir("builtins_resemble_the_thesis_scenes") else {
+        return;
+    };
+    for (ours, theirs) in BUILTINS.into_iter().zip(thesis_scenes::SCENE_DIRS) {
         let mine = builtin(ours);
         let thesis = thesis::load_dir(&dir.join(theirs)).unwrap();
         // Options (but the image size) and lights are the thesis' numbers exactly.
@@ -1035,7 +1019,9 @@ fn builtins_resemble_the_thesis_scenes() {
 
 #[test]
 fn toml_can_use_the_thesis_teapot_geo() {
-    let Some(dir) = thesis_dir() else { return };
+    let Some(dir) = thesis_dir("toml_can_use_the_thesis_teapot_geo") else {
+        return;
+    };
     let geo = dir.join("Utah_teapot_scene/teapot.geo");
     let text = MINIMAL.replace(
         "plane = { width = 20, depth = 20 }",
@@ -1107,8 +1093,8 @@ fn builtins_show_their_objects() {
 #[ignore]
 fn render_builtins_to_png() {
     let dir = PathBuf::from(std::env::var("SCENE_PNG_DIR").unwrap_or_else(|_| "/tmp".into()));
-    let thesis = thesis_dir();
-    for (name, thesis_name) in BUILTINS.iter().zip(THESIS_SCENES) {
+    let thesis = thesis_dir("render_builtins_to_png (thesis images)");
+    for (name, thesis_name) in BUILTINS.iter().zip(thesis_scenes::SCENE_DIRS) {
         let mut scenes = vec![(name.to_string(), builtin(name))];
         if let Some(thesis) = &thesis {
             scenes.push((

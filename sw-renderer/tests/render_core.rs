@@ -616,25 +616,17 @@ fn wavefront_render_equals_the_recursive_reference_bit_for_bit() {
     assert!(colours.len() > 500, "{} colours", colours.len());
 }
 
-/// The thesis' scenes, small, against the recursive reference (skipped if the shared scenes
-/// are not present).
+/// The thesis' scenes, small, against the recursive reference (skipped, with a line on
+/// stderr, when the thesis scenes are not found: `sw_renderer::thesis_scenes`).
 #[test]
 fn thesis_scenes_equal_the_recursive_reference() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/scenes/thesis");
-    for name in [
-        "Simple_plane_scene",
-        "Simple_plane2_scene",
-        "Glasses_scene",
-        "Glasses_point_scene",
-        "Glass_pen_scene",
-        "Utah_teapot_scene",
-        "All_materials_scene",
-    ] {
+    let Some(root) = sw_renderer::thesis_scenes::for_test(
+        "render_core::thesis_scenes_equal_the_recursive_reference",
+    ) else {
+        return;
+    };
+    for name in sw_renderer::thesis_scenes::SCENE_DIRS {
         let dir = root.join(name);
-        if !dir.is_dir() {
-            eprintln!("skipping {name}: {} not found", dir.display());
-            continue;
-        }
         let mut s = Scene::load(dir.to_str().unwrap()).unwrap();
         let (w, h) = (s.options.width, s.options.height);
         // A small image of the same aspect and field of view.

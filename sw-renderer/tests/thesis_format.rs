@@ -796,17 +796,9 @@ proptest! {
 // ---------------------------------------------------------------------------------------------
 // The thesis' own scenes and templates
 
-fn thesis_dir() -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/scenes/thesis");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        println!(
-            "SKIPPED: {} does not exist (the thesis scenes are not on this machine)",
-            dir.display()
-        );
-        None
-    }
+/// The thesis scenes, or None after a `SKIPPED thesis_format::<test>` line.
+fn thesis_dir(test: &str) -> Option<PathBuf> {
+    sw_renderer::thesis_scenes::for_test(&format!("thesis_format::{test}"))
 }
 
 /// Σ(n − 2) over the face-vertex counts, read straight from the file's first tokens.
@@ -819,7 +811,9 @@ fn fan_triangles_in(geo: &Path) -> usize {
 
 #[test]
 fn the_thesis_scenes_load() {
-    let Some(root) = thesis_dir() else { return };
+    let Some(root) = thesis_dir("the_thesis_scenes_load") else {
+        return;
+    };
     let mut dirs: Vec<PathBuf> = fs::read_dir(&root)
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -903,7 +897,9 @@ fn the_thesis_scenes_load() {
 
 #[test]
 fn the_simple_plane_scene_has_the_expected_values() {
-    let Some(root) = thesis_dir() else { return };
+    let Some(root) = thesis_dir("the_simple_plane_scene_has_the_expected_values") else {
+        return;
+    };
     let scene = load_dir(&root.join("Simple_plane_scene")).unwrap();
     assert_eq!(scene.options.fov_deg, 36.87);
     assert_eq!(scene.options.camera_to_world.0[3], [0.0, 20.0, 75.0, 1.0]);
@@ -952,8 +948,15 @@ fn fill_in_template(text: &str) -> String {
 
 #[test]
 fn the_default_option_templates_parse_once_filled_in() {
-    let Some(root) = thesis_dir() else { return };
+    let Some(root) = thesis_dir("the_default_option_templates_parse_once_filled_in") else {
+        return;
+    };
     let templates = root.join("Default_options_files");
+    assert!(
+        templates.is_dir(),
+        "{} is not a directory",
+        templates.display()
+    );
 
     let path = templates.join("scene_default.sod");
     let raw = fs::read_to_string(&path).unwrap();

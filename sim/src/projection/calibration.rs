@@ -302,7 +302,8 @@ pub struct Workloads {
 }
 
 impl Workloads {
-    /// `root` holds the thesis scene directories (`/work/shared/scenes/thesis`).
+    /// `root` holds the thesis scene directories (`sw_renderer::thesis_scenes::locate` finds
+    /// them).
     pub fn new(root: &Path) -> Workloads {
         Workloads {
             root: root.to_path_buf(),

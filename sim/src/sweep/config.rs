@@ -592,7 +592,8 @@ fn projection_settings(
     };
     let thesis_scenes = match &r.thesis_scenes {
         Some(p) => base.join(p.get_ref()),
-        None => base.join("../../shared/scenes/thesis"),
+        // $RTFPGA_THESIS_SCENES, else ../shared/scenes/thesis beside the repository.
+        None => sw_renderer::thesis_scenes::default_dir(),
     };
     let settings = ProjectionSettings {
         thesis_scenes,
@@ -613,7 +614,7 @@ fn projection_settings(
     let scene_dir = settings.thesis_scenes.join(&settings.scene);
     if !scene_dir.is_dir() {
         return Err(err("projection.thesis_scenes", format!(
-            "{} is not a directory: expected the thesis' scene directories (set thesis_scenes, relative to this file, and scene)",
+            "{} is not a directory: expected the thesis' scene directories (set thesis_scenes, relative to this file, or RTFPGA_THESIS_SCENES, and scene)",
             scene_dir.display()
         )));
     }
