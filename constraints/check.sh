@@ -6,18 +6,18 @@
 #      XDC-only interpreter, dry runs of the three flow scripts against a Vivado mock;
 #   3. with generated Verilog, the ports of rtfpga_top (yosys portlist) and the register
 #      offsets of the generated C header against the architecture.
-# Environment: ARCH_DOC (architecture.md; default ../shared/docs/architecture.md from the
-# repository root), VERILOG_DIR (output of `rtfpga verilog`), else RTFPGA (default
+# Environment: ARCH_DOC (architecture.md; default the repository's docs/architecture.md),
+# VERILOG_DIR (output of `rtfpga verilog`), else RTFPGA (default
 # target/release/rtfpga) is asked to generate it when it has a `verilog` command.
 set -eu
 
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(dirname "$here")
-arch_doc=${ARCH_DOC:-$root/../shared/docs/architecture.md}
+arch_doc=${ARCH_DOC:-$root/docs/architecture.md}
 rtfpga=${RTFPGA:-$root/target/release/rtfpga}
 
 if [ ! -f "$arch_doc" ]; then
-    echo "check.sh: $arch_doc not found (set ARCH_DOC to docs/architecture.md)" >&2
+    echo "check.sh: $arch_doc not found (set ARCH_DOC to an architecture.md)" >&2
     exit 1
 fi
 

@@ -1,6 +1,6 @@
 //! `rtfpga`: render scenes in software or through the accelerator, compare images, list
-//! number formats, generate and measure the hardware. The CLI contract is in
-//! `docs/architecture.md`; each subcommand lives in its own module.
+//! number formats, generate and measure the hardware. The CLI contract is in the repository's
+//! `docs/architecture.md` ("CLI contract"); each subcommand lives in its own module.
 
 mod cmd_bench;
 mod cmd_compare;

@@ -5,7 +5,7 @@
 //! Only the number of ray-triangle tests depends on how candidates are found:
 //! - the thesis' renderer had no acceleration structure: every ray was tested against every
 //!   triangle, except that shadow rays skip reflection+refraction objects
-//!   (reference-renderer.md, "Intersection"); which object a ray hits does not change how
+//!   (the reference renderer's intersection loop); which object a ray hits does not change how
 //!   many triangles it is tested against, so the count follows from the rays by kind;
 //! - the project's renderer tests only the BVH's candidates (`TraceStats::mt_queries`).
 

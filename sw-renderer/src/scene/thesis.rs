@@ -1,7 +1,7 @@
 //! The thesis' scene formats: a directory with one `.sod` (options and lights), an
 //! `objects.txt` listing `geometry-file object-file` pairs in render order, `.ood` files
-//! (placement and material) and `.geo` meshes. The formats are described in
-//! `docs/reference-renderer.md`, "Scene files".
+//! (placement and material) and `.geo` meshes, as the thesis' reference renderer reads them;
+//! each parser's doc gives its file's layout.
 
 mod tokens;
 
