@@ -106,4 +106,25 @@
 #define XRTFPGA_CONTROL_CONFIG_DEPTH(w)  (((unsigned)(w) >> 8) & 0xffu)
 #define XRTFPGA_CONTROL_CONFIG_LANES(w)  (((unsigned)(w) >> 16) & 0xffu)
 
+// Format codes of XRTFPGA_CONTROL_CONFIG_FORMAT (the format catalogue, `rtfpga formats`).
+#define XRTFPGA_CONTROL_FORMAT_FP32              0
+#define XRTFPGA_CONTROL_FORMAT_FP24              1
+#define XRTFPGA_CONTROL_FORMAT_BF16              2
+#define XRTFPGA_CONTROL_FORMAT_FP16              3
+#define XRTFPGA_CONTROL_FORMAT_FX16_10           4
+#define XRTFPGA_CONTROL_FORMAT_FX16_10_RND_SAT   5
+#define XRTFPGA_CONTROL_FORMAT_FX16_13           6
+#define XRTFPGA_CONTROL_FORMAT_FX16_13_RND_SAT   7
+#define XRTFPGA_CONTROL_FORMAT_FX21_12           8
+#define XRTFPGA_CONTROL_FORMAT_FX21_12_RND_SAT   9
+#define XRTFPGA_CONTROL_FORMAT_FX25_10           10
+#define XRTFPGA_CONTROL_FORMAT_FX25_10_RND_SAT   11
+#define XRTFPGA_CONTROL_FORMAT_FX32_16           12
+#define XRTFPGA_CONTROL_FORMAT_FX32_16_RND_SAT   13
+#define XRTFPGA_CONTROL_FORMAT_FX32_20           14
+#define XRTFPGA_CONTROL_FORMAT_FX32_20_RND_SAT   15
+#define XRTFPGA_CONTROL_FORMAT_COUNT             16
+// Names by code: static const char *const Names[] = XRTFPGA_CONTROL_FORMAT_NAMES;
+#define XRTFPGA_CONTROL_FORMAT_NAMES { "fp32", "fp24", "bf16", "fp16", "fx16_10", "fx16_10_rnd_sat", "fx16_13", "fx16_13_rnd_sat", "fx21_12", "fx21_12_rnd_sat", "fx25_10", "fx25_10_rnd_sat", "fx32_16", "fx32_16_rnd_sat", "fx32_20", "fx32_20_rnd_sat" }
+
 #endif // XRTFPGA_HW_H

@@ -6,6 +6,8 @@
 //! `Xil_In32`/`Xil_Out32` of the Xilinx standalone BSP (`xil_io.h`).
 use std::fmt::Write;
 
+use hw_model::HwFormat;
+
 use crate::regmap::{self, Access, Register, REGISTERS};
 
 /// Prefix of every generated C identifier.
@@ -130,8 +132,36 @@ pub fn c_header() -> String {
         "#define {PREFIX}_CONFIG_LANES(w)  (((unsigned)(w) >> 16) & 0xffu)"
     )
     .unwrap();
+    format_codes(&mut s);
     writeln!(s, "\n#endif // {guard}").unwrap();
     s
+}
+
+/// The CONFIG register's format codes: a macro a format and the code → name table.
+fn format_codes(s: &mut String) {
+    writeln!(
+        s,
+        "\n// Format codes of {PREFIX}_CONFIG_FORMAT (the format catalogue, `rtfpga formats`)."
+    )
+    .unwrap();
+    for f in HwFormat::all() {
+        let name = format!("{PREFIX}_FORMAT_{}", f.name().to_ascii_uppercase());
+        writeln!(s, "#define {name:<40} {}", f.code()).unwrap();
+    }
+    writeln!(
+        s,
+        "#define {:<40} {}",
+        format!("{PREFIX}_FORMAT_COUNT"),
+        HwFormat::all().len()
+    )
+    .unwrap();
+    let names: Vec<String> = HwFormat::all().map(|f| format!("\"{f}\"")).collect();
+    writeln!(
+        s,
+        "// Names by code: static const char *const Names[] = {PREFIX}_FORMAT_NAMES;"
+    )
+    .unwrap();
+    writeln!(s, "#define {PREFIX}_FORMAT_NAMES {{ {} }}", names.join(", ")).unwrap();
 }
 
 fn offset_list(offsets: &[usize]) -> String {

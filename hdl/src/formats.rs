@@ -1,14 +1,25 @@
-//! The catalogue's float formats as rust-hdl operator types: one module a format, each
-//! holding the same names (`Add`, `Sub`, `Mul`, `Recip`, `Lt`, `FromF32`, `ToF32`, `WIDTH`,
-//! `FORMAT`, `NAME`) so pipelines can be written over `formats::<name>`.
+//! The catalogue's formats as rust-hdl operator types: one module a format of
+//! `hw_model::hw_formats!`, each holding the same names (`Add`, `Sub`, `Mul`, `Recip`, `Lt`,
+//! `FromF32`, `ToF32`, `WIDTH`, `FORMAT`, `NAME`) so pipelines can be written over
+//! `formats::<name>`, and entry points ([`rtl`], [`max_stages`], [`raw_fp32`]) that take a
+//! [`HwFormat`].
 //!
 //! rust-hdl cannot compute widths from generic parameters, so every derived width is a
-//! parameter of the operator; `float_format!` computes them from (exp, man) once.
+//! parameter of the operator; `float_format!` computes them from (exp, man) once, the fixed
+//! point ones come from `crate::fixed::fixed_format!`.
+
+use hw_model::HwFormat;
+
+use crate::operator::{Op, OperatorError};
+use crate::verilog::OperatorRtl;
 
 /// Per-format `max_stages(op)` and `rtl(op, stages)` over the module's operator types:
 /// every format module (float or fixed) invokes it after defining them.
 macro_rules! operator_table {
     () => {
+        /// The format as the rest of the toolkit names it.
+        pub const HW: hw_model::HwFormat = hw_model::HwFormat::named(NAME);
+
         /// Maximum pipeline stages of `op` in this format.
         pub fn max_stages(op: $crate::operator::Op) -> usize {
             use $crate::operator::{Op, Operator};
@@ -61,7 +72,7 @@ macro_rules! float_format {
     ($name:ident, exp = $e:literal, man = $m:literal) => {
         pub mod $name {
             use crate::float::*;
-            /// Catalogue name of the format (`hw_model::catalogue::lookup`).
+            /// Catalogue name of the format (`hw_model::HwFormat`).
             pub const NAME: &str = stringify!($name);
             pub const WIDTH: usize = 1 + $e + $m;
             pub const FORMAT: hw_model::Format = hw_model::Format::Float { exp: $e, man: $m };
@@ -91,87 +102,75 @@ macro_rules! float_format {
     };
 }
 
-float_format!(fp32, exp = 8, man = 23);
-float_format!(fp24, exp = 8, man = 15);
-float_format!(bf16, exp = 8, man = 7);
-float_format!(fp16, exp = 5, man = 10);
+/// `format_modules!` over the `hw_model::hw_formats!` list: a module a format, and their
+/// entry points in catalogue order ([`HwFormat::code`] indexes it).
+macro_rules! format_modules {
+    ($($name:ident: $kind:ident($($arg:tt),*), $description:literal;)*) => {
+        $(format_module!($name, $kind($($arg),*));)*
 
-// The fixed-point formats (`fixed_format!` is in `crate::fixed`).
-crate::fixed::fixed_format!(fx16_10, int = 10, frac = 6, Trn, Wrap);
-crate::fixed::fixed_format!(fx16_10_rnd_sat, int = 10, frac = 6, Rnd, Sat);
-crate::fixed::fixed_format!(fx16_13, int = 13, frac = 3, Trn, Wrap);
-crate::fixed::fixed_format!(fx16_13_rnd_sat, int = 13, frac = 3, Rnd, Sat);
-crate::fixed::fixed_format!(fx21_12, int = 12, frac = 9, Trn, Wrap);
-crate::fixed::fixed_format!(fx21_12_rnd_sat, int = 12, frac = 9, Rnd, Sat);
-crate::fixed::fixed_format!(fx25_10, int = 10, frac = 15, Trn, Wrap);
-crate::fixed::fixed_format!(fx25_10_rnd_sat, int = 10, frac = 15, Rnd, Sat);
-crate::fixed::fixed_format!(fx32_16, int = 16, frac = 16, Trn, Wrap);
-crate::fixed::fixed_format!(fx32_16_rnd_sat, int = 16, frac = 16, Rnd, Sat);
-crate::fixed::fixed_format!(fx32_20, int = 20, frac = 12, Trn, Wrap);
-crate::fixed::fixed_format!(fx32_20_rnd_sat, int = 20, frac = 12, Rnd, Sat);
-
-/// Calls `$callback!(fp32, fp24, …)` with every catalogue format that has rust-hdl
-/// operators: the one list that the dispatch below and the accelerator tops expand.
-macro_rules! with_formats {
-    ($callback:ident) => {
-        $callback!(
-            fp32,
-            fp24,
-            bf16,
-            fp16,
-            fx16_10,
-            fx16_10_rnd_sat,
-            fx16_13,
-            fx16_13_rnd_sat,
-            fx21_12,
-            fx21_12_rnd_sat,
-            fx25_10,
-            fx25_10_rnd_sat,
-            fx32_16,
-            fx32_16_rnd_sat,
-            fx32_20,
-            fx32_20_rnd_sat,
-        );
-    };
-}
-pub(crate) use with_formats;
-
-macro_rules! dispatch {
-    ($($name:ident),* $(,)?) => {
-        /// Names of the formats that have rust-hdl operators.
-        pub const NAMES: &[&str] = &[$($name::NAME),*];
-
-        /// Verilog of `op` in the catalogue format `format` with `stages` pipeline registers.
-        pub fn rtl(format: &str, op: crate::operator::Op, stages: usize) -> Result<crate::verilog::OperatorRtl, crate::operator::OperatorError> {
-            match format {
-                $($name::NAME => $name::rtl(op, stages),)*
-                _ => Err(crate::operator::OperatorError::UnknownFormat(format.to_string())),
-            }
-        }
-
-        /// Whether the MT lane of `format` takes and gives fp32 words unconverted (`RAW_FP32`).
-        pub fn raw_fp32(format: &str) -> Result<bool, crate::operator::OperatorError> {
-            match format {
-                $($name::NAME => Ok($name::RAW_FP32),)*
-                _ => Err(crate::operator::OperatorError::UnknownFormat(format.to_string())),
-            }
-        }
-
-        /// Maximum pipeline stages of `op` in the catalogue format `format`.
-        pub fn max_stages(format: &str, op: crate::operator::Op) -> Result<usize, crate::operator::OperatorError> {
-            Ok(match format {
-                $($name::NAME => $name::max_stages(op),)*
-                _ => return Err(crate::operator::OperatorError::UnknownFormat(format.to_string())),
-            })
-        }
+        static TABLE: &[FormatOps] = &[$(FormatOps {
+            name: $name::NAME,
+            raw_fp32: $name::RAW_FP32,
+            max_stages: $name::max_stages,
+            rtl: $name::rtl,
+        }),*];
     };
 }
 
-with_formats!(dispatch);
+macro_rules! format_module {
+    ($name:ident, float($e:literal, $m:literal)) => {
+        float_format!($name, exp = $e, man = $m);
+    };
+    ($name:ident, fixed($w:literal, $i:literal, $quant:ident, $overflow:ident)) => {
+        crate::fixed::fixed_format!($name, $w, $i, $quant, $overflow);
+    };
+}
+
+/// What a format module offers, for dispatch on a [`HwFormat`].
+struct FormatOps {
+    name: &'static str,
+    raw_fp32: bool,
+    max_stages: fn(Op) -> usize,
+    rtl: fn(Op, usize) -> Result<OperatorRtl, OperatorError>,
+}
+
+hw_model::hw_formats!(format_modules);
+
+fn ops(format: HwFormat) -> &'static FormatOps {
+    let ops = &TABLE[usize::from(format.code())];
+    debug_assert_eq!(ops.name, format.name(), "TABLE is in catalogue order");
+    ops
+}
+
+/// Verilog of `op` in `format` with `stages` pipeline registers.
+pub fn rtl(format: HwFormat, op: Op, stages: usize) -> Result<OperatorRtl, OperatorError> {
+    (ops(format).rtl)(op, stages)
+}
+
+/// Whether the MT lane of `format` takes and gives fp32 words unconverted (`RAW_FP32`).
+pub fn raw_fp32(format: HwFormat) -> bool {
+    ops(format).raw_fp32
+}
+
+/// Maximum pipeline stages of `op` in `format`.
+pub fn max_stages(format: HwFormat, op: Op) -> usize {
+    (ops(format).max_stages)(op)
+}
 
 #[cfg(test)]
 mod tests {
     use proptest::prelude::*;
+
+    /// The modules were built from the same list as the catalogue, in its order.
+    #[test]
+    fn every_hardware_format_has_its_module() {
+        assert_eq!(super::TABLE.len(), hw_model::HwFormat::all().len());
+        for (ops, h) in super::TABLE.iter().zip(hw_model::HwFormat::all()) {
+            assert_eq!(ops.name, h.name());
+        }
+        assert_eq!(super::fp16::FORMAT, super::fp16::HW.format());
+        assert_eq!(super::fx21_12_rnd_sat::FORMAT, super::fx21_12_rnd_sat::HW.format());
+    }
 
     /// Specials and edges of fp32, mixed into the random operands.
     const EDGES: [u32; 10] = [

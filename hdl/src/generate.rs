@@ -2,6 +2,8 @@
 //! body), the C register header and bare-metal driver ([`crate::cgen`]) and `config.json`.
 use std::path::Path;
 
+use hw_model::HwFormat;
+
 use crate::cgen;
 use crate::regmap;
 use crate::top::stream::{FIFO_DEPTH, IN_LANE_BITS, OUT_LANE_BITS};
@@ -15,16 +17,16 @@ pub const CONFIG_FILE: &str = "config.json";
 /// The configurations committed under generated-verilog/ (`make verilog`).
 pub fn default_configs() -> Vec<TopConfig> {
     vec![
-        TopConfig::new("fp32", 1, 1),
-        TopConfig::new("fp32", 1, 4),
-        TopConfig::new("fp16", 1, 1),
+        TopConfig::new(HwFormat::FP32, 1, 1),
+        TopConfig::new(HwFormat::FP32, 1, 4),
+        TopConfig::new(HwFormat::named("fp16"), 1, 1),
     ]
 }
 
 /// What config.json records about a generated accelerator.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Summary {
-    pub format: String,
+    pub format: HwFormat,
     pub depth: usize,
     pub lanes: usize,
     /// Cycles from a query entering a lane to its result.
@@ -54,7 +56,7 @@ pub fn generate(config: &TopConfig) -> Result<Generated, TopError> {
     config.validate()?;
     let lane_latency = config.lane_latency()?;
     let summary = Summary {
-        format: config.format.clone(),
+        format: config.format,
         depth: config.depth,
         lanes: config.lanes,
         lane_latency,

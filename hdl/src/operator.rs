@@ -55,8 +55,6 @@ impl fmt::Display for Op {
 pub enum OperatorError {
     #[error("unknown operator `{0}`; expected one of add, sub, mul, recip, lt, from_f32, to_f32")]
     UnknownOp(String),
-    #[error("format `{0}` has no rust-hdl operators; see `hdl::formats`")]
-    UnknownFormat(String),
     #[error("{format} {op}: {stages} pipeline stages requested, at most {max}")]
     TooManyStages {
         format: String,

@@ -2,14 +2,14 @@
 //! every catalogue fixed format (all six widths, Trn/Wrap and Rnd/Sat each) at 0, a middle
 //! and the maximum number of pipeline stages.
 //! More vectors: `cargo test --release -p hdl --test fixed_ops -- --ignored`.
-//! Verilator lint of every operator (fixed formats included, through `formats::NAMES`):
+//! Verilator lint of every operator (fixed formats included, through `HwFormat::all()`):
 //! `every_operator_passes_verilator_lint` in `float_ops.rs`.
 
 use hdl::formats;
 use hdl::operator::{simulate_operator, Op, Operator, OperatorError};
 use hdl::synth::{synthesize, SynthOptions};
 use hdl::verilog::TOP;
-use hw_model::Format;
+use hw_model::{Format, HwFormat};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 
 /// (int, frac) of a fixed format.
@@ -251,29 +251,25 @@ fixed_tests!(
     fx32_20_rnd_sat
 );
 
-/// Every fixed format of the model's catalogue has operators, reachable by name.
+/// Every fixed format of the catalogue has operators of its widths.
 #[test]
 fn every_catalogue_fixed_format_has_operators() {
-    for entry in hw_model::catalogue() {
+    for h in HwFormat::all() {
+        let entry = h.entry();
         if let Format::Fixed { frac, .. } = entry.format {
-            assert!(
-                formats::NAMES.contains(&entry.name),
-                "{} has no operators",
-                entry.name
-            );
-            let max = formats::max_stages(entry.name, Op::Recip).unwrap();
+            let max = formats::max_stages(h, Op::Recip);
             assert_eq!(
                 max,
                 2 * frac as usize + 3,
                 "{}: recip has a cut per division row and 3 more",
                 entry.name
             );
-            let rtl = formats::rtl(entry.name, Op::FromF32, 1).unwrap();
+            let rtl = formats::rtl(h, Op::FromF32, 1).unwrap();
             assert_eq!(
                 (rtl.a_width, rtl.b_width, rtl.y_width, rtl.latency),
                 (32, 0, entry.format.width() as usize, 1)
             );
-            let rtl = formats::rtl(entry.name, Op::Lt, 0).unwrap();
+            let rtl = formats::rtl(h, Op::Lt, 0).unwrap();
             assert_eq!(
                 (rtl.a_width, rtl.b_width, rtl.y_width),
                 (
@@ -282,11 +278,7 @@ fn every_catalogue_fixed_format_has_operators() {
                     1
                 )
             );
-            let too_many = formats::rtl(
-                entry.name,
-                Op::Mul,
-                formats::max_stages(entry.name, Op::Mul).unwrap() + 1,
-            );
+            let too_many = formats::rtl(h, Op::Mul, formats::max_stages(h, Op::Mul) + 1);
             assert!(matches!(too_many, Err(OperatorError::TooManyStages { .. })));
         }
     }
@@ -322,9 +314,10 @@ fn fx32_16_mul_synthesises_onto_dsp_slices() {
 #[ignore]
 fn synthesis_table() {
     println!("| format | op | stages | LUT | FF | DSP48E1 | CARRY4 | depth |");
-    for format in ["fx32_16", "fx32_16_rnd_sat", "fx16_10", "fx16_10_rnd_sat"] {
+    for name in ["fx32_16", "fx32_16_rnd_sat", "fx16_10", "fx16_10_rnd_sat"] {
+        let format = HwFormat::named(name);
         for op in Op::ALL {
-            let max = formats::max_stages(format, op).unwrap();
+            let max = formats::max_stages(format, op);
             for stages in [0, max] {
                 let rtl = formats::rtl(format, op, stages).unwrap();
                 let r = synthesize(&rtl.verilog, TOP, &SynthOptions::default())

@@ -66,6 +66,10 @@ int main(void) {
            XRTFPGA_CONTROL_CONFIG_LANES(XRtfpga_ReadConfig(&dev)));
     for (int i = 0; i < 15; i++) printf("%g ", f(regs[4 + i]));
     printf("\n");
+    static const char *const Names[] = XRTFPGA_CONTROL_FORMAT_NAMES;
+    unsigned code = XRTFPGA_CONTROL_CONFIG_FORMAT(XRtfpga_ReadConfig(&dev));
+    if (sizeof Names / sizeof Names[0] != XRTFPGA_CONTROL_FORMAT_COUNT) return 11;
+    printf("%s %d %d\n", Names[code], XRTFPGA_CONTROL_FORMAT_FP32, XRTFPGA_CONTROL_FORMAT_FP16);
     return 0;
 }
 "#;
@@ -161,5 +165,16 @@ fn driver_writes_and_reads_the_mapped_offsets() {
     assert_eq!(
         lines.next().unwrap().trim(),
         "1 2 3 0.5 0.25 -1 7 8 9 10 11 12 13 14 15"
+    );
+    // The header's code -> name table is the catalogue's.
+    let fp16 = hw_model::HwFormat::named("fp16");
+    assert_eq!(
+        lines.next().unwrap(),
+        format!(
+            "{} {} {}",
+            hw_model::catalogue()[7].name,
+            hw_model::HwFormat::FP32.code(),
+            fp16.code()
+        )
     );
 }

@@ -1,6 +1,7 @@
 //! The committed generated-verilog/ folders equal what the generator makes now (regenerate
 //! with `make verilog`), and the file set of a configuration is complete and consistent.
 
+use hw_model::HwFormat;
 use hdl::generate::{default_configs, generate, CONFIG_FILE, VERILOG_FILE};
 use hdl::top::TopConfig;
 use std::path::Path;
@@ -43,14 +44,14 @@ fn committed_configurations_are_current() {
 
 #[test]
 fn config_json_describes_the_verilog() {
-    let config = TopConfig::new("fp16", 1, 3);
+    let config = TopConfig::new(HwFormat::named("fp16"), 1, 3);
     let g = generate(&config).unwrap();
     let json: serde_json::Value = serde_json::from_str(g.file(CONFIG_FILE).unwrap()).unwrap();
     assert_eq!(json["format"], "fp16");
     assert_eq!(json["lanes"], 3);
     assert_eq!(
         json["lane_latency"].as_u64().unwrap() as usize,
-        hdl::mt::latency("fp16", 1).unwrap()
+        hdl::mt::latency(HwFormat::named("fp16"), 1)
     );
     assert_eq!(
         json["config_word"].as_u64().unwrap() as u32,
@@ -86,9 +87,9 @@ fn config_json_describes_the_verilog() {
 #[test]
 fn impossible_configurations_fail_before_generation() {
     for (config, needle) in [
-        (TopConfig::new("e9m9", 1, 1), "e9m9"),
-        (TopConfig::new("fp32", 1, 0), "lanes = 0"),
-        (TopConfig::new("fp16", 1000, 1), "depth = 1000"),
+        (TopConfig::new(HwFormat::named("e9m9"), 1, 1), "e9m9"),
+        (TopConfig::new(HwFormat::named("fp32"), 1, 0), "lanes = 0"),
+        (TopConfig::new(HwFormat::named("fp16"), 1000, 1), "depth = 1000"),
     ] {
         let e = generate(&config).unwrap_err().to_string();
         assert!(e.contains(needle), "{e}");

@@ -3,6 +3,7 @@
 //! `s_axis_tvalid` and random back-pressure on `m_axis_tready`; every result is checked bit
 //! for bit against `hw_model::mt_model`.
 
+use hw_model::HwFormat;
 use hdl::mt::query_words;
 use hdl::regmap;
 use hdl::top::stream::{CTRL_VALID, FIFO_DEPTH, FLAG_HIT, FLAG_VALID, TAG_SHIFT};
@@ -218,7 +219,7 @@ fn queries(n: usize, seed: u64) -> Vec<MtQuery> {
 }
 
 fn model(config: &TopConfig, q: &MtQuery) -> MtResult {
-    mt_model(&hw_model::lookup(&config.format).unwrap(), q)
+    mt_model(&config.format.format(), q)
 }
 
 fn assert_same(what: &str, got: MtResult, want: MtResult) {
@@ -435,7 +436,7 @@ fn system(config: &TopConfig, seed: u64) {
 
 #[test]
 fn fp32_two_lanes_register_and_stream_modes_match_the_model() {
-    system(&TopConfig::new("fp32", 1, 2), 0x7e57);
+    system(&TopConfig::new(HwFormat::named("fp32"), 1, 2), 0x7e57);
 }
 
 /// Another format and lane count (a second Verilator build, about a minute):
@@ -443,11 +444,11 @@ fn fp32_two_lanes_register_and_stream_modes_match_the_model() {
 #[test]
 #[ignore]
 fn fp16_three_lanes_register_and_stream_modes_match_the_model() {
-    system(&TopConfig::new("fp16", 2, 3), 0xf16);
+    system(&TopConfig::new(HwFormat::named("fp16"), 2, 3), 0xf16);
 }
 
 /// Depth 0: the lanes are combinational, so a result appears in the cycle its beat is taken.
 #[test]
 fn bf16_depth_zero_register_and_stream_modes_match_the_model() {
-    system(&TopConfig::new("bf16", 0, 1), 0xb16);
+    system(&TopConfig::new(HwFormat::named("bf16"), 0, 1), 0xb16);
 }

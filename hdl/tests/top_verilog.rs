@@ -2,6 +2,7 @@
 //! compile, yosys Xilinx synthesis, and the committed copies under generated-verilog/ being
 //! current.
 
+use hw_model::HwFormat;
 use hdl::generate::VERILOG_FILE;
 use hdl::top::{top_verilog, TopConfig};
 use std::path::PathBuf;
@@ -70,25 +71,25 @@ fn lint(config: &TopConfig, extra_waivers: &[&str]) {
 
 #[test]
 fn fp32_one_lane_passes_verilator_and_icarus() {
-    lint(&TopConfig::new("fp32", 1, 1), &[]);
+    lint(&TopConfig::new(HwFormat::named("fp32"), 1, 1), &[]);
 }
 
 /// At depth 5 the lane's word delay lines are block RAM rings (`hdl::mt::delay::RamDelay`).
 #[test]
 fn fp32_depth5_lane_with_ram_delay_lines_passes_verilator_and_icarus() {
-    let config = TopConfig::new("fp32", 5, 1);
+    let config = TopConfig::new(HwFormat::named("fp32"), 5, 1);
     assert!(top_verilog(&config).unwrap().contains("ram_style"));
     lint(&config, &[]);
 }
 
 #[test]
 fn fp16_two_lanes_passes_verilator_and_icarus() {
-    lint(&TopConfig::new("fp16", 1, 2), &[]);
+    lint(&TopConfig::new(HwFormat::named("fp16"), 1, 2), &[]);
 }
 
 #[test]
 fn bf16_depth_zero_passes_verilator_and_icarus() {
-    lint(&TopConfig::new("bf16", 0, 1), DEPTH0_WAIVERS);
+    lint(&TopConfig::new(HwFormat::named("bf16"), 0, 1), DEPTH0_WAIVERS);
 }
 
 /// The stream front end alone (2 lanes) through yosys: its result FIFO maps to block RAM,
@@ -114,7 +115,7 @@ fn stream_front_end_fifo_maps_to_block_ram() {
 #[ignore]
 fn fp32_accelerator_synthesises_for_xc7() {
     let r = hdl::top::fit::synthesize_top(
-        &TopConfig::new("fp32", 1, 1),
+        &TopConfig::new(HwFormat::named("fp32"), 1, 1),
         &hdl::synth::SynthOptions::default(),
     )
     .unwrap();

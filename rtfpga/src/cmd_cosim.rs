@@ -57,7 +57,7 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<()> {
     let scene = Scene::load(&a.scene)?;
-    let config = a.hw.top_config();
+    let config = a.hw.top_config()?;
     let mode = match a.mode {
         ModeArg::Stream => Mode::Stream,
         ModeArg::Register => Mode::Register(Completion::Poll),

@@ -46,7 +46,7 @@ pub struct Args {
     traversal: Option<TraversalKind>,
     /// Datapath number format of the stream design (sets its pipeline latency with --depth).
     #[arg(long, default_value = "fp32")]
-    format: String,
+    format: hw_model::HwFormat,
     /// Pipeline registers per operator of the stream design.
     #[arg(long, default_value_t = 1)]
     depth: usize,
@@ -137,7 +137,7 @@ fn design(a: &Args) -> Result<Design> {
     };
     let frontend = match a.design {
         DesignKind::Thesis => {
-            if a.format != "fp32" {
+            if a.format != hw_model::HwFormat::FP32 {
                 bail!(
                     "--format {}: the thesis design is the fp32 HLS unit",
                     a.format
@@ -149,13 +149,7 @@ fn design(a: &Args) -> Result<Design> {
             }
         }
         DesignKind::Stream => {
-            hw_model::lookup(&a.format)?;
-            let latency = hdl::mt::latency(&a.format, a.depth).with_context(|| {
-                format!(
-                    "pipeline latency of format {} at depth {}",
-                    a.format, a.depth
-                )
-            })?;
+            let latency = hdl::mt::latency(a.format, a.depth);
             Frontend::Stream {
                 lanes: a.lanes,
                 cycles_per_test: a.cycles_per_test.unwrap_or(1.0),

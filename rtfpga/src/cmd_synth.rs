@@ -33,12 +33,12 @@ pub fn run(a: Args) -> Result<()> {
     let options = SynthOptions::default();
     if let Some(op) = &a.op {
         let op: Op = op.parse()?;
-        let rtl = hdl::formats::rtl(&a.hw.format, op, a.stages)?;
+        let rtl = hdl::formats::rtl(a.hw.format.try_into()?, op, a.stages)?;
         let report = synthesize(&rtl.verilog, hdl::verilog::TOP, &options)?;
         let label = format!("{} {} stages={}", a.hw.format, op, a.stages);
         return print(&label, &report, rtl.latency, None, a.json);
     }
-    let config = TopConfig::new(&a.hw.format, a.hw.depth, a.hw.lanes);
+    let config = a.hw.top_config()?;
     config.validate()?;
     let report = synthesize_top(&config, &options)?;
     let fit = if a.no_fit {

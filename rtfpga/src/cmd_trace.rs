@@ -121,13 +121,13 @@ fn timed(isect: &dyn Intersector, queries: &[MtQuery], quiet: bool) -> Vec<MtRes
 fn replay_trace(a: ReplayArgs) -> Result<()> {
     let queries = read_trace(&a.trace)?;
     let model = ModelIntersector {
-        format: hw_model::lookup(&a.hw.format)?,
+        format: a.hw.format,
     };
     let want = (a.engine != ReplayEngine::Hw).then(|| timed(&model, &queries, a.quiet));
     if a.engine == ReplayEngine::Model {
         return Ok(());
     }
-    let hw = HwIntersector::new(&a.hw.top_config(), Mode::Stream)?;
+    let hw = HwIntersector::new(&a.hw.top_config()?, Mode::Stream)?;
     let got = timed(&hw, &queries, a.quiet);
     if let Some(e) = hw.take_error() {
         return Err(e.into());

@@ -31,10 +31,7 @@ pub fn run(a: Args) -> Result<()> {
             })
             .collect()
     } else {
-        vec![(
-            TopConfig::new(&a.hw.format, a.hw.depth, a.hw.lanes),
-            a.out.clone(),
-        )]
+        vec![(a.hw.top_config()?, a.out.clone())]
     };
     for (config, dir) in jobs {
         let generated =

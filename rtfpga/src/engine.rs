@@ -21,9 +21,10 @@ pub enum EngineKind {
 /// The hardware configuration: number format, pipeline depth, lanes.
 #[derive(ClapArgs, Clone, Debug)]
 pub struct HwConfig {
-    /// Number format of the datapath (`rtfpga formats` lists them).
+    /// Number format of the datapath: a catalogue name (`rtfpga formats`), or for the model
+    /// engine any spelling such as e8m14 or fx<24,8>.
     #[arg(long, default_value = "fp32")]
-    pub format: String,
+    pub format: hw_model::Format,
     /// Pipeline registers per operator.
     #[arg(long, default_value_t = 1)]
     pub depth: usize,
@@ -35,19 +36,22 @@ pub struct HwConfig {
 pub fn make(kind: EngineKind, hw: &HwConfig) -> Result<Box<dyn Intersector>> {
     Ok(match kind {
         EngineKind::F32 => Box::new(F32Intersector),
-        EngineKind::Model => Box::new(ModelIntersector {
-            format: hw_model::lookup(&hw.format)?,
-        }),
+        EngineKind::Model => Box::new(ModelIntersector { format: hw.format }),
         EngineKind::Hw => Box::new(FailFast(HwIntersector::new(
-            &hw.top_config(),
+            &hw.top_config()?,
             Mode::Stream,
         )?)),
     })
 }
 
 impl HwConfig {
-    pub fn top_config(&self) -> TopConfig {
-        TopConfig::new(&self.format, self.depth, self.lanes)
+    /// The accelerator of this configuration: an error if the format has no hardware.
+    pub fn top_config(&self) -> Result<TopConfig, hw_model::FormatError> {
+        Ok(TopConfig::new(
+            self.format.try_into()?,
+            self.depth,
+            self.lanes,
+        ))
     }
 }
 

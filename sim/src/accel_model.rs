@@ -26,7 +26,7 @@ pub struct TopModel {
     pub build_time: Duration,
 }
 
-type ModelKey = (String, usize, usize, bool);
+type ModelKey = (hw_model::HwFormat, usize, usize, bool);
 
 /// Models built by this process, so tests and engines share one build per configuration.
 fn built() -> &'static Mutex<HashMap<ModelKey, Arc<TopModel>>> {
@@ -54,7 +54,7 @@ pub fn top_model_with(
 ) -> Result<Arc<TopModel>, CosimError> {
     config.validate()?;
     let key = (
-        config.format.clone(),
+        config.format,
         config.depth,
         config.lanes,
         options.trace,

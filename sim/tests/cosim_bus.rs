@@ -4,6 +4,7 @@
 //! every result; register reads return the ID/CONFIG words; a bad address answers SLVERR; a
 //! missing tool or a broken model build is a clear error, never a hang.
 
+use hw_model::HwFormat;
 use hdl::regmap;
 use hdl::top::TopConfig;
 use hw_model::{mt_model, MtQuery, MtResult};
@@ -17,7 +18,7 @@ use sim::BuildOptions;
 use sw_renderer::intersect::Intersector;
 
 fn config() -> TopConfig {
-    TopConfig::new("fp32", 1, 1)
+    TopConfig::new(HwFormat::named("fp32"), 1, 1)
 }
 
 /// Rays aimed near random triangles (about half hit), plus a few raw bit patterns.
@@ -219,7 +220,7 @@ fn missing_tools_and_broken_builds_are_clear_errors() {
     assert!(matches!(e, CosimError::Sim(_)), "{e}");
     assert!(e.to_string().contains("verilator failed"), "{e}");
 
-    let e = top_model(&TopConfig::new("fp33", 1, 1), false)
+    let e = top_model(&TopConfig::new(HwFormat::named("fp33"), 1, 1), false)
         .err()
         .unwrap()
         .to_string();

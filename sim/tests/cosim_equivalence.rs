@@ -5,7 +5,7 @@
 //! accept cycle) for fp16. Six model builds (~1–2 min each the first time, then cached).
 
 use hdl::top::TopConfig;
-use hw_model::MtQuery;
+use hw_model::{HwFormat, MtQuery};
 use sim::hw_intersector::{HwIntersector, Mode};
 use sim::trace::{first_difference, read_trace, replay, write_trace, Recorder};
 use sw_renderer::intersect::F32Intersector;
@@ -43,7 +43,7 @@ fn check(format: &str, configs: [(usize, usize); 2], queries: &[MtQuery]) {
     };
     let want = replay(&model, queries, &|_| {});
     for (depth, lanes) in configs {
-        let hw = HwIntersector::new(&TopConfig::new(format, depth, lanes), Mode::Stream).unwrap();
+        let hw = HwIntersector::new(&TopConfig::new(format.parse().unwrap(), depth, lanes), Mode::Stream).unwrap();
         let got = replay(&hw, queries, &|_| {});
         if let Some(e) = hw.take_error() {
             panic!("{format} d{depth} l{lanes}: {e}");
@@ -66,13 +66,13 @@ fn check(format: &str, configs: [(usize, usize); 2], queries: &[MtQuery]) {
 
 #[test]
 fn fp16_hardware_equals_the_model_on_real_render_queries() {
-    let max = hdl::mt::max_depth("fp16").unwrap();
+    let max = hdl::mt::max_depth(HwFormat::named("fp16"));
     check("fp16", [(1, 1), (max.min(2), 2)], &recorded_queries());
 }
 
 #[test]
 fn fixed_32_16_hardware_equals_the_model_on_real_render_queries() {
-    let max = hdl::mt::max_depth("fx32_16").unwrap();
+    let max = hdl::mt::max_depth(HwFormat::named("fx32_16"));
     check("fx32_16", [(1, 2), (max.min(2), 1)], &recorded_queries());
 }
 

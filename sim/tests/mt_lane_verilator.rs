@@ -193,7 +193,7 @@ fn fp32_at(depth: usize, n: usize, seed: u64) {
 
 #[test]
 fn fp32_lane_at_max_depth_matches_model_and_f32_reference() {
-    fp32_at(hdl::mt::max_depth(fp32::NAME).unwrap(), 20_000, 1);
+    fp32_at(hdl::mt::max_depth(fp32::HW), 20_000, 1);
 }
 
 #[test]
@@ -211,8 +211,8 @@ fn fixed_lane_matches_the_model() {
 #[ignore]
 fn lanes_match_the_model_on_200k_queries() {
     fp32_at(0, 200_000, 10);
-    fp32_at(hdl::mt::max_depth(fp32::NAME).unwrap(), 200_000, 11);
-    let fp16_max = hdl::mt::max_depth(fp16::NAME).unwrap();
+    fp32_at(hdl::mt::max_depth(fp32::HW), 200_000, 11);
+    let fp16_max = hdl::mt::max_depth(fp16::HW);
     run_lane::<fp16::MtLane>(
         fp16::mt_lane_verilog(fp16_max),
         fp16_max,

@@ -77,6 +77,17 @@ pub enum FormatError {
     Unknown(String),
     #[error("impossible format `{name}`: {why}")]
     Impossible { name: String, why: String },
+    #[error("format `{name}` has no hardware operators; the hardware formats are {known} (`rtfpga formats`)")]
+    NoHardware { name: String, known: String },
+}
+
+impl std::str::FromStr for Format {
+    type Err = FormatError;
+
+    /// [`crate::lookup`]: a catalogue name or a generic spelling.
+    fn from_str(s: &str) -> Result<Self, FormatError> {
+        crate::lookup(s)
+    }
 }
 
 impl Format {

@@ -11,6 +11,6 @@ mod float;
 pub mod format;
 pub mod mt;
 
-pub use catalogue::{catalogue, lookup, NamedFormat};
+pub use catalogue::{catalogue, lookup, HwFormat, NamedFormat};
 pub use format::{Format, FormatError, Overflow, Quant};
 pub use mt::{mt_model, MtQuery, MtResult};

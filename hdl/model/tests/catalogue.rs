@@ -127,3 +127,43 @@ fn unknown_and_impossible_formats_are_errors() {
     .is_err());
     assert!(Format::Float { exp: 11, man: 52 }.validate().is_ok());
 }
+
+#[test]
+fn hardware_formats_are_the_catalogue_entries_by_index() {
+    use hw_model::HwFormat;
+    assert_eq!(HwFormat::all().len(), catalogue().len());
+    for (h, entry) in HwFormat::all().zip(catalogue()) {
+        assert_eq!(h.entry(), entry);
+        assert_eq!(HwFormat::from_code(h.code()), Some(h));
+        assert_eq!(entry.name.parse::<HwFormat>(), Ok(h));
+        // any spelling of the entry's arithmetic names the same hardware format
+        assert_eq!(entry.format.to_string().parse::<HwFormat>(), Ok(h));
+        assert_eq!(HwFormat::try_from(entry.format), Ok(h));
+        assert_eq!(h.to_string(), entry.name);
+        let json = serde_json::to_string(&h).unwrap();
+        assert_eq!(json, format!("\"{}\"", entry.name));
+        assert_eq!(serde_json::from_str::<HwFormat>(&json).unwrap(), h);
+    }
+    assert_eq!(HwFormat::from_code(catalogue().len() as u8), None);
+    assert_eq!(HwFormat::FP32.name(), "fp32");
+    assert_eq!("E5M10".parse::<HwFormat>().unwrap().name(), "fp16");
+    assert_eq!("fx<16,10>".parse::<HwFormat>().unwrap().name(), "fx16_10");
+}
+
+#[test]
+fn a_format_without_hardware_is_one_clear_error() {
+    use hw_model::HwFormat;
+    // a valid model format that has no operators: names it and the hardware formats
+    let e = "e8m14".parse::<HwFormat>().unwrap_err();
+    assert!(matches!(e, FormatError::NoHardware { .. }), "{e:?}");
+    let text = e.to_string();
+    assert!(text.contains("e8m14") && text.contains("fp32, fp24"), "{text}");
+    assert!(HwFormat::try_from(lookup("e8m14").unwrap()).is_err());
+    // an unknown name is the same error type as for the model
+    assert_eq!(
+        "fp99".parse::<HwFormat>(),
+        Err(FormatError::Unknown("fp99".into()))
+    );
+    assert!(serde_json::from_str::<HwFormat>("\"fp99\"").is_err());
+    assert_eq!("fp99".parse::<Format>(), Err(FormatError::Unknown("fp99".into())));
+}

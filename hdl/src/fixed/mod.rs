@@ -20,42 +20,38 @@ pub use lt::FixedLt;
 pub use mul::FixedMul;
 pub use recip::FixedRecip;
 
-/// `fixed_format!(name, int = I, frac = F, Quant, Overflow)` defines `pub mod name` with the
-/// operator types of ap_fixed<I+F, I> (`Quant`: Trn or Rnd, `Overflow`: Wrap or Sat, the
-/// variants of `hw_model::Quant` / `hw_model::Overflow`).
+/// `fixed_format!(name, W, I, Quant, Overflow)` defines `pub mod name` with the operator
+/// types of ap_fixed<W, I> (`Quant`: Trn or Rnd, `Overflow`: Wrap or Sat, the variants of
+/// `hw_model::Quant` / `hw_model::Overflow`), as `hw_model::hw_formats!` spells a format.
 macro_rules! fixed_format {
-    ($name:ident, int = $i:literal, frac = $f:literal, $quant:ident, $overflow:ident) => {
+    ($name:ident, $w:literal, $i:literal, $quant:ident, $overflow:ident) => {
         pub mod $name {
             use crate::fixed::*;
-            /// Catalogue name of the format (`hw_model::catalogue::lookup`).
+            /// Catalogue name of the format (`hw_model::HwFormat`).
             pub const NAME: &str = stringify!($name);
-            pub const WIDTH: usize = $i + $f;
+            pub const WIDTH: usize = $w;
+            /// Fraction bits.
+            const F: usize = $w - $i;
             /// The MT lane converts fp32 inputs into fixed point and back (see `formats`).
             pub const RAW_FP32: bool = false;
             pub const FORMAT: hw_model::Format = hw_model::Format::Fixed {
                 int: $i,
-                frac: $f,
+                frac: $w - $i,
                 quant: hw_model::Quant::$quant,
                 overflow: hw_model::Overflow::$overflow,
             };
             const RND: bool = matches!(hw_model::Quant::$quant, hw_model::Quant::Rnd);
             const SAT: bool = matches!(hw_model::Overflow::$overflow, hw_model::Overflow::Sat);
             /// Recip's signed quotient: ±2^(2F) and every W-bit value fit.
-            const RECIP_SIGNED: usize = if 2 * $f + 2 > $i + $f {
-                2 * $f + 2
-            } else {
-                $i + $f
-            };
+            const RECIP_SIGNED: usize = if 2 * F + 2 > WIDTH { 2 * F + 2 } else { WIDTH };
             // Width parameters, in the order the operators take them (see their docs).
-            pub type Add = FixedAdd<{ $i + $f }, { $i + $f + 1 }, SAT, false>;
-            pub type Sub = FixedAdd<{ $i + $f }, { $i + $f + 1 }, SAT, true>;
-            pub type Mul = FixedMul<{ $i + $f }, $f, { 2 * ($i + $f) }, RND, SAT>;
-            pub type Recip =
-                FixedRecip<{ $i + $f }, $f, { 2 * $f + 1 }, { RECIP_SIGNED }, RND, SAT>;
-            pub type Lt = FixedLt<{ $i + $f }>;
-            pub type FromF32 =
-                FixedFromF32<{ $i + $f }, $f, { $i + $f + 49 }, { $i + $f + 3 }, RND, SAT>;
-            pub type ToF32 = FixedToF32<{ $i + $f }, $f, { $i + $f + 25 }>;
+            pub type Add = FixedAdd<WIDTH, { WIDTH + 1 }, SAT, false>;
+            pub type Sub = FixedAdd<WIDTH, { WIDTH + 1 }, SAT, true>;
+            pub type Mul = FixedMul<WIDTH, F, { 2 * WIDTH }, RND, SAT>;
+            pub type Recip = FixedRecip<WIDTH, F, { 2 * F + 1 }, RECIP_SIGNED, RND, SAT>;
+            pub type Lt = FixedLt<WIDTH>;
+            pub type FromF32 = FixedFromF32<WIDTH, F, { WIDTH + 49 }, { WIDTH + 3 }, RND, SAT>;
+            pub type ToF32 = FixedToF32<WIDTH, F, { WIDTH + 25 }>;
             $crate::formats::operator_table!();
         }
     };

@@ -5,10 +5,13 @@
 //! signed product is a_u·b_u − 2^W·(a_sign·b_u + b_sign·a_u) modulo 2^2W; the correction
 //! (a W-bit sum) is formed next to the multiplier and subtracted from its upper half.
 //!
-//! Cut points (max_stages() = 4): 0. the operands and the correction (DSP input registers);
-//! 1. the unsigned product (DSP output register); 2. the signed product; 3. the quantised
-//! product, before saturation. The correction and the rounding are two 2W-bit carry chains,
-//! so they are kept apart.
+//! Cut points (max_stages() = 4):
+//! - 0: the operands and the correction (DSP input registers);
+//! - 1: the unsigned product (DSP output register);
+//! - 2: the signed product;
+//! - 3: the quantised product, before saturation.
+//!
+//! The correction and the rounding are two 2W-bit carry chains, so they are kept apart.
 
 use rust_hdl::prelude::*;
 

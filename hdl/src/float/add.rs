@@ -19,6 +19,7 @@
 //!   2. after the add and, beside it, the anticipated leading-zero count
 //!   3. after the normalizing shift, its one-place correction and the exponent adjust
 //!   4. the result, after rounding and packing
+//!
 //! Registers are spread over them by `pipe::placement`; max_stages() = 5.
 
 use rust_hdl::prelude::*;

@@ -4,6 +4,7 @@
 //!   0. after the significand multiplier (the DSP output register), exponent sum, category
 //!   1. after normalization, before rounding and packing
 //!   2. the result, after rounding and packing
+//!
 //! stages = 1 registers the normalized product, 2 the multiplier output and the result.
 
 use rust_hdl::prelude::*;

@@ -2,7 +2,7 @@
 //!
 //! rust-hdl needs concrete operator types, so the lane is a `macro_rules!` body that every
 //! `formats::<name>` module expands (after defining `Add`, `Sub`, `Mul`, `Recip`, `Lt`,
-//! `FromF32`, `ToF32`, `WIDTH`, `FORMAT`, `NAME` and `max_stages`). It defines
+//! `FromF32`, `ToF32`, `WIDTH`, `FORMAT`, `NAME`, `HW` and `RAW_FP32`). It defines
 //! `formats::<name>::MtLane` and `formats::<name>::mt_lane_verilog`; the timing comes from
 //! [`crate::mt::schedule::Schedule`].
 
@@ -16,13 +16,13 @@ macro_rules! mt_lane {
             use rust_hdl::prelude::*;
 
             use super::{
-                max_stages, Add, FromF32, Lt, Mul, Recip, Sub, ToF32, FORMAT, NAME, RAW_FP32, WIDTH,
+                Add, FromF32, Lt, Mul, Recip, Sub, ToF32, FORMAT, HW, NAME, RAW_FP32, WIDTH,
             };
             use $crate::mt::delay::{Delay, Ring, RingPosition, WordDelay};
             use $crate::mt::schedule::{OpLatencies, Schedule};
 
             fn schedule(depth: usize) -> Schedule {
-                Schedule::new(OpLatencies::for_depth(depth, max_stages).unconverted(RAW_FP32))
+                $crate::mt::schedule(HW, depth)
             }
 
             /// a × b, each component as a.j·b.k − a.k·b.j (the model's `cross`).
@@ -444,6 +444,7 @@ macro_rules! mt_lane {
 
             impl $crate::mt::Lane for MtLane {
                 const NAME: &'static str = NAME;
+                const HW: hw_model::HwFormat = HW;
                 const FORMAT: hw_model::Format = FORMAT;
                 fn new(depth: usize) -> Self {
                     MtLane::new(depth)

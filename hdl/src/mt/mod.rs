@@ -16,30 +16,31 @@ pub mod schedule;
 
 pub(crate) use lane::mt_lane;
 
-use hw_model::{Format, MtQuery, MtResult};
+use hw_model::{Format, HwFormat, MtQuery, MtResult};
 use rust_hdl::prelude::*;
 
 use crate::formats;
-use crate::operator::{Op, OperatorError};
+use crate::operator::Op;
 use schedule::{OpLatencies, Schedule};
 
-/// The lane's timing in catalogue format `format` at `depth`.
-pub fn schedule(format: &str, depth: usize) -> Result<Schedule, OperatorError> {
-    let ops = OpLatencies::try_for_depth(depth, |op| formats::max_stages(format, op))?;
-    Ok(Schedule::new(ops.unconverted(formats::raw_fp32(format)?)))
+/// The lane's timing in `format` at `depth`.
+pub fn schedule(format: HwFormat, depth: usize) -> Schedule {
+    let ops = OpLatencies::for_depth(depth, |op| formats::max_stages(format, op));
+    Schedule::new(ops.unconverted(formats::raw_fp32(format)))
 }
 
-/// Cycles from query to result of a lane in catalogue format `format` at `depth`.
-pub fn latency(format: &str, depth: usize) -> Result<usize, OperatorError> {
-    Ok(schedule(format, depth)?.latency)
+/// Cycles from query to result of a lane in `format` at `depth`.
+pub fn latency(format: HwFormat, depth: usize) -> usize {
+    schedule(format, depth).latency
 }
 
 /// The depth at which every operator of `format` has all its pipeline registers.
-pub fn max_depth(format: &str) -> Result<usize, OperatorError> {
+pub fn max_depth(format: HwFormat) -> usize {
     Op::ALL
         .into_iter()
         .map(|op| formats::max_stages(format, op))
-        .try_fold(0, |m, s| Ok(m.max(s?)))
+        .max()
+        .unwrap_or(0)
 }
 
 /// A query as the lane's 15 input words: orig, dir, v0, v1, v2 (x, y, z each), fp32 bits.
@@ -76,6 +77,7 @@ impl LaneOutput {
 /// The port plumbing every format's `MtLane` shares, so tests and drivers are written once.
 pub trait Lane: Block + Sized + 'static {
     const NAME: &'static str;
+    const HW: HwFormat;
     const FORMAT: Format;
     fn new(depth: usize) -> Self;
     fn latency(depth: usize) -> usize;

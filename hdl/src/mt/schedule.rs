@@ -32,10 +32,15 @@ pub struct OpLatencies {
 impl OpLatencies {
     /// Every operator built with `min(depth, its max_stages)` registers.
     pub fn for_depth(depth: usize, max_stages: impl Fn(Op) -> usize) -> Self {
-        match Self::try_for_depth(depth, |op| {
-            Ok::<_, std::convert::Infallible>(max_stages(op))
-        }) {
-            Ok(ops) => ops,
+        let at = |op| depth.min(max_stages(op));
+        OpLatencies {
+            add: at(Op::Add),
+            sub: at(Op::Sub),
+            mul: at(Op::Mul),
+            recip: at(Op::Recip),
+            lt: at(Op::Lt),
+            from_f32: at(Op::FromF32),
+            to_f32: at(Op::ToF32),
         }
     }
 
@@ -51,23 +56,6 @@ impl OpLatencies {
         } else {
             self
         }
-    }
-
-    /// [`OpLatencies::for_depth`] with a lookup of `max_stages` that can fail.
-    pub fn try_for_depth<E>(
-        depth: usize,
-        max_stages: impl Fn(Op) -> Result<usize, E>,
-    ) -> Result<Self, E> {
-        let at = |op| max_stages(op).map(|max| depth.min(max));
-        Ok(OpLatencies {
-            add: at(Op::Add)?,
-            sub: at(Op::Sub)?,
-            mul: at(Op::Mul)?,
-            recip: at(Op::Recip)?,
-            lt: at(Op::Lt)?,
-            from_f32: at(Op::FromF32)?,
-            to_f32: at(Op::ToF32)?,
-        })
     }
 }
 
@@ -265,12 +253,13 @@ mod tests {
 
     #[test]
     fn fp32_lane_is_40_cycles_at_max_depth_and_other_floats_keep_their_conversions() {
-        assert_eq!(crate::formats::raw_fp32("fp32"), Ok(true));
-        assert_eq!(crate::formats::raw_fp32("fp16"), Ok(false));
-        assert_eq!(crate::formats::raw_fp32("fx16_10"), Ok(false));
-        assert!(crate::formats::raw_fp32("e8m20").is_err());
-        assert_eq!(crate::mt::max_depth("fp32"), Ok(5));
-        assert_eq!(crate::mt::latency("fp32", 5), Ok(40));
-        assert_eq!(crate::mt::latency("fp16", 5), Ok(42));
+        use hw_model::HwFormat;
+        let (fp32, fp16) = (HwFormat::FP32, HwFormat::named("fp16"));
+        assert!(crate::formats::raw_fp32(fp32));
+        assert!(!crate::formats::raw_fp32(fp16));
+        assert!(!crate::formats::raw_fp32(HwFormat::named("fx16_10")));
+        assert_eq!(crate::mt::max_depth(fp32), 5);
+        assert_eq!(crate::mt::latency(fp32, 5), 40);
+        assert_eq!(crate::mt::latency(fp16, 5), 42);
     }
 }

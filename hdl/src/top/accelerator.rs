@@ -184,32 +184,35 @@ macro_rules! accelerator {
     };
 }
 
-/// `per_format!(name, …)`: a module `name` with the accelerator over `formats::name::MtLane`
-/// for every format, and [`body_verilog`] dispatching on the format's name.
+/// `per_format!` over the `hw_model::hw_formats!` list: a module `name` with the accelerator
+/// over `formats::name::MtLane` for every format, and [`body_verilog`] dispatching on it.
 macro_rules! per_format {
-    ($($name:ident),* $(,)?) => {
+    ($($name:ident: $kind:ident($($arg:tt),*), $description:literal;)*) => {
         $(
             pub mod $name {
                 $crate::accelerator!($crate::formats::$name::MtLane);
             }
         )*
 
-        /// Verilog of the accelerator body (top module `top`) in catalogue format `format`,
-        /// or `None` when the format has no rust-hdl lane. The caller validates the config.
-        pub(crate) fn body_verilog(format: &str, depth: usize, lanes: usize, configuration: u32) -> Option<String> {
+        /// Verilog generators of the bodies, in catalogue order.
+        static BODIES: &[fn(usize, usize, u32) -> String] = &[$(|depth, lanes, configuration| {
             use rust_hdl::prelude::{generate_verilog, Block};
-            match format {
-                $(
-                    stringify!($name) => {
-                        let mut top = $name::Accelerator::new(depth, lanes, configuration);
-                        top.connect_all();
-                        Some(generate_verilog(&top))
-                    }
-                )*
-                _ => None,
-            }
-        }
+            let mut top = $name::Accelerator::new(depth, lanes, configuration);
+            top.connect_all();
+            generate_verilog(&top)
+        }),*];
     };
 }
 
-crate::formats::with_formats!(per_format);
+hw_model::hw_formats!(per_format);
+
+/// Verilog of the accelerator body (top module `top`) in `format`. The caller validates the
+/// configuration.
+pub(crate) fn body_verilog(
+    format: hw_model::HwFormat,
+    depth: usize,
+    lanes: usize,
+    configuration: u32,
+) -> String {
+    BODIES[usize::from(format.code())](depth, lanes, configuration)
+}

@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use hdl::top::{TopConfig, TopError};
+use hw_model::HwFormat;
 use serde::{Deserialize, Serialize};
 use sw_renderer::scene::{builtin, Scene};
 use toml::Spanned;
@@ -72,7 +73,7 @@ pub struct SweepConfig {
     /// The file it was read from (absolute).
     pub path: PathBuf,
     /// Formats with hardware: the points' formats.
-    pub formats: Vec<String>,
+    pub formats: Vec<HwFormat>,
     /// Formats only the model engine renders (any `hw_model::lookup` spelling, e.g. `e8m19`):
     /// quality without hardware, to see where the quality threshold lies between catalogue formats.
     pub model_formats: Vec<String>,
@@ -97,8 +98,8 @@ impl SweepConfig {
     pub fn quality_formats(&self) -> Vec<String> {
         self.formats
             .iter()
-            .chain(&self.model_formats)
-            .cloned()
+            .map(|f| f.name().to_string())
+            .chain(self.model_formats.iter().cloned())
             .collect()
     }
 
@@ -266,7 +267,7 @@ pub fn parse(text: &str, path: &Path) -> Result<SweepConfig, ConfigError> {
     let lanes = check_lanes(&src, &raw.lanes, "lanes")?;
     let depths = src.non_empty(&raw.depths, "depths")?;
     let mut points = Vec::new();
-    for format in &formats {
+    for &format in &formats {
         for depth in depths {
             let depth = resolve_depth(&src, depth, format, "depths")?;
             for &(l, spanned) in &lanes {
@@ -330,22 +331,19 @@ pub fn parse(text: &str, path: &Path) -> Result<SweepConfig, ConfigError> {
     })
 }
 
-fn check_formats(src: &Source, list: &List<String>, key: &str) -> Result<Vec<String>, ConfigError> {
+fn check_formats(
+    src: &Source,
+    list: &List<String>,
+    key: &str,
+) -> Result<Vec<HwFormat>, ConfigError> {
     let mut out = Vec::new();
     for f in src.non_empty(list, key)? {
-        if !hdl::formats::NAMES.contains(&f.get_ref().as_str()) {
-            return Err(src.err(
-                f,
-                key,
-                format!(
-                    "unknown format `{}`: expected one of {}",
-                    f.get_ref(),
-                    hdl::formats::NAMES.join(", ")
-                ),
-            ));
-        }
-        if !out.contains(f.get_ref()) {
-            out.push(f.get_ref().clone());
+        let format: HwFormat = f
+            .get_ref()
+            .parse()
+            .map_err(|e: hw_model::FormatError| src.err(f, key, e.to_string()))?;
+        if !out.contains(&format) {
+            out.push(format);
         }
     }
     Ok(out)
@@ -354,7 +352,7 @@ fn check_formats(src: &Source, list: &List<String>, key: &str) -> Result<Vec<Str
 fn check_model_formats(
     src: &Source,
     list: &List<String>,
-    hardware: &[String],
+    hardware: &[HwFormat],
 ) -> Result<Vec<String>, ConfigError> {
     let mut out = Vec::new();
     for f in src.non_empty(list, "model_formats")? {
@@ -366,7 +364,7 @@ fn check_model_formats(
                 format!("{e} (or a generic spelling such as e8m19)"),
             ));
         }
-        if hardware.contains(name) || out.contains(name) {
+        if hardware.iter().any(|h| h.name() == name) || out.contains(name) {
             return Err(src.err(
                 f,
                 "model_formats",
@@ -402,10 +400,10 @@ fn check_lanes<'l>(
 fn resolve_depth(
     src: &Source,
     d: &Spanned<DepthSpec>,
-    format: &str,
+    format: HwFormat,
     key: &str,
 ) -> Result<usize, ConfigError> {
-    let max = hdl::mt::max_depth(format).map_err(|e| src.err(d, key, e.to_string()))?;
+    let max = hdl::mt::max_depth(format);
     match d.get_ref() {
         DepthSpec::Number(n) if *n > max => Err(src.err(d, key, format!(
             "impossible depth {n} for format {format}: its operators have pipeline registers for depth 0 to {max} (write \"max\" for each format's deepest)"
@@ -492,13 +490,13 @@ fn synth_selection(
             Some(list) => {
                 let mut any = false;
                 for d in src.non_empty(list, "synth.depths")? {
-                    any |= resolve_depth(src, d, &p.format, "synth.depths")? == p.depth;
+                    any |= resolve_depth(src, d, p.format, "synth.depths")? == p.depth;
                 }
                 any
             }
         };
-        let format_ok = formats.as_ref().map_or(true, |f| f.contains(&p.format));
-        let lanes_ok = lanes.as_ref().map_or(true, |l| l.contains(&p.lanes));
+        let format_ok = formats.as_ref().is_none_or(|f| f.contains(&p.format));
+        let lanes_ok = lanes.as_ref().is_none_or(|l| l.contains(&p.lanes));
         if depth_ok && format_ok && lanes_ok {
             selected.push(p.id());
         }
@@ -618,8 +616,7 @@ fn projection_settings(
             scene_dir.display()
         )));
     }
-    let latency = hdl::mt::latency(&first.format, first.depth)
-        .map_err(|e| err("projection", e.to_string()))?;
+    let latency = hdl::mt::latency(first.format, first.depth);
     stream_design(&settings, first, latency, 1.0 / first.lanes as f64)
         .map_err(|e| err("projection", format!("{e:#}")))?;
     Ok(settings)

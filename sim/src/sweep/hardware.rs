@@ -116,7 +116,7 @@ fn cosimulate(config: &SweepConfig, layout: &Layout, point: &Point) -> Result<Ve
     let hw = HwIntersector::new(&point.top_config(), Mode::Stream)
         .with_context(|| format!("building the Verilated model of {}", point.id()))?;
     let model = ModelIntersector {
-        format: hw_model::lookup(&point.format)?,
+        format: point.format.format(),
     };
     let mut records = Vec::new();
     for scene in &config.cosim_scenes {

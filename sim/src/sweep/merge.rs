@@ -9,6 +9,7 @@
 //! the nearest width. Two yosys runs per point would double the sweep's longest stage.
 
 use anyhow::{bail, Result};
+use hw_model::HwFormat;
 use hdl::top::fit::{fit_from, fit_with_fixed, LaneFit, Usage, XC7Z020};
 
 use super::config::{Stage, SweepConfig};
@@ -53,7 +54,7 @@ pub fn merge(layout: &Layout) -> Result<Results> {
     let mut rows = Vec::new();
     for p in &points {
         let (fit, fixed_part_from) = lane_fit(&points, p).unzip();
-        let q = quality.iter().find(|q| q.format == p.point.format);
+        let q = quality.iter().find(|q| q.format == p.point.format.name());
         let cycles_per_test = p.cycles_per_test();
         let projected = match &projector {
             Some(pr) => Some(pr.project(&p.point, p.latency, cycles_per_test)?),
@@ -69,7 +70,7 @@ pub fn merge(layout: &Layout) -> Result<Results> {
         };
         rows.push(Row {
             id: p.point.id(),
-            format: p.point.format.clone(),
+            format: p.point.format.to_string(),
             bits: p.bits,
             depth: p.point.depth,
             lanes: p.point.lanes,
@@ -136,16 +137,16 @@ fn read_or_note<T: serde::de::DeserializeOwned>(
 /// it borrowed: none when both its own 1- and 2-lane designs were synthesised, else the
 /// nearest pair (see the module docs), with this point's 1-lane design.
 fn lane_fit(points: &[PointResult], p: &PointResult) -> Option<(LaneFit, Option<String>)> {
-    let usage = |format: &str, depth: usize, lanes: usize| {
+    let usage = |format: HwFormat, depth: usize, lanes: usize| {
         points
             .iter()
             .find(|o| o.point.format == format && o.point.depth == depth && o.point.lanes == lanes)
             .and_then(|o| o.synth.as_ref())
             .map(|s| s.usage())
     };
-    let (format, depth) = (p.point.format.as_str(), p.point.depth);
+    let (format, depth) = (p.point.format, p.point.depth);
     let one = usage(format, depth, 1)?;
-    let is_float = |f: &str| matches!(hw_model::lookup(f), Ok(hw_model::Format::Float { .. }));
+    let is_float = |f: HwFormat| matches!(f.format(), hw_model::Format::Float { .. });
     // Every synthesised 1-/2-lane pair, with both usages; the nearest first.
     let mut pairs: Vec<(&PointResult, Usage, Usage)> = points
         .iter()
@@ -154,22 +155,22 @@ fn lane_fit(points: &[PointResult], p: &PointResult) -> Option<(LaneFit, Option<
             Some((
                 o,
                 o.synth.as_ref()?.usage(),
-                usage(&o.point.format, o.point.depth, 2)?,
+                usage(o.point.format, o.point.depth, 2)?,
             ))
         })
         .collect();
     pairs.sort_by_cached_key(|(o, _, _)| {
         (
             o.point.format != format,
-            is_float(&o.point.format) != is_float(format),
+            is_float(o.point.format) != is_float(format),
             o.bits.abs_diff(p.bits),
             o.point.depth.abs_diff(depth),
-            o.point.format.clone(),
+            o.point.format.name(),
             o.point.depth,
         )
     });
     let &(pair, pair_one, two) = pairs.first()?;
-    let (f, d) = (pair.point.format.as_str(), pair.point.depth);
+    let (f, d) = (pair.point.format, pair.point.depth);
     if (f, d) == (format, depth) {
         return Some((fit_from(one, two, &XC7Z020), None));
     }
@@ -193,7 +194,7 @@ mod tests {
         lut: u64,
         dsp48e1: u64,
     ) -> PointResult {
-        let point = Point::new(format, depth, lanes);
+        let point = Point::new(format.parse().unwrap(), depth, lanes);
         PointResult {
             bits: point.bits(),
             point,

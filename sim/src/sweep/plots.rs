@@ -185,7 +185,9 @@ where
     }
     let max_lanes = rows.iter().map(|r| r.lanes).max().unwrap_or(1) as u32;
     let (left, right) = area.split_horizontally(SIZE.0 / 2);
-    let panels: [(&DrawingArea<DB, Shift>, &str, fn(&Row) -> Option<u64>, u64); 2] = [
+    // (area, resource, its value in a row, the XC7Z020's total)
+    type Panel<'a, DB> = (&'a DrawingArea<DB, Shift>, &'a str, fn(&Row) -> Option<u64>, u64);
+    let panels: [Panel<DB>; 2] = [
         (&left, "LUT", |r| r.lut, hdl::top::fit::XC7Z020.lut),
         (
             &right,
@@ -261,7 +263,7 @@ pub fn pareto_front(rows: &[Row]) -> Vec<&Row> {
     });
     let mut front: Vec<&Row> = Vec::new();
     for r in candidates {
-        if front.last().map_or(true, |f| r.min_psnr_db > f.min_psnr_db) {
+        if front.last().is_none_or(|f| r.min_psnr_db > f.min_psnr_db) {
             front.push(r);
         }
     }

@@ -1,27 +1,28 @@
 //! One point of the design space: a number format, a pipeline depth and a lane count.
 
 use hdl::top::TopConfig;
+use hw_model::HwFormat;
 use serde::{Deserialize, Serialize};
 
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Point {
-    pub format: String,
+    pub format: HwFormat,
     /// Pipeline registers per operator.
     pub depth: usize,
     pub lanes: usize,
 }
 
 impl Point {
-    pub fn new(format: &str, depth: usize, lanes: usize) -> Point {
+    pub fn new(format: HwFormat, depth: usize, lanes: usize) -> Point {
         Point {
-            format: format.to_string(),
+            format,
             depth,
             lanes,
         }
     }
 
     pub fn top_config(&self) -> TopConfig {
-        TopConfig::new(&self.format, self.depth, self.lanes)
+        TopConfig::new(self.format, self.depth, self.lanes)
     }
 
     /// The point's id in manifests and file names: the accelerator's folder name (`fp32_d1_l4`).
@@ -31,7 +32,7 @@ impl Point {
 
     /// Width of the format in bits.
     pub fn bits(&self) -> u32 {
-        format_bits(&self.format)
+        self.format.format().width()
     }
 }
 
