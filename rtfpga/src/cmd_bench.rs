@@ -71,7 +71,7 @@ pub fn run(a: Args) -> Result<()> {
             for _ in 0..a.repeat.max(1) {
                 let stats = render(scene, isect.as_ref(), &opts)?.stats;
                 let total = stats.prepare_time + stats.render_time;
-                if best.map_or(true, |b| total < b.prepare_time + b.render_time) {
+                if best.is_none_or(|b| total < b.prepare_time + b.render_time) {
                     best = Some(stats);
                 }
             }
