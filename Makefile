@@ -31,6 +31,8 @@ test: setup
 	VERILOG_DIR=generated-verilog/fp32_d1_l1 sh constraints/check.sh
 
 # Regenerate the golden images of scenes/ (a test checks they are current).
+	$(CARGO) fmt --all --check
+	$(CARGO) clippy --workspace --all-targets -- -D warnings
 golden: build
 	$(RTFPGA) golden --out golden
 
