@@ -25,7 +25,9 @@ demo: build
 	$(RTFPGA) cosim --scene $(DEMO_SCENE) $(DEMO_SIZE) --format fp32 --depth 1 --lanes 1 --out $(OUT)/demo_hw.png
 	$(RTFPGA) compare $(OUT)/demo_sw.png $(OUT)/demo_hw.png --diff $(OUT)/demo_diff.png
 
-# Every test of the workspace and the checks of the Vivado scripts (what CI runs).
+# Formatting, lints, every test of the workspace and the checks of the Vivado scripts (what
+# CI runs). Tests that need the thesis' scenes take them from RTFPGA_THESIS_SCENES, else
+# ../shared/scenes/thesis, else print a SKIPPED line.
 test: setup
 	$(CARGO) test --workspace --release
 	VERILOG_DIR=generated-verilog/fp32_d1_l1 sh constraints/check.sh
