@@ -32,8 +32,8 @@ pub fn load_file(path: &Path) -> Result<Scene, SceneError> {
 /// file stem) and is the base of relative `.geo` paths.
 pub fn load_str(text: &str, origin: &Path) -> Result<Scene, SceneError> {
     let source = Source { text, path: origin };
-    let def: SceneDef = toml::from_str(text)
-        .map_err(|e| source.error(e.span(), e.message().trim_end().to_string()))?;
+    let def: SceneDef =
+        toml::from_str(text).map_err(|e| source.error(e.span(), syntax_message(text, &e)))?;
     let options = def.options.build(&source)?;
     let lights = def.lights.into_iter().map(LightDef::build).collect();
     let mut meshes = MeshCache::default();
@@ -52,6 +52,26 @@ pub fn load_str(text: &str, origin: &Path) -> Result<Scene, SceneError> {
         lights,
         objects,
     })
+}
+
+/// The toml crate's message for a syntax error. It has none for some characters (a carriage
+/// return not followed by a line feed, found by `fuzz/`): then name the character.
+fn syntax_message(text: &str, e: &toml::de::Error) -> String {
+    let message = e.message().trim_end();
+    if !message.is_empty() {
+        return message.to_string();
+    }
+    let found = e
+        .span()
+        .and_then(|s| text.get(s.start..))
+        .and_then(|rest| rest.chars().next());
+    match found {
+        Some('\r') => {
+            "invalid TOML: a carriage return (\\r) must be followed by a line feed".into()
+        }
+        Some(c) => format!("invalid TOML: unexpected character {c:?}"),
+        None => "invalid TOML syntax".into(),
+    }
 }
 
 /// The text being loaded and its name, for error messages with a line number.
