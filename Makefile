@@ -7,7 +7,7 @@ DEMO_SCENE ?= simple_plane
 DEMO_SIZE ?= --width 320 --height 180
 OUT ?= out
 
-.PHONY: setup build demo test golden verilog bench sweep clean
+.PHONY: setup build demo test golden verilog bench sweep clean fuzz
 
 setup:
 	@./scripts/setup.sh
@@ -53,3 +53,12 @@ bench: build
 clean:
 	$(CARGO) clean
 	rm -rf $(OUT)
+
+# Coverage-guided fuzzing of the scene and sweep-config parsers (fuzz/, cargo fuzz on the
+# nightly toolchain; not part of `make test`): each target FUZZ_RUNS executions (default 1 M),
+# seeded from scenes/, sweeps/ and the thesis scenes. About an hour on 2 cores (BENCHMARKS.md).
+FUZZ_RUNS ?= 1000000
+fuzz:
+	@rustup run nightly rustc --version >/dev/null 2>&1 || rustup toolchain install nightly --profile minimal
+	@$(CARGO) fuzz --version >/dev/null 2>&1 || $(CARGO) install cargo-fuzz
+	FUZZ_RUNS=$(FUZZ_RUNS) fuzz/run.sh

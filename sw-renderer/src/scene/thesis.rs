@@ -240,8 +240,9 @@ fn check_vertex_count(
 }
 
 /// `objects.txt`: one `geometry-file object-file` pair a line; blank lines and lines starting
-/// with `#` are skipped.
-fn parse_object_list<'a>(
+/// with `#` are skipped. Public (like [`parse_sod`], [`parse_ood`] and [`parse_geo`]) so that
+/// one file's text can be parsed on its own, e.g. by the fuzz targets of `fuzz/`.
+pub fn parse_object_list<'a>(
     text: &'a str,
     path: &Path,
 ) -> Result<Vec<(&'a str, &'a str)>, SceneError> {
