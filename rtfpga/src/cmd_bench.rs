@@ -35,8 +35,9 @@ fn parse_size(s: &str) -> Result<(u32, u32)> {
         h.parse()
             .with_context(|| format!("size `{s}`: bad height"))?,
     );
-    if w == 0 || h == 0 {
-        bail!("size `{s}`: width and height must be positive");
+    let max = crate::cmd_render::MAX_IMAGE_SIDE;
+    if !(1..=max).contains(&w) || !(1..=max).contains(&h) {
+        bail!("size `{s}`: width and height must be 1 to {max} pixels");
     }
     Ok((w, h))
 }

@@ -14,11 +14,11 @@ pub struct Args {
     /// Scene directory with objects.txt, a .toml scene, or a built-in scene name.
     #[arg(long)]
     scene: String,
-    /// Override the scene's width.
-    #[arg(long)]
+    /// Override the scene's width (1 to 16384 pixels).
+    #[arg(long, value_parser = image_side())]
     width: Option<u32>,
-    /// Override the scene's height.
-    #[arg(long)]
+    /// Override the scene's height (1 to 16384 pixels).
+    #[arg(long, value_parser = image_side())]
     height: Option<u32>,
     #[arg(long, value_enum, default_value_t = EngineKind::F32)]
     engine: EngineKind,
@@ -30,6 +30,15 @@ pub struct Args {
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
+}
+
+/// The largest image side the command line accepts: beyond any display (8K is 7680 wide),
+/// small enough that a typo such as `--width 100000` is refused instead of rendering for hours.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+/// Parser of `--width`/`--height`: 1 to [`MAX_IMAGE_SIDE`] pixels.
+pub fn image_side() -> clap::builder::RangedI64ValueParser<u32> {
+    clap::value_parser!(u32).range(1..=i64::from(MAX_IMAGE_SIDE))
 }
 
 pub fn run(a: Args) -> Result<()> {
