@@ -3,7 +3,7 @@
 
 CARGO ?= cargo
 RTFPGA := target/release/rtfpga
-DEMO_SCENE ?= simple_plane
+DEMO_SCENE ?= utah_teapot
 DEMO_SIZE ?= --width 320 --height 180
 OUT ?= out
 
@@ -17,24 +17,26 @@ build: setup
 
 $(RTFPGA): build
 
-# Render an embedded scene in software and through the Verilated fp32 accelerator (the first
-# run builds the model, about a minute), print the PSNR.
+# Render the built-in Utah teapot (6,322 triangles) in software and through the Verilated fp32
+# accelerator (the first run builds the model, about two minutes), write software | hardware |
+# difference side by side in $(OUT)/demo.png, print its absolute path and the PSNR (last line).
 demo: build
 	@mkdir -p $(OUT)
 	$(RTFPGA) render --scene $(DEMO_SCENE) $(DEMO_SIZE) --engine f32 --out $(OUT)/demo_sw.png
 	$(RTFPGA) cosim --scene $(DEMO_SCENE) $(DEMO_SIZE) --format fp32 --depth 1 --lanes 1 --out $(OUT)/demo_hw.png
-	$(RTFPGA) compare $(OUT)/demo_sw.png $(OUT)/demo_hw.png --diff $(OUT)/demo_diff.png
+	$(RTFPGA) compare $(OUT)/demo_sw.png $(OUT)/demo_hw.png --diff $(OUT)/demo_diff.png \
+		--side-by-side $(OUT)/demo.png --labels "software f32,accelerator fp32 d1 l1"
 
 # Formatting, lints, every test of the workspace and the checks of the Vivado scripts (what
 # CI runs). Tests that need the thesis' scenes take them from RTFPGA_THESIS_SCENES, else
 # ../shared/scenes/thesis, else print a SKIPPED line.
 test: setup
+	$(CARGO) fmt --all --check
+	$(CARGO) clippy --workspace --all-targets -- -D warnings
 	$(CARGO) test --workspace --release
 	VERILOG_DIR=generated-verilog/fp32_d1_l1 sh constraints/check.sh
 
 # Regenerate the golden images of scenes/ (a test checks they are current).
-	$(CARGO) fmt --all --check
-	$(CARGO) clippy --workspace --all-targets -- -D warnings
 golden: build
 	$(RTFPGA) golden --out golden
 
