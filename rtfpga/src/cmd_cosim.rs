@@ -32,9 +32,11 @@ pub struct Args {
     scene: String,
     #[command(flatten)]
     hw: HwConfig,
-    #[arg(long)]
+    /// Override the scene's width (1 to 16384 pixels).
+    #[arg(long, value_parser = crate::cmd_render::image_side())]
     width: Option<u32>,
-    #[arg(long)]
+    /// Override the scene's height (1 to 16384 pixels).
+    #[arg(long, value_parser = crate::cmd_render::image_side())]
     height: Option<u32>,
     #[arg(long, value_enum, default_value_t = ModeArg::Stream)]
     mode: ModeArg,

@@ -35,9 +35,11 @@ pub struct Args {
     /// Scene directory, .toml scene or built-in name (not needed with --calibration alone).
     #[arg(long)]
     scene: Option<String>,
-    #[arg(long)]
+    /// Override the scene's width (1 to 16384 pixels).
+    #[arg(long, value_parser = crate::cmd_render::image_side())]
     width: Option<u32>,
-    #[arg(long)]
+    /// Override the scene's height (1 to 16384 pixels).
+    #[arg(long, value_parser = crate::cmd_render::image_side())]
     height: Option<u32>,
     #[arg(long, value_enum, default_value_t = DesignKind::Stream)]
     design: DesignKind,

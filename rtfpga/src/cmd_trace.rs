@@ -36,9 +36,11 @@ struct RecordArgs {
     /// Scene directory with objects.txt, a .toml scene, or a built-in scene name.
     #[arg(long)]
     scene: String,
-    #[arg(long)]
+    /// Override the scene's width (1 to 16384 pixels).
+    #[arg(long, value_parser = crate::cmd_render::image_side())]
     width: Option<u32>,
-    #[arg(long)]
+    /// Override the scene's height (1 to 16384 pixels).
+    #[arg(long, value_parser = crate::cmd_render::image_side())]
     height: Option<u32>,
     /// Output trace file.
     #[arg(long)]

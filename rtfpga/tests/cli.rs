@@ -50,8 +50,17 @@ fn fails(args: &[&str], code: i32, needles: &[&str]) -> String {
         );
     }
     if code == 1 {
-        // A reported error is one message, not a panic or a half-written result.
+        // A reported error is one message, not a panic or a half-written result, and it
+        // says each thing once (not a cause repeated by the message that wraps it).
         assert!(!stderr.contains("panicked"), "{stderr}");
+        let parts: Vec<&str> = stderr.trim_end().split(": ").collect();
+        for (i, part) in parts.iter().enumerate() {
+            assert!(
+                !parts[i + 1..].contains(part),
+                "`rtfpga {}`: `{part}` said twice:\n{stderr}",
+                args.join(" ")
+            );
+        }
         assert!(
             out.stdout.is_empty(),
             "`rtfpga {}` printed results before failing:\n{}",
