@@ -33,6 +33,12 @@ install_fusesoc() {
   return 0
 }
 
+# make test runs rustfmt and clippy: rustup's default profile has them, a minimal one not.
+if ! cargo fmt --version >/dev/null 2>&1 || ! cargo clippy --version >/dev/null 2>&1; then
+  echo "setup: adding the rustfmt and clippy components (rustup)" >&2
+  rustup component add rustfmt clippy
+fi
+
 need=()
 command -v verilator >/dev/null 2>&1 || need+=(verilator)
 command -v yosys >/dev/null 2>&1 || need+=(yosys)
