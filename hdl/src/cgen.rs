@@ -161,7 +161,12 @@ fn format_codes(s: &mut String) {
         "// Names by code: static const char *const Names[] = {PREFIX}_FORMAT_NAMES;"
     )
     .unwrap();
-    writeln!(s, "#define {PREFIX}_FORMAT_NAMES {{ {} }}", names.join(", ")).unwrap();
+    writeln!(
+        s,
+        "#define {PREFIX}_FORMAT_NAMES {{ {} }}",
+        names.join(", ")
+    )
+    .unwrap();
 }
 
 fn offset_list(offsets: &[usize]) -> String {

@@ -169,7 +169,10 @@ mod tests {
             assert_eq!(ops.name, h.name());
         }
         assert_eq!(super::fp16::FORMAT, super::fp16::HW.format());
-        assert_eq!(super::fx21_12_rnd_sat::FORMAT, super::fx21_12_rnd_sat::HW.format());
+        assert_eq!(
+            super::fx21_12_rnd_sat::FORMAT,
+            super::fx21_12_rnd_sat::HW.format()
+        );
     }
 
     /// Specials and edges of fp32, mixed into the random operands.

@@ -29,6 +29,14 @@ pub const TOP: &str = "top";
 ///   read; synthesis removes them.
 pub const VERILATOR_WAIVERS: &[&str] = &["-Wno-WIDTH", "-Wno-DECLFILENAME", "-Wno-UNUSEDSIGNAL"];
 
+/// Verilator warnings waived for the accelerator's top, on top of [`VERILATOR_WAIVERS`]:
+/// - VARHIDDEN: rust-hdl declares a block's local signals and its submodule instances by
+///   their field names, so a local `sum` in a sub-block "hides" an instance `sum` of the
+///   parent (the MT lane's dot products); each module has its own scope, nothing is hidden.
+/// - SYMRSVDWORD: the port `interrupt` (the Vitis name Vivado infers the interrupt from) is
+///   a common C++ word; Verilator renames it in its C++ and says so.
+pub const TOP_VERILATOR_WAIVERS: &[&str] = &["-Wno-VARHIDDEN", "-Wno-SYMRSVDWORD"];
+
 /// Builds `T` with `stages` pipeline registers and generates its Verilog.
 ///
 /// Panics if `stages > T::max_stages()` (see [`crate::formats::rtl`] for a checked entry).

@@ -11,9 +11,6 @@ use std::process::Command;
 const CORE_NAME: &str = "rtfpga:accel:rtfpga:0.1.0";
 const GENERATED: &str = "generated-verilog";
 
-/// Verilator waivers of the top, as in `TOP_WAIVERS` of hdl/tests/top_verilog.rs.
-const TOP_WAIVERS: &[&str] = &["-Wno-VARHIDDEN", "-Wno-SYMRSVDWORD"];
-
 fn repo() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .parent()
@@ -128,7 +125,7 @@ fn lint_target_uses_the_project_waivers() {
         .collect();
     let expected: Vec<&str> = std::iter::once("-Wall")
         .chain(hdl::verilog::VERILATOR_WAIVERS.iter().copied())
-        .chain(TOP_WAIVERS.iter().copied())
+        .chain(hdl::verilog::TOP_VERILATOR_WAIVERS.iter().copied())
         .collect();
     assert_eq!(options, expected);
     for config in present_files().keys() {

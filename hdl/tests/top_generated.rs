@@ -1,9 +1,9 @@
 //! The committed generated-verilog/ folders equal what the generator makes now (regenerate
 //! with `make verilog`), and the file set of a configuration is complete and consistent.
 
-use hw_model::HwFormat;
 use hdl::generate::{default_configs, generate, CONFIG_FILE, VERILOG_FILE};
 use hdl::top::TopConfig;
+use hw_model::HwFormat;
 use std::path::Path;
 
 fn committed_root() -> &'static Path {
@@ -89,7 +89,10 @@ fn impossible_configurations_fail_before_generation() {
     for (config, needle) in [
         (TopConfig::new(HwFormat::named("e9m9"), 1, 1), "e9m9"),
         (TopConfig::new(HwFormat::named("fp32"), 1, 0), "lanes = 0"),
-        (TopConfig::new(HwFormat::named("fp16"), 1000, 1), "depth = 1000"),
+        (
+            TopConfig::new(HwFormat::named("fp16"), 1000, 1),
+            "depth = 1000",
+        ),
     ] {
         let e = generate(&config).unwrap_err().to_string();
         assert!(e.contains(needle), "{e}");

@@ -3,11 +3,11 @@
 //! `s_axis_tvalid` and random back-pressure on `m_axis_tready`; every result is checked bit
 //! for bit against `hw_model::mt_model`.
 
-use hw_model::HwFormat;
 use hdl::mt::query_words;
 use hdl::regmap;
 use hdl::top::stream::{CTRL_VALID, FIFO_DEPTH, FLAG_HIT, FLAG_VALID, TAG_SHIFT};
 use hdl::top::{top_verilog, TopConfig};
+use hw_model::HwFormat;
 use hw_model::{mt_model, MtQuery, MtResult};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use sim::verilator::{Direction, VerilatedModel};

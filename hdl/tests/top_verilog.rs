@@ -2,20 +2,11 @@
 //! compile, yosys Xilinx synthesis, and the committed copies under generated-verilog/ being
 //! current.
 
-use hw_model::HwFormat;
 use hdl::generate::VERILOG_FILE;
 use hdl::top::{top_verilog, TopConfig};
+use hw_model::HwFormat;
 use std::path::PathBuf;
 use std::process::Command;
-
-/// Verilator warnings waived for the top, on top of `hdl::verilog::VERILATOR_WAIVERS`
-/// (rust-hdl's literal widths, one file for all modules, outputs some blocks do not read):
-/// - VARHIDDEN: rust-hdl declares a block's local signals and its submodule instances by
-///   their field names, so a local `sum` in a sub-block "hides" an instance `sum` of the
-///   parent (the MT lane's dot products); each module has its own scope, nothing is hidden.
-/// - SYMRSVDWORD: the port `interrupt` (the Vitis name Vivado infers the interrupt from) is
-///   a common C++ word; Verilator renames it in its C++ and says so.
-const TOP_WAIVERS: &[&str] = &["-Wno-VARHIDDEN", "-Wno-SYMRSVDWORD"];
 
 /// At depth 0 the lane is one combinational cloud spread over many always blocks, which
 /// Verilator reports as circular (UNOPTFLAT) although no signal depends on itself.
@@ -54,7 +45,7 @@ fn lint(config: &TopConfig, extra_waivers: &[&str]) {
         Command::new("verilator")
             .args(["--lint-only", "-Wall", "--top-module", "rtfpga_top"])
             .args(hdl::verilog::VERILATOR_WAIVERS)
-            .args(TOP_WAIVERS)
+            .args(hdl::verilog::TOP_VERILATOR_WAIVERS)
             .args(extra_waivers)
             .arg(&path),
         &format!("verilator lint of {}", config.dir_name()),
@@ -89,7 +80,10 @@ fn fp16_two_lanes_passes_verilator_and_icarus() {
 
 #[test]
 fn bf16_depth_zero_passes_verilator_and_icarus() {
-    lint(&TopConfig::new(HwFormat::named("bf16"), 0, 1), DEPTH0_WAIVERS);
+    lint(
+        &TopConfig::new(HwFormat::named("bf16"), 0, 1),
+        DEPTH0_WAIVERS,
+    );
 }
 
 /// The stream front end alone (2 lanes) through yosys: its result FIFO maps to block RAM,

@@ -53,12 +53,7 @@ pub fn top_model_with(
     options: &BuildOptions,
 ) -> Result<Arc<TopModel>, CosimError> {
     config.validate()?;
-    let key = (
-        config.format,
-        config.depth,
-        config.lanes,
-        options.trace,
-    );
+    let key = (config.format, config.depth, config.lanes, options.trace);
     // Only builds with the default tools and cache are shared; others are one-offs.
     let shared = format!("{options:?}")
         == format!(

@@ -4,9 +4,9 @@
 //! every result; register reads return the ID/CONFIG words; a bad address answers SLVERR; a
 //! missing tool or a broken model build is a clear error, never a hang.
 
-use hw_model::HwFormat;
 use hdl::regmap;
 use hdl::top::TopConfig;
+use hw_model::HwFormat;
 use hw_model::{mt_model, MtQuery, MtResult};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use sim::accel_model::{top_model, top_model_with, Accel};

@@ -43,7 +43,11 @@ fn check(format: &str, configs: [(usize, usize); 2], queries: &[MtQuery]) {
     };
     let want = replay(&model, queries, &|_| {});
     for (depth, lanes) in configs {
-        let hw = HwIntersector::new(&TopConfig::new(format.parse().unwrap(), depth, lanes), Mode::Stream).unwrap();
+        let hw = HwIntersector::new(
+            &TopConfig::new(format.parse().unwrap(), depth, lanes),
+            Mode::Stream,
+        )
+        .unwrap();
         let got = replay(&hw, queries, &|_| {});
         if let Some(e) = hw.take_error() {
             panic!("{format} d{depth} l{lanes}: {e}");

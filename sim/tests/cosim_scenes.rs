@@ -3,8 +3,8 @@
 //! stream mode equal the software renders pixel for pixel (PSNR inf). 48×27 keeps the run
 //! short; the model build (fp32, depth 1, one lane, ~1 min) is cached on disk.
 
-use hw_model::HwFormat;
 use hdl::top::TopConfig;
+use hw_model::HwFormat;
 use sim::hw_intersector::{HwIntersector, Mode};
 use std::path::PathBuf;
 use sw_renderer::compare::compare;
@@ -24,7 +24,8 @@ fn fp32_hardware_renders_equal_the_software_renders() {
         .iter()
         .map(|name| root.join(name))
         .collect();
-    let hw = HwIntersector::new(&TopConfig::new(HwFormat::named("fp32"), 1, 1), Mode::Stream).unwrap();
+    let hw =
+        HwIntersector::new(&TopConfig::new(HwFormat::named("fp32"), 1, 1), Mode::Stream).unwrap();
     let opts = RenderOptions {
         width: Some(48),
         height: Some(27),

@@ -108,7 +108,10 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
     for r in &results.rows {
         assert_eq!(r.min_psnr_db.unwrap().0, q(&r.format).min_psnr_db());
         assert_eq!(r.cycles_per_test, 1.0 / r.lanes as f64);
-        assert_eq!(r.latency, hdl::mt::latency(r.format.parse().unwrap(), r.depth));
+        assert_eq!(
+            r.latency,
+            hdl::mt::latency(r.format.parse().unwrap(), r.depth)
+        );
         let frame = r.projected_frame_s.unwrap();
         assert!(
             frame > 0.0 && frame < arm,
@@ -252,7 +255,8 @@ fn bad_configurations_are_rejected_with_file_line_and_key() {
 
     // A format's operators have registers for depth 0..=max only: a depth beyond both formats'
     // maxima is refused for the first of them, fp32.
-    let max = hdl::mt::max_depth(HwFormat::FP32).max(hdl::mt::max_depth(HwFormat::named("fx16_10")));
+    let max =
+        hdl::mt::max_depth(HwFormat::FP32).max(hdl::mt::max_depth(HwFormat::named("fx16_10")));
     let e = rejection(&with(&format!("depths = [1, {}]", max + 1)));
     assert_eq!((e.line, e.key.as_str()), (3, "depths"));
     assert!(

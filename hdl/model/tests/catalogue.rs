@@ -157,7 +157,10 @@ fn a_format_without_hardware_is_one_clear_error() {
     let e = "e8m14".parse::<HwFormat>().unwrap_err();
     assert!(matches!(e, FormatError::NoHardware { .. }), "{e:?}");
     let text = e.to_string();
-    assert!(text.contains("e8m14") && text.contains("fp32, fp24"), "{text}");
+    assert!(
+        text.contains("e8m14") && text.contains("fp32, fp24"),
+        "{text}"
+    );
     assert!(HwFormat::try_from(lookup("e8m14").unwrap()).is_err());
     // an unknown name is the same error type as for the model
     assert_eq!(
@@ -165,5 +168,8 @@ fn a_format_without_hardware_is_one_clear_error() {
         Err(FormatError::Unknown("fp99".into()))
     );
     assert!(serde_json::from_str::<HwFormat>("\"fp99\"").is_err());
-    assert_eq!("fp99".parse::<Format>(), Err(FormatError::Unknown("fp99".into())));
+    assert_eq!(
+        "fp99".parse::<Format>(),
+        Err(FormatError::Unknown("fp99".into()))
+    );
 }

@@ -9,8 +9,8 @@
 //! the nearest width. Two yosys runs per point would double the sweep's longest stage.
 
 use anyhow::{bail, Result};
-use hw_model::HwFormat;
 use hdl::top::fit::{fit_from, fit_with_fixed, LaneFit, Usage, XC7Z020};
+use hw_model::HwFormat;
 
 use super::config::{Stage, SweepConfig};
 use super::hardware::PointResult;

@@ -186,7 +186,12 @@ where
     let max_lanes = rows.iter().map(|r| r.lanes).max().unwrap_or(1) as u32;
     let (left, right) = area.split_horizontally(SIZE.0 / 2);
     // (area, resource, its value in a row, the XC7Z020's total)
-    type Panel<'a, DB> = (&'a DrawingArea<DB, Shift>, &'a str, fn(&Row) -> Option<u64>, u64);
+    type Panel<'a, DB> = (
+        &'a DrawingArea<DB, Shift>,
+        &'a str,
+        fn(&Row) -> Option<u64>,
+        u64,
+    );
     let panels: [Panel<DB>; 2] = [
         (&left, "LUT", |r| r.lut, hdl::top::fit::XC7Z020.lut),
         (
