@@ -186,11 +186,16 @@ impl TryFrom<Format> for HwFormat {
 fn no_hardware(name: &str) -> FormatError {
     FormatError::NoHardware {
         name: name.to_string(),
-        known: HwFormat::all()
-            .map(HwFormat::name)
-            .collect::<Vec<_>>()
-            .join(", "),
     }
+}
+
+/// The catalogue's names, comma-separated (for messages).
+pub(crate) fn names() -> String {
+    CATALOGUE
+        .iter()
+        .map(|e| e.name)
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 impl serde::Serialize for HwFormat {

@@ -73,12 +73,18 @@ pub enum Format {
 
 #[derive(Debug, Error, PartialEq, Eq)]
 pub enum FormatError {
-    #[error("unknown format `{0}`; `rtfpga formats` lists the catalogue")]
+    #[error(
+        "unknown format `{0}`: expected a catalogue name ({}; `rtfpga formats`) or a generic spelling such as e8m14 or fx<24,8>",
+        crate::catalogue::names()
+    )]
     Unknown(String),
     #[error("impossible format `{name}`: {why}")]
     Impossible { name: String, why: String },
-    #[error("format `{name}` has no hardware operators; the hardware formats are {known} (`rtfpga formats`)")]
-    NoHardware { name: String, known: String },
+    #[error(
+        "format `{name}` has no hardware operators; the hardware formats are {} (`rtfpga formats`)",
+        crate::catalogue::names()
+    )]
+    NoHardware { name: String },
 }
 
 impl std::str::FromStr for Format {

@@ -167,6 +167,11 @@ fn a_format_without_hardware_is_one_clear_error() {
         "fp99".parse::<HwFormat>(),
         Err(FormatError::Unknown("fp99".into()))
     );
+    let text = lookup("fp99").unwrap_err().to_string();
+    assert!(
+        text.contains("fp99") && text.contains("fx32_20_rnd_sat") && text.contains("e8m14"),
+        "{text}"
+    );
     assert!(serde_json::from_str::<HwFormat>("\"fp99\"").is_err());
     assert_eq!(
         "fp99".parse::<Format>(),
