@@ -28,3 +28,37 @@ fn toml_scene_stray_carriage_return_is_named() {
         );
     }
 }
+
+/// Found while writing the toml_scene fuzz target: `geo = "..."` naming a FIFO (or a device
+/// such as `/dev/zero`) made the loader block forever in `open` (or read without end). Only
+/// regular files are read now.
+#[cfg(unix)]
+#[test]
+fn toml_scene_geo_naming_a_pipe_is_refused() {
+    use std::sync::mpsc;
+    use std::time::Duration;
+
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("mesh.geo");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    if !made.is_ok_and(|s| s.success()) {
+        println!("SKIPPED: mkfifo is not available");
+        return;
+    }
+    let text = format!(
+        "[options]\nwidth = 4\nheight = 4\nfov = 40\nlook_at = {{ from = [0, 0, 5], to = [0, 0, 0] }}\n\n\
+         [[objects]]\nname = \"pipe\"\nmaterial = {{ kind = \"diffuse\" }}\ngeo = {:?}\n",
+        fifo.display().to_string()
+    );
+    let (send, receive) = mpsc::channel();
+    std::thread::spawn(move || {
+        let result = load_str(&text, Path::new("dir/pipe.toml")).map(|_| ());
+        send.send(result.map_err(|e| e.to_string())).ok();
+    });
+    let result = receive
+        .recv_timeout(Duration::from_secs(20))
+        .expect("loading a scene whose geo names a FIFO blocked for 20 s");
+    let err = result.expect_err("a FIFO is not a mesh file");
+    assert!(err.contains("not a regular file"), "{err}");
+    assert!(err.starts_with("dir/pipe.toml:10: "), "{err}");
+}
