@@ -220,9 +220,10 @@ fn missing_tools_and_broken_builds_are_clear_errors() {
     assert!(matches!(e, CosimError::Sim(_)), "{e}");
     assert!(e.to_string().contains("verilator failed"), "{e}");
 
-    let e = top_model(&TopConfig::new(HwFormat::named("fp33"), 1, 1), false)
+    // An impossible configuration is refused before anything is built.
+    let e = top_model(&TopConfig::new(HwFormat::FP32, 1, 0), false)
         .err()
-        .unwrap()
-        .to_string();
-    assert!(e.contains("fp33"), "{e}");
+        .unwrap();
+    assert!(matches!(e, CosimError::Config(_)), "{e}");
+    assert!(e.to_string().contains("lanes = 0"), "{e}");
 }
