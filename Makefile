@@ -58,7 +58,7 @@ clean:
 
 # Coverage-guided fuzzing of the scene and sweep-config parsers (fuzz/, cargo fuzz on the
 # nightly toolchain; not part of `make test`): each target FUZZ_RUNS executions (default 1 M),
-# seeded from scenes/, sweeps/ and the thesis scenes. About an hour on 2 cores (BENCHMARKS.md).
+# seeded from scenes/, sweeps/ and the thesis scenes. About 80 min on 2 cores (BENCHMARKS.md).
 FUZZ_RUNS ?= 1000000
 fuzz:
 	@rustup run nightly rustc --version >/dev/null 2>&1 || rustup toolchain install nightly --profile minimal
