@@ -62,3 +62,28 @@ fn toml_scene_geo_naming_a_pipe_is_refused() {
     assert!(err.contains("not a regular file"), "{err}");
     assert!(err.starts_with("dir/pipe.toml:10: "), "{err}");
 }
+
+/// The scene file itself named as a FIFO blocked in `open` too (the same fix covers it).
+#[cfg(unix)]
+#[test]
+fn a_toml_scene_that_is_a_pipe_is_refused() {
+    use std::sync::mpsc;
+    use std::time::Duration;
+
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("scene.toml");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo (coreutils) failed");
+    let spec = fifo.display().to_string();
+    let (send, receive) = mpsc::channel();
+    std::thread::spawn(move || {
+        let result = sw_renderer::scene::Scene::load(&spec).map(|_| ());
+        send.send(result.map_err(|e| e.to_string())).ok();
+    });
+    let err = receive
+        .recv_timeout(Duration::from_secs(20))
+        .expect("loading a FIFO as a scene blocked for 20 s")
+        .expect_err("a FIFO is not a scene file");
+    assert!(err.contains("not a regular file"), "{err}");
+    assert!(err.contains("scene.toml"), "{err}");
+}

@@ -317,7 +317,7 @@ fn find_sod(dir: &Path) -> Result<PathBuf, SceneError> {
 
 /// Only regular files are read: a device or a pipe named as a scene file (`/dev/zero`, a FIFO)
 /// would never end or never open (found while fuzzing the TOML scenes' `geo = "..."`).
-fn read_text(path: &Path) -> Result<String, SceneError> {
+pub(crate) fn read_text(path: &Path) -> Result<String, SceneError> {
     let io_error = |source| SceneError::Io {
         path: path.to_path_buf(),
         source,

@@ -21,10 +21,7 @@ use super::{
 
 /// Read and load a `.toml` scene file; `.geo` references are relative to its directory.
 pub fn load_file(path: &Path) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = super::thesis::read_text(path)?;
     load_str(&text, path)
 }
 
