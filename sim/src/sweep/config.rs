@@ -253,7 +253,7 @@ pub fn parse(text: &str, path: &Path) -> Result<SweepConfig, ConfigError> {
             file: src.file.clone(),
             line,
             key: "(syntax)".into(),
-            message: syntax_message(text, &e),
+            message: sw_renderer::scene::toml_scene::syntax_message(text, &e),
         }
     })?;
     let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
@@ -329,26 +329,6 @@ pub fn parse(text: &str, path: &Path) -> Result<SweepConfig, ConfigError> {
         cosim_scenes,
         projection,
     })
-}
-
-/// The toml crate's message for a syntax error. It has none for some characters (a carriage
-/// return not followed by a line feed, found by `fuzz/`): then name the character.
-fn syntax_message(text: &str, e: &toml::de::Error) -> String {
-    let message = e.message().trim_end();
-    if !message.is_empty() {
-        return message.to_string();
-    }
-    let found = e
-        .span()
-        .and_then(|s| text.get(s.start..))
-        .and_then(|rest| rest.chars().next());
-    match found {
-        Some('\r') => {
-            "invalid TOML: a carriage return (\\r) must be followed by a line feed".into()
-        }
-        Some(c) => format!("invalid TOML: unexpected character {c:?}"),
-        None => "invalid TOML syntax".into(),
-    }
 }
 
 fn check_formats(

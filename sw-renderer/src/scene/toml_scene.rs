@@ -52,8 +52,9 @@ pub fn load_str(text: &str, origin: &Path) -> Result<Scene, SceneError> {
 }
 
 /// The toml crate's message for a syntax error. It has none for some characters (a carriage
-/// return not followed by a line feed, found by `fuzz/`): then name the character.
-fn syntax_message(text: &str, e: &toml::de::Error) -> String {
+/// return not followed by a line feed, found by `fuzz/`): then name the character. Also used
+/// by the sweep config (`sim::sweep::config`).
+pub fn syntax_message(text: &str, e: &toml::de::Error) -> String {
     let message = e.message().trim_end();
     if !message.is_empty() {
         return message.to_string();
