@@ -18,6 +18,23 @@ use glam::{Vec2, Vec3};
 
 pub use error::SceneError;
 
+/// The text of a scene file (`.toml`, `.sod`, `objects.txt`, `.ood`, `.geo`). Only regular
+/// files are read: a device or a pipe named as a scene file (`/dev/zero`, a FIFO) would never
+/// end or never open (found while fuzzing the TOML scenes' `geo = "..."`).
+pub(crate) fn read_text(path: &Path) -> Result<String, SceneError> {
+    let io_error = |source| SceneError::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    if !std::fs::metadata(path).map_err(io_error)?.is_file() {
+        return Err(io_error(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "not a regular file (a directory, a device or a pipe); expected a scene file",
+        )));
+    }
+    std::fs::read_to_string(path).map_err(io_error)
+}
+
 /// A 4×4 matrix, row-major, row-vector convention: a point p maps to p·M, the translation is
 /// in the last row (exactly as the thesis' `.sod`/`.ood` files store it).
 #[derive(Clone, Copy, Debug, PartialEq)]

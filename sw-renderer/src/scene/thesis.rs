@@ -10,7 +10,8 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use super::{
-    Light, LightKind, Mat44, Material, MaterialKind, Mesh, Object, Options, Scene, SceneError,
+    read_text, Light, LightKind, Mat44, Material, MaterialKind, Mesh, Object, Options, Scene,
+    SceneError,
 };
 use tokens::Tokens;
 
@@ -313,22 +314,6 @@ fn find_sod(dir: &Path) -> Result<PathBuf, SceneError> {
             })
         }
     }
-}
-
-/// Only regular files are read: a device or a pipe named as a scene file (`/dev/zero`, a FIFO)
-/// would never end or never open (found while fuzzing the TOML scenes' `geo = "..."`).
-pub(crate) fn read_text(path: &Path) -> Result<String, SceneError> {
-    let io_error = |source| SceneError::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    if !std::fs::metadata(path).map_err(io_error)?.is_file() {
-        return Err(io_error(std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            "not a regular file (a directory, a device or a pipe); expected a scene file",
-        )));
-    }
-    std::fs::read_to_string(path).map_err(io_error)
 }
 
 /// The directory's own name (also for `.` or `..`).

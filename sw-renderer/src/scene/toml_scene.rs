@@ -21,7 +21,7 @@ use super::{
 
 /// Read and load a `.toml` scene file; `.geo` references are relative to its directory.
 pub fn load_file(path: &Path) -> Result<Scene, SceneError> {
-    let text = super::thesis::read_text(path)?;
+    let text = super::read_text(path)?;
     load_str(&text, path)
 }
 
