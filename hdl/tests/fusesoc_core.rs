@@ -152,7 +152,7 @@ fn fusesoc_lint_target_passes() {
         // The harness captures print!/eprint!, not writes to the real stderr.
         let _ = writeln!(
             std::io::stderr(),
-            "fusesoc_core: fusesoc not on PATH, `fusesoc run --target lint rtfpga` skipped \
+            "SKIPPED fusesoc_core::fusesoc_lint_target_passes: fusesoc not on PATH, `fusesoc run --target lint rtfpga` not run \
              (enable: pip install fusesoc, or scripts/setup.sh)"
         );
         return;
