@@ -10,6 +10,7 @@ mod fixed;
 mod float;
 pub mod format;
 pub mod mt;
+pub mod traversal;
 
 pub use catalogue::{catalogue, lookup, HwFormat, NamedFormat};
 pub use format::{Format, FormatError, Overflow, Quant};
