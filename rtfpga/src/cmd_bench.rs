@@ -53,10 +53,10 @@ pub fn run(a: Args) -> Result<()> {
         .iter()
         .map(|s| Scene::load(s))
         .collect::<Result<Vec<_>, _>>()?;
-    let isect = engine::make(a.engine, &a.hw)?;
+    let engine = engine::make(a.engine, &a.hw)?;
     println!(
         "engine: {}, threads: {}, best of {}",
-        isect.name(),
+        engine.name(),
         rayon::current_num_threads(),
         a.repeat.max(1)
     );
@@ -70,7 +70,7 @@ pub fn run(a: Args) -> Result<()> {
             };
             let mut best = None::<sw_renderer::render::RenderStats>;
             for _ in 0..a.repeat.max(1) {
-                let stats = render(scene, isect.as_ref(), &opts)?.stats;
+                let stats = render(scene, engine.as_ref(), &opts)?.stats;
                 let total = stats.prepare_time + stats.render_time;
                 if best.is_none_or(|b| total < b.prepare_time + b.render_time) {
                     best = Some(stats);
@@ -84,7 +84,7 @@ pub fn run(a: Args) -> Result<()> {
                 scene.triangle_count(),
                 s.trace.rays(),
                 s.trace.rays() as f64 / secs / 1e6,
-                s.trace.mt_queries
+                s.trace.cast.mt_tests
             );
         }
     }

@@ -94,11 +94,9 @@ pub fn run(a: Args) -> Result<()> {
         progress: !a.quiet,
         ..Default::default()
     };
-    let out = render(&scene, &hw, &opts)?;
+    let out = render(&scene, &hw, &opts);
     hw.close_vcd();
-    if let Some(e) = hw.take_error() {
-        return Err(e).context(format!("co-simulating {}", hw.name()));
-    }
+    let out = out.with_context(|| format!("co-simulating {}", hw.name()))?;
     save_png(&out.image, &a.out).with_context(|| format!("writing {}", a.out.display()))?;
     let sw = render(
         &scene,

@@ -43,26 +43,28 @@ pub fn image_side() -> clap::builder::RangedI64ValueParser<u32> {
 
 pub fn run(a: Args) -> Result<()> {
     let scene = Scene::load(&a.scene)?;
-    let isect = engine::make(a.engine, &a.hw)?;
+    let engine = engine::make(a.engine, &a.hw)?;
     let opts = RenderOptions {
         width: a.width,
         height: a.height,
         progress: !a.quiet,
         ..Default::default()
     };
-    let out = render(&scene, isect.as_ref(), &opts)?;
+    let out = render(&scene, engine.as_ref(), &opts)?;
     save_png(&out.image, &a.out).with_context(|| format!("writing {}", a.out.display()))?;
     let s = &out.stats;
     let secs = s.render_time.as_secs_f64();
     println!(
-        "scene={} engine={} size={}x{} triangles={} rays={} mt_queries={} prepare_s={:.3} render_s={:.3} mrays_per_s={:.2}",
+        "scene={} engine={} size={}x{} triangles={} rays={} mt_queries={} box_tests={} node_visits={} prepare_s={:.3} render_s={:.3} mrays_per_s={:.2}",
         scene.name,
-        isect.name(),
+        engine.name(),
         out.image.width(),
         out.image.height(),
         scene.triangle_count(),
         s.trace.rays(),
-        s.trace.mt_queries,
+        s.trace.cast.mt_tests,
+        s.trace.cast.box_tests,
+        s.trace.cast.node_visits,
         s.prepare_time.as_secs_f64(),
         secs,
         s.trace.rays() as f64 / secs.max(1e-9) / 1e6

@@ -7,11 +7,11 @@ use std::time::Instant;
 
 use anyhow::{bail, Result};
 use clap::{Args as ClapArgs, Subcommand, ValueEnum};
+use hw_model::ModelIntersector;
 use indicatif::{ProgressBar, ProgressStyle};
 use sim::hw_intersector::{HwIntersector, Mode};
 use sim::trace::{first_difference, read_trace, replay, write_trace, Recorder};
 use sw_renderer::intersect::{F32Intersector, Intersector, MtQuery, MtResult};
-use sw_renderer::model_engine::ModelIntersector;
 use sw_renderer::render::{render, RenderOptions};
 use sw_renderer::scene::Scene;
 
@@ -95,7 +95,7 @@ fn record(a: RecordArgs) -> Result<()> {
 }
 
 /// Replays `queries` into `isect` with a progress bar; prints and returns the results.
-fn timed(isect: &dyn Intersector, queries: &[MtQuery], quiet: bool) -> Vec<MtResult> {
+fn timed(isect: &dyn Intersector, queries: &[MtQuery], quiet: bool) -> Result<Vec<MtResult>> {
     let bar = if quiet {
         ProgressBar::hidden()
     } else {
@@ -110,6 +110,7 @@ fn timed(isect: &dyn Intersector, queries: &[MtQuery], quiet: bool) -> Vec<MtRes
     let start = Instant::now();
     let results = replay(isect, queries, &|n| bar.inc(n as u64));
     bar.finish_and_clear();
+    let results = results.map_err(|e| anyhow::anyhow!(e).context(isect.name()))?;
     let secs = start.elapsed().as_secs_f64();
     println!(
         "engine=\"{}\" queries={} wall_s={secs:.3} tests_per_s={:.0}",
@@ -117,7 +118,7 @@ fn timed(isect: &dyn Intersector, queries: &[MtQuery], quiet: bool) -> Vec<MtRes
         queries.len(),
         queries.len() as f64 / secs.max(1e-9)
     );
-    results
+    Ok(results)
 }
 
 fn replay_trace(a: ReplayArgs) -> Result<()> {
@@ -125,15 +126,16 @@ fn replay_trace(a: ReplayArgs) -> Result<()> {
     let model = ModelIntersector {
         format: a.hw.format,
     };
-    let want = (a.engine != ReplayEngine::Hw).then(|| timed(&model, &queries, a.quiet));
+    let want = if a.engine != ReplayEngine::Hw {
+        Some(timed(&model, &queries, a.quiet)?)
+    } else {
+        None
+    };
     if a.engine == ReplayEngine::Model {
         return Ok(());
     }
     let hw = HwIntersector::new(&a.hw.top_config()?, Mode::Stream)?;
-    let got = timed(&hw, &queries, a.quiet);
-    if let Some(e) = hw.take_error() {
-        return Err(e.into());
-    }
+    let got = timed(&hw, &queries, a.quiet)?;
     let s = hw.stats();
     println!(
         "cycles={} lane_utilisation={:.4} sim_cycles_per_s={:.0} tests_per_s={:.0} (per core: simulator CPU time {:.2} s, wall time {:.2} s)",

@@ -1,12 +1,14 @@
-//! Engine selection shared by the subcommands that render: which `Intersector` answers the
-//! renderer's ray-triangle queries.
+//! Engine selection shared by the subcommands that render: which `RayEngine` answers the
+//! renderer's rays.
 
 use anyhow::Result;
 use clap::{Args as ClapArgs, ValueEnum};
 use hdl::top::TopConfig;
+use hw_model::traversal::{TraversalEngine, DEFAULT_STACK_DEPTH};
+use hw_model::ModelIntersector;
 use sim::hw_intersector::{HwIntersector, Mode};
-use sw_renderer::intersect::{F32Intersector, Intersector, MtQuery, MtResult};
-use sw_renderer::model_engine::ModelIntersector;
+use sw_renderer::intersect::F32Intersector;
+use sw_renderer::rays::RayEngine;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum EngineKind {
@@ -16,6 +18,9 @@ pub enum EngineKind {
     Model,
     /// The Verilated accelerator (co-simulation).
     Hw,
+    /// The traversal unit's bit-accurate model: BVH and triangles in the unit's scene
+    /// memory, rays in, hits out; Möller-Trumbore in `--format`.
+    Traversal,
 }
 
 /// The hardware configuration: number format, pipeline depth, lanes.
@@ -33,14 +38,15 @@ pub struct HwConfig {
     pub lanes: usize,
 }
 
-pub fn make(kind: EngineKind, hw: &HwConfig) -> Result<Box<dyn Intersector>> {
+pub fn make(kind: EngineKind, hw: &HwConfig) -> Result<Box<dyn RayEngine>> {
     Ok(match kind {
         EngineKind::F32 => Box::new(F32Intersector),
         EngineKind::Model => Box::new(ModelIntersector { format: hw.format }),
-        EngineKind::Hw => Box::new(FailFast(HwIntersector::new(
-            &hw.top_config()?,
-            Mode::Stream,
-        )?)),
+        EngineKind::Hw => Box::new(HwIntersector::new(&hw.top_config()?, Mode::Stream)?),
+        EngineKind::Traversal => Box::new(TraversalEngine {
+            format: hw.format,
+            stack_depth: DEFAULT_STACK_DEPTH,
+        }),
     })
 }
 
@@ -52,24 +58,5 @@ impl HwConfig {
             self.depth,
             self.lanes,
         ))
-    }
-}
-
-/// The hardware engine for commands that only see an `Intersector`: a simulation error
-/// (which the trait cannot return) ends the process with the error instead of letting the
-/// render finish with misses in its place.
-struct FailFast(HwIntersector);
-
-impl Intersector for FailFast {
-    fn name(&self) -> String {
-        self.0.name()
-    }
-
-    fn intersect_batch(&self, queries: &[MtQuery], results: &mut [MtResult]) {
-        self.0.intersect_batch(queries, results);
-        if let Some(e) = self.0.take_error() {
-            eprintln!("error: hardware co-simulation ({}): {e}", self.0.name());
-            std::process::exit(1);
-        }
     }
 }

@@ -9,10 +9,11 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use assert_cmd::Command;
+use hw_model::ModelIntersector;
 use image::{Rgb, RgbImage};
 use predicates::prelude::*;
-use sw_renderer::intersect::{F32Intersector, Intersector};
-use sw_renderer::model_engine::ModelIntersector;
+use sw_renderer::intersect::F32Intersector;
+use sw_renderer::rays::RayEngine;
 use sw_renderer::render::{render, save_png, RenderOptions};
 use sw_renderer::scene::Scene;
 
@@ -134,7 +135,7 @@ fn psnr_independent(a: &RgbImage, b: &RgbImage) -> f64 {
 }
 
 /// The library's render of a built-in scene at a size, through `isect`.
-fn library_render(scene: &str, w: u32, h: u32, isect: &dyn Intersector) -> RgbImage {
+fn library_render(scene: &str, w: u32, h: u32, isect: &dyn RayEngine) -> RgbImage {
     let scene = Scene::load(scene).expect("built-in scene");
     let opts = RenderOptions {
         width: Some(w),

@@ -2,9 +2,8 @@
 //! front end (every lane busy) or, one test at a time, through the AXI4-Lite registers.
 //!
 //! Each calling thread takes a simulated instance from a pool (creating one when none is
-//! free), so rayon workers simulate in parallel. The trait cannot return errors: the first
-//! one is kept (see [`HwIntersector::take_error`]), its batch and all later ones answer
-//! "miss", and callers check after rendering.
+//! free), so rayon workers simulate in parallel. A simulation error is the batch's error: the
+//! render stops with it (an instance that failed is dropped, not reused).
 
 use crate::accel_model::{top_model, Accel, TopModel, VcdWindow};
 use crate::axil_master::{AxiLiteMaster, Completion};
@@ -15,6 +14,7 @@ use hw_model::{MtQuery, MtResult};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use sw_renderer::intersect::Intersector;
+use sw_renderer::rays::EngineError;
 
 /// How queries reach the hardware.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -129,7 +129,6 @@ fn completion(mode: Mode) -> Completion {
 struct Shared {
     pool: Vec<(Accel, AxiLiteMaster)>,
     stats: HwStats,
-    error: Option<CosimError>,
 }
 
 pub struct HwIntersector {
@@ -163,7 +162,6 @@ impl HwIntersector {
                 instances: 1,
                 ..HwStats::default()
             },
-            error: None,
         };
         Ok(HwIntersector {
             top,
@@ -188,11 +186,6 @@ impl HwIntersector {
         self.lock().stats
     }
 
-    /// The first error met while simulating, if any (taking it clears it).
-    pub fn take_error(&self) -> Option<CosimError> {
-        self.lock().error.take()
-    }
-
     /// Closes every open VCD file (instances close theirs when dropped, too).
     pub fn close_vcd(&self) {
         for (accel, _) in &mut self.lock().pool {
@@ -208,13 +201,7 @@ impl HwIntersector {
 
     /// Runs one batch on an instance taken from the pool.
     fn simulate(&self, queries: &[MtQuery], results: &mut [MtResult]) -> Result<(), CosimError> {
-        let taken = {
-            let mut shared = self.lock();
-            if shared.error.is_some() {
-                return Ok(());
-            }
-            shared.pool.pop()
-        };
+        let taken = self.lock().pool.pop();
         let (mut accel, mut bus) = match taken {
             Some(instance) => instance,
             None => {
@@ -268,12 +255,12 @@ impl Intersector for HwIntersector {
         format!("hw {} d{} l{} {}", c.format, c.depth, c.lanes, self.mode)
     }
 
-    fn intersect_batch(&self, queries: &[MtQuery], results: &mut [MtResult]) {
+    fn intersect_batch(
+        &self,
+        queries: &[MtQuery],
+        results: &mut [MtResult],
+    ) -> Result<(), EngineError> {
         assert_eq!(queries.len(), results.len(), "one result slot per query");
-        if let Err(e) = self.simulate(queries, results) {
-            results.fill(MtResult::default());
-            let mut shared = self.lock();
-            shared.error.get_or_insert(e);
-        }
+        Ok(self.simulate(queries, results)?)
     }
 }

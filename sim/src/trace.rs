@@ -8,6 +8,7 @@ use std::io::{Read, Write};
 use std::path::Path;
 use std::sync::Mutex;
 use sw_renderer::intersect::Intersector;
+use sw_renderer::rays::EngineError;
 
 pub const MAGIC: [u8; 8] = *b"RTFTRACE";
 pub const VERSION: u32 = 1;
@@ -139,12 +140,16 @@ impl Intersector for Recorder<'_> {
         format!("recording {}", self.inner.name())
     }
 
-    fn intersect_batch(&self, queries: &[MtQuery], results: &mut [MtResult]) {
+    fn intersect_batch(
+        &self,
+        queries: &[MtQuery],
+        results: &mut [MtResult],
+    ) -> Result<(), EngineError> {
         self.queries
             .lock()
             .unwrap_or_else(|poisoned| poisoned.into_inner())
             .extend_from_slice(queries);
-        self.inner.intersect_batch(queries, results);
+        self.inner.intersect_batch(queries, results)
     }
 }
 
@@ -157,16 +162,17 @@ pub fn replay(
     isect: &dyn Intersector,
     queries: &[MtQuery],
     progress: &(dyn Fn(usize) + Sync),
-) -> Vec<MtResult> {
+) -> Result<Vec<MtResult>, EngineError> {
     let mut results = vec![MtResult::default(); queries.len()];
     queries
         .par_chunks(REPLAY_BATCH)
         .zip(results.par_chunks_mut(REPLAY_BATCH))
-        .for_each(|(q, r)| {
-            isect.intersect_batch(q, r);
+        .try_for_each(|(q, r)| -> Result<(), EngineError> {
+            isect.intersect_batch(q, r)?;
             progress(q.len());
-        });
-    results
+            Ok(())
+        })?;
+    Ok(results)
 }
 
 /// Where two result lists first disagree.
@@ -277,9 +283,9 @@ mod tests {
         let rec = Recorder::new(&F32Intersector);
         let queries: Vec<MtQuery> = (0..10).map(|k| query(k as f32)).collect();
         let mut got = vec![MtResult::default(); 10];
-        rec.intersect_batch(&queries[..4], &mut got[..4]);
-        rec.intersect_batch(&queries[4..], &mut got[4..]);
-        let want = replay(&F32Intersector, &queries, &|_| {});
+        rec.intersect_batch(&queries[..4], &mut got[..4]).unwrap();
+        rec.intersect_batch(&queries[4..], &mut got[4..]).unwrap();
+        let want = replay(&F32Intersector, &queries, &|_| {}).unwrap();
         assert!(first_difference(&got, &want).is_none());
         assert_eq!(rec.into_queries().len(), 10);
     }

@@ -165,8 +165,7 @@ fn intersector_counts_its_work_in_every_mode() {
     ] {
         let hw = HwIntersector::new(&config(), mode).unwrap();
         let mut got = vec![MtResult::default(); qs.len()];
-        hw.intersect_batch(&qs, &mut got);
-        assert!(hw.take_error().is_none());
+        hw.intersect_batch(&qs, &mut got).unwrap();
         assert_model_exact("fp32", &qs, &got);
         let s = hw.stats();
         assert_eq!((s.tests, s.busy_lane_cycles), (500, 500));

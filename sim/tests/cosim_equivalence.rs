@@ -5,11 +5,11 @@
 //! accept cycle) for fp16. Six model builds (~1–2 min each the first time, then cached).
 
 use hdl::top::TopConfig;
+use hw_model::ModelIntersector;
 use hw_model::{HwFormat, MtQuery};
 use sim::hw_intersector::{HwIntersector, Mode};
 use sim::trace::{first_difference, read_trace, replay, write_trace, Recorder};
 use sw_renderer::intersect::F32Intersector;
-use sw_renderer::model_engine::ModelIntersector;
 use sw_renderer::render::{render, RenderOptions};
 use sw_renderer::scene::Scene;
 
@@ -27,7 +27,8 @@ fn recorded_queries() -> Vec<MtQuery> {
             .unwrap()
             .stats
             .trace
-            .mt_queries;
+            .cast
+            .mt_tests;
     }
     let queries = rec.into_queries();
     assert_eq!(queries.len() as u64, expected);
@@ -41,17 +42,15 @@ fn check(format: &str, configs: [(usize, usize); 2], queries: &[MtQuery]) {
     let model = ModelIntersector {
         format: hw_model::lookup(format).unwrap(),
     };
-    let want = replay(&model, queries, &|_| {});
+    let want = replay(&model, queries, &|_| {}).unwrap();
     for (depth, lanes) in configs {
         let hw = HwIntersector::new(
             &TopConfig::new(format.parse().unwrap(), depth, lanes),
             Mode::Stream,
         )
         .unwrap();
-        let got = replay(&hw, queries, &|_| {});
-        if let Some(e) = hw.take_error() {
-            panic!("{format} d{depth} l{lanes}: {e}");
-        }
+        let got = replay(&hw, queries, &|_| {})
+            .unwrap_or_else(|e| panic!("{format} d{depth} l{lanes}: {e}"));
         assert_eq!(hw.stats().tests, queries.len() as u64);
         if let Some(d) = first_difference(&got, &want) {
             panic!("{format} d{depth} l{lanes}: hardware vs model differ at {d}");

@@ -16,7 +16,7 @@ use crate::world::WorldTriangle;
 const MAX_LEAF: usize = 2;
 const BINS: usize = 16;
 /// Relative padding of boxes and bounds (≈ 840 ulps: far above Möller-Trumbore's rounding).
-const PAD: f32 = 1e-4;
+pub const PAD: f32 = 1e-4;
 /// The build never nests deeper, so a fixed traversal stack suffices.
 const MAX_DEPTH: usize = 64;
 
@@ -418,6 +418,30 @@ impl Bvh {
 
     pub fn node_count(&self) -> usize {
         2 * self.inner.len() + 1
+    }
+
+    /// The parts the scene image (`scene_image`) is written from: the root's link and padded
+    /// box, the inner nodes (`(min, max, children)`, boxes `[axis][child]`, a child
+    /// `(first, count)`: an inner node if `count == 0`, else `order[first..first + count]`),
+    /// and the triangle order.
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn parts(
+        &self,
+    ) -> (
+        (u32, u32),
+        ([f32; 3], [f32; 3]),
+        impl Iterator<Item = ([[f32; 2]; 3], [[f32; 2]; 3], [(u32, u32); 2])> + '_,
+        &[u32],
+    ) {
+        let link = |l: Link| (l.first, l.count);
+        (
+            link(self.root),
+            (self.root_bounds.min, self.root_bounds.max),
+            self.inner
+                .iter()
+                .map(move |n| (n.min, n.max, n.child.map(link))),
+            &self.order,
+        )
     }
 }
 

@@ -5,14 +5,65 @@
 //! software reference, [`mt_f32`], is the thesis' test in exactly its operation order; the
 //! bit-accurate model and the Verilated hardware must reproduce it bit for bit in fp32.
 
-pub use hw_model::mt::{MtQuery, MtResult};
+use crate::rays::EngineError;
 
-/// Anything that answers batches of ray-triangle tests.
+/// One ray-triangle test, IEEE fp32 as on the accelerator's bus.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MtQuery {
+    pub orig: [f32; 3],
+    pub dir: [f32; 3],
+    pub v0: [f32; 3],
+    pub v1: [f32; 3],
+    pub v2: [f32; 3],
+}
+
+/// The result of one test. `t`, `u`, `v` are whatever the datapath computed, also on a miss
+/// (the hardware always computes them); only `hit` says whether they mean anything.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct MtResult {
+    pub hit: bool,
+    pub t: f32,
+    pub u: f32,
+    pub v: f32,
+}
+
+impl MtResult {
+    /// Bit-for-bit equality (NaNs compare by their bits).
+    pub fn same_bits(&self, other: &MtResult) -> bool {
+        self.hit == other.hit
+            && self.t.to_bits() == other.t.to_bits()
+            && self.u.to_bits() == other.u.to_bits()
+            && self.v.to_bits() == other.v.to_bits()
+    }
+}
+
+/// Anything that answers batches of ray-triangle tests. Every intersector is also a
+/// [`crate::rays::RayEngine`]: the software BVH gathers its queries.
 pub trait Intersector: Send + Sync {
     /// A short name for reports, e.g. "f32", "model fp16", "hw fp32 d3 l4".
     fn name(&self) -> String;
-    /// One Möller-Trumbore result per query, in order (results.len() == queries.len()).
-    fn intersect_batch(&self, queries: &[MtQuery], results: &mut [MtResult]);
+    /// One Möller-Trumbore result per query, in order (results.len() == queries.len()); an
+    /// error (a co-simulation failure) ends the render, it is never reported as misses.
+    fn intersect_batch(
+        &self,
+        queries: &[MtQuery],
+        results: &mut [MtResult],
+    ) -> Result<(), EngineError>;
+}
+
+impl<T: Intersector + ?Sized> Intersector for Box<T> {
+    fn name(&self) -> String {
+        (**self).name()
+    }
+
+    fn intersect_batch(
+        &self,
+        queries: &[MtQuery],
+        results: &mut [MtResult],
+    ) -> Result<(), EngineError> {
+        (**self).intersect_batch(queries, results)
+    }
 }
 
 /// The reference's `kEpsilon`: determinants closer to zero than this are parallel rays.
@@ -43,7 +94,11 @@ impl Intersector for F32Intersector {
         "f32".to_string()
     }
 
-    fn intersect_batch(&self, queries: &[MtQuery], results: &mut [MtResult]) {
+    fn intersect_batch(
+        &self,
+        queries: &[MtQuery],
+        results: &mut [MtResult],
+    ) -> Result<(), EngineError> {
         assert_eq!(queries.len(), results.len(), "one result slot per query");
         let mut q = queries.chunks_exact(LANES);
         let mut r = results.chunks_exact_mut(LANES);
@@ -53,6 +108,7 @@ impl Intersector for F32Intersector {
         for (q, r) in q.remainder().iter().zip(r.into_remainder()) {
             *r = mt_f32(q);
         }
+        Ok(())
     }
 }
 
@@ -246,7 +302,7 @@ mod tests {
         queries[9].dir = [0.0; 3];
         queries[17].v2 = queries[17].v1;
         let mut got = vec![MtResult::default(); queries.len()];
-        F32Intersector.intersect_batch(&queries, &mut got);
+        F32Intersector.intersect_batch(&queries, &mut got).unwrap();
         let bits = |r: &MtResult| (r.hit, r.t.to_bits(), r.u.to_bits(), r.v.to_bits());
         let mut hits = 0;
         for (q, g) in queries.iter().zip(&got) {
@@ -268,7 +324,7 @@ mod tests {
             query([2.0, 2.0, 1.0], [0.0, 0.0, -1.0]),
         ];
         let mut rs = [MtResult::default(); 2];
-        F32Intersector.intersect_batch(&qs, &mut rs);
+        F32Intersector.intersect_batch(&qs, &mut rs).unwrap();
         assert!(rs[0].hit && !rs[1].hit);
     }
 }

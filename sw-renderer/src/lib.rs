@@ -1,5 +1,6 @@
 //! The golden software renderer: the thesis' scenes and Whitted shading, a BVH, and the one
-//! seam where hardware plugs in, [`intersect::Intersector`].
+//! seams where hardware plugs in: rays ([`rays::RayEngine`]) and ray-triangle queries
+//! ([`intersect::Intersector`]).
 
 pub mod bvh;
 pub mod camera;
@@ -8,9 +9,10 @@ pub mod golden;
 pub mod hit;
 pub mod intersect;
 pub mod math;
-pub mod model_engine;
+pub mod rays;
 pub mod render;
 pub mod scene;
+pub mod scene_image;
 pub mod shade;
 pub mod thesis_scenes;
 pub mod trace;

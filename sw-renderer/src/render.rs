@@ -12,8 +12,8 @@ use rayon::prelude::*;
 use thiserror::Error;
 
 use crate::camera::Camera;
-use crate::intersect::Intersector;
 use crate::math::V3;
+use crate::rays::{EngineError, RayEngine};
 use crate::scene::Scene;
 use crate::shade::to_rgb8;
 use crate::trace::{trace_rays, PreparedScene, TraceStats};
@@ -68,6 +68,12 @@ pub enum RenderError {
         width: u32,
         height: u32,
     },
+    #[error("cannot render scene `{scene}` with {engine}: {source}")]
+    Engine {
+        scene: String,
+        engine: String,
+        source: EngineError,
+    },
     #[error("cannot write PNG {}: {source}", path.display())]
     Save {
         path: PathBuf,
@@ -77,7 +83,7 @@ pub enum RenderError {
 
 pub fn render(
     scene: &Scene,
-    isect: &dyn Intersector,
+    engine: &dyn RayEngine,
     opts: &RenderOptions,
 ) -> Result<RenderOutput, RenderError> {
     let width = opts.width.unwrap_or(scene.options.width);
@@ -100,6 +106,12 @@ pub fn render(
         width,
         height,
     );
+    let engine_error = |source| RenderError::Engine {
+        scene: scene.name.clone(),
+        engine: engine.name(),
+        source,
+    };
+    let caster = engine.prepare(&prepared).map_err(engine_error)?;
     let prepare_time = start.elapsed();
 
     let tiles = tiles(width, height, opts.tile_size);
@@ -111,26 +123,27 @@ pub fn render(
         {
             bar.set_style(style);
         }
-        bar.set_message(format!("{} ({})", scene.name, isect.name()));
+        bar.set_message(format!("{} ({})", scene.name, engine.name()));
         bar
     } else {
         ProgressBar::hidden()
     };
 
     let start = Instant::now();
-    let traced: Vec<(Vec<V3>, TraceStats)> = tiles
+    let traced: Result<Vec<(Vec<V3>, TraceStats)>, EngineError> = tiles
         .par_iter()
         .map(|tile| {
             let rays: Vec<(V3, V3)> = tile
                 .pixels()
                 .map(|(i, j)| (camera.origin, camera.direction(i, j)))
                 .collect();
-            let out = trace_rays(&prepared, isect, &rays);
+            let out = trace_rays(&prepared, caster.as_ref(), &rays);
             progress.inc(1);
             out
         })
         .collect();
     progress.finish_and_clear();
+    let traced = traced.map_err(engine_error)?;
 
     let mut image = RgbImage::new(width, height);
     let mut trace = TraceStats::default();

@@ -3,17 +3,17 @@
 //! The reference recursed ray by ray (castRay → trace → castRay …). Here the same recursion
 //! is unrolled into a ray tree built breadth first: level 0 holds the primary rays; every hit
 //! of a level adds its shadow rays (one per light) and its secondary rays (reflection, Fresnel
-//! reflection and refraction) to the next level. Each level goes through the BVH to candidate
-//! Möller-Trumbore queries and through the intersector in two batches (nearest leaves, then
-//! the rest bounded by the nearest hit so far), then is reduced to the reference's hits. Colours are finally evaluated bottom-up with the reference's arithmetic,
-//! so every pixel gets exactly the bits the recursive C++ computed.
+//! reflection and refraction) to the next level. Each level is one wavefront for the ray
+//! caster (`rays`), which returns the reference's hits. Colours are finally evaluated
+//! bottom-up with the reference's arithmetic, so every pixel gets exactly the bits the
+//! recursive C++ computed.
 
 use std::ops::{AddAssign, Range};
 
-use crate::bvh::{BoxRay, Bvh, Pending};
-use crate::hit::{closest_hit, nearer, remaining_bound, Hit, NO_BOUND};
-use crate::intersect::{Intersector, MtQuery, MtResult};
+use crate::bvh::Bvh;
+use crate::hit::{Hit, NO_BOUND};
 use crate::math::V3;
+use crate::rays::{CastStats, EngineError, Ray, RayCaster};
 use crate::scene::{MaterialKind, Scene};
 use crate::shade::{
     diffuse_colour, fresnel, fresnel_colour, hit_normal, hit_point, mirror_colour, phong_colour,
@@ -52,9 +52,15 @@ impl PreparedScene {
         })
     }
 
-    /// Whether `ray` is tested against `triangle` (shadow rays skip some objects).
-    fn tests(&self, ray: &LevelRay, triangle: u32) -> bool {
-        !ray.shadow || self.casts_shadow[triangle as usize]
+    /// Whether a ray (a shadow ray if `shadow`) is tested against `triangle` (shadow rays
+    /// skip objects that cast no shadow).
+    pub fn tests(&self, shadow: bool, triangle: u32) -> bool {
+        !shadow || self.casts_shadow[triangle as usize]
+    }
+
+    /// Per global triangle: whether it casts shadows.
+    pub fn casts_shadow(&self) -> &[bool] {
+        &self.casts_shadow
     }
 }
 
@@ -65,9 +71,8 @@ pub struct TraceStats {
     pub reflection_rays: u64,
     pub refraction_rays: u64,
     pub shadow_rays: u64,
-    pub mt_queries: u64,
-    /// `intersect_batch` calls.
-    pub batches: u64,
+    /// What the ray caster did.
+    pub cast: CastStats,
 }
 
 impl TraceStats {
@@ -82,8 +87,7 @@ impl AddAssign for TraceStats {
         self.reflection_rays += o.reflection_rays;
         self.refraction_rays += o.refraction_rays;
         self.shadow_rays += o.shadow_rays;
-        self.mt_queries += o.mt_queries;
-        self.batches += o.batches;
+        self.cast += o.cast;
     }
 }
 
@@ -131,30 +135,13 @@ enum SecondaryKind {
     Refraction,
 }
 
-/// Candidates the first pass gathers per ray (nearest leaves first): enough that it usually
-/// holds the ray's hit, which then bounds the second pass.
-const FIRST_PASS_CANDIDATES: usize = 8;
-
-/// A ray of one level: a castRay's closest-hit query or a shadow ray.
-#[derive(Clone, Copy)]
-struct LevelRay {
-    orig: V3,
-    dir: V3,
-    bound: f32,
-    shadow: bool,
-}
-
-/// Traces the primary rays `(origin, direction)` and returns one colour per ray.
-///
-/// Each level takes two intersector batches: the first with every ray's nearest leaves, the
-/// second with the rest of its candidates, bounded by the first batch's nearest hit (shadow
-/// rays already blocked are done). The union of both holds every triangle a single unbounded
-/// gathering would have listed that can matter, so the hits are the same.
+/// Traces the primary rays `(origin, direction)` and returns one colour per ray: each level
+/// of the ray tree (castRay and shadow rays together) is one wavefront for `caster`.
 pub fn trace_rays(
     scene: &PreparedScene,
-    isect: &dyn Intersector,
+    caster: &dyn RayCaster,
     primary: &[(V3, V3)],
-) -> (Vec<V3>, TraceStats) {
+) -> Result<(Vec<V3>, TraceStats), EngineError> {
     let mut tree = RayTree {
         scene,
         nodes: Vec::new(),
@@ -174,52 +161,26 @@ pub fn trace_rays(
     }
     tree.stats.primary_rays = primary.len() as u64;
     let mut shadows: Vec<ShadowRay> = Vec::new();
-    let mut rays: Vec<LevelRay> = Vec::new();
-    let (mut first, mut rest) = (Batch::default(), Batch::default());
-    let mut pending: Vec<Pending> = Vec::new();
-    let mut pending_ranges: Vec<Range<usize>> = Vec::new();
+    let mut rays: Vec<Ray> = Vec::new();
     let mut found: Vec<Option<Hit>> = Vec::new();
 
     while !level.is_empty() || !shadows.is_empty() {
         rays.clear();
-        rays.extend(level.iter().map(|&n| LevelRay {
+        rays.extend(level.iter().map(|&n| Ray {
             orig: tree.nodes[n].orig,
             dir: tree.nodes[n].dir,
             bound: NO_BOUND,
             shadow: false,
         }));
-        rays.extend(shadows.iter().map(|s| LevelRay {
+        rays.extend(shadows.iter().map(|s| Ray {
             orig: s.orig,
             dir: s.dir,
             bound: s.bound,
             shadow: true,
         }));
-
-        first.clear();
-        pending.clear();
-        pending_ranges.clear();
-        for ray in &rays {
-            let start = pending.len();
-            first.add_nearest(scene, ray, &mut pending);
-            pending_ranges.push(start..pending.len());
-        }
-        first.run(isect, &mut tree.stats);
         found.clear();
-        found.extend((0..rays.len()).map(|k| first.closest(k, rays[k].bound)));
-
-        rest.clear();
-        for (k, ray) in rays.iter().enumerate() {
-            if ray.shadow && found[k].is_some() {
-                rest.add_nothing();
-            } else {
-                let bound = remaining_bound(found[k], ray.bound);
-                rest.add_rest(scene, ray, bound, &pending[pending_ranges[k].clone()]);
-            }
-        }
-        rest.run(isect, &mut tree.stats);
-        for (k, ray) in rays.iter().enumerate() {
-            found[k] = nearer(found[k], rest.closest(k, ray.bound));
-        }
+        found.resize(rays.len(), None);
+        tree.stats.cast += caster.cast(&rays, &mut found)?;
 
         let mut next_level = Vec::new();
         let mut next_shadows = Vec::new();
@@ -234,88 +195,7 @@ pub fn trace_rays(
         level = next_level;
         shadows = next_shadows;
     }
-    (tree.colours(), tree.stats)
-}
-
-/// One intersector batch: per ray a range of candidate triangles and their queries.
-#[derive(Default)]
-struct Batch {
-    candidates: Vec<u32>,
-    ranges: Vec<Range<usize>>,
-    queries: Vec<MtQuery>,
-    results: Vec<MtResult>,
-}
-
-impl Batch {
-    fn clear(&mut self) {
-        self.candidates.clear();
-        self.ranges.clear();
-        self.queries.clear();
-        self.results.clear();
-    }
-
-    /// The ray's nearest leaves (the first pass); its unvisited subtrees go to `pending`.
-    fn add_nearest(&mut self, scene: &PreparedScene, ray: &LevelRay, pending: &mut Vec<Pending>) {
-        let start = self.candidates.len();
-        scene.bvh.nearest_candidates(
-            &BoxRay::new(ray.orig, ray.dir, ray.bound),
-            |t| scene.tests(ray, t),
-            FIRST_PASS_CANDIDATES,
-            &mut self.candidates,
-            pending,
-        );
-        self.add_queries(scene, ray, start);
-    }
-
-    /// The ray's other candidates up to `bound`, from the first pass' `pending` subtrees.
-    fn add_rest(&mut self, scene: &PreparedScene, ray: &LevelRay, bound: f32, pending: &[Pending]) {
-        let start = self.candidates.len();
-        scene.bvh.remaining_candidates(
-            &BoxRay::new(ray.orig, ray.dir, bound),
-            |t| scene.tests(ray, t),
-            pending,
-            &mut self.candidates,
-        );
-        self.add_queries(scene, ray, start);
-    }
-
-    fn add_nothing(&mut self) {
-        let end = self.candidates.len();
-        self.ranges.push(end..end);
-    }
-
-    /// Queries for the candidates from `start` on, as the ray's range.
-    fn add_queries(&mut self, scene: &PreparedScene, ray: &LevelRay, start: usize) {
-        let (o, d) = (ray.orig.to_array(), ray.dir.to_array());
-        self.queries
-            .extend(self.candidates[start..].iter().map(|&t| {
-                let [v0, v1, v2] = scene.world.triangles[t as usize].verts;
-                MtQuery {
-                    orig: o,
-                    dir: d,
-                    v0: v0.to_array(),
-                    v1: v1.to_array(),
-                    v2: v2.to_array(),
-                }
-            }));
-        self.ranges.push(start..self.candidates.len());
-    }
-
-    fn run(&mut self, isect: &dyn Intersector, stats: &mut TraceStats) {
-        if self.queries.is_empty() {
-            return;
-        }
-        self.results.resize(self.queries.len(), MtResult::default());
-        isect.intersect_batch(&self.queries, &mut self.results);
-        stats.batches += 1;
-        stats.mt_queries += self.queries.len() as u64;
-    }
-
-    /// The nearest counting hit of ray `k` in this batch.
-    fn closest(&self, k: usize, bound: f32) -> Option<Hit> {
-        let r = self.ranges[k].clone();
-        closest_hit(&self.candidates[r.clone()], &self.results[r], bound)
-    }
+    Ok((tree.colours(), tree.stats))
 }
 
 struct RayTree<'a> {

@@ -13,7 +13,8 @@ use sw_renderer::compare::{compare, diff_heatmap, psnr, CompareError};
 use sw_renderer::hit::{Hit, NO_BOUND};
 use sw_renderer::intersect::{F32Intersector, Intersector, MtQuery, MtResult};
 use sw_renderer::math::V3;
-use sw_renderer::render::{render, RenderOptions};
+use sw_renderer::rays::EngineError;
+use sw_renderer::render::{render, RenderError, RenderOptions};
 use sw_renderer::scene::{
     Light, LightKind, Mat44, Material, MaterialKind, Mesh, Object, Options, Scene,
 };
@@ -665,7 +666,7 @@ fn image_does_not_depend_on_thread_count_or_tile_size() {
     let two_small = in_pool(2, 7);
     assert_eq!(one.image, two.image);
     assert_eq!(one.image, two_small.image);
-    assert_eq!(one.stats.trace.mt_queries, two.stats.trace.mt_queries);
+    assert_eq!(one.stats.trace.cast, two.stats.trace.cast);
 }
 
 /// Splits every batch into chunks of a few queries: results must not depend on batch borders.
@@ -678,14 +679,60 @@ impl Intersector for Splitting {
     fn name(&self) -> String {
         format!("f32 split {}", self.chunk)
     }
-    fn intersect_batch(&self, queries: &[MtQuery], results: &mut [MtResult]) {
+    fn intersect_batch(
+        &self,
+        queries: &[MtQuery],
+        results: &mut [MtResult],
+    ) -> Result<(), EngineError> {
         for (q, r) in queries
             .chunks(self.chunk)
             .zip(results.chunks_mut(self.chunk))
         {
             self.calls.fetch_add(1, Ordering::Relaxed);
-            F32Intersector.intersect_batch(q, r);
+            F32Intersector.intersect_batch(q, r)?;
         }
+        Ok(())
+    }
+}
+
+/// Answers `ok_batches` batches, then fails: as a co-simulation that breaks mid-render.
+struct Failing {
+    ok_batches: u64,
+    calls: AtomicU64,
+}
+
+impl Intersector for Failing {
+    fn name(&self) -> String {
+        "failing".to_string()
+    }
+    fn intersect_batch(
+        &self,
+        queries: &[MtQuery],
+        results: &mut [MtResult],
+    ) -> Result<(), EngineError> {
+        if self.calls.fetch_add(1, Ordering::Relaxed) >= self.ok_batches {
+            return Err("simulated instance stopped answering".into());
+        }
+        F32Intersector.intersect_batch(queries, results)
+    }
+}
+
+#[test]
+fn an_engine_error_ends_the_render_as_an_error_not_as_misses() {
+    let s = all_materials_scene();
+    for ok_batches in [0, 3] {
+        let failing = Failing {
+            ok_batches,
+            calls: AtomicU64::new(0),
+        };
+        let err = render(&s, &failing, &RenderOptions::default()).unwrap_err();
+        let text = err.to_string();
+        assert!(
+            matches!(err, RenderError::Engine { .. })
+                && text.contains("failing")
+                && text.contains("simulated instance stopped answering"),
+            "{text}"
+        );
     }
 }
 
@@ -699,7 +746,7 @@ fn image_does_not_depend_on_batch_boundaries() {
     };
     let parts = render(&s, &split, &RenderOptions::default()).unwrap();
     assert_eq!(whole.image, parts.image);
-    assert!(split.calls.load(Ordering::Relaxed) > 3 * parts.stats.trace.batches);
+    assert!(split.calls.load(Ordering::Relaxed) > 3 * parts.stats.trace.cast.batches);
 }
 
 #[test]

@@ -3,9 +3,12 @@
 //! A [`Format`] is either a float `(exp, man)` or a fixed-point `(int, frac)` format; values
 //! travel as raw bit patterns in a `u64` (low `width()` bits). Every operator here is the
 //! reference the rust-hdl operators and the Verilated hardware are checked against bit for
-//! bit. No rust-hdl in this crate, so the renderer can use it cheaply.
+//! bit. No rust-hdl in this crate. It implements the renderer's seams (`sw_renderer::intersect`,
+//! `sw_renderer::rays`): the model as an intersector ([`engine`]) and the traversal unit's
+//! model ([`traversal`]); the renderer itself depends on no hardware crate.
 
 pub mod catalogue;
+pub mod engine;
 mod fixed;
 mod float;
 pub mod format;
@@ -13,5 +16,6 @@ pub mod mt;
 pub mod traversal;
 
 pub use catalogue::{catalogue, lookup, HwFormat, NamedFormat};
+pub use engine::ModelIntersector;
 pub use format::{Format, FormatError, Overflow, Quant};
 pub use mt::{mt_model, MtQuery, MtResult};

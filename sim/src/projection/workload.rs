@@ -72,8 +72,8 @@ impl Workload {
             shadow_rays: stats.shadow_rays,
             triangles: scene.triangle_count() as u64,
             shadow_casting_triangles: shadow_casting,
-            bvh_tests: stats.mt_queries,
-            batches: stats.batches,
+            bvh_tests: stats.cast.mt_tests,
+            batches: stats.cast.batches,
         })
     }
 

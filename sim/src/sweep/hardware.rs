@@ -6,9 +6,9 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use hdl::generate::{generate, VERILOG_FILE};
+use hw_model::ModelIntersector;
 use serde::{Deserialize, Serialize};
 use sw_renderer::compare::compare;
-use sw_renderer::model_engine::ModelIntersector;
 use sw_renderer::render::save_png;
 
 use crate::hw_intersector::{HwIntersector, Mode};
@@ -121,11 +121,8 @@ fn cosimulate(config: &SweepConfig, layout: &Layout, point: &Point) -> Result<Ve
     let mut records = Vec::new();
     for scene in &config.cosim_scenes {
         let before = hw.stats();
-        let out = render_scene(config, scene, &hw)?;
-        if let Some(e) = hw.take_error() {
-            return Err(e)
-                .with_context(|| format!("co-simulating {} on {}", point.id(), scene.label));
-        }
+        let out = render_scene(config, scene, &hw)
+            .with_context(|| format!("co-simulating {} on {}", point.id(), scene.label))?;
         let after = hw.stats();
         let png = layout
             .point_dir(&point.id())

@@ -6,9 +6,9 @@
 use std::time::Instant;
 
 use anyhow::Result;
+use hw_model::ModelIntersector;
 use serde::{Deserialize, Serialize};
 use sw_renderer::compare::{compare, diff_heatmap};
-use sw_renderer::model_engine::ModelIntersector;
 use sw_renderer::render::save_png;
 
 use super::config::SweepConfig;
@@ -80,7 +80,7 @@ pub fn run(config: &SweepConfig, layout: &Layout, format: &str) -> Result<Qualit
             differing_pixels: diff.differing_pixels,
             differing_share: diff.differing_share,
             max_abs_error: diff.max_abs_error,
-            mt_queries: out.stats.trace.mt_queries,
+            mt_queries: out.stats.trace.cast.mt_tests,
             render_s,
         });
     }

@@ -3,17 +3,18 @@
 
 use anyhow::{Context, Result};
 use image::RgbImage;
-use sw_renderer::intersect::{F32Intersector, Intersector};
+use sw_renderer::intersect::F32Intersector;
+use sw_renderer::rays::RayEngine;
 use sw_renderer::render::{render, save_png, RenderOptions, RenderOutput};
 
 use super::config::{SceneSpec, SweepConfig};
 use super::layout::{parent_dir, Layout};
 
-/// Renders `scene` at the sweep's size through `isect`.
+/// Renders `scene` at the sweep's size with `engine`.
 pub fn render_scene(
     config: &SweepConfig,
     scene: &SceneSpec,
-    isect: &dyn Intersector,
+    engine: &dyn RayEngine,
 ) -> Result<RenderOutput> {
     let loaded = scene.load()?;
     let opts = RenderOptions {
@@ -21,8 +22,8 @@ pub fn render_scene(
         height: Some(config.height),
         ..Default::default()
     };
-    render(&loaded, isect, &opts)
-        .with_context(|| format!("rendering {} ({})", scene.label, isect.name()))
+    render(&loaded, engine, &opts)
+        .with_context(|| format!("rendering {} ({})", scene.label, engine.name()))
 }
 
 /// The `prepare` job: the f32 reference of every scene, saved as PNG.

@@ -17,8 +17,10 @@ use crate::format::Format;
 /// fp32 as the datapath computes it.
 const F: Format = Format::Float { exp: 8, man: 23 };
 
-/// Relative padding of the ray origin and bound; the same as the BVH's box padding.
-pub const PAD: f32 = 1e-4;
+/// Relative padding of the ray origin and bound: the BVH's, which also padded the boxes.
+pub use sw_renderer::bvh::PAD;
+/// The two child boxes of an inner node, `[axis][child]`, as the scene image stores them.
+pub use sw_renderer::scene_image::ChildBoxes;
 
 /// The slope used for a direction component whose reciprocal is not finite (0, a flushed
 /// subnormal, NaN): huge instead of infinite, so that no 0·∞ NaN arises.
@@ -102,13 +104,6 @@ pub fn ray_setup(orig: [f32; 3], dir: [f32; 3], bound: f32) -> RaySetup {
         pad: word(pad),
         t_hi: t_hi(bound, word(pad)),
     }
-}
-
-/// The two child boxes of an inner node, `[axis][child]`, as the scene image stores them.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct ChildBoxes {
-    pub min: [[f32; 2]; 3],
-    pub max: [[f32; 2]; 3],
 }
 
 /// What one box test answers for both children.

@@ -1,3 +1,207 @@
 //! The traversal unit's bit-accurate model: the scene on chip, rays in, hits out.
+//!
+//! No cycles: for every ray the answer the unit gives and the work it does (box tests,
+//! node visits, Möller-Trumbore tests). It is the reference the unit's hardware is checked
+//! against, and a fast engine for renders and sweeps ([`TraversalEngine`]).
+//!
+//! A ray walks the scene image depth first: the root box is tested, then each inner node's
+//! two child boxes in one [`box_test`]; when both are entered the farther is pushed on the
+//! ray's stack and the nearer visited; a popped subtree entered beyond the current far end
+//! is skipped. A leaf's triangles go to the Möller-Trumbore test in the configured format
+//! ([`crate::mt_model`]); a shadow (any-hit) ray skips triangles that cast no shadow and
+//! stops at its first counting hit. A closest-hit ray keeps the reference's reduction
+//! (`sw_renderer::hit`: nearest t, then the lower global index; a hit counts if
+//! `t < bound` and `t < FLT_MAX`) and, once it has a hit, culls boxes with the far end of
+//! `t.next_up()` so that an equally near hit with a lower index is still found. Box tests are
+//! conservative, so in fp32 every answer equals the software renderer's.
 
 pub mod box_test;
+mod engine;
+
+pub use engine::TraversalEngine;
+
+use sw_renderer::hit::{nearer, remaining_bound, Hit, NO_BOUND};
+use sw_renderer::intersect::MtQuery;
+use sw_renderer::scene_image::{Link, SceneImage};
+use thiserror::Error;
+
+use crate::format::Format;
+use crate::mt::mt_model;
+use box_test::{box_test, ray_setup, t_hi, BoxResult};
+
+/// Entries of a ray's traversal stack unless configured otherwise: the software BVH never
+/// nests deeper than 64 inner nodes.
+pub const DEFAULT_STACK_DEPTH: usize = 64;
+
+/// A ray as it enters the unit (fp32 words on the stream).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UnitRay {
+    pub orig: [f32; 3],
+    pub dir: [f32; 3],
+    /// Hits count only below this distance.
+    pub t_max: f32,
+    /// Any-hit (a shadow ray: skips non-shadow-casting triangles, stops at the first hit);
+    /// else closest-hit.
+    pub any_hit: bool,
+    /// Returned with the answer: answers leave the unit in any order.
+    pub id: u32,
+}
+
+/// Work the unit did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct UnitCounters {
+    pub rays: u64,
+    /// Inner nodes and leaves visited.
+    pub node_visits: u64,
+    /// Box tests (two children each; the root's box counts as one).
+    pub box_tests: u64,
+    pub mt_tests: u64,
+}
+
+impl std::ops::AddAssign for UnitCounters {
+    fn add_assign(&mut self, o: UnitCounters) {
+        self.rays += o.rays;
+        self.node_visits += o.node_visits;
+        self.box_tests += o.box_tests;
+        self.mt_tests += o.mt_tests;
+    }
+}
+
+/// What stops the unit.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum TraversalError {
+    #[error(
+        "ray {id}: traversal stack overflow: it needs more than {capacity} entries (the scene's tree is {depth} inner nodes deep); configure a deeper stack"
+    )]
+    StackOverflow {
+        id: u32,
+        capacity: usize,
+        depth: usize,
+    },
+}
+
+/// The unit with a scene loaded.
+#[derive(Clone, Debug)]
+pub struct TraversalModel {
+    format: Format,
+    stack_depth: usize,
+    image: SceneImage,
+}
+
+impl TraversalModel {
+    /// A unit computing Möller-Trumbore in `format`, with `stack_depth` stack entries per
+    /// ray, holding `image` (checked by `SceneImage::from_words` or `check`).
+    pub fn new(format: Format, stack_depth: usize, image: SceneImage) -> TraversalModel {
+        TraversalModel {
+            format,
+            stack_depth,
+            image,
+        }
+    }
+
+    pub fn image(&self) -> &SceneImage {
+        &self.image
+    }
+
+    /// The answer to `ray`: its closest hit, or for an any-hit ray some counting hit.
+    pub fn trace(
+        &self,
+        ray: &UnitRay,
+        counters: &mut UnitCounters,
+    ) -> Result<Option<Hit>, TraversalError> {
+        counters.rays += 1;
+        let img = &self.image;
+        if img.triangles.is_empty() {
+            return Ok(None);
+        }
+        let mut setup = ray_setup(ray.orig, ray.dir, ray.t_max);
+        let root = root_boxes(img);
+        counters.box_tests += 1;
+        let entered = box_test(&setup, &root);
+        let mut stack: Vec<(Link, f32)> = Vec::with_capacity(self.stack_depth);
+        if entered.enters[0] {
+            stack.push((img.root, entered.near[0]));
+        }
+        let mut best: Option<Hit> = None;
+        while let Some((mut link, near)) = stack.pop() {
+            if setup.t_hi < near {
+                continue;
+            }
+            loop {
+                counters.node_visits += 1;
+                if link.is_leaf() {
+                    let leaf = link.first as usize..(link.first + link.count) as usize;
+                    for tri in &img.triangles[leaf] {
+                        if ray.any_hit && !tri.casts_shadow {
+                            continue;
+                        }
+                        counters.mt_tests += 1;
+                        let r = mt_model(
+                            &self.format,
+                            &MtQuery {
+                                orig: ray.orig,
+                                dir: ray.dir,
+                                v0: tri.verts[0],
+                                v1: tri.verts[1],
+                                v2: tri.verts[2],
+                            },
+                        );
+                        // The fp32 words compare as IEEE floats: t is never subnormal (the
+                        // datapath flushes), so this is the hardware's comparison too.
+                        if !(r.hit && r.t < ray.t_max && r.t < NO_BOUND) {
+                            continue;
+                        }
+                        let hit = Hit {
+                            triangle: tri.index,
+                            t: r.t,
+                            u: r.u,
+                            v: r.v,
+                        };
+                        if ray.any_hit {
+                            return Ok(Some(hit));
+                        }
+                        let closer = nearer(best, Some(hit));
+                        if closer != best {
+                            best = closer;
+                            setup.t_hi = t_hi(remaining_bound(best, ray.t_max), setup.pad);
+                        }
+                    }
+                    break;
+                }
+                let node = &img.nodes[link.first as usize];
+                counters.box_tests += 1;
+                let BoxResult {
+                    enters,
+                    near,
+                    first,
+                } = box_test(&setup, &node.boxes);
+                match enters {
+                    [true, true] => {
+                        if stack.len() == self.stack_depth {
+                            return Err(TraversalError::StackOverflow {
+                                id: ray.id,
+                                capacity: self.stack_depth,
+                                depth: img.depth(),
+                            });
+                        }
+                        stack.push((node.child[1 - first], near[1 - first]));
+                        link = node.child[first];
+                    }
+                    [true, false] => link = node.child[0],
+                    [false, true] => link = node.child[1],
+                    [false, false] => break,
+                }
+            }
+        }
+        Ok(best)
+    }
+}
+
+/// The root's box as a box test's child 0 (child 1 is the same box, and ignored).
+fn root_boxes(img: &SceneImage) -> box_test::ChildBoxes {
+    let (min, max) = img.root_box;
+    box_test::ChildBoxes {
+        min: min.map(|x| [x, x]),
+        max: max.map(|x| [x, x]),
+    }
+}

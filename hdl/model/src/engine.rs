@@ -1,8 +1,9 @@
 //! The bit-accurate model of the hardware arithmetic as an [`Intersector`]: no HDL, any format.
 
-use hw_model::{catalogue, mt_model, Format};
+use sw_renderer::intersect::{Intersector, MtQuery, MtResult};
+use sw_renderer::rays::EngineError;
 
-use crate::intersect::{Intersector, MtQuery, MtResult};
+use crate::{catalogue, mt_model, Format};
 
 /// Answers every query with [`mt_model`] in `format`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -20,20 +21,25 @@ impl Intersector for ModelIntersector {
         format!("model {}", label.unwrap_or_else(|| self.format.to_string()))
     }
 
-    fn intersect_batch(&self, queries: &[MtQuery], results: &mut [MtResult]) {
+    fn intersect_batch(
+        &self,
+        queries: &[MtQuery],
+        results: &mut [MtResult],
+    ) -> Result<(), EngineError> {
         assert_eq!(queries.len(), results.len(), "one result slot per query");
         for (q, r) in queries.iter().zip(results.iter_mut()) {
             *r = mt_model(&self.format, q);
         }
+        Ok(())
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::intersect::F32Intersector;
     use rand::rngs::StdRng;
     use rand::{Rng, SeedableRng};
+    use sw_renderer::intersect::F32Intersector;
 
     /// A value on the grid k·2^-bits, |value| ≤ max.
     fn grid(r: &mut StdRng, max: f32, bits: i32) -> f32 {
@@ -65,11 +71,11 @@ mod tests {
         let queries: Vec<MtQuery> = (0..50_000).map(|_| grid_query(&mut r)).collect();
         let mut want = vec![MtResult::default(); queries.len()];
         let mut got = want.clone();
-        F32Intersector.intersect_batch(&queries, &mut want);
+        F32Intersector.intersect_batch(&queries, &mut want).unwrap();
         let model = ModelIntersector {
-            format: hw_model::lookup("fp32").unwrap(),
+            format: crate::lookup("fp32").unwrap(),
         };
-        model.intersect_batch(&queries, &mut got);
+        model.intersect_batch(&queries, &mut got).unwrap();
         let same = |x: f32, y: f32| x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan());
         for ((q, g), w) in queries.iter().zip(&got).zip(&want) {
             assert!(
@@ -92,17 +98,18 @@ mod tests {
         let mut fp32 = vec![MtResult::default(); queries.len()];
         let mut bf16 = fp32.clone();
         ModelIntersector {
-            format: hw_model::lookup("fp32").unwrap(),
+            format: crate::lookup("fp32").unwrap(),
         }
-        .intersect_batch(&queries, &mut fp32);
+        .intersect_batch(&queries, &mut fp32)
+        .unwrap();
         let narrow = ModelIntersector {
-            format: hw_model::lookup("bf16").unwrap(),
+            format: crate::lookup("bf16").unwrap(),
         };
-        narrow.intersect_batch(&queries, &mut bf16);
+        narrow.intersect_batch(&queries, &mut bf16).unwrap();
         assert!(fp32.iter().zip(&bf16).filter(|(a, b)| a.t != b.t).count() > 100);
         assert_eq!(narrow.name(), "model bf16");
         let custom = ModelIntersector {
-            format: hw_model::lookup("e6m9").unwrap(),
+            format: crate::lookup("e6m9").unwrap(),
         };
         assert_eq!(custom.name(), "model e6m9");
     }

@@ -1,0 +1,65 @@
+//! The traversal unit's model as the renderer's ray engine.
+
+use sw_renderer::hit::Hit;
+use sw_renderer::rays::{CastStats, EngineError, Ray, RayCaster, RayEngine};
+use sw_renderer::scene_image::SceneImage;
+use sw_renderer::trace::PreparedScene;
+
+use super::{TraversalModel, UnitCounters, UnitRay};
+use crate::catalogue::catalogue;
+use crate::format::Format;
+
+/// Renders through [`TraversalModel`]: the scene image is written from the renderer's BVH,
+/// loaded through its word stream (so the loader's checks run), and every wavefront's rays
+/// are answered by the model.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TraversalEngine {
+    pub format: Format,
+    pub stack_depth: usize,
+}
+
+impl RayEngine for TraversalEngine {
+    /// "traversal model fp32" (the catalogue name where there is one).
+    fn name(&self) -> String {
+        let label = catalogue()
+            .iter()
+            .find(|n| n.format == self.format)
+            .map_or_else(|| self.format.to_string(), |n| n.name.to_string());
+        format!("traversal model {label}")
+    }
+
+    fn prepare<'a>(
+        &'a self,
+        scene: &'a PreparedScene,
+    ) -> Result<Box<dyn RayCaster + 'a>, EngineError> {
+        let image = SceneImage::from_words(&SceneImage::new(scene).to_words())?;
+        Ok(Box::new(TraversalModel::new(
+            self.format,
+            self.stack_depth,
+            image,
+        )))
+    }
+}
+
+impl RayCaster for TraversalModel {
+    fn cast(&self, rays: &[Ray], hits: &mut [Option<Hit>]) -> Result<CastStats, EngineError> {
+        assert_eq!(rays.len(), hits.len(), "one answer per ray");
+        let mut counters = UnitCounters::default();
+        for (id, (ray, hit)) in rays.iter().zip(hits.iter_mut()).enumerate() {
+            let unit_ray = UnitRay {
+                orig: ray.orig.to_array(),
+                dir: ray.dir.to_array(),
+                t_max: ray.bound,
+                any_hit: ray.shadow,
+                id: id as u32,
+            };
+            *hit = self.trace(&unit_ray, &mut counters)?;
+        }
+        Ok(CastStats {
+            mt_tests: counters.mt_tests,
+            batches: 1,
+            box_tests: counters.box_tests,
+            node_visits: counters.node_visits,
+        })
+    }
+}

@@ -1,0 +1,276 @@
+//! The traversal unit's model against independent references: brute force over every
+//! triangle (random meshes and rays, proptest), the software renderer (whole renders of the
+//! built-in and the thesis' scenes, fp32 images identical), and its failure modes.
+
+use hw_model::traversal::{TraversalEngine, TraversalError, TraversalModel, UnitCounters, UnitRay};
+use hw_model::{lookup, mt_model, Format};
+use proptest::prelude::*;
+use sw_renderer::bvh::Bvh;
+use sw_renderer::compare::compare;
+use sw_renderer::hit::{closest_hit, Hit, NO_BOUND};
+use sw_renderer::intersect::{F32Intersector, MtQuery};
+use sw_renderer::math::V3;
+use sw_renderer::render::{render, RenderError, RenderOptions};
+use sw_renderer::scene::Scene;
+use sw_renderer::scene_image::SceneImage;
+use sw_renderer::thesis_scenes;
+use sw_renderer::world::WorldTriangle;
+
+fn fp32() -> Format {
+    lookup("fp32").unwrap()
+}
+
+/// The reference: every triangle tested (shadow rays only shadow casters), reduced by the
+/// renderer's rule.
+fn brute_force(
+    format: &Format,
+    tris: &[WorldTriangle],
+    casts: &[bool],
+    ray: &UnitRay,
+) -> Option<Hit> {
+    let (cands, results): (Vec<u32>, Vec<_>) = tris
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| !ray.any_hit || casts[*k])
+        .map(|(k, t)| {
+            let q = MtQuery {
+                orig: ray.orig,
+                dir: ray.dir,
+                v0: t.verts[0].to_array(),
+                v1: t.verts[1].to_array(),
+                v2: t.verts[2].to_array(),
+            };
+            (k as u32, mt_model(format, &q))
+        })
+        .unzip();
+    closest_hit(&cands, &results, ray.t_max)
+}
+
+/// A model holding `tris` (objects of 8 triangles; odd objects cast no shadow), with the
+/// renderer's BVH, through the image's word stream.
+fn unit(tris: &[WorldTriangle], format: Format, stack: usize) -> (TraversalModel, Vec<bool>) {
+    let casts: Vec<bool> = tris.iter().map(|t| t.object % 2 == 0).collect();
+    let image = SceneImage::from_bvh(&Bvh::build(tris), tris, &casts);
+    let image = SceneImage::from_words(&image.to_words()).unwrap();
+    (TraversalModel::new(format, stack, image), casts)
+}
+
+fn v3() -> impl Strategy<Value = V3> {
+    // A coarse grid makes shared vertices, shared edges and duplicates likely.
+    (-4i32..=4, -4i32..=4, -4i32..=4)
+        .prop_map(|(x, y, z)| V3::new(x as f32, y as f32, z as f32) * 0.5)
+}
+
+fn mesh() -> impl Strategy<Value = Vec<WorldTriangle>> {
+    prop::collection::vec((v3(), v3(), v3(), 0usize..3), 1..40).prop_map(|raw| {
+        let mut tris: Vec<WorldTriangle> = Vec::new();
+        for (k, (a, b, c, kind)) in raw.into_iter().enumerate() {
+            let verts = match (kind, tris.last()) {
+                // A duplicate of the previous triangle (equal t, the lower index must win).
+                (1, Some(p)) => p.verts,
+                // A neighbour sharing the previous triangle's edge.
+                (2, Some(p)) => [p.verts[0], p.verts[2], c],
+                _ => [a, b, c],
+            };
+            tris.push(WorldTriangle {
+                verts,
+                normals: [V3::new(0.0, 0.0, 1.0); 3],
+                object: (k / 8) as u32,
+            });
+        }
+        tris
+    })
+}
+
+fn ray() -> impl Strategy<Value = UnitRay> {
+    let dir = prop_oneof![
+        (v3(), v3()).prop_map(|(a, b)| (b - a).to_array()),
+        // Axis-parallel rays: parallel to the faces of many grid triangles and to box slabs.
+        (0usize..3, prop::bool::ANY).prop_map(|(a, neg)| {
+            let mut d = [0.0f32; 3];
+            d[a] = if neg { -1.0 } else { 1.0 };
+            d
+        }),
+    ];
+    let t_max = prop_oneof![Just(NO_BOUND), Just(0.0f32), 0.1f32..6.0];
+    (v3(), dir, t_max, prop::bool::ANY, any::<u32>()).prop_map(|(o, dir, t_max, any_hit, id)| {
+        UnitRay {
+            orig: (o + V3::new(0.13, 0.07, -0.11)).to_array(),
+            dir,
+            t_max,
+            any_hit,
+            id,
+        }
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
+
+    /// fp32: the unit's answer is the brute-force answer (closest-hit: the same hit, bit for
+    /// bit; any-hit: occluded exactly when brute force finds a hit).
+    #[test]
+    fn fp32_answers_equal_brute_force(tris in mesh(), rays in prop::collection::vec(ray(), 1..24)) {
+        let (unit, casts) = unit(&tris, fp32(), 64);
+        for r in &rays {
+            let mut counters = UnitCounters::default();
+            let got = unit.trace(r, &mut counters).unwrap();
+            let want = brute_force(&fp32(), &tris, &casts, r);
+            if r.any_hit {
+                prop_assert_eq!(got.is_some(), want.is_some(), "{:?}", r);
+            } else {
+                prop_assert_eq!(got, want, "{:?}", r);
+            }
+            prop_assert!(counters.mt_tests <= tris.len() as u64);
+        }
+    }
+}
+
+#[test]
+fn rays_with_nan_or_infinite_components_end_as_misses_like_the_software() {
+    let tris: Vec<WorldTriangle> = (0..50)
+        .map(|k| WorldTriangle {
+            verts: [
+                V3::new(k as f32, 0.0, 0.0),
+                V3::new(k as f32 + 1.0, 0.0, 0.0),
+                V3::new(k as f32, 1.0, 0.0),
+            ],
+            normals: [V3::new(0.0, 0.0, 1.0); 3],
+            object: 0,
+        })
+        .collect();
+    let (unit, casts) = unit(&tris, fp32(), 64);
+    let (nan, inf) = (f32::NAN, f32::INFINITY);
+    for (orig, dir, t_max) in [
+        ([nan, 0.2, 1.0], [0.0, 0.0, -1.0], NO_BOUND),
+        ([0.2, 0.2, 1.0], [nan, 0.0, -1.0], NO_BOUND),
+        ([inf, 0.2, 1.0], [0.0, 0.0, -1.0], NO_BOUND),
+        ([0.2, 0.2, 1.0], [0.0, 0.0, -inf], NO_BOUND),
+        ([0.2, 0.2, 1.0], [0.0, 0.0, -1.0], nan),
+        ([0.2, 0.2, 1.0], [0.0, 0.0, 0.0], NO_BOUND),
+    ] {
+        for any_hit in [false, true] {
+            let r = UnitRay {
+                orig,
+                dir,
+                t_max,
+                any_hit,
+                id: 7,
+            };
+            let got = unit.trace(&r, &mut UnitCounters::default()).unwrap();
+            assert_eq!(got, brute_force(&fp32(), &tris, &casts, &r), "{r:?}");
+        }
+    }
+}
+
+#[test]
+fn a_stack_too_small_for_the_walk_is_an_error_naming_the_ray_and_sizes() {
+    let tris: Vec<WorldTriangle> = (0..256)
+        .map(|k| {
+            let x = (k % 16) as f32;
+            let y = (k / 16) as f32;
+            WorldTriangle {
+                verts: [
+                    V3::new(x, y, 0.0),
+                    V3::new(x + 0.9, y, 0.0),
+                    V3::new(x, y + 0.9, 0.0),
+                ],
+                normals: [V3::new(0.0, 0.0, 1.0); 3],
+                object: 0,
+            }
+        })
+        .collect();
+    let (unit, _) = unit(&tris, fp32(), 1);
+    // A grazing ray along the grid enters many boxes at once.
+    let r = UnitRay {
+        orig: [-1.0, 0.3, 0.0],
+        dir: [1.0, 0.4, 0.0],
+        t_max: NO_BOUND,
+        any_hit: false,
+        id: 42,
+    };
+    let e = unit.trace(&r, &mut UnitCounters::default()).unwrap_err();
+    assert!(matches!(
+        e,
+        TraversalError::StackOverflow {
+            id: 42,
+            capacity: 1,
+            ..
+        }
+    ));
+    let text = e.to_string();
+    assert!(
+        text.contains("ray 42") && text.contains("more than 1 entries"),
+        "{text}"
+    );
+}
+
+fn small(
+    scene: &Scene,
+    engine: &dyn sw_renderer::rays::RayEngine,
+    w: u32,
+    h: u32,
+) -> image::RgbImage {
+    let opts = RenderOptions {
+        width: Some(w),
+        height: Some(h),
+        ..Default::default()
+    };
+    render(scene, engine, &opts).unwrap().image
+}
+
+#[test]
+fn fp32_renders_of_the_builtin_scenes_equal_the_software() {
+    let engine = TraversalEngine {
+        format: fp32(),
+        stack_depth: 64,
+    };
+    for name in sw_renderer::scene::builtin::names() {
+        let scene = Scene::load(name).unwrap();
+        let diff = compare(
+            &small(&scene, &engine, 64, 36),
+            &small(&scene, &F32Intersector, 64, 36),
+        )
+        .unwrap();
+        assert_eq!(diff.differing_pixels, 0, "{name}: {diff:?}");
+    }
+}
+
+#[test]
+fn fp32_renders_of_the_thesis_scenes_equal_the_software() {
+    let Some(root) =
+        thesis_scenes::for_test("traversal::fp32_renders_of_the_thesis_scenes_equal_the_software")
+    else {
+        return;
+    };
+    let engine = TraversalEngine {
+        format: fp32(),
+        stack_depth: 64,
+    };
+    for name in thesis_scenes::SCENE_DIRS {
+        let scene = Scene::load(root.join(name).to_str().unwrap()).unwrap();
+        let diff = compare(
+            &small(&scene, &engine, 48, 27),
+            &small(&scene, &F32Intersector, 48, 27),
+        )
+        .unwrap();
+        assert_eq!(diff.differing_pixels, 0, "{name}: {diff:?}");
+    }
+}
+
+#[test]
+fn a_render_whose_stack_overflows_fails_with_the_engines_error() {
+    let scene = Scene::load("utah_teapot").unwrap();
+    let engine = TraversalEngine {
+        format: fp32(),
+        stack_depth: 2,
+    };
+    let opts = RenderOptions {
+        width: Some(16),
+        height: Some(9),
+        ..Default::default()
+    };
+    let e = render(&scene, &engine, &opts).unwrap_err();
+    assert!(matches!(e, RenderError::Engine { .. }));
+    assert!(e.to_string().contains("traversal stack overflow"), "{e}");
+}

@@ -1,0 +1,496 @@
+//! The scene image: the BVH and triangles of a prepared scene as the traversal unit's scene
+//! memory holds them, in one binary layout (`docs/scene-image.md`).
+//!
+//! This module is that layout's one definition: the writer ([`SceneImage::new`], from the
+//! software BVH), the word stream loaded over AXI4-Stream ([`SceneImage::to_words`]) and the
+//! loader that checks a word stream before anything walks it ([`SceneImage::from_words`]).
+//! The unit's model, its hardware and the harness read the same types.
+//!
+//! Every field is a little-endian 32-bit word. In order:
+//! - header, [`HEADER_WORDS`] words: magic, version, node count N, triangle count T, the
+//!   root's link (first, count), the root's padded box (min x y z, max x y z), 4 reserved 0;
+//! - N inner nodes of [`NODE_WORDS`] words: both children's padded boxes, `min[axis][child]`
+//!   (x0 x1 y0 y1 z0 z1) then `max[axis][child]`, then the links (first, count) of child 0
+//!   and child 1;
+//! - T triangles of [`TRIANGLE_WORDS`] words: v0, v1, v2 (x y z each, world space), the
+//!   global triangle index, flags (bit 0: casts shadows), 1 reserved 0.
+//!
+//! A link `(first, count)` is an inner node `first` if `count == 0`, else the leaf of
+//! triangle records `first .. first + count` (triangles are stored in leaf order).
+
+use thiserror::Error;
+
+use crate::bvh::Bvh;
+use crate::trace::PreparedScene;
+use crate::world::WorldTriangle;
+
+/// "RTSI" as a little-endian word.
+pub const MAGIC: u32 = u32::from_le_bytes(*b"RTSI");
+pub const VERSION: u32 = 1;
+pub const HEADER_WORDS: usize = 16;
+pub const NODE_WORDS: usize = 16;
+pub const TRIANGLE_WORDS: usize = 12;
+/// Flag bit of a triangle record: shadow rays test it.
+pub const CASTS_SHADOW: u32 = 1;
+
+/// A child of an inner node (or the root).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Link {
+    pub first: u32,
+    /// 0: the inner node `first`; else a leaf of this many triangle records from `first`.
+    pub count: u32,
+}
+
+impl Link {
+    pub fn is_leaf(self) -> bool {
+        self.count > 0
+    }
+}
+
+/// The two child boxes of an inner node, `[axis][child]` (padded by the BVH).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ChildBoxes {
+    pub min: [[f32; 2]; 3],
+    pub max: [[f32; 2]; 3],
+}
+
+/// An inner node: what one box test reads.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ImageNode {
+    pub boxes: ChildBoxes,
+    pub child: [Link; 2],
+}
+
+/// A triangle record: what one Möller-Trumbore test reads, and what its hit reports.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ImageTriangle {
+    pub verts: [[f32; 3]; 3],
+    /// The global triangle index (`world.rs`): ties between equal hits go to the lower one.
+    pub index: u32,
+    pub casts_shadow: bool,
+}
+
+/// A scene as the traversal unit's memory holds it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneImage {
+    pub root: Link,
+    /// The root's padded box (min, max).
+    pub root_box: ([f32; 3], [f32; 3]),
+    pub nodes: Vec<ImageNode>,
+    pub triangles: Vec<ImageTriangle>,
+}
+
+/// Why a word stream is not a scene image the unit may walk.
+#[derive(Debug, Error, PartialEq)]
+pub enum SceneImageError {
+    #[error("scene image of {words} words is shorter than its {HEADER_WORDS}-word header")]
+    TooShort { words: usize },
+    #[error("scene image starts with {found:#010x}, not the magic word {MAGIC:#010x} (\"RTSI\")")]
+    BadMagic { found: u32 },
+    #[error("scene image version {found}; this unit reads version {VERSION}")]
+    BadVersion { found: u32 },
+    #[error(
+        "scene image of {words} words, but its header's {nodes} nodes and {triangles} triangles need {expected}"
+    )]
+    SizeMismatch {
+        words: usize,
+        nodes: u32,
+        triangles: u32,
+        expected: u64,
+    },
+    #[error("scene image word {word}: reserved, must be 0, holds {value:#x}")]
+    Reserved { word: usize, value: u32 },
+    #[error("scene image: {from} links to inner node {first}, but there are {nodes} nodes")]
+    NodeOutOfRange {
+        from: String,
+        first: u32,
+        nodes: u32,
+    },
+    #[error(
+        "scene image: {from} links to triangles {first}..{first}+{count}, but there are {triangles} triangles"
+    )]
+    LeafOutOfRange {
+        from: String,
+        first: u32,
+        count: u32,
+        triangles: u32,
+    },
+    #[error(
+        "scene image: {from} links to node {node} again: the tree has a cycle or a shared subtree"
+    )]
+    ReachedTwice { from: String, node: u32 },
+    #[error("scene image: triangle record {slot} has global index {index}, but there are {triangles} triangles")]
+    IndexOutOfRange {
+        slot: usize,
+        index: u32,
+        triangles: u32,
+    },
+    #[error("scene image: triangle records {first} and {second} both have global index {index}")]
+    DuplicateIndex {
+        index: u32,
+        first: usize,
+        second: usize,
+    },
+    #[error("scene image: triangle record {slot} has flags {flags:#x}; only bit 0 (casts shadows) is defined")]
+    UnknownFlags { slot: usize, flags: u32 },
+}
+
+impl SceneImage {
+    /// The image of `scene`: its BVH's inner nodes and root, its triangles in leaf order with
+    /// their global index and shadow flag. The one writer of the layout.
+    pub fn new(scene: &PreparedScene) -> SceneImage {
+        SceneImage::from_bvh(&scene.bvh, &scene.world.triangles, scene.casts_shadow())
+    }
+
+    /// The image of `bvh` built over `triangles`, with their shadow flags.
+    pub fn from_bvh(bvh: &Bvh, triangles: &[WorldTriangle], casts_shadow: &[bool]) -> SceneImage {
+        let ((first, count), root_box, inner, order) = bvh.parts();
+        let link = |(first, count)| Link { first, count };
+        SceneImage {
+            root: link((first, count)),
+            root_box,
+            nodes: inner
+                .map(|(min, max, child)| ImageNode {
+                    boxes: ChildBoxes { min, max },
+                    child: child.map(link),
+                })
+                .collect(),
+            triangles: order
+                .iter()
+                .map(|&t| ImageTriangle {
+                    verts: triangles[t as usize].verts.map(|v| v.to_array()),
+                    index: t,
+                    casts_shadow: casts_shadow[t as usize],
+                })
+                .collect(),
+        }
+    }
+
+    /// Words of the image: header, nodes, triangles.
+    pub fn to_words(&self) -> Vec<u32> {
+        let mut w = Vec::with_capacity(self.words());
+        let f = |x: f32| x.to_bits();
+        w.extend([
+            MAGIC,
+            VERSION,
+            self.nodes.len() as u32,
+            self.triangles.len() as u32,
+            self.root.first,
+            self.root.count,
+        ]);
+        w.extend(self.root_box.0.map(f));
+        w.extend(self.root_box.1.map(f));
+        w.extend([0; 4]);
+        for n in &self.nodes {
+            w.extend(n.boxes.min.iter().flatten().map(|&x| f(x)));
+            w.extend(n.boxes.max.iter().flatten().map(|&x| f(x)));
+            for c in n.child {
+                w.extend([c.first, c.count]);
+            }
+        }
+        for t in &self.triangles {
+            w.extend(t.verts.iter().flatten().map(|&x| f(x)));
+            w.extend([t.index, u32::from(t.casts_shadow), 0]);
+        }
+        w
+    }
+
+    /// The image's size in words.
+    pub fn words(&self) -> usize {
+        HEADER_WORDS + NODE_WORDS * self.nodes.len() + TRIANGLE_WORDS * self.triangles.len()
+    }
+
+    /// Reads and checks a word stream: sizes, magic and version, every link in range, no
+    /// node reached twice (so no cycle), global indices a permutation, no unknown flags or
+    /// reserved bits. What passes can be walked without an out-of-range access or a loop.
+    pub fn from_words(w: &[u32]) -> Result<SceneImage, SceneImageError> {
+        if w.len() < HEADER_WORDS {
+            return Err(SceneImageError::TooShort { words: w.len() });
+        }
+        if w[0] != MAGIC {
+            return Err(SceneImageError::BadMagic { found: w[0] });
+        }
+        if w[1] != VERSION {
+            return Err(SceneImageError::BadVersion { found: w[1] });
+        }
+        let (nodes, triangles) = (w[2], w[3]);
+        let expected = HEADER_WORDS as u64
+            + NODE_WORDS as u64 * u64::from(nodes)
+            + TRIANGLE_WORDS as u64 * u64::from(triangles);
+        if w.len() as u64 != expected {
+            return Err(SceneImageError::SizeMismatch {
+                words: w.len(),
+                nodes,
+                triangles,
+                expected,
+            });
+        }
+        let reserved = |word: usize| match w[word] {
+            0 => Ok(()),
+            value => Err(SceneImageError::Reserved { word, value }),
+        };
+        (12..HEADER_WORDS).try_for_each(reserved)?;
+        let f = |i: usize| f32::from_bits(w[i]);
+        let xyz = |i: usize| [f(i), f(i + 1), f(i + 2)];
+        let pairs = |i: usize| [[f(i), f(i + 1)], [f(i + 2), f(i + 3)], [f(i + 4), f(i + 5)]];
+        let link = |i: usize| Link {
+            first: w[i],
+            count: w[i + 1],
+        };
+        let node_at = |k: usize| HEADER_WORDS + NODE_WORDS * k;
+        let tri_at = |k: usize| node_at(nodes as usize) + TRIANGLE_WORDS * k;
+        let image = SceneImage {
+            root: link(4),
+            root_box: (xyz(6), xyz(9)),
+            nodes: (0..nodes as usize)
+                .map(|k| {
+                    let i = node_at(k);
+                    ImageNode {
+                        boxes: ChildBoxes {
+                            min: pairs(i),
+                            max: pairs(i + 6),
+                        },
+                        child: [link(i + 12), link(i + 14)],
+                    }
+                })
+                .collect(),
+            triangles: (0..triangles as usize)
+                .map(|k| {
+                    let i = tri_at(k);
+                    ImageTriangle {
+                        verts: [xyz(i), xyz(i + 3), xyz(i + 6)],
+                        index: w[i + 9],
+                        casts_shadow: w[i + 10] & CASTS_SHADOW != 0,
+                    }
+                })
+                .collect(),
+        };
+        for k in 0..triangles as usize {
+            let i = tri_at(k);
+            if w[i + 10] & !CASTS_SHADOW != 0 {
+                return Err(SceneImageError::UnknownFlags {
+                    slot: k,
+                    flags: w[i + 10],
+                });
+            }
+            reserved(i + 11)?;
+        }
+        image.check()?;
+        Ok(image)
+    }
+
+    /// The structural checks of [`SceneImage::from_words`] on an image in memory.
+    pub fn check(&self) -> Result<(), SceneImageError> {
+        let (n, t) = (self.nodes.len() as u32, self.triangles.len() as u32);
+        let mut seen = vec![None::<usize>; self.triangles.len()];
+        for (slot, tri) in self.triangles.iter().enumerate() {
+            let index = tri.index;
+            let entry = seen
+                .get_mut(index as usize)
+                .ok_or(SceneImageError::IndexOutOfRange {
+                    slot,
+                    index,
+                    triangles: t,
+                })?;
+            if let Some(first) = *entry {
+                return Err(SceneImageError::DuplicateIndex {
+                    index,
+                    first,
+                    second: slot,
+                });
+            }
+            *entry = Some(slot);
+        }
+        if t == 0 {
+            // An empty scene: nothing to walk, and no node may claim otherwise.
+            return match (n, self.root) {
+                (0, Link { first: 0, count: 0 }) => Ok(()),
+                _ => Err(SceneImageError::LeafOutOfRange {
+                    from: "the root of an empty scene".into(),
+                    first: self.root.first,
+                    count: self.root.count,
+                    triangles: 0,
+                }),
+            };
+        }
+        let mut reached = vec![false; self.nodes.len()];
+        let mut todo = vec![("the root".to_string(), self.root)];
+        while let Some((from, link)) = todo.pop() {
+            if link.is_leaf() {
+                if u64::from(link.first) + u64::from(link.count) > u64::from(t) {
+                    return Err(SceneImageError::LeafOutOfRange {
+                        from,
+                        first: link.first,
+                        count: link.count,
+                        triangles: t,
+                    });
+                }
+                continue;
+            }
+            let node = link.first;
+            let seen =
+                reached
+                    .get_mut(node as usize)
+                    .ok_or_else(|| SceneImageError::NodeOutOfRange {
+                        from: from.clone(),
+                        first: node,
+                        nodes: n,
+                    })?;
+            if *seen {
+                return Err(SceneImageError::ReachedTwice { from, node });
+            }
+            *seen = true;
+            for (c, &child) in self.nodes[node as usize].child.iter().enumerate() {
+                todo.push((format!("node {node} child {c}"), child));
+            }
+        }
+        Ok(())
+    }
+
+    /// Inner nodes on the longest path from the root to a leaf: the traversal stack a ray
+    /// may need (a walk pushes at most one subtree per inner node it passes). Assumes
+    /// [`SceneImage::check`] passed.
+    pub fn depth(&self) -> usize {
+        let mut deepest = 0;
+        let mut todo = vec![(self.root, 0usize)];
+        while let Some((link, d)) = todo.pop() {
+            if link.is_leaf() || self.triangles.is_empty() {
+                deepest = deepest.max(d);
+                continue;
+            }
+            for &c in &self.nodes[link.first as usize].child {
+                todo.push((c, d + 1));
+            }
+        }
+        deepest
+    }
+
+    /// The image's size in bytes (as loaded).
+    pub fn bytes(&self) -> usize {
+        4 * self.words()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    fn image(name: &str) -> SceneImage {
+        let scene = Scene::load(name).unwrap();
+        SceneImage::new(&PreparedScene::new(&scene).unwrap())
+    }
+
+    #[test]
+    fn the_image_of_a_scene_round_trips_through_its_words() {
+        let img = image("glasses");
+        let words = img.to_words();
+        assert_eq!(words.len(), img.words());
+        assert_eq!(SceneImage::from_words(&words).unwrap(), img);
+        assert!(img.nodes.len() > 10 && img.depth() >= 4);
+        // Every global index once, and shadow flags as the scene says.
+        let mut idx: Vec<u32> = img.triangles.iter().map(|t| t.index).collect();
+        idx.sort_unstable();
+        assert!(idx.iter().enumerate().all(|(k, &i)| k as u32 == i));
+    }
+
+    fn reject(words: &[u32]) -> String {
+        SceneImage::from_words(words).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn damaged_images_are_refused_naming_what_is_wrong() {
+        let img = image("simple_plane");
+        let good = img.to_words();
+        assert!(reject(&good[..5]).contains("shorter than its 16-word header"));
+        let mut w = good.clone();
+        w[0] ^= 1;
+        assert!(reject(&w).contains("magic"));
+        let mut w = good.clone();
+        w[1] = 7;
+        assert!(reject(&w).contains("version 7"));
+        let mut w = good.clone();
+        w.push(0);
+        assert!(reject(&w).contains("need"), "{}", reject(&w));
+        let mut w = good.clone();
+        w[13] = 5;
+        assert!(reject(&w).contains("word 13: reserved"));
+        let t0 = HEADER_WORDS + NODE_WORDS * img.nodes.len();
+        let mut w = good.clone();
+        w[t0 + 10] = 2;
+        assert!(reject(&w).contains("flags 0x2"));
+        let mut w = good.clone();
+        w[t0 + 9] = 1_000_000;
+        assert!(reject(&w).contains("global index 1000000"));
+        let mut w = good.clone();
+        w[t0 + 9] = w[t0 + TRIANGLE_WORDS + 9];
+        assert!(reject(&w).contains("both have global index"));
+    }
+
+    /// A hand-made image: root → node 0 → (node 1, leaf 0..1), node 1 → (leaf 1..2, leaf 2..3).
+    fn small() -> SceneImage {
+        let tri = |index| ImageTriangle {
+            verts: [[0.0; 3]; 3],
+            index,
+            casts_shadow: true,
+        };
+        let leaf = |first| Link { first, count: 1 };
+        SceneImage {
+            root: Link { first: 0, count: 0 },
+            root_box: ([0.0; 3], [1.0; 3]),
+            nodes: vec![
+                ImageNode {
+                    boxes: ChildBoxes::default(),
+                    child: [Link { first: 1, count: 0 }, leaf(0)],
+                },
+                ImageNode {
+                    boxes: ChildBoxes::default(),
+                    child: [leaf(1), leaf(2)],
+                },
+            ],
+            triangles: vec![tri(2), tri(0), tri(1)],
+        }
+    }
+
+    #[test]
+    fn links_out_of_range_and_cycles_are_refused() {
+        assert_eq!(small().check(), Ok(()));
+        assert_eq!(small().depth(), 2);
+        let mut img = small();
+        img.nodes[1].child[1] = Link { first: 9, count: 0 };
+        assert!(reject(&img.to_words())
+            .contains("node 1 child 1 links to inner node 9, but there are 2 nodes"));
+        let mut img = small();
+        img.nodes[1].child[0] = Link { first: 2, count: 2 };
+        assert!(reject(&img.to_words()).contains("node 1 child 0 links to triangles 2..2+2"));
+        let mut img = small();
+        img.nodes[1].child[0] = Link {
+            first: u32::MAX,
+            count: 2,
+        };
+        assert!(reject(&img.to_words()).contains("but there are 3 triangles"));
+        let mut img = small();
+        img.nodes[1].child[1] = Link { first: 0, count: 0 };
+        assert!(reject(&img.to_words()).contains("links to node 0 again"));
+        let mut img = small();
+        img.nodes[1].child[1] = Link { first: 1, count: 0 };
+        assert!(reject(&img.to_words()).contains("node 1 child 1 links to node 1 again"));
+        let mut img = small();
+        img.root = Link { first: 2, count: 0 };
+        assert!(reject(&img.to_words()).contains("the root links to inner node 2"));
+    }
+
+    #[test]
+    fn an_empty_scene_has_an_empty_image() {
+        let img = SceneImage {
+            root: Link::default(),
+            root_box: ([0.0; 3], [0.0; 3]),
+            nodes: vec![],
+            triangles: vec![],
+        };
+        assert_eq!(SceneImage::from_words(&img.to_words()).unwrap(), img);
+        let mut bad = img.to_words();
+        bad[5] = 1;
+        assert!(reject(&bad).contains("empty scene"));
+    }
+}
