@@ -46,6 +46,7 @@ pub fn make(kind: EngineKind, hw: &HwConfig) -> Result<Box<dyn RayEngine>> {
         EngineKind::Traversal => Box::new(TraversalEngine {
             format: hw.format,
             stack_depth: DEFAULT_STACK_DEPTH,
+            timing: None,
         }),
     })
 }

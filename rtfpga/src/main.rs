@@ -9,6 +9,7 @@ mod cmd_formats;
 mod cmd_golden;
 mod cmd_project;
 mod cmd_render;
+mod cmd_scene_image;
 mod cmd_sweep;
 mod cmd_synth;
 mod cmd_trace;
@@ -50,6 +51,8 @@ enum Command {
     Verilog(cmd_verilog::Args),
     /// yosys resources and logic depth of the accelerator or one operator; lanes that fit.
     Synth(cmd_synth::Args),
+    /// A scene as the traversal unit's memory holds it: sizes, and the image's words.
+    SceneImage(cmd_scene_image::Args),
     /// Design-space sweep (formats x depths x lanes): manifest, every job here, merge.
     Sweep(cmd_sweep::Args),
     /// Run one job of a sweep's manifest (prepare, quality/FORMAT, point/ID).
@@ -71,6 +74,7 @@ fn main() -> std::process::ExitCode {
         Command::Project(a) => cmd_project::run(a),
         Command::Cosim(a) => cmd_cosim::run(a),
         Command::Trace(a) => cmd_trace::run(a),
+        Command::SceneImage(a) => cmd_scene_image::run(a),
         Command::Sweep(a) => cmd_sweep::run(a),
         Command::SweepJob(a) => cmd_sweep::run_job(a),
         Command::SweepMerge(a) => cmd_sweep::run_merge(a),

@@ -50,6 +50,9 @@ pub struct CastStats {
     pub box_tests: u64,
     /// Inner nodes and leaves a traversal unit visited (0 where the software BVH walks).
     pub node_visits: u64,
+    /// Clock cycles of a traversal unit (simulated or from its schedule model; 0 for
+    /// software).
+    pub cycles: u64,
 }
 
 impl AddAssign for CastStats {
@@ -58,6 +61,7 @@ impl AddAssign for CastStats {
         self.batches += o.batches;
         self.box_tests += o.box_tests;
         self.node_visits += o.node_visits;
+        self.cycles += o.cycles;
     }
 }
 

@@ -224,6 +224,7 @@ fn fp32_renders_of_the_builtin_scenes_equal_the_software() {
     let engine = TraversalEngine {
         format: fp32(),
         stack_depth: 64,
+        timing: None,
     };
     for name in sw_renderer::scene::builtin::names() {
         let scene = Scene::load(name).unwrap();
@@ -246,6 +247,7 @@ fn fp32_renders_of_the_thesis_scenes_equal_the_software() {
     let engine = TraversalEngine {
         format: fp32(),
         stack_depth: 64,
+        timing: None,
     };
     for name in thesis_scenes::SCENE_DIRS {
         let scene = Scene::load(root.join(name).to_str().unwrap()).unwrap();
@@ -264,6 +266,7 @@ fn a_render_whose_stack_overflows_fails_with_the_engines_error() {
     let engine = TraversalEngine {
         format: fp32(),
         stack_depth: 2,
+        timing: None,
     };
     let opts = RenderOptions {
         width: Some(16),

@@ -5,17 +5,20 @@ use sw_renderer::rays::{CastStats, EngineError, Ray, RayCaster, RayEngine};
 use sw_renderer::scene_image::SceneImage;
 use sw_renderer::trace::PreparedScene;
 
-use super::{TraversalModel, UnitCounters, UnitRay};
+use super::schedule::{schedule, UnitTiming};
+use super::{Step, TraversalModel, UnitCounters, UnitRay};
 use crate::catalogue::catalogue;
 use crate::format::Format;
 
 /// Renders through [`TraversalModel`]: the scene image is written from the renderer's BVH,
 /// loaded through its word stream (so the loader's checks run), and every wavefront's rays
-/// are answered by the model.
+/// are answered by the model; with `timing`, each wavefront is also timed by the schedule
+/// model (`CastStats::cycles`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TraversalEngine {
     pub format: Format,
     pub stack_depth: usize,
+    pub timing: Option<UnitTiming>,
 }
 
 impl RayEngine for TraversalEngine {
@@ -33,18 +36,23 @@ impl RayEngine for TraversalEngine {
         scene: &'a PreparedScene,
     ) -> Result<Box<dyn RayCaster + 'a>, EngineError> {
         let image = SceneImage::from_words(&SceneImage::new(scene).to_words())?;
-        Ok(Box::new(TraversalModel::new(
-            self.format,
-            self.stack_depth,
-            image,
-        )))
+        Ok(Box::new(Caster {
+            model: TraversalModel::new(self.format, self.stack_depth, image),
+            timing: self.timing,
+        }))
     }
 }
 
-impl RayCaster for TraversalModel {
+struct Caster {
+    model: TraversalModel,
+    timing: Option<UnitTiming>,
+}
+
+impl RayCaster for Caster {
     fn cast(&self, rays: &[Ray], hits: &mut [Option<Hit>]) -> Result<CastStats, EngineError> {
         assert_eq!(rays.len(), hits.len(), "one answer per ray");
         let mut counters = UnitCounters::default();
+        let mut walks: Vec<Vec<Step>> = Vec::new();
         for (id, (ray, hit)) in rays.iter().zip(hits.iter_mut()).enumerate() {
             let unit_ray = UnitRay {
                 orig: ray.orig.to_array(),
@@ -53,13 +61,24 @@ impl RayCaster for TraversalModel {
                 any_hit: ray.shadow,
                 id: id as u32,
             };
-            *hit = self.trace(&unit_ray, &mut counters)?;
+            *hit = match self.timing {
+                None => self.model.trace(&unit_ray, &mut counters)?,
+                Some(_) => {
+                    let mut walk = Vec::new();
+                    let hit = self
+                        .model
+                        .walk(&unit_ray, &mut counters, &mut |s| walk.push(s))?;
+                    walks.push(walk);
+                    hit
+                }
+            };
         }
         Ok(CastStats {
             mt_tests: counters.mt_tests,
             batches: 1,
             box_tests: counters.box_tests,
             node_visits: counters.node_visits,
+            cycles: self.timing.map_or(0, |t| schedule(&t, &walks).cycles),
         })
     }
 }

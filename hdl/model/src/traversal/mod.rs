@@ -8,8 +8,9 @@
 //! two child boxes in one [`box_test`]; when both are entered the farther is pushed on the
 //! ray's stack and the nearer visited; a popped subtree entered beyond the current far end
 //! is skipped. A leaf's triangles go to the Möller-Trumbore test in the configured format
-//! ([`crate::mt_model`]); a shadow (any-hit) ray skips triangles that cast no shadow and
-//! stops at its first counting hit. A closest-hit ray keeps the reference's reduction
+//! ([`crate::mt_model`]), all of a leaf's before its answers are looked at (as the unit
+//! issues them to its lanes); a shadow (any-hit) ray skips triangles that cast no shadow and
+//! stops after the first leaf with a counting hit. A closest-hit ray keeps the reference's reduction
 //! (`sw_renderer::hit`: nearest t, then the lower global index; a hit counts if
 //! `t < bound` and `t < FLT_MAX`) and, once it has a hit, culls boxes with the far end of
 //! `t.next_up()` so that an equally near hit with a lower index is still found. Box tests are
@@ -17,21 +18,24 @@
 
 pub mod box_test;
 mod engine;
+pub mod schedule;
 
 pub use engine::TraversalEngine;
 
 use sw_renderer::hit::{nearer, remaining_bound, Hit, NO_BOUND};
 use sw_renderer::intersect::MtQuery;
-use sw_renderer::scene_image::{Link, SceneImage};
+use sw_renderer::scene_image::{ImageTriangle, Link, SceneImage};
 use thiserror::Error;
 
 use crate::format::Format;
 use crate::mt::mt_model;
 use box_test::{box_test, ray_setup, t_hi, BoxResult};
 
-/// Entries of a ray's traversal stack unless configured otherwise: the software BVH never
-/// nests deeper than 64 inner nodes.
-pub const DEFAULT_STACK_DEPTH: usize = 64;
+/// Entries of a ray's traversal stack unless configured otherwise: a walk pushes at most one
+/// subtree per inner node it passes, and the deepest thesis scene (All materials) is 25
+/// inner nodes deep (`rtfpga scene-image`). The software BVH may nest up to 64: a deeper
+/// walk is reported as a stack overflow, not cut short.
+pub const DEFAULT_STACK_DEPTH: usize = 32;
 
 /// A ray as it enters the unit (fp32 words on the stream).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -109,6 +113,17 @@ impl TraversalModel {
         ray: &UnitRay,
         counters: &mut UnitCounters,
     ) -> Result<Option<Hit>, TraversalError> {
+        self.walk(ray, counters, &mut |_| {})
+    }
+
+    /// [`TraversalModel::trace`], telling `step` each step of the walk in order (what the
+    /// schedule model times).
+    pub fn walk(
+        &self,
+        ray: &UnitRay,
+        counters: &mut UnitCounters,
+        step: &mut dyn FnMut(Step),
+    ) -> Result<Option<Hit>, TraversalError> {
         counters.rays += 1;
         let img = &self.image;
         if img.triangles.is_empty() {
@@ -117,6 +132,7 @@ impl TraversalModel {
         let mut setup = ray_setup(ray.orig, ray.dir, ray.t_max);
         let root = root_boxes(img);
         counters.box_tests += 1;
+        step(Step::Box);
         let entered = box_test(&setup, &root);
         let mut stack: Vec<(Link, f32)> = Vec::with_capacity(self.stack_depth);
         if entered.enters[0] {
@@ -124,6 +140,7 @@ impl TraversalModel {
         }
         let mut best: Option<Hit> = None;
         while let Some((mut link, near)) = stack.pop() {
+            step(Step::Pop);
             if setup.t_hi < near {
                 continue;
             }
@@ -131,45 +148,21 @@ impl TraversalModel {
                 counters.node_visits += 1;
                 if link.is_leaf() {
                     let leaf = link.first as usize..(link.first + link.count) as usize;
-                    for tri in &img.triangles[leaf] {
-                        if ray.any_hit && !tri.casts_shadow {
-                            continue;
+                    let tested = counters.mt_tests;
+                    let answer = self.leaf(ray, &img.triangles[leaf], counters, &mut best);
+                    step(Step::Leaf((counters.mt_tests - tested) as u32));
+                    match answer {
+                        Leaf::Occluded(hit) => return Ok(Some(hit)),
+                        Leaf::Closer => {
+                            setup.t_hi = t_hi(remaining_bound(best, ray.t_max), setup.pad)
                         }
-                        counters.mt_tests += 1;
-                        let r = mt_model(
-                            &self.format,
-                            &MtQuery {
-                                orig: ray.orig,
-                                dir: ray.dir,
-                                v0: tri.verts[0],
-                                v1: tri.verts[1],
-                                v2: tri.verts[2],
-                            },
-                        );
-                        // The fp32 words compare as IEEE floats: t is never subnormal (the
-                        // datapath flushes), so this is the hardware's comparison too.
-                        if !(r.hit && r.t < ray.t_max && r.t < NO_BOUND) {
-                            continue;
-                        }
-                        let hit = Hit {
-                            triangle: tri.index,
-                            t: r.t,
-                            u: r.u,
-                            v: r.v,
-                        };
-                        if ray.any_hit {
-                            return Ok(Some(hit));
-                        }
-                        let closer = nearer(best, Some(hit));
-                        if closer != best {
-                            best = closer;
-                            setup.t_hi = t_hi(remaining_bound(best, ray.t_max), setup.pad);
-                        }
+                        Leaf::Same => {}
                     }
                     break;
                 }
                 let node = &img.nodes[link.first as usize];
                 counters.box_tests += 1;
+                step(Step::Box);
                 let BoxResult {
                     enters,
                     near,
@@ -194,6 +187,80 @@ impl TraversalModel {
             }
         }
         Ok(best)
+    }
+}
+
+/// One step of a ray's walk, in the order the unit takes them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Step {
+    /// A box test: the root's box, or an inner node's two child boxes.
+    Box,
+    /// A leaf: this many Möller-Trumbore tests (after skipping non-shadow-casters).
+    Leaf(u32),
+    /// A subtree taken from the stack (then skipped if entered beyond the far end).
+    Pop,
+}
+
+/// What a leaf did to the ray's answer.
+enum Leaf {
+    /// An any-hit ray found a counting hit: its answer.
+    Occluded(Hit),
+    /// A closest-hit ray's nearest hit changed.
+    Closer,
+    Same,
+}
+
+impl TraversalModel {
+    /// Tests every triangle of a leaf (an any-hit ray skips the non-shadow-casters), as the
+    /// unit issues a whole leaf to its lanes before it looks at the answers; the first
+    /// counting hit in leaf order answers an any-hit ray.
+    fn leaf(
+        &self,
+        ray: &UnitRay,
+        triangles: &[ImageTriangle],
+        counters: &mut UnitCounters,
+        best: &mut Option<Hit>,
+    ) -> Leaf {
+        let mut answer = Leaf::Same;
+        for tri in triangles {
+            if ray.any_hit && !tri.casts_shadow {
+                continue;
+            }
+            counters.mt_tests += 1;
+            let r = mt_model(
+                &self.format,
+                &MtQuery {
+                    orig: ray.orig,
+                    dir: ray.dir,
+                    v0: tri.verts[0],
+                    v1: tri.verts[1],
+                    v2: tri.verts[2],
+                },
+            );
+            // The fp32 words compare as IEEE floats: t is never subnormal (the datapath
+            // flushes), so this is the hardware's comparison too.
+            if !(r.hit && r.t < ray.t_max && r.t < NO_BOUND) {
+                continue;
+            }
+            let hit = Hit {
+                triangle: tri.index,
+                t: r.t,
+                u: r.u,
+                v: r.v,
+            };
+            if ray.any_hit {
+                if !matches!(answer, Leaf::Occluded(_)) {
+                    answer = Leaf::Occluded(hit);
+                }
+                continue;
+            }
+            let closer = nearer(*best, Some(hit));
+            if closer != *best {
+                *best = closer;
+                answer = Leaf::Closer;
+            }
+        }
+        answer
     }
 }
 
