@@ -22,3 +22,6 @@ pub mod synth;
 // file set (issue 4).
 pub mod generate;
 pub mod top;
+
+// The traversal unit's parts (issue 16).
+pub mod traversal;

@@ -23,7 +23,11 @@ pub fn run(a: Args) -> Result<()> {
     let prepared = PreparedScene::new(&scene)?;
     let image = SceneImage::new(&prepared);
     if let Some(out) = &a.out {
-        let bytes: Vec<u8> = image.to_words().iter().flat_map(|w| w.to_le_bytes()).collect();
+        let bytes: Vec<u8> = image
+            .to_words()
+            .iter()
+            .flat_map(|w| w.to_le_bytes())
+            .collect();
         std::fs::write(out, bytes).with_context(|| format!("writing {}", out.display()))?;
     }
     println!(

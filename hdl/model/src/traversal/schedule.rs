@@ -181,7 +181,14 @@ mod tests {
     fn lanes_share_the_leaf_tests_of_different_slots() {
         let walks = vec![vec![Step::Leaf(8)]; 32];
         let one_lane = schedule(&UnitTiming { slots: 32, ..T }, &walks);
-        let two_lanes = schedule(&UnitTiming { slots: 32, lanes: 2, ..T }, &walks);
+        let two_lanes = schedule(
+            &UnitTiming {
+                slots: 32,
+                lanes: 2,
+                ..T
+            },
+            &walks,
+        );
         assert_eq!(one_lane.mt_busy, 256);
         assert!(one_lane.cycles >= 256 && two_lanes.cycles < one_lane.cycles * 6 / 10);
     }

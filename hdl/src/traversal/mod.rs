@@ -1,0 +1,3 @@
+//! The traversal unit in rust-hdl: its parts, each checked against `hw_model::traversal`.
+
+pub mod arbiter;
