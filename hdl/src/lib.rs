@@ -8,6 +8,8 @@ pub mod intmul;
 pub mod mt;
 pub mod operator;
 pub mod pipe;
+// The traversal unit's box test (against hw_model::traversal).
+pub mod traversal;
 pub mod verilog;
 
 // AXI4-Lite slave, register map and C generation (issue 4).
