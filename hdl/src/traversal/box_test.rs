@@ -16,6 +16,11 @@
 //! Every other path (inv_dir, t_hi, the fold operands, valid and the tag) is padded to it with
 //! flip-flop delay lines; they are short (a few cycles), so no block RAM rings as in the lane.
 //!
+//! Latency at depth 0..=5: 0, 7, 9, 11, 12, 13 (5 = [`max_depth`]). yosys xc7 (Yosys 0.23,
+//! `cargo test --release -p hdl --test box_test -- --ignored --nocapture box_test_resources`):
+//! depth 1: 12791 LUT, 2751 FF, 24 DSP48E1, logic depth 26; depth 5: 10072 LUT, 5763 FF,
+//! 24 DSP48E1, logic depth 10.
+//!
 //! rust-hdl emits only the first index of `a[i].b[j]` correctly, so every array here is flat:
 //! per (axis, child) things are indexed `2·axis + child` (the order of `ChildBoxes`' fields),
 //! and a fold step k of child c is `2·k + c` (step k reads axis k).
