@@ -1,3 +1,5 @@
-//! The traversal unit in rust-hdl: its parts, each checked against `hw_model::traversal`.
+//! The traversal unit in rust-hdl, block by block, each checked bit for bit against
+//! `hw_model::traversal` (the reference model).
 
 pub mod arbiter;
+pub mod box_test;
