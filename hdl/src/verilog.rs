@@ -37,6 +37,30 @@ pub const VERILATOR_WAIVERS: &[&str] = &["-Wno-WIDTH", "-Wno-DECLFILENAME", "-Wn
 ///   a common C++ word; Verilator renames it in its C++ and says so.
 pub const TOP_VERILATOR_WAIVERS: &[&str] = &["-Wno-VARHIDDEN", "-Wno-SYMRSVDWORD"];
 
+/// `verilator --lint-only -Wall` with [`VERILATOR_WAIVERS`] on a generated block whose top
+/// module is [`TOP`]: `Err` with the first 20 lines of Verilator's complaint.
+pub fn verilator_lint(verilog: &str) -> Result<(), String> {
+    let dir = tempfile::tempdir().map_err(|e| e.to_string())?;
+    let path = dir.path().join("block.v");
+    std::fs::write(&path, verilog).map_err(|e| e.to_string())?;
+    let out = std::process::Command::new("verilator")
+        .args(["--lint-only", "-Wall"])
+        .args(VERILATOR_WAIVERS)
+        .args(["--top-module", TOP])
+        .arg(&path)
+        .output()
+        .map_err(|e| format!("cannot run verilator (make setup installs it): {e}"))?;
+    if out.status.success() {
+        Ok(())
+    } else {
+        Err(String::from_utf8_lossy(&out.stderr)
+            .lines()
+            .take(20)
+            .collect::<Vec<_>>()
+            .join("\n"))
+    }
+}
+
 /// Builds `T` with `stages` pipeline registers and generates its Verilog.
 ///
 /// Panics if `stages > T::max_stages()` (see [`crate::formats::rtl`] for a checked entry).

@@ -321,29 +321,6 @@ fn latency_table() {
     assert_eq!(s.sub + s.mul + 5 * s.lt, s.latency);
 }
 
-/// Runs `verilator --lint-only -Wall` (with the documented waivers) on generated Verilog.
-fn verilator_lint(verilog: &str) -> Result<(), String> {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("box_test.v");
-    std::fs::write(&path, verilog).unwrap();
-    let out = std::process::Command::new("verilator")
-        .args(["--lint-only", "-Wall"])
-        .args(hdl::verilog::VERILATOR_WAIVERS)
-        .args(["--top-module", hdl::verilog::TOP])
-        .arg(&path)
-        .output()
-        .expect("verilator is installed (make setup)");
-    if out.status.success() {
-        Ok(())
-    } else {
-        Err(String::from_utf8_lossy(&out.stderr)
-            .lines()
-            .take(20)
-            .collect::<Vec<_>>()
-            .join("\n"))
-    }
-}
-
 #[test]
 fn box_test_verilog_passes_verilator_lint() {
     for depth in [0, 1, max_depth()] {
@@ -359,7 +336,7 @@ fn box_test_verilog_passes_verilator_lint() {
         ] {
             assert!(v.contains(port), "depth {depth}: no port {port}");
         }
-        if let Err(e) = verilator_lint(&v) {
+        if let Err(e) = hdl::verilog::verilator_lint(&v) {
             panic!("depth {depth}: verilator lint failed:\n{e}");
         }
     }

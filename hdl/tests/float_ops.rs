@@ -5,7 +5,7 @@
 use hdl::formats::{self, bf16, fp16, fp24, fp32};
 use hdl::operator::{simulate_operator, Op, Operator, OperatorError};
 use hdl::synth::{synthesize, SynthOptions};
-use hdl::verilog::{TOP, VERILATOR_WAIVERS};
+use hdl::verilog::TOP;
 use hw_model::{Format, HwFormat};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 
@@ -202,29 +202,6 @@ fn recip_of_every_half_precision_input_matches_the_model() {
     }
 }
 
-/// Runs `verilator --lint-only -Wall` (with the documented waivers) on generated Verilog.
-fn verilator_lint(verilog: &str) -> Result<(), String> {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("op.v");
-    std::fs::write(&path, verilog).unwrap();
-    let out = std::process::Command::new("verilator")
-        .args(["--lint-only", "-Wall"])
-        .args(VERILATOR_WAIVERS)
-        .args(["--top-module", TOP])
-        .arg(&path)
-        .output()
-        .expect("verilator is installed (make setup)");
-    if out.status.success() {
-        Ok(())
-    } else {
-        Err(String::from_utf8_lossy(&out.stderr)
-            .lines()
-            .take(20)
-            .collect::<Vec<_>>()
-            .join("\n"))
-    }
-}
-
 #[test]
 fn every_operator_passes_verilator_lint() {
     for format in HwFormat::all() {
@@ -233,7 +210,7 @@ fn every_operator_passes_verilator_lint() {
             for stages in [0, max] {
                 let rtl = formats::rtl(format, op, stages).unwrap();
                 assert_eq!(rtl.latency, stages);
-                if let Err(e) = verilator_lint(&rtl.verilog) {
+                if let Err(e) = hdl::verilog::verilator_lint(&rtl.verilog) {
                     panic!("{format} {op} stages={stages}: verilator lint failed:\n{e}");
                 }
             }

@@ -3,3 +3,4 @@
 
 pub mod arbiter;
 pub mod box_test;
+pub mod stack;
