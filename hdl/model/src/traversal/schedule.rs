@@ -2,14 +2,15 @@
 //! planned microarchitecture, given each ray's walk ([`Step`]s from the bit-accurate model).
 //!
 //! The unit holds `slots` rays at once. Shared resources take one request a cycle each: the
-//! ray setup (one ray enters a free slot), the box port (node read + box-test pipeline,
-//! both children per test), the stack's read port (a pop and its far-end check), `lanes`
-//! Möller-Trumbore lanes (a slot issues one triangle of its leaf a cycle, to any free lane)
-//! and the hit output. A slot waits for the answer of each step before its next one (a
-//! leaf: until its last test's answer is folded in). Among slots ready for a resource the
-//! one ready longest goes first. Rays are independent, so a wavefront's time is this
-//! schedule from the first ray in to the last hit out; the renderer's next wavefront
-//! starts after it (the unit drains in between).
+//! ray setup (one ray enters the lowest free slot), the box port (node read + box-test
+//! pipeline, both children per test), the stack's read port (a pop and its far-end check),
+//! each of the `lanes` Möller-Trumbore lanes (slot `s` uses lane `s mod lanes`, issuing one
+//! triangle of its leaf a cycle) and the hit output. A slot waits for the answer of each
+//! step before its next one (a leaf: until its last test's answer is folded in). Each
+//! resource grants round robin among the slots ready for it, from the slot after its last
+//! grant (`hdl::traversal::arbiter::RoundRobin`). Rays are independent, so a wavefront's time
+//! is this schedule from the first ray in to the last hit out; the renderer's next
+//! wavefront starts after it (the unit drains in between).
 
 use super::Step;
 
@@ -65,6 +66,8 @@ pub fn schedule(t: &UnitTiming, walks: &[Vec<Step>]) -> Schedule {
     let mut done = 0;
     let mut out = Schedule::default();
     let mut cycle = 0u64;
+    // The last grant of each arbiter: box port, stack port, hit output, then one per lane.
+    let mut last = vec![usize::MAX; 3 + t.lanes];
     while done < walks.len() {
         // One ray enters a free slot.
         if next_ray < walks.len() {
@@ -87,20 +90,24 @@ pub fn schedule(t: &UnitTiming, walks: &[Vec<Step>]) -> Schedule {
         let wants = |s: &Slot, f: &dyn Fn(Step) -> bool| {
             s.ready_at <= cycle && walks[s.ray].get(s.step).is_some_and(|&st| f(st))
         };
-        if let Some(s) = oldest(&mut slots, |s| wants(s, &|st| st == Step::Box)) {
+        if let Some(s) = granted(&mut slots, &mut last[0], |_, s| {
+            wants(s, &|st| st == Step::Box)
+        }) {
             s.ready_at = cycle + t.box_latency;
             s.step += 1;
             out.box_busy += 1;
         }
-        if let Some(s) = oldest(&mut slots, |s| wants(s, &|st| st == Step::Pop)) {
+        if let Some(s) = granted(&mut slots, &mut last[1], |_, s| {
+            wants(s, &|st| st == Step::Pop)
+        }) {
             s.ready_at = cycle + t.pop_latency;
             s.step += 1;
         }
-        for _ in 0..t.lanes {
-            let Some(s) = oldest(&mut slots, |s| {
-                s.ready_at <= cycle && matches!(walks[s.ray].get(s.step), Some(Step::Leaf(_)))
+        for lane in 0..t.lanes {
+            let Some(s) = granted(&mut slots, &mut last[3 + lane], |k, s| {
+                k % t.lanes == lane && wants(s, &|st| matches!(st, Step::Leaf(_)))
             }) else {
-                break;
+                continue;
             };
             if s.left == 0 {
                 let Some(&Step::Leaf(n)) = walks[s.ray].get(s.step) else {
@@ -120,12 +127,9 @@ pub fn schedule(t: &UnitTiming, walks: &[Vec<Step>]) -> Schedule {
             }
         }
         // One hit leaves the unit, freeing its slot.
-        if let Some(k) = (0..slots.len())
-            .filter(|&k| {
-                slots[k].is_some_and(|s| s.ready_at <= cycle && s.step == walks[s.ray].len())
-            })
-            .min_by_key(|&k| slots[k].map(|s| s.ready_at))
-        {
+        if let Some(k) = round_robin(&slots, &mut last[2], |_, s| {
+            s.ready_at <= cycle && s.step == walks[s.ray].len()
+        }) {
             slots[k] = None;
             done += 1;
         }
@@ -135,13 +139,30 @@ pub fn schedule(t: &UnitTiming, walks: &[Vec<Step>]) -> Schedule {
     out
 }
 
-/// The slot that has waited longest among those `eligible` (the lowest index on a tie).
-fn oldest(slots: &mut [Option<Slot>], eligible: impl Fn(&Slot) -> bool) -> Option<&mut Slot> {
-    slots
-        .iter_mut()
-        .flatten()
-        .filter(|s| eligible(s))
-        .min_by_key(|s| s.ready_at)
+/// The index of the first `eligible(index, slot)` slot after `last` cyclically, which
+/// becomes `last`.
+fn round_robin(
+    slots: &[Option<Slot>],
+    last: &mut usize,
+    eligible: impl Fn(usize, &Slot) -> bool,
+) -> Option<usize> {
+    let n = slots.len();
+    let start = last.wrapping_add(1) % n;
+    let k = (0..n)
+        .map(|i| (start + i) % n)
+        .find(|&k| slots[k].as_ref().is_some_and(|s| eligible(k, s)))?;
+    *last = k;
+    Some(k)
+}
+
+/// The slot [`round_robin`] grants.
+fn granted<'a>(
+    slots: &'a mut [Option<Slot>],
+    last: &mut usize,
+    eligible: impl Fn(usize, &Slot) -> bool,
+) -> Option<&'a mut Slot> {
+    let k = round_robin(slots, last, eligible)?;
+    slots[k].as_mut()
 }
 
 #[cfg(test)]
