@@ -13,7 +13,7 @@ pub use calibration::{
     THESIS_MEASUREMENTS,
 };
 pub use cost::{project, Board, Breakdown, Design, Frontend, ARM_MHZ};
-pub use workload::{Traversal, Workload};
+pub use workload::{Traversal, UnitWork, Workload};
 
 /// Why a projection or calibration could not be made.
 #[derive(Debug, thiserror::Error)]

@@ -10,8 +10,8 @@ use std::sync::OnceLock;
 
 use proptest::prelude::*;
 use sim::projection::{
-    calibrate, project, Board, Calibration, Design, Frontend, Role, Setup, Traversal, Workload,
-    Workloads,
+    calibrate, project, Board, Calibration, Design, Frontend, Role, Setup, Traversal, UnitWork,
+    Workload, Workloads,
 };
 use sw_renderer::intersect::F32Intersector;
 use sw_renderer::render::{render, RenderOptions};
@@ -206,6 +206,7 @@ fn brute_force_count_is_rays_by_kind_times_the_triangles_they_test() {
         shadow_casting_triangles: 7,
         bvh_tests: 11,
         batches: 1,
+        unit: None,
     };
     assert_eq!(w.brute_force_tests(), (4 + 3 + 2) * 10 + 5 * 7);
     assert_eq!(w.tests(Traversal::Bvh), 11);
@@ -283,6 +284,7 @@ fn workload() -> impl Strategy<Value = Workload> {
                 shadow_casting_triangles: triangles / 2,
                 bvh_tests,
                 batches,
+                unit: None,
             },
         )
 }
@@ -330,6 +332,7 @@ proptest! {
                 Frontend::Stream { lanes: lanes + 1, cycles_per_test, pipeline_latency, hp_ports, dma_efficiency, pack_arm_cycles }
             }
             Frontend::Thesis { units, cycles_per_test } => Frontend::Thesis { units: units + 1, cycles_per_test },
+            Frontend::Traversal { .. } => unreachable!("frontend() makes no traversal design"),
         };
         let t_more = project(&w, &Design { frontend: more, ..base }, &b).unwrap().total_s();
         prop_assert!(t_more <= t * (1.0 + 1e-12), "{t_more} > {t}");
@@ -360,11 +363,17 @@ fn bad_designs_are_rejected_with_a_clear_error() {
         shadow_casting_triangles: 1,
         bvh_tests: 1,
         batches: 1,
+        unit: None,
     };
     let stream = |lanes, hp_ports, dma_efficiency| Frontend::Stream {
         lanes,
         cycles_per_test: 1.0,
         pipeline_latency: 10,
+        hp_ports,
+        dma_efficiency,
+        pack_arm_cycles: 40.0,
+    };
+    let traversal = |hp_ports, dma_efficiency| Frontend::Traversal {
         hp_ports,
         dma_efficiency,
         pack_arm_cycles: 40.0,
@@ -393,6 +402,10 @@ fn bad_designs_are_rejected_with_a_clear_error() {
             100.0,
             "cycles per test 0",
         ),
+        (traversal(5, 0.8), 100.0, "5 HP ports"),
+        (traversal(1, 0.0), 100.0, "DMA efficiency 0"),
+        // A valid traversal design, but the workload has no measurement of the unit.
+        (traversal(1, 0.8), 100.0, "needs the unit's work"),
     ];
     for (frontend, fpl_mhz, expected) in cases {
         let d = Design {
@@ -416,4 +429,61 @@ fn missing_thesis_scene_names_the_directory() {
         err.contains("/nonexistent/thesis/Simple_plane_scene"),
         "{err}"
     );
+}
+
+#[test]
+fn the_traversal_design_streams_rays_and_answers_beside_the_units_cycles() {
+    let b = Board {
+        arm_ray_ns: 500.0,
+        arm_test_ns: 125.0,
+        access_fixed_ns: 80.0,
+        access_pl_cycles: 15.0,
+    };
+    let unit = |cycles| UnitWork {
+        box_tests: 10_000,
+        node_visits: 11_000,
+        mt_tests: 2_000,
+        cycles,
+        wavefronts: 10,
+        image_bytes: 64_000,
+    };
+    let w = |cycles| Workload {
+        scene: "s".into(),
+        width: 10,
+        height: 100,
+        primary_rays: 1_000,
+        reflection_rays: 0,
+        refraction_rays: 0,
+        shadow_rays: 1_000,
+        triangles: 100,
+        shadow_casting_triangles: 100,
+        bvh_tests: 3_000,
+        batches: 10,
+        unit: Some(unit(cycles)),
+    };
+    let d = Design {
+        frontend: Frontend::Traversal {
+            hp_ports: 1,
+            dma_efficiency: 0.5,
+            pack_arm_cycles: 66.7,
+        },
+        traversal: Traversal::Bvh,
+        fpl_mhz: 100.0,
+    };
+    // 4 bytes a cycle: 2,000 rays in take 16,000 cycles, their answers 12,000; the image
+    // 16,000 more. Below 16,000 unit cycles the input stream sets the pace, above it the unit.
+    let cycle = 1e-8;
+    for (cycles, pace) in [(1_000, 16_000.0), (50_000, 50_000.0)] {
+        let p = project(&w(cycles), &d, &b).unwrap();
+        assert_eq!(p.tests, 2_000);
+        assert!(
+            (p.accel_s - (pace + 16_000.0) * cycle).abs() < 1e-12,
+            "{p:?}"
+        );
+        let arm = 2_000.0 * (500e-9 + 66.7 / 667e6);
+        assert!((p.arm_s - arm).abs() < 1e-12, "{p:?}");
+    }
+    // The ARM with the BVH walk pays the MT tests and the box tests.
+    let walk = b.arm_bvh_walk_s(&w(1)).unwrap();
+    assert!((walk - (2_000.0 * 500e-9 + 3_000.0 * 125e-9 + 10_000.0 * 125e-9)).abs() < 1e-12);
 }

@@ -21,6 +21,9 @@ pub const QUERY_BYTES: f64 = 60.0;
 pub const RESULT_BYTES: f64 = 16.0;
 /// Bytes an HP port moves per fabric cycle (64-bit data bus).
 pub const HP_PORT_BYTES_PER_CYCLE: f64 = 8.0;
+/// Bytes of one ray on the traversal unit's input stream, and of one answer on its output.
+pub const RAY_BYTES: f64 = 4.0 * hw_model::traversal::RAY_WORDS as f64;
+pub const HIT_BYTES: f64 = 4.0 * hw_model::traversal::HIT_WORDS as f64;
 /// AXI-Lite accesses to start one batch on an AXI DMA (MM2S and S2MM: address, length,
 /// control each) and to see it finish (one status read each).
 pub const DMA_ACCESSES_PER_BATCH: f64 = 8.0;
@@ -40,6 +43,12 @@ pub struct Board {
     pub access_pl_cycles: f64,
 }
 
+/// ARM time of one two-child box test of a software BVH walk, in MT tests: an assumption,
+/// not fitted (the thesis had no BVH). The box test is 12 subtractions, 12 multiplications
+/// and about 14 compares and selects with their branches, the Möller-Trumbore test 27
+/// multiplications, 23 additions and a division: the same order of VFP work, so one each.
+pub const ARM_BOX_TESTS_PER_MT_TEST: f64 = 1.0;
+
 impl Board {
     /// One AXI4-Lite register access with the fabric at `fpl_mhz`.
     pub fn access_ns(&self, fpl_mhz: f64) -> f64 {
@@ -55,6 +64,17 @@ impl Board {
     /// the BVH the ARM's traversal itself is not counted: see docs/projection.md).
     pub fn arm_only_s(&self, w: &Workload, traversal: Traversal) -> f64 {
         self.arm_rays_s(w) + w.tests(traversal) as f64 * self.arm_test_ns * 1e-9
+    }
+
+    /// The project's renderer on the ARM with its BVH walk counted: the MT tests of the BVH
+    /// render plus the traversal unit's box tests (the same walk), each box test costing
+    /// [`ARM_BOX_TESTS_PER_MT_TEST`] MT tests. `None` without the unit's measurement.
+    pub fn arm_bvh_walk_s(&self, w: &Workload) -> Option<f64> {
+        let unit = w.unit.as_ref()?;
+        Some(
+            self.arm_only_s(w, Traversal::Bvh)
+                + unit.box_tests as f64 * ARM_BOX_TESTS_PER_MT_TEST * self.arm_test_ns * 1e-9,
+        )
     }
 }
 
@@ -75,6 +95,15 @@ pub enum Frontend {
         hp_ports: u32,
         dma_efficiency: f64,
         /// ARM cycles to pack one query into the DMA buffer (stores, cache clean).
+        pack_arm_cycles: f64,
+    },
+    /// The traversal unit: the scene image loaded once per frame, then per wavefront the
+    /// ARM's rays streamed by DMA through `hp_ports` HP ports into the unit and its answers
+    /// back; the unit's cycles are the workload's (its schedule model, or a co-simulation).
+    Traversal {
+        hp_ports: u32,
+        dma_efficiency: f64,
+        /// ARM cycles to write one ray record and read its answer.
         pack_arm_cycles: f64,
     },
 }
@@ -116,6 +145,11 @@ impl Design {
                 }
                 positive("cycles per test", cycles_per_test)
             }
+            Frontend::Traversal {
+                hp_ports,
+                dma_efficiency,
+                pack_arm_cycles,
+            } => dma(hp_ports, dma_efficiency, pack_arm_cycles),
             Frontend::Stream {
                 lanes,
                 cycles_per_test,
@@ -129,25 +163,31 @@ impl Design {
                         "0 lanes: expected at least 1".into(),
                     ));
                 }
-                if !(1..=4).contains(&hp_ports) {
-                    return Err(ProjectionError::Invalid(format!(
-                        "{hp_ports} HP ports: the Zynq-7020 has 1 to 4"
-                    )));
-                }
-                if !(dma_efficiency > 0.0 && dma_efficiency <= 1.0) {
-                    return Err(ProjectionError::Invalid(format!(
-                        "DMA efficiency {dma_efficiency}: expected a fraction in (0, 1]"
-                    )));
-                }
-                if !(pack_arm_cycles.is_finite() && pack_arm_cycles >= 0.0) {
-                    return Err(ProjectionError::Invalid(format!(
-                        "packing cost {pack_arm_cycles} ARM cycles: expected a number ≥ 0"
-                    )));
-                }
+                dma(hp_ports, dma_efficiency, pack_arm_cycles)?;
                 positive("cycles per test", cycles_per_test)
             }
         }
     }
+}
+
+/// The DMA parameters of a streaming design.
+fn dma(hp_ports: u32, dma_efficiency: f64, pack_arm_cycles: f64) -> Result<(), ProjectionError> {
+    if !(1..=4).contains(&hp_ports) {
+        return Err(ProjectionError::Invalid(format!(
+            "{hp_ports} HP ports: the Zynq-7020 has 1 to 4"
+        )));
+    }
+    if !(dma_efficiency > 0.0 && dma_efficiency <= 1.0) {
+        return Err(ProjectionError::Invalid(format!(
+            "DMA efficiency {dma_efficiency}: expected a fraction in (0, 1]"
+        )));
+    }
+    if !(pack_arm_cycles.is_finite() && pack_arm_cycles >= 0.0) {
+        return Err(ProjectionError::Invalid(format!(
+            "packing cost {pack_arm_cycles} ARM cycles: expected a number ≥ 0"
+        )));
+    }
+    Ok(())
 }
 
 /// Where a frame's time goes.
@@ -172,7 +212,10 @@ impl Breakdown {
 /// The frame time of workload `w` on design `d`.
 pub fn project(w: &Workload, d: &Design, b: &Board) -> Result<Breakdown, ProjectionError> {
     d.validate()?;
-    let tests = w.tests(d.traversal);
+    let tests = match d.frontend {
+        Frontend::Traversal { .. } => w.unit.as_ref().map_or(0, |u| u.mt_tests),
+        _ => w.tests(d.traversal),
+    };
     let n = tests as f64;
     let cycle_s = 1e-6 / d.fpl_mhz;
     let access_s = b.access_ns(d.fpl_mhz) * 1e-9;
@@ -213,6 +256,32 @@ pub fn project(w: &Workload, d: &Design, b: &Board) -> Result<Breakdown, Project
                 arm_s: b.arm_rays_s(w) + n * pack_arm_cycles / (ARM_MHZ * 1e6),
                 bus_s: batches * DMA_ACCESSES_PER_BATCH * access_s,
                 accel_s: streaming + batches * f64::from(pipeline_latency) * cycle_s,
+            }
+        }
+        Frontend::Traversal {
+            hp_ports,
+            dma_efficiency,
+            pack_arm_cycles,
+        } => {
+            let unit = w.unit.as_ref().ok_or_else(|| {
+                ProjectionError::Invalid(
+                    "the traversal design needs the unit's work on the frame (Workload::with_unit)"
+                        .into(),
+                )
+            })?;
+            let bytes_per_s =
+                f64::from(hp_ports) * HP_PORT_BYTES_PER_CYCLE * dma_efficiency / cycle_s;
+            let rays = w.rays() as f64;
+            // Rays in and answers out stream in parallel with the unit's work; the slowest
+            // of the three sets the pace (the cycles already hold each wavefront's drain).
+            let streaming = (rays * RAY_BYTES / bytes_per_s)
+                .max(rays * HIT_BYTES / bytes_per_s)
+                .max(unit.cycles as f64 * cycle_s);
+            Breakdown {
+                tests,
+                arm_s: b.arm_rays_s(w) + rays * pack_arm_cycles / (ARM_MHZ * 1e6),
+                bus_s: unit.wavefronts as f64 * DMA_ACCESSES_PER_BATCH * access_s,
+                accel_s: streaming + unit.image_bytes as f64 / bytes_per_s,
             }
         }
     })

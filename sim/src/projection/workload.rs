@@ -9,6 +9,7 @@
 //!   many triangles it is tested against, so the count follows from the rays by kind;
 //! - the project's renderer tests only the BVH's candidates (`TraceStats::mt_queries`).
 
+use hw_model::traversal::TraversalEngine;
 use sw_renderer::intersect::F32Intersector;
 use sw_renderer::render::{render, RenderOptions};
 use sw_renderer::scene::{MaterialKind, Scene};
@@ -42,6 +43,22 @@ pub struct Workload {
     pub bvh_tests: u64,
     /// Intersector batches of the BVH render (one per wavefront level per tile).
     pub batches: u64,
+    /// The traversal unit's work on the same frame, where measured ([`Workload::with_unit`]).
+    pub unit: Option<UnitWork>,
+}
+
+/// What the traversal unit does for a frame: its model's counters and its schedule model's
+/// cycles (wavefront by wavefront, as the renderer sends them).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UnitWork {
+    pub box_tests: u64,
+    pub node_visits: u64,
+    pub mt_tests: u64,
+    pub cycles: u64,
+    /// Wavefronts (one per level of a tile's ray tree): DMA transfers each way.
+    pub wavefronts: u64,
+    /// Bytes of the scene image loaded before the frame.
+    pub image_bytes: u64,
 }
 
 impl Workload {
@@ -74,7 +91,42 @@ impl Workload {
             shadow_casting_triangles: shadow_casting,
             bvh_tests: stats.cast.mt_tests,
             batches: stats.cast.batches,
+            unit: None,
         })
+    }
+
+    /// Adds the traversal unit's work: the same frame rendered through `engine` (whose
+    /// `timing` must be set, for the cycles).
+    pub fn with_unit(
+        mut self,
+        scene: &Scene,
+        engine: &TraversalEngine,
+    ) -> Result<Workload, ProjectionError> {
+        if engine.timing.is_none() {
+            return Err(ProjectionError::Invalid(
+                "the traversal unit's projection needs its timing (format with hardware)".into(),
+            ));
+        }
+        let opts = RenderOptions {
+            width: Some(self.width),
+            height: Some(self.height),
+            ..Default::default()
+        };
+        let stats = render(scene, engine, &opts)
+            .map_err(|e| ProjectionError::Render(e.to_string()))?
+            .stats
+            .trace;
+        let prepared = sw_renderer::trace::PreparedScene::new(scene)
+            .map_err(|e| ProjectionError::Scene(e.to_string()))?;
+        self.unit = Some(UnitWork {
+            box_tests: stats.cast.box_tests,
+            node_visits: stats.cast.node_visits,
+            mt_tests: stats.cast.mt_tests,
+            cycles: stats.cast.cycles,
+            wavefronts: stats.cast.batches,
+            image_bytes: sw_renderer::scene_image::SceneImage::new(&prepared).bytes() as u64,
+        });
+        Ok(self)
     }
 
     pub fn rays(&self) -> u64 {

@@ -37,6 +37,12 @@ use box_test::{box_test, ray_setup, t_hi, BoxResult};
 /// walk is reported as a stack overflow, not cut short.
 pub const DEFAULT_STACK_DEPTH: usize = 32;
 
+/// Words of a ray on the unit's input stream: origin, direction, t_max (fp32), then the
+/// any-hit flag and the ray id in one word.
+pub const RAY_WORDS: usize = 8;
+/// Words of an answer on the output stream: ray id, hit flag, global triangle index, t, u, v.
+pub const HIT_WORDS: usize = 6;
+
 /// A ray as it enters the unit (fp32 words on the stream).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct UnitRay {
