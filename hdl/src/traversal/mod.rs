@@ -3,3 +3,5 @@
 
 pub mod arbiter;
 pub mod box_test;
+pub mod far_end;
+pub mod ray_setup;
