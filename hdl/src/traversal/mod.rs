@@ -3,4 +3,6 @@
 
 pub mod arbiter;
 pub mod box_test;
+pub mod far_end;
+pub mod ray_setup;
 pub mod stack;
