@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args as ClapArgs, ValueEnum};
+use hw_model::traversal::{TraversalEngine, DEFAULT_STACK_DEPTH};
 use sim::projection::{
     self, Board, Calibration, Design, Frontend, Role, Setup, Traversal, Workload, Workloads,
 };
@@ -17,6 +18,9 @@ pub enum DesignKind {
     Thesis,
     /// The project's: queries streamed by DMA through HP ports into pipelined lanes.
     Stream,
+    /// The traversal unit: the scene in the unit, rays in and answers out over HP ports
+    /// (cycles from its schedule model on the scene's frame).
+    Traversal,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -52,9 +56,13 @@ pub struct Args {
     /// Pipeline registers per operator of the stream design.
     #[arg(long, default_value_t = 1)]
     depth: usize,
-    /// Stream: MT lanes; thesis: accelerators.
+    /// Stream, traversal: MT lanes; thesis: accelerators.
     #[arg(long, default_value_t = 1)]
     lanes: u32,
+    /// Traversal: ray slots of the unit.
+    #[arg(long, default_value_t = hdl::traversal::timing::DEFAULT_SLOTS as u32,
+          value_parser = clap::value_parser!(u32).range(1..=1024))]
+    slots: u32,
     /// Fabric clock f_PL in MHz.
     #[arg(long, default_value_t = 100.0)]
     fpl_mhz: f64,
@@ -62,13 +70,14 @@ pub struct Args {
     /// stream: cycles between queries per lane [default: 1, II = 1].
     #[arg(long)]
     cycles_per_test: Option<f64>,
-    /// Stream: HP ports the DMA uses (1–4).
+    /// Stream, traversal: HP ports the DMA uses (1–4).
     #[arg(long, default_value_t = 1)]
     hp_ports: u32,
-    /// Stream: fraction of the HP ports' peak bandwidth the DMA reaches.
+    /// Stream, traversal: fraction of the HP ports' peak bandwidth the DMA reaches.
     #[arg(long, default_value_t = 0.8)]
     dma_efficiency: f64,
-    /// Stream: ARM cycles to pack one query into the DMA buffer.
+    /// Stream: ARM cycles to pack one query into the DMA buffer; traversal: to write one
+    /// ray and read its answer.
     #[arg(long, default_value_t = 40.0)]
     pack_cycles: f64,
     /// Print the calibration table (measured vs modelled thesis times).
@@ -124,7 +133,20 @@ pub fn run(a: Args) -> Result<()> {
         let scene = Scene::load(spec)?;
         let width = a.width.unwrap_or(scene.options.width);
         let height = a.height.unwrap_or(scene.options.height);
-        let workload = Workload::measure(&scene, width, height)?;
+        let mut workload = Workload::measure(&scene, width, height)?;
+        if a.design == DesignKind::Traversal {
+            let engine = TraversalEngine {
+                format: a.format.format(),
+                stack_depth: DEFAULT_STACK_DEPTH,
+                timing: Some(hdl::traversal::timing::unit_timing(
+                    a.format,
+                    a.depth,
+                    a.lanes as usize,
+                    a.slots as usize,
+                )),
+            };
+            workload = workload.with_unit(&scene, &engine)?;
+        }
         print_projection(&workload, &design, &calibration.board)?;
     }
     Ok(())
@@ -148,6 +170,18 @@ fn design(a: &Args) -> Result<Design> {
             Frontend::Thesis {
                 units: a.lanes,
                 cycles_per_test: a.cycles_per_test.unwrap_or(THESIS_CYCLES_PER_TEST),
+            }
+        }
+        DesignKind::Traversal => {
+            if a.cycles_per_test.is_some() {
+                bail!(
+                    "--cycles-per-test: the traversal design's cycles come from its schedule model"
+                );
+            }
+            Frontend::Traversal {
+                hp_ports: a.hp_ports,
+                dma_efficiency: a.dma_efficiency,
+                pack_arm_cycles: a.pack_cycles,
             }
         }
         DesignKind::Stream => {
@@ -195,12 +229,28 @@ fn print_projection(w: &Workload, d: &Design, b: &Board) -> Result<()> {
     println!("| bus (AXI4-Lite) | {:.4} |", p.bus_s);
     println!("| accelerator | {:.4} |", p.accel_s);
     println!("| total | {:.4} |", p.total_s());
+    if let Some(u) = &w.unit {
+        let rays = w.rays().max(1) as f64;
+        println!(
+            "\nunit (schedule model): cycles_per_ray={:.2} box_tests_per_ray={:.2} mt_tests_per_ray={:.2} image_bytes={}",
+            u.cycles as f64 / rays,
+            u.box_tests as f64 / rays,
+            u.mt_tests as f64 / rays,
+            u.image_bytes
+        );
+    }
     println!(
         "\narm_software_s={arm:.4} arm_bvh_software_s={arm_bvh:.4} total_s={:.4} speedup_vs_arm={:.2} speedup_vs_arm_bvh={:.2}",
         p.total_s(),
         arm / p.total_s(),
         arm_bvh / p.total_s()
     );
+    if let Some(walk) = b.arm_bvh_walk_s(w) {
+        println!(
+            "arm_bvh_walk_s={walk:.4} speedup_vs_arm_bvh_walk={:.2}",
+            walk / p.total_s()
+        );
+    }
     Ok(())
 }
 

@@ -69,5 +69,23 @@ pub fn run(a: Args) -> Result<()> {
         secs,
         s.trace.rays() as f64 / secs.max(1e-9) / 1e6
     );
+    let c = s.trace.cast;
+    if c.cycles > 0 {
+        // The traversal unit's schedule model (not a co-simulation).
+        let rays = s.trace.rays().max(1) as f64;
+        println!(
+            "unit_schedule slots={} lanes={} cycles={} cycles_per_ray={:.2} box_tests_per_ray={:.2} mt_tests_per_ray={:.2} node_visits_per_ray={:.2} box_utilisation={:.3} lane_utilisation={:.3} mrays_per_s_at_100mhz={:.2}",
+            a.hw.slots,
+            a.hw.lanes,
+            c.cycles,
+            c.cycles as f64 / rays,
+            c.box_tests as f64 / rays,
+            c.mt_tests as f64 / rays,
+            c.node_visits as f64 / rays,
+            c.box_tests as f64 / c.cycles as f64,
+            c.mt_tests as f64 / (c.cycles as f64 * a.hw.lanes as f64),
+            rays / c.cycles as f64 * 100.0
+        );
+    }
     Ok(())
 }

@@ -36,6 +36,10 @@ pub struct HwConfig {
     /// Parallel MT lanes.
     #[arg(long, default_value_t = 1)]
     pub lanes: usize,
+    /// Ray slots of the traversal unit (`--engine traversal`: its schedule model's cycles).
+    #[arg(long, default_value_t = hdl::traversal::timing::DEFAULT_SLOTS as u32,
+          value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub slots: u32,
 }
 
 pub fn make(kind: EngineKind, hw: &HwConfig) -> Result<Box<dyn RayEngine>> {
@@ -43,15 +47,24 @@ pub fn make(kind: EngineKind, hw: &HwConfig) -> Result<Box<dyn RayEngine>> {
         EngineKind::F32 => Box::new(F32Intersector),
         EngineKind::Model => Box::new(ModelIntersector { format: hw.format }),
         EngineKind::Hw => Box::new(HwIntersector::new(&hw.top_config()?, Mode::Stream)?),
-        EngineKind::Traversal => Box::new(TraversalEngine {
-            format: hw.format,
-            stack_depth: DEFAULT_STACK_DEPTH,
-            timing: None,
-        }),
+        EngineKind::Traversal => Box::new(hw.traversal_engine()),
     })
 }
 
 impl HwConfig {
+    /// The traversal unit's model in this configuration; timed by its schedule model when
+    /// the format has hardware (any other format has no lane latency to time with).
+    pub fn traversal_engine(&self) -> TraversalEngine {
+        let timing = hw_model::HwFormat::try_from(self.format).ok().map(|f| {
+            hdl::traversal::timing::unit_timing(f, self.depth, self.lanes, self.slots as usize)
+        });
+        TraversalEngine {
+            format: self.format,
+            stack_depth: DEFAULT_STACK_DEPTH,
+            timing,
+        }
+    }
+
     /// The accelerator of this configuration: an error if the format has no hardware.
     pub fn top_config(&self) -> Result<TopConfig, hw_model::FormatError> {
         Ok(TopConfig::new(

@@ -6,3 +6,4 @@ pub mod box_test;
 pub mod far_end;
 pub mod ray_setup;
 pub mod stack;
+pub mod timing;

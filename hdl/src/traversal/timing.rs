@@ -1,0 +1,66 @@
+//! The planned unit's timing at a configuration, from its blocks' own latency functions:
+//! what the schedule model (`hw_model::traversal::schedule`) times a walk with, until the
+//! unit's RTL is co-simulated.
+
+use hw_model::traversal::schedule::UnitTiming;
+use hw_model::HwFormat;
+
+use super::{box_test, far_end, ray_setup};
+use crate::formats::fp32;
+use crate::mt::schedule::OpLatencies;
+
+/// Ray slots unless configured otherwise: enough for the box port to be ≥ 94 % busy on the
+/// Utah teapot in the schedule model (16 slots: 64 %; 64 slots: 97 %).
+pub const DEFAULT_SLOTS: usize = 32;
+
+/// A block RAM read (node, triangle, stack entry): the RAM's read register.
+const MEMORY_READ: usize = 1;
+/// The slot's state register, written from a step's answer.
+const SLOT_UPDATE: usize = 1;
+
+/// The unit with `lanes` MT lanes in `format` and `slots` ray slots, every operator built
+/// with `depth` pipeline registers (at most its maximum).
+pub fn unit_timing(format: HwFormat, depth: usize, lanes: usize, slots: usize) -> UnitTiming {
+    let lt = OpLatencies::for_depth(depth, fp32::max_stages).lt;
+    let cycles = |c: usize| c as u64;
+    UnitTiming {
+        slots,
+        lanes,
+        setup_latency: cycles(ray_setup::latency(depth) + SLOT_UPDATE),
+        box_latency: cycles(MEMORY_READ + box_test::latency(depth) + SLOT_UPDATE),
+        // Triangle read, the lane, the (t, index) comparison with the slot's nearest hit,
+        // then the far end of the new bound.
+        mt_latency: cycles(
+            MEMORY_READ
+                + crate::mt::latency(format, depth)
+                + lt
+                + far_end::latency(depth)
+                + SLOT_UPDATE,
+        ),
+        // Stack read, then the entry's distance against the far end.
+        pop_latency: cycles(MEMORY_READ + lt + SLOT_UPDATE),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn deeper_pipelines_take_longer_and_every_step_takes_a_cycle() {
+        let fp32 = HwFormat::FP32;
+        let shallow = unit_timing(fp32, 0, 1, 32);
+        let deep = unit_timing(fp32, 5, 1, 32);
+        for (a, b) in [
+            (shallow.setup_latency, deep.setup_latency),
+            (shallow.box_latency, deep.box_latency),
+            (shallow.mt_latency, deep.mt_latency),
+        ] {
+            assert!(a >= 1 && a < b, "{shallow:?} vs {deep:?}");
+        }
+        assert_eq!(
+            deep.box_latency,
+            (MEMORY_READ + box_test::latency(5) + SLOT_UPDATE) as u64
+        );
+    }
+}
