@@ -48,20 +48,52 @@ impl std::ops::AddAssign for Schedule {
     }
 }
 
+/// What a slot waits to be granted.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Want {
+    Free,
+    Box,
+    Pop,
+    /// Triangles of its leaf not issued yet.
+    Leaf(u32),
+    /// Its answer to the hit output.
+    Out,
+}
+
 #[derive(Clone, Copy)]
 struct Slot {
     /// Index of the ray, and of its next step.
     ray: usize,
     step: usize,
-    /// Triangles of the current leaf not issued yet.
-    left: u32,
+    want: Want,
     ready_at: u64,
+}
+
+impl Slot {
+    /// Moves to the next step that needs a resource (an empty leaf needs none).
+    fn advance(&mut self, walk: &[Step]) {
+        while walk.get(self.step) == Some(&Step::Leaf(0)) {
+            self.step += 1;
+        }
+        self.want = match walk.get(self.step) {
+            None => Want::Out,
+            Some(Step::Box) => Want::Box,
+            Some(Step::Pop) => Want::Pop,
+            Some(&Step::Leaf(n)) => Want::Leaf(n),
+        };
+    }
 }
 
 /// The cycles of one wavefront whose rays walk `walks` (in the order they enter).
 pub fn schedule(t: &UnitTiming, walks: &[Vec<Step>]) -> Schedule {
     assert!(t.slots > 0 && t.lanes > 0, "a unit needs slots and lanes");
-    let mut slots: Vec<Option<Slot>> = vec![None; t.slots];
+    let free = Slot {
+        ray: 0,
+        step: 0,
+        want: Want::Free,
+        ready_at: 0,
+    };
+    let mut slots = vec![free; t.slots];
     let mut next_ray = 0;
     let mut done = 0;
     let mut out = Schedule::default();
@@ -69,100 +101,93 @@ pub fn schedule(t: &UnitTiming, walks: &[Vec<Step>]) -> Schedule {
     // The last grant of each arbiter: box port, stack port, hit output, then one per lane.
     let mut last = vec![usize::MAX; 3 + t.lanes];
     while done < walks.len() {
-        // One ray enters a free slot.
+        // One ray enters the lowest free slot.
         if next_ray < walks.len() {
-            if let Some(free) = slots.iter_mut().find(|s| s.is_none()) {
-                *free = Some(Slot {
+            if let Some(s) = slots.iter_mut().find(|s| s.want == Want::Free) {
+                *s = Slot {
                     ray: next_ray,
                     step: 0,
-                    left: 0,
+                    want: Want::Free,
                     ready_at: cycle + t.setup_latency,
-                });
+                };
+                s.advance(&walks[next_ray]);
                 next_ray += 1;
             }
         }
-        // Steps needing no shared resource: an empty leaf.
-        for s in slots.iter_mut().flatten() {
-            while s.ready_at <= cycle && walks[s.ray].get(s.step) == Some(&Step::Leaf(0)) {
-                s.step += 1;
-            }
-        }
-        let wants = |s: &Slot, f: &dyn Fn(Step) -> bool| {
-            s.ready_at <= cycle && walks[s.ray].get(s.step).is_some_and(|&st| f(st))
-        };
-        if let Some(s) = granted(&mut slots, &mut last[0], |_, s| {
-            wants(s, &|st| st == Step::Box)
-        }) {
+        if let Some(k) = round_robin(&slots, &mut last[0], cycle, |_, w| w == Want::Box) {
+            let s = &mut slots[k];
             s.ready_at = cycle + t.box_latency;
             s.step += 1;
+            s.advance(&walks[s.ray]);
             out.box_busy += 1;
         }
-        if let Some(s) = granted(&mut slots, &mut last[1], |_, s| {
-            wants(s, &|st| st == Step::Pop)
-        }) {
+        if let Some(k) = round_robin(&slots, &mut last[1], cycle, |_, w| w == Want::Pop) {
+            let s = &mut slots[k];
             s.ready_at = cycle + t.pop_latency;
             s.step += 1;
+            s.advance(&walks[s.ray]);
         }
         for lane in 0..t.lanes {
-            let Some(s) = granted(&mut slots, &mut last[3 + lane], |k, s| {
-                k % t.lanes == lane && wants(s, &|st| matches!(st, Step::Leaf(_)))
+            let Some(k) = round_robin(&slots, &mut last[3 + lane], cycle, |k, w| {
+                k % t.lanes == lane && matches!(w, Want::Leaf(_))
             }) else {
                 continue;
             };
-            if s.left == 0 {
-                let Some(&Step::Leaf(n)) = walks[s.ray].get(s.step) else {
-                    unreachable!("selected for a leaf")
-                };
-                s.left = n;
-            }
-            s.left -= 1;
+            let s = &mut slots[k];
+            let Want::Leaf(left) = s.want else {
+                unreachable!("granted for a leaf")
+            };
             out.mt_busy += 1;
             // One triangle a cycle per slot: it is next ready in the next cycle, or when
             // its leaf's last answer is in.
-            if s.left == 0 {
+            if left == 1 {
                 s.ready_at = cycle + t.mt_latency;
                 s.step += 1;
+                s.advance(&walks[s.ray]);
             } else {
+                s.want = Want::Leaf(left - 1);
                 s.ready_at = cycle + 1;
             }
         }
         // One hit leaves the unit, freeing its slot.
-        if let Some(k) = round_robin(&slots, &mut last[2], |_, s| {
-            s.ready_at <= cycle && s.step == walks[s.ray].len()
-        }) {
-            slots[k] = None;
+        if let Some(k) = round_robin(&slots, &mut last[2], cycle, |_, w| w == Want::Out) {
+            slots[k].want = Want::Free;
             done += 1;
         }
         cycle += 1;
+        // Nothing can happen before the next slot is ready: skip the idle cycles.
+        let entering = next_ray < walks.len() && slots.iter().any(|s| s.want == Want::Free);
+        if !entering {
+            let next = slots
+                .iter()
+                .filter(|s| s.want != Want::Free)
+                .map(|s| s.ready_at)
+                .min();
+            if let Some(next) = next {
+                cycle = cycle.max(next);
+            }
+        }
     }
     out.cycles = cycle;
     out
 }
 
-/// The index of the first `eligible(index, slot)` slot after `last` cyclically, which
-/// becomes `last`.
+/// The first slot after `last` (cyclically) that is ready at `cycle` and `eligible(index,
+/// want)`; it becomes `last`.
 fn round_robin(
-    slots: &[Option<Slot>],
+    slots: &[Slot],
     last: &mut usize,
-    eligible: impl Fn(usize, &Slot) -> bool,
+    cycle: u64,
+    eligible: impl Fn(usize, Want) -> bool,
 ) -> Option<usize> {
     let n = slots.len();
     let start = last.wrapping_add(1) % n;
-    let k = (0..n)
-        .map(|i| (start + i) % n)
-        .find(|&k| slots[k].as_ref().is_some_and(|s| eligible(k, s)))?;
+    let k = (0..n).map(|i| (start + i) % n).find(|&k| {
+        let s = &slots[k];
+        s.want != Want::Free && s.ready_at <= cycle && eligible(k, s.want)
+    })?;
     *last = k;
     Some(k)
-}
-
-/// The slot [`round_robin`] grants.
-fn granted<'a>(
-    slots: &'a mut [Option<Slot>],
-    last: &mut usize,
-    eligible: impl Fn(usize, &Slot) -> bool,
-) -> Option<&'a mut Slot> {
-    let k = round_robin(slots, last, eligible)?;
-    slots[k].as_mut()
 }
 
 #[cfg(test)]
