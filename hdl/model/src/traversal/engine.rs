@@ -11,11 +11,12 @@ use crate::format::Format;
 
 /// Renders through [`TraversalModel`]: the scene image is written from the renderer's BVH,
 /// loaded through its word stream (so the loader's checks run), and every wavefront's rays
-/// are answered by the model.
+/// are answered by the model, its Möller-Trumbore queries scaled by 2^`scale_exp`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TraversalEngine {
     pub format: Format,
     pub stack_depth: usize,
+    pub scale_exp: i32,
 }
 
 impl RayEngine for TraversalEngine {
@@ -33,11 +34,9 @@ impl RayEngine for TraversalEngine {
         scene: &'a PreparedScene,
     ) -> Result<Box<dyn RayCaster + 'a>, EngineError> {
         let image = SceneImage::from_words(&SceneImage::new(scene).to_words())?;
-        Ok(Box::new(TraversalModel::new(
-            self.format,
-            self.stack_depth,
-            image,
-        )))
+        Ok(Box::new(
+            TraversalModel::new(self.format, self.stack_depth, image).scaled(self.scale_exp),
+        ))
     }
 }
 
@@ -50,6 +49,8 @@ impl RayCaster for TraversalModel {
                 orig: ray.orig.to_array(),
                 dir: ray.dir.to_array(),
                 t_max: ray.bound,
+                t_min: ray.t_min,
+                exclude: ray.exclude,
                 any_hit: ray.shadow,
                 id: id as u32,
             };
