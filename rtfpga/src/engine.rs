@@ -89,7 +89,7 @@ pub struct PrecisionArgs {
     #[arg(long, value_enum)]
     pub spawn: Option<SpawnKind>,
     /// Scaling of the queries into the format's range, model and traversal engines only
-    /// [default: auto for them in float formats other than fp32, else none].
+    /// [default: none].
     #[arg(long, value_enum)]
     pub scale: Option<ScaleKind>,
 }
@@ -105,14 +105,9 @@ impl PrecisionArgs {
     ) -> Result<(SpawnPolicy, i32)> {
         let fp32 = hw.format == hw_model::Format::Float { exp: 8, man: 23 };
         let model = matches!(kind, EngineKind::Model | EngineKind::Traversal);
-        // Fixed formats measured worse scaled (docs/precision.md): the bound behind the scale
-        // is a worst case their products rarely reach, and scaling down costs fraction bits.
-        let float = matches!(hw.format, hw_model::Format::Float { .. });
-        let scale = self.scale.unwrap_or(if model && float && !fp32 {
-            ScaleKind::Auto
-        } else {
-            ScaleKind::None
-        });
+        // Unscaled unless asked: auto scaling measured no better in any format and worse in
+        // e5m14 and the fixed formats (docs/precision.md).
+        let scale = self.scale.unwrap_or(ScaleKind::None);
         let scale_exp = match scale {
             ScaleKind::None => 0,
             ScaleKind::Auto if !model => {

@@ -321,9 +321,10 @@ fn render_model_fp16_writes_the_models_image() {
     );
 }
 
-/// Without --spawn/--scale a narrow model render is format-aware and auto-scaled, and says so.
+/// Without --spawn a narrow model render is format-aware; `--scale auto` scales it; the
+/// render line says both.
 #[test]
-fn render_model_fp16_defaults_to_format_aware_spawning_and_auto_scale() {
+fn render_model_fp16_is_format_aware_by_default_and_scales_on_request() {
     let dir = tempfile::tempdir().unwrap();
     let out_png = dir.path().join("plane16.png");
     let args = [
@@ -342,6 +343,8 @@ fn render_model_fp16_defaults_to_format_aware_spawning_and_auto_scale() {
         "--out",
     ];
     let out = ok(&[&args[..], &[s(&out_png)]].concat());
+    assert!(out.contains("spawn=format-aware scale_exp=0 "), "{out}");
+    let out = ok(&[&args[..1], &["--scale", "auto"], &args[1..], &[s(&out_png)]].concat());
     let fp16 = hw_model::lookup("fp16").unwrap();
     let scene = Scene::load("simple_plane").unwrap();
     let scale_exp = auto_scale_exp(&fp16, &SceneRange::of(&scene).unwrap());
