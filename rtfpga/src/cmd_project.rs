@@ -138,6 +138,7 @@ pub fn run(a: Args) -> Result<()> {
             let engine = TraversalEngine {
                 format: a.format.format(),
                 stack_depth: DEFAULT_STACK_DEPTH,
+                scale_exp: 0,
                 timing: Some(hdl::traversal::timing::unit_timing(
                     a.format,
                     a.depth,

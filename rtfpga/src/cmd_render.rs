@@ -6,8 +6,9 @@ use anyhow::{Context, Result};
 use clap::Args as ClapArgs;
 use sw_renderer::render::{render, save_png, RenderOptions};
 use sw_renderer::scene::Scene;
+use sw_renderer::spawn::SpawnPolicy;
 
-use crate::engine::{self, EngineKind, HwConfig};
+use crate::engine::{self, EngineKind, HwConfig, PrecisionArgs};
 
 #[derive(ClapArgs)]
 pub struct Args {
@@ -24,6 +25,8 @@ pub struct Args {
     engine: EngineKind,
     #[command(flatten)]
     hw: HwConfig,
+    #[command(flatten)]
+    precision: PrecisionArgs,
     /// Output PNG.
     #[arg(long)]
     out: PathBuf,
@@ -43,11 +46,13 @@ pub fn image_side() -> clap::builder::RangedI64ValueParser<u32> {
 
 pub fn run(a: Args) -> Result<()> {
     let scene = Scene::load(&a.scene)?;
-    let engine = engine::make(a.engine, &a.hw)?;
+    let (spawn, scale_exp) = a.precision.resolve(a.engine, &a.hw, &scene)?;
+    let engine = engine::make_scaled(a.engine, &a.hw, scale_exp)?;
     let opts = RenderOptions {
         width: a.width,
         height: a.height,
         progress: !a.quiet,
+        spawn,
         ..Default::default()
     };
     let out = render(&scene, engine.as_ref(), &opts)?;
@@ -55,9 +60,14 @@ pub fn run(a: Args) -> Result<()> {
     let s = &out.stats;
     let secs = s.render_time.as_secs_f64();
     println!(
-        "scene={} engine={} size={}x{} triangles={} rays={} mt_queries={} box_tests={} node_visits={} prepare_s={:.3} render_s={:.3} mrays_per_s={:.2}",
+        "scene={} engine={} spawn={} scale_exp={} size={}x{} triangles={} rays={} mt_queries={} box_tests={} node_visits={} prepare_s={:.3} render_s={:.3} mrays_per_s={:.2}",
         scene.name,
         engine.name(),
+        match spawn {
+            SpawnPolicy::Thesis => "thesis",
+            SpawnPolicy::FormatAware(_) => "format-aware",
+        },
+        scale_exp,
         out.image.width(),
         out.image.height(),
         scene.triangle_count(),

@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use assert_cmd::Command;
+use hw_model::precision::{auto_scale_exp, spawn_policy, SceneRange};
 use hw_model::ModelIntersector;
 use image::{Rgb, RgbImage};
 use predicates::prelude::*;
@@ -295,6 +296,10 @@ fn render_model_fp16_writes_the_models_image() {
         "model",
         "--format",
         "fp16",
+        "--spawn",
+        "thesis",
+        "--scale",
+        "none",
         "--out",
         s(&out_png),
         "--quiet",
@@ -302,9 +307,7 @@ fn render_model_fp16_writes_the_models_image() {
     assert!(out.contains("engine=model"), "{out}");
     let img = read_png(&out_png);
     assert_eq!(img.dimensions(), (32, 18));
-    let fp16 = ModelIntersector {
-        format: hw_model::lookup("fp16").unwrap(),
-    };
+    let fp16 = ModelIntersector::new(hw_model::lookup("fp16").unwrap());
     assert_eq!(
         img,
         library_render("simple_plane", 32, 18, &fp16),
@@ -315,6 +318,99 @@ fn render_model_fp16_writes_the_models_image() {
         img,
         library_render("simple_plane", 32, 18, &F32Intersector),
         "--engine model --format fp16 rendered exactly the f32 image"
+    );
+}
+
+/// Without --spawn a narrow model render is format-aware; `--scale auto` scales it; the
+/// render line says both.
+#[test]
+fn render_model_fp16_is_format_aware_by_default_and_scales_on_request() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_png = dir.path().join("plane16.png");
+    let args = [
+        "render",
+        "--scene",
+        "simple_plane",
+        "--width",
+        "32",
+        "--height",
+        "18",
+        "--engine",
+        "model",
+        "--format",
+        "fp16",
+        "--quiet",
+        "--out",
+    ];
+    let out = ok(&[&args[..], &[s(&out_png)]].concat());
+    assert!(out.contains("spawn=format-aware scale_exp=0 "), "{out}");
+    let out = ok(&[&args[..1], &["--scale", "auto"], &args[1..], &[s(&out_png)]].concat());
+    let fp16 = hw_model::lookup("fp16").unwrap();
+    let scene = Scene::load("simple_plane").unwrap();
+    let scale_exp = auto_scale_exp(&fp16, &SceneRange::of(&scene).unwrap());
+    assert!(
+        out.contains(&format!("spawn=format-aware scale_exp={scale_exp} ")),
+        "{out}"
+    );
+    let opts = RenderOptions {
+        width: Some(32),
+        height: Some(18),
+        spawn: spawn_policy(&fp16, scale_exp),
+        ..Default::default()
+    };
+    let engine = ModelIntersector {
+        format: fp16,
+        scale_exp,
+    };
+    assert_eq!(
+        read_png(&out_png),
+        render(&scene, &engine, &opts).unwrap().image
+    );
+    // fp32 and the f32 engine stay the thesis' renderer.
+    let out = ok(&[
+        "render",
+        "--scene",
+        "simple_plane",
+        "--width",
+        "8",
+        "--height",
+        "8",
+        "--engine",
+        "model",
+        "--quiet",
+        "--out",
+        s(&out_png),
+    ]);
+    assert!(out.contains("spawn=thesis scale_exp=0 "), "{out}");
+}
+
+#[test]
+fn bad_spawn_and_scale_arguments_are_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_png = dir.path().join("x.png");
+    let base = [
+        "render",
+        "--scene",
+        "simple_plane",
+        "--width",
+        "8",
+        "--height",
+        "8",
+    ];
+    fails(
+        &[&base[..], &["--spawn", "bogus", "--out", s(&out_png)]].concat(),
+        2,
+        &["bogus", "thesis", "format-aware"],
+    );
+    fails(
+        &[&base[..], &["--scale", "double", "--out", s(&out_png)]].concat(),
+        2,
+        &["double", "auto", "none"],
+    );
+    fails(
+        &[&base[..], &["--scale", "auto", "--out", s(&out_png)]].concat(),
+        1,
+        &["--scale auto needs the model or traversal engine"],
     );
 }
 

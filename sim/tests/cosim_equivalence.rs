@@ -39,9 +39,7 @@ fn recorded_queries() -> Vec<MtQuery> {
 }
 
 fn check(format: &str, configs: [(usize, usize); 2], queries: &[MtQuery]) {
-    let model = ModelIntersector {
-        format: hw_model::lookup(format).unwrap(),
-    };
+    let model = ModelIntersector::new(hw_model::lookup(format).unwrap());
     let want = replay(&model, queries, &|_| {}).unwrap();
     for (depth, lanes) in configs {
         let hw = HwIntersector::new(

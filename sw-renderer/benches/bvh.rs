@@ -6,7 +6,7 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Through
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use sw_renderer::bvh::{BoxRay, Bvh};
-use sw_renderer::hit::{closest_hit, NO_BOUND};
+use sw_renderer::hit::{closest_hit, Window, NO_BOUND};
 use sw_renderer::intersect::{F32Intersector, Intersector, MtQuery, MtResult};
 use sw_renderer::math::V3;
 use sw_renderer::world::WorldTriangle;
@@ -90,7 +90,9 @@ fn bench(c: &mut Criterion) {
                     F32Intersector
                         .intersect_batch(&queries, &mut results)
                         .expect("the f32 reference cannot fail");
-                    hits += usize::from(closest_hit(&cands, &results, NO_BOUND).is_some());
+                    hits += usize::from(
+                        closest_hit(&cands, &results, &Window::below(NO_BOUND)).is_some(),
+                    );
                 }
                 hits
             })

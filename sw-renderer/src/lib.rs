@@ -14,6 +14,7 @@ pub mod render;
 pub mod scene;
 pub mod scene_image;
 pub mod shade;
+pub mod spawn;
 pub mod thesis_scenes;
 pub mod trace;
 pub mod world;

@@ -10,14 +10,16 @@
 //!   itself.
 //!
 //! All of them return the reference's hits: for a closest-hit ray the smallest
-//! `(t, global triangle index)` among hits with `t < bound`; for a shadow ray whether any
-//! shadow-casting triangle is hit below its bound. Calls are fallible: an engine error is an
+//! `(t, global triangle index)` among hits in its window (`t_min < t < bound`, not on the
+//! triangle it excludes: `hit::Window`); for a shadow ray whether any shadow-casting triangle
+//! is hit in its window. `t_min` and the exclusion only remove hits: BVH candidates and box
+//! culling do not change. Calls are fallible: an engine error is an
 //! error, never a silent miss.
 
 use std::ops::{AddAssign, Range};
 
 use crate::bvh::{BoxRay, Pending};
-use crate::hit::{closest_hit, nearer, remaining_bound, Hit};
+use crate::hit::{closest_hit, nearer, remaining_bound, Hit, Window};
 use crate::intersect::{Intersector, MtQuery, MtResult};
 use crate::math::V3;
 use crate::trace::PreparedScene;
@@ -36,6 +38,21 @@ pub struct Ray {
     /// A shadow ray: any hit of a shadow-casting triangle answers it (any-hit); other rays
     /// want the closest hit of any triangle.
     pub shadow: bool,
+    /// Hits count only beyond this distance (0 for the reference's rays).
+    pub t_min: f32,
+    /// The triangle (global index) a spawned ray leaves: it never counts.
+    pub exclude: Option<u32>,
+}
+
+impl Ray {
+    /// Which hits count.
+    pub fn window(&self) -> Window {
+        Window {
+            t_min: self.t_min,
+            bound: self.bound,
+            exclude: self.exclude,
+        }
+    }
 }
 
 /// Work an engine did for a wavefront.
@@ -127,7 +144,7 @@ impl<I: Intersector + ?Sized> RayCaster for BvhCaster<'_, I> {
         }
         first.run(self.isect, &mut stats)?;
         for (k, (ray, hit)) in rays.iter().zip(hits.iter_mut()).enumerate() {
-            *hit = first.closest(k, ray.bound);
+            *hit = first.closest(k, &ray.window());
             if ray.shadow && hit.is_some() {
                 rest.add_nothing();
             } else {
@@ -137,7 +154,7 @@ impl<I: Intersector + ?Sized> RayCaster for BvhCaster<'_, I> {
         }
         rest.run(self.isect, &mut stats)?;
         for (k, (ray, hit)) in rays.iter().zip(hits.iter_mut()).enumerate() {
-            *hit = nearer(*hit, rest.closest(k, ray.bound));
+            *hit = nearer(*hit, rest.closest(k, &ray.window()));
         }
         Ok(stats)
     }
@@ -216,8 +233,8 @@ impl Batch {
     }
 
     /// The nearest counting hit of ray `k` in this batch.
-    fn closest(&self, k: usize, bound: f32) -> Option<Hit> {
+    fn closest(&self, k: usize, window: &Window) -> Option<Hit> {
         let r = self.ranges[k].clone();
-        closest_hit(&self.candidates[r.clone()], &self.results[r], bound)
+        closest_hit(&self.candidates[r.clone()], &self.results[r], window)
     }
 }

@@ -16,10 +16,11 @@ use crate::math::V3;
 use crate::rays::{EngineError, RayEngine};
 use crate::scene::Scene;
 use crate::shade::to_rgb8;
+use crate::spawn::SpawnPolicy;
 use crate::trace::{trace_rays, PreparedScene, TraceStats};
 use crate::world::WorldError;
 
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct RenderOptions {
     /// Overrides the scene's width.
     pub width: Option<u32>,
@@ -30,6 +31,8 @@ pub struct RenderOptions {
     /// Edge of the square pixel tiles; one tile's rays form one wavefront (bigger tiles mean
     /// bigger intersector batches).
     pub tile_size: u32,
+    /// How secondary and shadow rays are spawned.
+    pub spawn: SpawnPolicy,
 }
 
 impl Default for RenderOptions {
@@ -39,6 +42,7 @@ impl Default for RenderOptions {
             height: None,
             progress: false,
             tile_size: 32,
+            spawn: SpawnPolicy::Thesis,
         }
     }
 }
@@ -96,10 +100,11 @@ pub fn render(
         });
     }
     let start = Instant::now();
-    let prepared = PreparedScene::new(scene).map_err(|source| RenderError::World {
+    let mut prepared = PreparedScene::new(scene).map_err(|source| RenderError::World {
         scene: scene.name.clone(),
         source,
     })?;
+    prepared.spawn = opts.spawn;
     let camera = Camera::new(
         scene.options.camera_to_world,
         scene.options.fov_deg,

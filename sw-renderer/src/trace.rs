@@ -19,6 +19,7 @@ use crate::shade::{
     diffuse_colour, fresnel, fresnel_colour, hit_normal, hit_point, mirror_colour, phong_colour,
     reflect, refract, LightTerm, PreparedLight,
 };
+use crate::spawn::{Departure, SpawnPolicy};
 use crate::world::{World, WorldError};
 
 /// Everything tracing needs, prepared once per render.
@@ -32,6 +33,8 @@ pub struct PreparedScene {
     pub background: V3,
     pub bias: f32,
     pub max_depth: u32,
+    /// How secondary and shadow rays are spawned (the thesis' way unless set).
+    pub spawn: SpawnPolicy,
 }
 
 impl PreparedScene {
@@ -49,6 +52,7 @@ impl PreparedScene {
             background: V3::from(scene.options.background),
             bias: scene.options.bias,
             max_depth: scene.options.max_depth,
+            spawn: SpawnPolicy::Thesis,
         })
     }
 
@@ -117,6 +121,9 @@ enum Shading {
 struct CastNode {
     orig: V3,
     dir: V3,
+    /// The spawn policy's window (0 and `None` for primary rays).
+    t_min: f32,
+    exclude: Option<u32>,
     depth: u32,
     shading: Shading,
 }
@@ -125,6 +132,8 @@ struct ShadowRay {
     orig: V3,
     dir: V3,
     bound: f32,
+    t_min: f32,
+    exclude: Option<u32>,
     /// Index into `visible`.
     slot: usize,
 }
@@ -155,6 +164,8 @@ pub fn trace_rays(
         tree.nodes.push(CastNode {
             orig,
             dir,
+            t_min: 0.0,
+            exclude: None,
             depth: 0,
             shading: Shading::Background,
         });
@@ -166,17 +177,24 @@ pub fn trace_rays(
 
     while !level.is_empty() || !shadows.is_empty() {
         rays.clear();
-        rays.extend(level.iter().map(|&n| Ray {
-            orig: tree.nodes[n].orig,
-            dir: tree.nodes[n].dir,
-            bound: NO_BOUND,
-            shadow: false,
+        rays.extend(level.iter().map(|&n| {
+            let node = &tree.nodes[n];
+            Ray {
+                orig: node.orig,
+                dir: node.dir,
+                bound: NO_BOUND,
+                shadow: false,
+                t_min: node.t_min,
+                exclude: node.exclude,
+            }
         }));
         rays.extend(shadows.iter().map(|s| Ray {
             orig: s.orig,
             dir: s.dir,
             bound: s.bound,
             shadow: true,
+            t_min: s.t_min,
+            exclude: s.exclude,
         }));
         found.clear();
         found.resize(rays.len(), None);
@@ -211,16 +229,19 @@ impl RayTree<'_> {
     /// A secondary castRay; deeper than the maximum depth it is the background, untraced.
     fn cast(
         &mut self,
-        orig: V3,
-        dir: V3,
+        (orig, dir): (V3, V3),
+        departure: &Departure,
         depth: u32,
         kind: SecondaryKind,
         next: &mut Vec<usize>,
     ) -> usize {
         let index = self.nodes.len();
+        let (t_min, exclude) = departure.ray(dir);
         self.nodes.push(CastNode {
             orig,
             dir,
+            t_min,
+            exclude,
             depth,
             shading: Shading::Background,
         });
@@ -247,6 +268,9 @@ impl RayTree<'_> {
         let material = &scene.world.materials[tri.object as usize];
         let p = hit_point(orig, dir, hit);
         let normal = hit_normal(tri, hit);
+        let departure = scene
+            .spawn
+            .depart(orig, dir, hit.t, hit.triangle, &tri.verts);
         let shading = match material.kind {
             MaterialKind::Diffuse | MaterialKind::Phong => {
                 let start = self.terms.len();
@@ -258,10 +282,13 @@ impl RayTree<'_> {
                     };
                     let slot = self.visible.len();
                     self.visible.push(true);
+                    let (t_min, exclude) = departure.ray(-il.dir);
                     shadows.push(ShadowRay {
                         orig: p + normal * scene.bias,
                         dir: -il.dir,
                         bound: il.distance,
+                        t_min,
+                        exclude,
                         slot,
                     });
                     self.terms.push((term, slot));
@@ -280,8 +307,8 @@ impl RayTree<'_> {
             MaterialKind::Reflection => {
                 let r = reflect(dir, normal).normalized();
                 let reflection = self.cast(
-                    p + normal * scene.bias,
-                    r,
+                    (p + normal * scene.bias, r),
+                    &departure,
                     depth + 1,
                     SecondaryKind::Reflection,
                     next,
@@ -295,11 +322,23 @@ impl RayTree<'_> {
                 let refraction = (kr < 1.0).then(|| {
                     let d = refract(dir, normal, material.ior).normalized();
                     let o = if outside { p - bias } else { p + bias };
-                    self.cast(o, d, depth + 1, SecondaryKind::Refraction, next)
+                    self.cast(
+                        (o, d),
+                        &departure,
+                        depth + 1,
+                        SecondaryKind::Refraction,
+                        next,
+                    )
                 });
                 let d = reflect(dir, normal).normalized();
                 let o = if outside { p + bias } else { p - bias };
-                let reflection = self.cast(o, d, depth + 1, SecondaryKind::Reflection, next);
+                let reflection = self.cast(
+                    (o, d),
+                    &departure,
+                    depth + 1,
+                    SecondaryKind::Reflection,
+                    next,
+                );
                 Shading::Glass {
                     kr,
                     refraction,

@@ -4,7 +4,7 @@
 
 use proptest::prelude::*;
 use sw_renderer::bvh::{BoxRay, Bvh};
-use sw_renderer::hit::{closest_hit, nearer, occluded, remaining_bound, Hit, NO_BOUND};
+use sw_renderer::hit::{closest_hit, nearer, occluded, remaining_bound, Hit, Window, NO_BOUND};
 use sw_renderer::intersect::mt_f32;
 use sw_renderer::math::V3;
 use sw_renderer::world::WorldTriangle;
@@ -58,7 +58,7 @@ fn two_pass(
         &mut first,
         &mut pending,
     );
-    let found = closest_hit(&first, &test(&first), bound);
+    let found = closest_hit(&first, &test(&first), &Window::below(bound));
     if shadow && found.is_some() {
         return found;
     }
@@ -69,7 +69,10 @@ fn two_pass(
         rest.iter().all(|t| !first.contains(t)),
         "a triangle gathered twice"
     );
-    nearer(found, closest_hit(&rest, &test(&rest), bound))
+    nearer(
+        found,
+        closest_hit(&rest, &test(&rest), &Window::below(bound)),
+    )
 }
 
 fn v3() -> impl Strategy<Value = V3> {
@@ -166,7 +169,7 @@ proptest! {
         for params in rays {
             let (o, d) = make_ray(&tris, params);
             let (cands, results) = gathered(&bvh, &tris, o, d, NO_BOUND, &no_skip);
-            assert_same(closest_hit(&cands, &results, NO_BOUND), brute_force_trace(&tris, o, d, NO_BOUND, |k| no_skip[k]))?;
+            assert_same(closest_hit(&cands, &results, &Window::below(NO_BOUND)), brute_force_trace(&tris, o, d, NO_BOUND, |k| no_skip[k]))?;
         }
     }
 
@@ -180,7 +183,7 @@ proptest! {
         for (params, bound) in rays {
             let (o, d) = make_ray(&tris, params);
             let (cands, results) = gathered(&bvh, &tris, o, d, bound, &no_skip);
-            assert_same(closest_hit(&cands, &results, bound), brute_force_trace(&tris, o, d, bound, |k| no_skip[k]))?;
+            assert_same(closest_hit(&cands, &results, &Window::below(bound)), brute_force_trace(&tris, o, d, bound, |k| no_skip[k]))?;
         }
     }
 
@@ -194,8 +197,8 @@ proptest! {
         for (params, bound) in rays {
             let bound = bound.unwrap_or(NO_BOUND);
             let (o, d) = make_ray(&tris, params);
-            let (_, results) = gathered(&bvh, &tris, o, d, bound, &skip);
-            prop_assert_eq!(occluded(&results, bound), brute_force_trace(&tris, o, d, bound, |k| skip[k]).is_some());
+            let (cands, results) = gathered(&bvh, &tris, o, d, bound, &skip);
+            prop_assert_eq!(occluded(&cands, &results, &Window::below(bound)), brute_force_trace(&tris, o, d, bound, |k| skip[k]).is_some());
         }
     }
 }
@@ -247,7 +250,7 @@ fn gathering_prunes_most_triangles() {
     );
     assert!(cands.len() <= 16, "{} candidates", cands.len());
     assert_eq!(
-        closest_hit(&cands, &results, NO_BOUND).map(|h| h.triangle),
+        closest_hit(&cands, &results, &Window::below(NO_BOUND)).map(|h| h.triangle),
         Some(50 * 100 + 50)
     );
 }

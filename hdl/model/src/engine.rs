@@ -3,12 +3,25 @@
 use sw_renderer::intersect::{Intersector, MtQuery, MtResult};
 use sw_renderer::rays::EngineError;
 
-use crate::{catalogue, mt_model, Format};
+use crate::mt::mt_model_scaled;
+use crate::{catalogue, Format};
 
-/// Answers every query with [`mt_model`] in `format`.
+/// Answers every query with [`crate::mt_model`] in `format`, on the query scaled by
+/// 2^`scale_exp` (`crate::precision::auto_scale_exp`; 0: unscaled). The port stays fp32.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ModelIntersector {
     pub format: Format,
+    pub scale_exp: i32,
+}
+
+impl ModelIntersector {
+    /// The unscaled model of `format`.
+    pub fn new(format: Format) -> ModelIntersector {
+        ModelIntersector {
+            format,
+            scale_exp: 0,
+        }
+    }
 }
 
 impl Intersector for ModelIntersector {
@@ -28,7 +41,7 @@ impl Intersector for ModelIntersector {
     ) -> Result<(), EngineError> {
         assert_eq!(queries.len(), results.len(), "one result slot per query");
         for (q, r) in queries.iter().zip(results.iter_mut()) {
-            *r = mt_model(&self.format, q);
+            *r = mt_model_scaled(&self.format, self.scale_exp, q);
         }
         Ok(())
     }
@@ -72,9 +85,7 @@ mod tests {
         let mut want = vec![MtResult::default(); queries.len()];
         let mut got = want.clone();
         F32Intersector.intersect_batch(&queries, &mut want).unwrap();
-        let model = ModelIntersector {
-            format: crate::lookup("fp32").unwrap(),
-        };
+        let model = ModelIntersector::new(crate::lookup("fp32").unwrap());
         model.intersect_batch(&queries, &mut got).unwrap();
         let same = |x: f32, y: f32| x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan());
         for ((q, g), w) in queries.iter().zip(&got).zip(&want) {
@@ -97,20 +108,14 @@ mod tests {
         let queries: Vec<MtQuery> = (0..1_000).map(|_| grid_query(&mut r)).collect();
         let mut fp32 = vec![MtResult::default(); queries.len()];
         let mut bf16 = fp32.clone();
-        ModelIntersector {
-            format: crate::lookup("fp32").unwrap(),
-        }
-        .intersect_batch(&queries, &mut fp32)
-        .unwrap();
-        let narrow = ModelIntersector {
-            format: crate::lookup("bf16").unwrap(),
-        };
+        ModelIntersector::new(crate::lookup("fp32").unwrap())
+            .intersect_batch(&queries, &mut fp32)
+            .unwrap();
+        let narrow = ModelIntersector::new(crate::lookup("bf16").unwrap());
         narrow.intersect_batch(&queries, &mut bf16).unwrap();
         assert!(fp32.iter().zip(&bf16).filter(|(a, b)| a.t != b.t).count() > 100);
         assert_eq!(narrow.name(), "model bf16");
-        let custom = ModelIntersector {
-            format: crate::lookup("e6m9").unwrap(),
-        };
+        let custom = ModelIntersector::new(crate::lookup("e6m9").unwrap());
         assert_eq!(custom.name(), "model e6m9");
     }
 }

@@ -13,9 +13,10 @@ mod fixed;
 mod float;
 pub mod format;
 pub mod mt;
+pub mod precision;
 pub mod traversal;
 
 pub use catalogue::{catalogue, lookup, HwFormat, NamedFormat};
 pub use engine::ModelIntersector;
 pub use format::{Format, FormatError, Overflow, Quant};
-pub use mt::{mt_model, MtQuery, MtResult};
+pub use mt::{mt_model, mt_model_scaled, scale_query, MtQuery, MtResult};

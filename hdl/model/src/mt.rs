@@ -43,6 +43,32 @@ fn load<A: Arith>(f: A, x: &[f32; 3]) -> V {
     ]
 }
 
+/// `q` with every coordinate times 2^`scale_exp` (exact in fp32 unless it over- or
+/// underflows). Möller-Trumbore's t, u, v are ratios of products of equal degree in lengths,
+/// so they do not change; a format's datapath sees the scene at another magnitude
+/// (`crate::precision::auto_scale_exp`).
+pub fn scale_query(q: &MtQuery, scale_exp: i32) -> MtQuery {
+    let f = 2f32.powi(scale_exp);
+    let s = |v: [f32; 3]| v.map(|x| x * f);
+    MtQuery {
+        orig: s(q.orig),
+        dir: s(q.dir),
+        v0: s(q.v0),
+        v1: s(q.v1),
+        v2: s(q.v2),
+    }
+}
+
+/// The test in `format` on `q` scaled by 2^`scale_exp` ([`scale_query`]; 0: as given).
+#[inline]
+pub fn mt_model_scaled(format: &Format, scale_exp: i32, q: &MtQuery) -> MtResult {
+    if scale_exp == 0 {
+        mt_model(format, q)
+    } else {
+        mt_model(format, &scale_query(q, scale_exp))
+    }
+}
+
 /// The test in `format`: fp32 inputs converted in, every operation rounded in the format,
 /// t, u, v converted back to fp32 (also on a miss).
 #[inline]

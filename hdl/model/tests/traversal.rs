@@ -2,12 +2,13 @@
 //! triangle (random meshes and rays, proptest), the software renderer (whole renders of the
 //! built-in and the thesis' scenes, fp32 images identical), and its failure modes.
 
+use hw_model::precision::{auto_scale_exp, spawn_policy, SceneRange};
 use hw_model::traversal::{TraversalEngine, TraversalError, TraversalModel, UnitCounters, UnitRay};
-use hw_model::{lookup, mt_model, Format};
+use hw_model::{lookup, mt_model, Format, ModelIntersector};
 use proptest::prelude::*;
 use sw_renderer::bvh::Bvh;
 use sw_renderer::compare::compare;
-use sw_renderer::hit::{closest_hit, Hit, NO_BOUND};
+use sw_renderer::hit::{closest_hit, Hit, Window, NO_BOUND};
 use sw_renderer::intersect::{F32Intersector, MtQuery};
 use sw_renderer::math::V3;
 use sw_renderer::render::{render, RenderError, RenderOptions};
@@ -21,7 +22,7 @@ fn fp32() -> Format {
 }
 
 /// The reference: every triangle tested (shadow rays only shadow casters), reduced by the
-/// renderer's rule.
+/// renderer's rule (its window: `t_min`, `t_max`, the excluded triangle).
 fn brute_force(
     format: &Format,
     tris: &[WorldTriangle],
@@ -43,7 +44,12 @@ fn brute_force(
             (k as u32, mt_model(format, &q))
         })
         .unzip();
-    closest_hit(&cands, &results, ray.t_max)
+    let window = Window {
+        t_min: ray.t_min,
+        bound: ray.t_max,
+        exclude: ray.exclude,
+    };
+    closest_hit(&cands, &results, &window)
 }
 
 /// A model holding `tris` (objects of 8 triangles; odd objects cast no shadow), with the
@@ -93,15 +99,22 @@ fn ray() -> impl Strategy<Value = UnitRay> {
         }),
     ];
     let t_max = prop_oneof![Just(NO_BOUND), Just(0.0f32), 0.1f32..6.0];
-    (v3(), dir, t_max, prop::bool::ANY, any::<u32>()).prop_map(|(o, dir, t_max, any_hit, id)| {
-        UnitRay {
+    // Spawned rays: a t_min, a triangle excluded (indices beyond the mesh exclude nothing).
+    let t_min = prop_oneof![Just(0.0f32), 0.0f32..3.0];
+    let exclude = prop::option::of(0u32..40);
+    (
+        (v3(), dir, t_max, prop::bool::ANY, any::<u32>()),
+        (t_min, exclude),
+    )
+        .prop_map(|((o, dir, t_max, any_hit, id), (t_min, exclude))| UnitRay {
             orig: (o + V3::new(0.13, 0.07, -0.11)).to_array(),
             dir,
             t_max,
+            t_min,
+            exclude,
             any_hit,
             id,
-        }
-    })
+        })
 }
 
 proptest! {
@@ -156,11 +169,47 @@ fn rays_with_nan_or_infinite_components_end_as_misses_like_the_software() {
                 t_max,
                 any_hit,
                 id: 7,
+                ..UnitRay::default()
             };
             let got = unit.trace(&r, &mut UnitCounters::default()).unwrap();
             assert_eq!(got, brute_force(&fp32(), &tris, &casts, &r), "{r:?}");
         }
     }
+}
+
+#[test]
+fn t_min_and_the_excluded_triangle_remove_hits_and_exclusion_saves_its_test() {
+    // Two stacked triangles under the ray, at t = 1 (index 0) and t = 2 (index 1).
+    let tri = |z: f32| WorldTriangle {
+        verts: [
+            V3::new(0.0, 0.0, z),
+            V3::new(1.0, 0.0, z),
+            V3::new(0.0, 1.0, z),
+        ],
+        normals: [V3::new(0.0, 0.0, 1.0); 3],
+        object: 0,
+    };
+    let (unit, _) = unit(&[tri(0.0), tri(-1.0)], fp32(), 64);
+    let trace = |t_min, exclude, any_hit| {
+        let r = UnitRay {
+            orig: [0.25, 0.25, 1.0],
+            dir: [0.0, 0.0, -1.0],
+            t_max: NO_BOUND,
+            t_min,
+            exclude,
+            any_hit,
+            id: 0,
+        };
+        let mut counters = UnitCounters::default();
+        let hit = unit.trace(&r, &mut counters).unwrap().map(|h| h.triangle);
+        (hit, counters.mt_tests)
+    };
+    assert_eq!(trace(0.0, None, false), (Some(0), 2));
+    assert_eq!(trace(1.0, None, false).0, Some(1), "t = t_min is a miss");
+    assert_eq!(trace(2.0, None, false).0, None);
+    assert_eq!(trace(0.0, Some(0), false), (Some(1), 1));
+    assert_eq!(trace(0.0, Some(1), true).0, Some(0));
+    assert_eq!(trace(1.5, Some(1), true).0, None);
 }
 
 #[test]
@@ -188,6 +237,7 @@ fn a_stack_too_small_for_the_walk_is_an_error_naming_the_ray_and_sizes() {
         t_max: NO_BOUND,
         any_hit: false,
         id: 42,
+        ..UnitRay::default()
     };
     let e = unit.trace(&r, &mut UnitCounters::default()).unwrap_err();
     assert!(matches!(
@@ -224,6 +274,7 @@ fn fp32_renders_of_the_builtin_scenes_equal_the_software() {
     let engine = TraversalEngine {
         format: fp32(),
         stack_depth: 64,
+        scale_exp: 0,
         timing: None,
     };
     for name in sw_renderer::scene::builtin::names() {
@@ -247,6 +298,7 @@ fn fp32_renders_of_the_thesis_scenes_equal_the_software() {
     let engine = TraversalEngine {
         format: fp32(),
         stack_depth: 64,
+        scale_exp: 0,
         timing: None,
     };
     for name in thesis_scenes::SCENE_DIRS {
@@ -266,6 +318,7 @@ fn a_render_whose_stack_overflows_fails_with_the_engines_error() {
     let engine = TraversalEngine {
         format: fp32(),
         stack_depth: 2,
+        scale_exp: 0,
         timing: None,
     };
     let opts = RenderOptions {
@@ -276,4 +329,35 @@ fn a_render_whose_stack_overflows_fails_with_the_engines_error() {
     let e = render(&scene, &engine, &opts).unwrap_err();
     assert!(matches!(e, RenderError::Engine { .. }));
     assert!(e.to_string().contains("traversal stack overflow"), "{e}");
+}
+
+/// Format-aware spawning (t_min, exclusion) and scaling answer the same in the unit's model
+/// as through the software BVH and the model intersector: both reduce with `hit::Window`.
+#[test]
+fn format_aware_renders_equal_the_bvh_path_in_a_narrow_scaled_format() {
+    let fp16 = lookup("fp16").unwrap();
+    for name in ["simple_plane", "glasses", "utah_teapot"] {
+        let scene = Scene::load(name).unwrap();
+        let scale_exp = auto_scale_exp(&fp16, &SceneRange::of(&scene).unwrap());
+        let opts = RenderOptions {
+            width: Some(48),
+            height: Some(27),
+            spawn: spawn_policy(&fp16, scale_exp),
+            ..Default::default()
+        };
+        let unit = TraversalEngine {
+            format: fp16,
+            stack_depth: 64,
+            scale_exp,
+            timing: None,
+        };
+        let bvh = ModelIntersector {
+            format: fp16,
+            scale_exp,
+        };
+        let a = render(&scene, &unit, &opts).unwrap().image;
+        let b = render(&scene, &bvh, &opts).unwrap().image;
+        let diff = compare(&a, &b).unwrap();
+        assert_eq!(diff.differing_pixels, 0, "{name}: {diff:?}");
+    }
 }

@@ -115,9 +115,7 @@ pub fn run(config: &SweepConfig, layout: &Layout, point: &Point) -> Result<Point
 fn cosimulate(config: &SweepConfig, layout: &Layout, point: &Point) -> Result<Vec<CosimRecord>> {
     let hw = HwIntersector::new(&point.top_config(), Mode::Stream)
         .with_context(|| format!("building the Verilated model of {}", point.id()))?;
-    let model = ModelIntersector {
-        format: point.format.format(),
-    };
+    let model = ModelIntersector::new(point.format.format());
     let mut records = Vec::new();
     for scene in &config.cosim_scenes {
         let before = hw.stats();

@@ -56,9 +56,7 @@ impl QualityResult {
 }
 
 pub fn run(config: &SweepConfig, layout: &Layout, format: &str) -> Result<QualityResult> {
-    let isect = ModelIntersector {
-        format: hw_model::lookup(format)?,
-    };
+    let isect = ModelIntersector::new(hw_model::lookup(format)?);
     let mut scenes = Vec::new();
     let mut grid_rows = Vec::new();
     for scene in &config.scenes {

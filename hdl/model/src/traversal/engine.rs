@@ -12,12 +12,13 @@ use crate::format::Format;
 
 /// Renders through [`TraversalModel`]: the scene image is written from the renderer's BVH,
 /// loaded through its word stream (so the loader's checks run), and every wavefront's rays
-/// are answered by the model; with `timing`, each wavefront is also timed by the schedule
-/// model (`CastStats::cycles`).
+/// are answered by the model, its Möller-Trumbore queries scaled by 2^`scale_exp`; with
+/// `timing`, each wavefront is also timed by the schedule model (`CastStats::cycles`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TraversalEngine {
     pub format: Format,
     pub stack_depth: usize,
+    pub scale_exp: i32,
     pub timing: Option<UnitTiming>,
 }
 
@@ -37,7 +38,7 @@ impl RayEngine for TraversalEngine {
     ) -> Result<Box<dyn RayCaster + 'a>, EngineError> {
         let image = SceneImage::from_words(&SceneImage::new(scene).to_words())?;
         Ok(Box::new(Caster {
-            model: TraversalModel::new(self.format, self.stack_depth, image),
+            model: TraversalModel::new(self.format, self.stack_depth, image).scaled(self.scale_exp),
             timing: self.timing,
         }))
     }
@@ -58,6 +59,8 @@ impl RayCaster for Caster {
                 orig: ray.orig.to_array(),
                 dir: ray.dir.to_array(),
                 t_max: ray.bound,
+                t_min: ray.t_min,
+                exclude: ray.exclude,
                 any_hit: ray.shadow,
                 id: id as u32,
             };

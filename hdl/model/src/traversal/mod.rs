@@ -10,9 +10,11 @@
 //! is skipped. A leaf's triangles go to the Möller-Trumbore test in the configured format
 //! ([`crate::mt_model`]), all of a leaf's before its answers are looked at (as the unit
 //! issues them to its lanes); a shadow (any-hit) ray skips triangles that cast no shadow and
-//! stops after the first leaf with a counting hit. A closest-hit ray keeps the reference's reduction
-//! (`sw_renderer::hit`: nearest t, then the lower global index; a hit counts if
-//! `t < bound` and `t < FLT_MAX`) and, once it has a hit, culls boxes with the far end of
+//! stops after the first leaf with a counting hit. A ray's excluded triangle (the one a
+//! spawned ray leaves) costs no Möller-Trumbore test. A closest-hit ray keeps the reference's
+//! reduction (`sw_renderer::hit`: nearest t, then the lower global index; a hit counts if it
+//! is in the ray's window `t_min < t < t_max`, `t < FLT_MAX`) and, once it has a hit, culls
+//! boxes with the far end of
 //! `t.next_up()` so that an equally near hit with a lower index is still found. Box tests are
 //! conservative, so in fp32 every answer equals the software renderer's.
 
@@ -22,13 +24,13 @@ pub mod schedule;
 
 pub use engine::TraversalEngine;
 
-use sw_renderer::hit::{nearer, remaining_bound, Hit, NO_BOUND};
+use sw_renderer::hit::{nearer, remaining_bound, Hit, Window};
 use sw_renderer::intersect::MtQuery;
 use sw_renderer::scene_image::{ImageTriangle, Link, SceneImage};
 use thiserror::Error;
 
 use crate::format::Format;
-use crate::mt::mt_model;
+use crate::mt::mt_model_scaled;
 use box_test::{box_test, ray_setup, t_hi, BoxResult};
 
 /// Entries of a ray's traversal stack unless configured otherwise: a walk pushes at most one
@@ -48,8 +50,12 @@ pub const HIT_WORDS: usize = 6;
 pub struct UnitRay {
     pub orig: [f32; 3],
     pub dir: [f32; 3],
-    /// Hits count only below this distance.
+    /// Hits count only below this distance …
     pub t_max: f32,
+    /// … and beyond this one (0: every hit, as the thesis).
+    pub t_min: f32,
+    /// A triangle (global index) that never counts: the one a spawned ray leaves.
+    pub exclude: Option<u32>,
     /// Any-hit (a shadow ray: skips non-shadow-casting triangles, stops at the first hit);
     /// else closest-hit.
     pub any_hit: bool,
@@ -94,6 +100,8 @@ pub enum TraversalError {
 #[derive(Clone, Debug)]
 pub struct TraversalModel {
     format: Format,
+    /// Möller-Trumbore sees every coordinate times 2^scale_exp (box tests stay fp32).
+    scale_exp: i32,
     stack_depth: usize,
     image: SceneImage,
 }
@@ -104,9 +112,16 @@ impl TraversalModel {
     pub fn new(format: Format, stack_depth: usize, image: SceneImage) -> TraversalModel {
         TraversalModel {
             format,
+            scale_exp: 0,
             stack_depth,
             image,
         }
+    }
+
+    /// The unit with its Möller-Trumbore queries scaled by 2^`scale_exp`
+    /// (`crate::mt::scale_query`).
+    pub fn scaled(self, scale_exp: i32) -> TraversalModel {
+        TraversalModel { scale_exp, ..self }
     }
 
     pub fn image(&self) -> &SceneImage {
@@ -144,6 +159,11 @@ impl TraversalModel {
         if entered.enters[0] {
             stack.push((img.root, entered.near[0]));
         }
+        let window = Window {
+            t_min: ray.t_min,
+            bound: ray.t_max,
+            exclude: ray.exclude,
+        };
         let mut best: Option<Hit> = None;
         while let Some((mut link, near)) = stack.pop() {
             step(Step::Pop);
@@ -155,7 +175,7 @@ impl TraversalModel {
                 if link.is_leaf() {
                     let leaf = link.first as usize..(link.first + link.count) as usize;
                     let tested = counters.mt_tests;
-                    let answer = self.leaf(ray, &img.triangles[leaf], counters, &mut best);
+                    let answer = self.leaf(ray, &window, &img.triangles[leaf], counters, &mut best);
                     step(Step::Leaf((counters.mt_tests - tested) as u32));
                     match answer {
                         Leaf::Occluded(hit) => return Ok(Some(hit)),
@@ -223,18 +243,20 @@ impl TraversalModel {
     fn leaf(
         &self,
         ray: &UnitRay,
+        window: &Window,
         triangles: &[ImageTriangle],
         counters: &mut UnitCounters,
         best: &mut Option<Hit>,
     ) -> Leaf {
         let mut answer = Leaf::Same;
         for tri in triangles {
-            if ray.any_hit && !tri.casts_shadow {
+            if (ray.any_hit && !tri.casts_shadow) || ray.exclude == Some(tri.index) {
                 continue;
             }
             counters.mt_tests += 1;
-            let r = mt_model(
+            let r = mt_model_scaled(
                 &self.format,
+                self.scale_exp,
                 &MtQuery {
                     orig: ray.orig,
                     dir: ray.dir,
@@ -245,7 +267,7 @@ impl TraversalModel {
             );
             // The fp32 words compare as IEEE floats: t is never subnormal (the datapath
             // flushes), so this is the hardware's comparison too.
-            if !(r.hit && r.t < ray.t_max && r.t < NO_BOUND) {
+            if !window.counts(tri.index, &r) {
                 continue;
             }
             let hit = Hit {

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# PSNR of model-engine renders of the thesis' scenes against their f32 renders, per format,
+# spawn policy and scaling (docs/precision.md). Prints a Markdown table; one row per
+# format × policy × scaling, one column per scene and the worst.
+#
+#   scripts/precision_table.sh [FORMATS...]
+#
+# Environment: RTFPGA (the binary, default target/release/rtfpga), RTFPGA_THESIS_SCENES
+# (default ../shared/scenes/thesis), SIZE (default 320x180), OUT (work directory, default a
+# temporary one), ENGINE (model or traversal, default model).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+bin=${RTFPGA:-$root/target/release/rtfpga}
+scenes_dir=${RTFPGA_THESIS_SCENES:-$root/../shared/scenes/thesis}
+size=${SIZE:-320x180}
+engine=${ENGINE:-model}
+out=${OUT:-$(mktemp -d)}
+w=${size%x*}
+h=${size#*x}
+formats=("$@")
+if [ ${#formats[@]} -eq 0 ]; then
+    formats=(fp32 fp24 e8m14 e8m12 bf16 fp16 e5m14 e6m13 fx32_16 'fx<24,12>')
+fi
+scenes=(Glass_pen_scene Simple_plane_scene Glasses_scene Glasses_point_scene
+    Simple_plane2_scene Utah_teapot_scene All_materials_scene)
+psnr() { "$bin" compare "$1" "$2" | tail -1 | sed 's/psnr_db=//'; }
+render() { "$bin" render --scene "$scenes_dir/$1" --width "$w" --height "$h" --quiet --out "$2" "${@:3}" >/dev/null; }
+
+for s in "${scenes[@]}"; do
+    [ -f "$out/ref_$s.png" ] || render "$s" "$out/ref_$s.png" --engine f32
+done
+printf '| format | spawn | scale |'
+for s in "${scenes[@]}"; do printf ' %s |' "${s%_scene}"; done
+printf ' worst |\n|---|---|---|'
+for _ in "${scenes[@]}"; do printf -- '---|'; done
+printf -- '---|\n'
+for f in "${formats[@]}"; do
+    for spawn in thesis format-aware; do
+        for scale in none auto; do
+            printf '| %s | %s | %s |' "$f" "$spawn" "$scale"
+            worst=inf
+            for s in "${scenes[@]}"; do
+                img="$out/${f}_${spawn}_${scale}_$s.png"
+                # A format (fx<24,12>) may be spelled with characters a file name avoids.
+                img=${img//[<>,]/_}
+                render "$s" "$img" --engine "$engine" --format "$f" --spawn "$spawn" --scale "$scale"
+                p=$(psnr "$out/ref_$s.png" "$img")
+                printf ' %s |' "$p"
+                worst=$(awk -v a="$worst" -v b="$p" 'BEGIN { if (a == "inf") print b; else if (b == "inf") print a; else print (b + 0 < a + 0) ? b : a }')
+            done
+            printf ' %s |\n' "$worst"
+        done
+    done
+done
