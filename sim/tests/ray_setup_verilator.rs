@@ -3,8 +3,9 @@
 //! with `valid_out` and the tag checked to follow `valid_in` and `tag_in` by
 //! `latency(depth)`. The rust-hdl simulation of the same blocks (hdl/tests/ray_setup.rs)
 //! carries the hand-picked special cases; this one runs many random rays on the generated
-//! Verilog. Default: 50k rays at depth 1 and at the maximum depth, 50k bounds through the far
-//! end at the maximum; 500k rays at depths 0 and max:
+//! Verilog. Default: 50k rays at the maximum depth and 50k bounds through the far end at the
+//! maximum (just under 60 s from a cold Verilator cache on 2 cores: compiling the ray setup's
+//! model dominates); 50k rays at depth 1, 500k at depths 0 and max and 500k bounds at depth 0:
 //! `cargo test --release -p sim --test ray_setup_verilator -- --ignored`.
 
 use hdl::traversal::far_end::{self, far_end_verilog};
@@ -207,11 +208,6 @@ fn run_far_end(depth: usize, n: usize, seed: u64) {
 }
 
 #[test]
-fn ray_setup_at_depth_1_matches_the_model() {
-    run(1, &rays(50_000, 1));
-}
-
-#[test]
 fn ray_setup_at_max_depth_matches_the_model() {
     run(max_depth(), &rays(50_000, 2));
 }
@@ -219,6 +215,13 @@ fn ray_setup_at_max_depth_matches_the_model() {
 #[test]
 fn far_end_at_max_depth_matches_the_model() {
     run_far_end(far_end::max_depth(), 50_000, 3);
+}
+
+/// `cargo test --release -p sim --test ray_setup_verilator -- --ignored`
+#[test]
+#[ignore]
+fn ray_setup_at_depth_1_matches_the_model() {
+    run(1, &rays(50_000, 1));
 }
 
 /// `cargo test --release -p sim --test ray_setup_verilator -- --ignored`

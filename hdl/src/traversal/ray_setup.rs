@@ -24,7 +24,8 @@
 //!
 //! Latency at depth 0..=5: 0, 5, 7, 9, 11, 13 (5 = [`max_depth`]). yosys xc7 (Yosys 0.23,
 //! `cargo test --release -p hdl --test ray_setup -- --ignored --nocapture ray_setup_resources`):
-//! RESOURCES.
+//! depth 1: 8598 LUT, 1137 FF, 148 SRL, 19 DSP48E1, logic depth 37; depth 5: 5246 LUT,
+//! 2673 FF, 533 SRL, 19 DSP48E1, logic depth 8.
 //!
 //! Per-axis things are arrays indexed by the axis; the magnitude fold's running value before
 //! step k is `running[k]` (k = 3: the magnitude).
