@@ -406,29 +406,6 @@ fn a_wrong_far_end_model_is_caught() {
     check_far_with(1, &far_cases(), |bound, _| t_hi(bound, 0.0));
 }
 
-/// Runs `verilator --lint-only -Wall` (with the documented waivers) on generated Verilog.
-fn verilator_lint(verilog: &str) -> Result<(), String> {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("ray_setup.v");
-    std::fs::write(&path, verilog).unwrap();
-    let out = std::process::Command::new("verilator")
-        .args(["--lint-only", "-Wall"])
-        .args(hdl::verilog::VERILATOR_WAIVERS)
-        .args(["--top-module", hdl::verilog::TOP])
-        .arg(&path)
-        .output()
-        .expect("verilator is installed (make setup)");
-    if out.status.success() {
-        Ok(())
-    } else {
-        Err(String::from_utf8_lossy(&out.stderr)
-            .lines()
-            .take(20)
-            .collect::<Vec<_>>()
-            .join("\n"))
-    }
-}
-
 #[test]
 fn ray_setup_verilog_passes_verilator_lint() {
     for depth in [0, 1, max_depth()] {
@@ -449,7 +426,7 @@ fn ray_setup_verilog_passes_verilator_lint() {
         ] {
             assert!(v.contains(port), "depth {depth}: no port {port}");
         }
-        if let Err(e) = verilator_lint(&v) {
+        if let Err(e) = hdl::verilog::verilator_lint(&v) {
             panic!("depth {depth}: verilator lint failed:\n{e}");
         }
     }
@@ -462,7 +439,7 @@ fn far_end_verilog_passes_verilator_lint() {
         for port in ["valid_in", "tag_in", "bound", "pad", "valid_out", "t_hi"] {
             assert!(v.contains(port), "depth {depth}: no port {port}");
         }
-        if let Err(e) = verilator_lint(&v) {
+        if let Err(e) = hdl::verilog::verilator_lint(&v) {
             panic!("depth {depth}: verilator lint failed:\n{e}");
         }
     }
