@@ -417,6 +417,115 @@ fn bad_spawn_and_scale_arguments_are_errors() {
 // ---- formats, verilog ------------------------------------------------------------------
 
 #[test]
+fn render_traversal_equals_the_software_image_and_reports_the_units_schedule() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("t.png");
+    let stdout = ok(&[
+        "render",
+        "--scene",
+        "glass_pen",
+        "--width",
+        "40",
+        "--height",
+        "24",
+        "--engine",
+        "traversal",
+        "--slots",
+        "16",
+        "--out",
+        s(&out),
+        "--quiet",
+    ]);
+    assert_eq!(
+        read_png(&out),
+        library_render("glass_pen", 40, 24, &F32Intersector),
+        "an fp32 traversal render is the software image"
+    );
+    let schedule = last_line(&stdout);
+    assert!(
+        schedule.starts_with("unit_schedule slots=16 lanes=1 "),
+        "{stdout}"
+    );
+    for key in [
+        "cycles_per_ray=",
+        "box_tests_per_ray=",
+        "mt_tests_per_ray=",
+        "box_utilisation=",
+        "lane_utilisation=",
+    ] {
+        assert!(schedule.contains(key), "no {key}: {stdout}");
+    }
+    // A format without hardware renders through the model but has no lane to time.
+    let stdout = ok(&[
+        "render",
+        "--scene",
+        "glass_pen",
+        "--width",
+        "8",
+        "--height",
+        "6",
+        "--engine",
+        "traversal",
+        "--format",
+        "e8m14",
+        "--out",
+        s(&out),
+        "--quiet",
+    ]);
+    assert!(!stdout.contains("unit_schedule"), "{stdout}");
+    fails(
+        &[
+            "render",
+            "--scene",
+            "glass_pen",
+            "--engine",
+            "traversal",
+            "--slots",
+            "0",
+            "--out",
+            s(&out),
+        ],
+        2,
+        &["--slots"],
+    );
+}
+
+#[test]
+fn scene_image_writes_the_words_it_reports() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("teapot.rtsi");
+    let stdout = ok(&["scene-image", "--scene", "utah_teapot", "--out", s(&out)]);
+    let bytes = std::fs::read(&out).unwrap();
+    assert!(
+        stdout.contains(&format!("bytes={}", bytes.len())) && stdout.contains("triangles=6322"),
+        "{stdout}"
+    );
+    let words: Vec<u32> = bytes
+        .chunks_exact(4)
+        .map(|w| u32::from_le_bytes(w.try_into().unwrap()))
+        .collect();
+    let image = sw_renderer::scene_image::SceneImage::from_words(&words).unwrap();
+    assert_eq!(image.triangles.len(), 6322);
+}
+
+#[test]
+fn project_traversal_takes_its_cycles_from_the_schedule_model() {
+    fails(
+        &[
+            "project",
+            "--scene",
+            "simple_plane",
+            "--design",
+            "traversal",
+            "--cycles-per-test",
+            "3",
+        ],
+        1,
+        &["--cycles-per-test", "schedule model"],
+    );
+}
+
+#[test]
 fn formats_lists_every_catalogue_format() {
     let out = ok(&["formats"]);
     let rows: Vec<&str> = out
