@@ -63,6 +63,17 @@ pub struct UnitRay {
     pub id: u32,
 }
 
+impl UnitRay {
+    /// Which hits count (the renderer's rule, `sw_renderer::hit::Window`).
+    pub fn window(&self) -> Window {
+        Window {
+            t_min: self.t_min,
+            bound: self.t_max,
+            exclude: self.exclude,
+        }
+    }
+}
+
 /// Work the unit did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct UnitCounters {
@@ -159,11 +170,7 @@ impl TraversalModel {
         if entered.enters[0] {
             stack.push((img.root, entered.near[0]));
         }
-        let window = Window {
-            t_min: ray.t_min,
-            bound: ray.t_max,
-            exclude: ray.exclude,
-        };
+        let window = ray.window();
         let mut best: Option<Hit> = None;
         while let Some((mut link, near)) = stack.pop() {
             step(Step::Pop);
