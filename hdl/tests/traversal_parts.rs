@@ -1,14 +1,15 @@
-//! The traversal unit's control parts (slot scheduler, slot stacks) as Verilog: generated and
-//! through Verilator's lint. Their behaviour is tested in rust-hdl's simulator beside them
-//! (`hdl/src/traversal/{arbiter,stack}.rs`).
+//! The traversal unit's control parts (slot scheduler, slot stacks, hit update) as Verilog:
+//! generated and through Verilator's lint. Their behaviour is tested in rust-hdl's simulator
+//! beside them (`hdl/src/traversal/{arbiter,stack,hit_update}.rs`).
 
 use hdl::traversal::arbiter::RoundRobin;
+use hdl::traversal::hit_update::HitUpdate;
 use hdl::traversal::stack::SlotStacks;
 use hdl::verilog::verilator_lint;
 use rust_hdl::prelude::*;
 
 #[test]
-fn slot_scheduler_and_stacks_pass_verilator_lint() {
+fn control_parts_pass_verilator_lint() {
     let mut arbiter = RoundRobin::<32>::default();
     arbiter.connect_all();
     let v = generate_verilog(&arbiter);
@@ -21,4 +22,10 @@ fn slot_scheduler_and_stacks_pass_verilator_lint() {
     let v = generate_verilog(&stacks);
     assert!(v.contains("overflow_slot") && v.contains("pop_data"));
     verilator_lint(&v).unwrap_or_else(|e| panic!("slot stacks: {e}"));
+
+    let mut update = HitUpdate::default();
+    update.connect_all();
+    let v = generate_verilog(&update);
+    assert!(v.contains("closer") && v.contains("best_triangle"));
+    verilator_lint(&v).unwrap_or_else(|e| panic!("hit update: {e}"));
 }

@@ -4,6 +4,7 @@
 pub mod arbiter;
 pub mod box_test;
 pub mod far_end;
+pub mod hit_update;
 pub mod ray_setup;
 pub mod stack;
 pub mod timing;
