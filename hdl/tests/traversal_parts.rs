@@ -29,3 +29,32 @@ fn control_parts_pass_verilator_lint() {
     assert!(v.contains("closer") && v.contains("best_triangle"));
     verilator_lint(&v).unwrap_or_else(|e| panic!("hit update: {e}"));
 }
+
+/// yosys xc7 resources and register-to-register logic depth of the control parts at the
+/// default 32 slots:
+/// `cargo test --release -p hdl --test traversal_parts -- --ignored --nocapture control_parts_resources`
+#[test]
+#[ignore]
+fn control_parts_resources() {
+    use hdl::synth::{synthesize, SynthOptions, SynthReport};
+    fn verilog<B: Block>(mut block: B) -> String {
+        block.connect_all();
+        generate_verilog(&block)
+    }
+    let parts: [(&str, String); 3] = [
+        (
+            "round robin, 32 slots",
+            verilog(RoundRobin::<32>::default()),
+        ),
+        (
+            "slot stacks, 32 × 32 entries of 64 bits",
+            verilog(SlotStacks::<32, 5, 6, 10, 64>::new(32)),
+        ),
+        ("hit update", verilog(HitUpdate::default())),
+    ];
+    println!("{}", SynthReport::markdown_header());
+    for (name, v) in parts {
+        let report = synthesize(&v, hdl::verilog::TOP, &SynthOptions::default()).unwrap();
+        println!("{}", report.markdown_row(name));
+    }
+}
