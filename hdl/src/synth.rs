@@ -213,6 +213,18 @@ fn read(path: &Path) -> Result<String, SynthError> {
     })
 }
 
+/// A Markdown table of the resources of several designs (label, Verilog with top module
+/// [`crate::verilog::TOP`]), each synthesised with the default options.
+pub fn markdown_table(designs: &[(String, String)]) -> Result<String, SynthError> {
+    let mut table = SynthReport::markdown_header();
+    for (label, verilog) in designs {
+        let report = synthesize(verilog, crate::verilog::TOP, &SynthOptions::default())?;
+        table.push('\n');
+        table.push_str(&report.markdown_row(label));
+    }
+    Ok(table)
+}
+
 /// Synthesises `verilog` (top module `top`) for xc7 and reports its resources and logic depth.
 pub fn synthesize(
     verilog: &str,

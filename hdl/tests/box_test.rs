@@ -347,21 +347,11 @@ fn box_test_verilog_passes_verilator_lint() {
 #[test]
 #[ignore]
 fn box_test_resources() {
-    use hdl::synth::{synthesize, SynthOptions, SynthReport};
-    println!("{}", SynthReport::markdown_header());
-    for depth in [1, max_depth()] {
-        let report = synthesize(
-            &box_test_verilog(depth),
-            hdl::verilog::TOP,
-            &SynthOptions::default(),
+    let designs = [1, max_depth()].map(|depth| {
+        (
+            format!("box test depth {depth} (latency {})", latency(depth)),
+            box_test_verilog(depth),
         )
-        .unwrap();
-        println!(
-            "{}",
-            report.markdown_row(&format!(
-                "box test depth {depth} (latency {})",
-                latency(depth)
-            ))
-        );
-    }
+    });
+    println!("{}", hdl::synth::markdown_table(&designs).unwrap());
 }

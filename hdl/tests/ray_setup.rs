@@ -450,21 +450,11 @@ fn far_end_verilog_passes_verilator_lint() {
 #[test]
 #[ignore]
 fn ray_setup_resources() {
-    use hdl::synth::{synthesize, SynthOptions, SynthReport};
-    println!("{}", SynthReport::markdown_header());
-    for depth in [1, max_depth()] {
-        let report = synthesize(
-            &ray_setup_verilog(depth),
-            hdl::verilog::TOP,
-            &SynthOptions::default(),
+    let designs = [1, max_depth()].map(|depth| {
+        (
+            format!("ray setup depth {depth} (latency {})", latency(depth)),
+            ray_setup_verilog(depth),
         )
-        .unwrap();
-        println!(
-            "{}",
-            report.markdown_row(&format!(
-                "ray setup depth {depth} (latency {})",
-                latency(depth)
-            ))
-        );
-    }
+    });
+    println!("{}", hdl::synth::markdown_table(&designs).unwrap());
 }

@@ -36,25 +36,20 @@ fn control_parts_pass_verilator_lint() {
 #[test]
 #[ignore]
 fn control_parts_resources() {
-    use hdl::synth::{synthesize, SynthOptions, SynthReport};
     fn verilog<B: Block>(mut block: B) -> String {
         block.connect_all();
         generate_verilog(&block)
     }
-    let parts: [(&str, String); 3] = [
+    let parts = [
         (
-            "round robin, 32 slots",
+            "round robin, 32 slots".to_string(),
             verilog(RoundRobin::<32>::default()),
         ),
         (
-            "slot stacks, 32 × 32 entries of 64 bits",
+            "slot stacks, 32 × 32 entries of 64 bits".to_string(),
             verilog(SlotStacks::<32, 5, 6, 10, 64>::new(32)),
         ),
-        ("hit update", verilog(HitUpdate::default())),
+        ("hit update".to_string(), verilog(HitUpdate::default())),
     ];
-    println!("{}", SynthReport::markdown_header());
-    for (name, v) in parts {
-        let report = synthesize(&v, hdl::verilog::TOP, &SynthOptions::default()).unwrap();
-        println!("{}", report.markdown_row(name));
-    }
+    println!("{}", hdl::synth::markdown_table(&parts).unwrap());
 }
