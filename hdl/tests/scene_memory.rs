@@ -222,6 +222,10 @@ fn with(words: &[u32], i: usize, value: u32) -> Vec<u32> {
     w
 }
 
+/// A malformed image: its words, the beat with `tlast`, the error, its word and value, and
+/// words of the driver's message.
+type Case = (Vec<u32>, usize, LoadError, usize, u32, &'static str);
+
 #[test]
 fn malformed_images_are_refused_with_their_code_word_and_value() {
     let mesh = mesh();
@@ -239,8 +243,7 @@ fn malformed_images_are_refused_with_their_code_word_and_value() {
         .find(|&(k, c)| mesh[node(k, 13 + 2 * c)] != 0)
         .unwrap();
     let leaf_first = mesh[node(leaf.0, 12 + 2 * leaf.1)];
-    // (image, tlast at, error, word, value, words of the message)
-    let cases: Vec<(Vec<u32>, usize, LoadError, usize, u32, &str)> = vec![
+    let cases: Vec<Case> = vec![
         (
             with(&mesh, 0, 0xDEAD),
             mesh.len() - 1,
@@ -422,4 +425,47 @@ fn the_memory_passes_verilator_lint() {
     let v = generate_verilog(&uut);
     assert!(v.contains("s_tready") && v.contains("error_code"));
     verilator_lint(&v).unwrap_or_else(|e| panic!("scene memory: {e}"));
+}
+
+/// yosys xc7 resources of three capacities (block RAM primitives by kind, LUT, FF, logic
+/// depth): `cargo test --release -p hdl --test scene_memory -- --ignored --nocapture
+/// scene_memory_resources`.
+#[test]
+#[ignore]
+fn scene_memory_resources() {
+    use hdl::synth::{synthesize, SynthOptions};
+    use hdl::traversal::scene_memory::{SceneMemory11x12, SceneMemory12x13, SceneMemory9x10};
+    fn verilog<T: Block>(mut uut: T) -> String {
+        uut.connect_all();
+        generate_verilog(&uut)
+    }
+    let designs = [
+        ((9, 10), verilog(SceneMemory9x10::new())),
+        ((11, 12), verilog(SceneMemory11x12::new())),
+        ((12, 13), verilog(SceneMemory12x13::new())),
+    ];
+    println!(
+        "| address bits | nodes | triangles | RAMB36 | RAMB18 | LUT | LUTRAM | FF | logic depth |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for ((nb, tb), v) in designs {
+        let start = std::time::Instant::now();
+        let r = synthesize(&v, hdl::verilog::TOP, &SynthOptions::default()).unwrap();
+        let cell = |c: &str| r.cells.get(c).copied().unwrap_or(0);
+        let (nodes, triangles) = capacity_for(nb, tb);
+        println!(
+            "| {nb}/{tb} | {nodes} | {triangles} | {} | {} | {} | {} | {} | {} |",
+            cell("RAMB36E1"),
+            cell("RAMB18E1"),
+            r.lut,
+            r.lutram,
+            r.ff,
+            r.logic_depth
+        );
+        eprintln!(
+            "{nb}/{tb}: {:.0} s, cells {:?}",
+            start.elapsed().as_secs_f64(),
+            r.cells
+        );
+    }
 }
