@@ -1,10 +1,11 @@
 //! The scene memory Verilated: the thesis' Glasses scene image (425 nodes, 720 triangles,
 //! 15,456 words) streamed with random `tvalid` gaps into a memory of 512 nodes and 1,024
 //! triangles, then every node and triangle read back through both ports == the image's words;
-//! a refused image (a flag word) and a reload in the same instance. The rust-hdl simulation
+//! a refused image (a flag word) and a reload in the same instance. Utah teapot into 4,096
+//! nodes and 8,192 triangles likewise with `-- --ignored`. The rust-hdl simulation
 //! (hdl/tests/scene_memory.rs) carries the malformed images one by one.
 
-use hdl::traversal::scene_memory::SceneMemory9x10;
+use hdl::traversal::scene_memory::{SceneMemory12x13, SceneMemory9x10};
 use hdl::traversal::scene_memory_driver::{
     check_before_load, status_result, LoadStatus, MemoryConfig,
 };
@@ -15,11 +16,6 @@ use sw_renderer::scene::Scene;
 use sw_renderer::scene_image::{SceneImage, HEADER_WORDS, NODE_WORDS, TRIANGLE_WORDS};
 use sw_renderer::thesis_scenes;
 use sw_renderer::trace::PreparedScene;
-
-const CONFIG: MemoryConfig = MemoryConfig {
-    node_bits: 9,
-    triangle_bits: 10,
-};
 
 /// Cycles of input values by port name, run at once, outputs looked up by name.
 struct Run<'a> {
@@ -148,17 +144,17 @@ fn read_back(run: &mut Run, words: &[u32]) {
     }
 }
 
-#[test]
-fn glasses_loads_with_gaps_and_reads_back_word_for_word() {
-    let Some(dir) = thesis_scenes::for_test("scene_memory_verilator::glasses") else {
+/// Loads the thesis scene `name` (its image `bytes` long) into the Verilated `uut` of
+/// `config` with gaps, reads it back, has a flag word refused, reloads and reads it back.
+fn load_and_read_back<T: Block>(mut uut: T, config: MemoryConfig, name: &str, bytes: usize) {
+    let Some(dir) = thesis_scenes::for_test(&format!("scene_memory_verilator::{name}")) else {
         return;
     };
-    let scene = Scene::load(dir.join("Glasses_scene").to_str().unwrap()).unwrap();
+    let scene = Scene::load(dir.join(name).to_str().unwrap()).unwrap();
     let words = SceneImage::new(&PreparedScene::new(&scene).unwrap()).to_words();
-    assert_eq!(words.len() * 4, 61_824);
-    check_before_load(&words, CONFIG).unwrap();
+    assert_eq!(words.len() * 4, bytes);
+    check_before_load(&words, config).unwrap();
 
-    let mut uut = SceneMemory9x10::new();
     uut.connect_all();
     let verilog = generate_verilog(&uut);
     hdl::verilog::verilator_lint(&verilog).unwrap();
@@ -168,7 +164,7 @@ fn glasses_loads_with_gaps_and_reads_back_word_for_word() {
     let mut rng = StdRng::seed_from_u64(7);
 
     let status = load(&mut run, &words, &mut rng);
-    status_result(&status, &words, CONFIG).unwrap();
+    status_result(&status, &words, config).unwrap();
     read_back(&mut run, &words);
 
     // A flag word of 2 in the last triangle: refused there, the scene is not loaded.
@@ -180,14 +176,41 @@ fn glasses_loads_with_gaps_and_reads_back_word_for_word() {
         !status.loaded && status.error_word as usize == bad_at,
         "{status:?}"
     );
-    let err = status_result(&status, &bad, CONFIG).unwrap_err();
+    let err = status_result(&status, &bad, config).unwrap_err();
+    let last = words[3] - 1;
     assert!(
         err.to_string()
-            .contains("triangle record 719 word 10: flags"),
+            .contains(&format!("triangle record {last} word 10: flags")),
         "{err}"
     );
 
     let status = load(&mut run, &words, &mut rng);
-    status_result(&status, &words, CONFIG).unwrap();
+    status_result(&status, &words, config).unwrap();
     read_back(&mut run, &words);
+}
+
+#[test]
+fn glasses_loads_with_gaps_and_reads_back_word_for_word() {
+    let config = MemoryConfig {
+        node_bits: 9,
+        triangle_bits: 10,
+    };
+    load_and_read_back(SceneMemory9x10::new(), config, "Glasses_scene", 61_824);
+}
+
+/// 4,096 nodes and 8,192 triangles:
+/// `cargo test --release -p sim --test scene_memory_verilator -- --ignored`.
+#[test]
+#[ignore]
+fn utah_teapot_loads_with_gaps_and_reads_back_word_for_word() {
+    let config = MemoryConfig {
+        node_bits: 12,
+        triangle_bits: 13,
+    };
+    load_and_read_back(
+        SceneMemory12x13::new(),
+        config,
+        "Utah_teapot_scene",
+        551_584,
+    );
 }
