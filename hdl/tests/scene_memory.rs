@@ -2,7 +2,8 @@
 //! mesh with its BVH) streamed with random `tvalid` gaps and read back through both ports
 //! word for word against the software image; each malformed image refused with its error code,
 //! word and value, the packet drained and `s_tready` low afterwards (never a hang); a new load
-//! replacing the scene. The Verilated memory loads a thesis scene
+//! replacing the scene; random one-word corruptions judged as the software loader judges them.
+//! The Verilated memory loads a thesis scene
 //! (sim/tests/scene_memory_verilator.rs).
 
 use hdl::traversal::scene_memory::{address_bits_for, capacity_for, LoadError, SceneMemory4x5};
@@ -376,6 +377,60 @@ fn malformed_images_are_refused_with_their_code_word_and_value() {
     let status = bench.load(&mesh, last(&mesh));
     status_result(&status, &mesh, CONFIG).unwrap();
     bench.read_back(&mesh);
+}
+
+/// One word of the mesh changed at random (random bits, one bit flipped, ±1, 0; every other
+/// case a word that is not a float), 60 times:
+/// the memory's verdict against the software loader's (`SceneImage::from_words`, the
+/// independent reference). What the memory refuses the software refuses; what the software
+/// refuses the memory refuses too, unless only the whole tree shows it (a node reached twice,
+/// a duplicate global index: the driver's checks); what both accept reads back.
+#[test]
+fn random_corruptions_get_the_software_loaders_verdict() {
+    use sw_renderer::scene_image::SceneImageError;
+    let mesh = mesh();
+    let mut rng = StdRng::seed_from_u64(6);
+    let mut bench = Bench::new(7, 0.0);
+    // Every word but the floats: header fields, links, indices, flags, reserved words.
+    let n = mesh[2] as usize;
+    let structure: Vec<usize> = (0..mesh.len())
+        .filter(|&i| match i.checked_sub(HEADER_WORDS) {
+            None => !(6..12).contains(&i),
+            Some(j) if j < NODE_WORDS * n => j % NODE_WORDS >= 12,
+            Some(j) => (j - NODE_WORDS * n) % TRIANGLE_WORDS >= 9,
+        })
+        .collect();
+    let (mut refused, mut whole_tree) = (0, 0);
+    for case in 0..60 {
+        let at = match case % 2 {
+            0 => rng.gen_range(0..mesh.len()),
+            _ => structure[rng.gen_range(0..structure.len())],
+        };
+        let old = mesh[at];
+        let value = match case % 5 {
+            0 => rng.gen(),
+            1 => old ^ (1 << rng.gen_range(0..32)),
+            2 => old.wrapping_add(1),
+            3 => old.wrapping_sub(1),
+            _ => 0,
+        };
+        let words = with(&mesh, at, value);
+        let software = SceneImage::from_words(&words);
+        let status = bench.load(&words, last(&words));
+        let hardware = status_result(&status, &words, CONFIG);
+        let what = format!("word {at}: {old:#x} -> {value:#x}: {software:?} / {hardware:?}");
+        match (&software, &hardware) {
+            (Ok(_), Ok(())) => bench.read_back(&words),
+            (
+                Err(SceneImageError::ReachedTwice { .. } | SceneImageError::DuplicateIndex { .. }),
+                Ok(()),
+            ) => whole_tree += 1,
+            (Err(_), Err(_)) => refused += 1,
+            _ => panic!("{what}"),
+        }
+    }
+    assert!(refused >= 20, "only {refused} of 60 corruptions refused");
+    eprintln!("{refused} refused by both, {whole_tree} left to the driver's whole-tree checks");
 }
 
 #[test]
