@@ -6,5 +6,7 @@ pub mod box_test;
 pub mod far_end;
 pub mod hit_update;
 pub mod ray_setup;
+pub mod scene_memory;
+pub mod scene_memory_driver;
 pub mod stack;
 pub mod timing;

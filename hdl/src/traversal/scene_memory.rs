@@ -1,0 +1,694 @@
+//! The traversal unit's scene memory: the scene image (`docs/scene-image.md`) in two block
+//! RAMs, one BVH node and one triangle per word, filled by a checking loader from an
+//! AXI4-Stream of 32-bit words.
+//!
+//! Records (bit 0 first; `LF`, `LC` link widths from [`link_first_bits`], [`link_count_bits`]):
+//! - node ([`node_record_bits`]): the children's padded boxes as the image orders them, min x0
+//!   x1 y0 y1 z0 z1 then max likewise (12 × 32 bits, bits 0–383), then child 0's link first
+//!   (`LF`) and count (`LC`), then child 1's. A link first is a node or triangle index, so `LF`
+//!   = max(node, triangle address bits); a count reaches the whole capacity, `LC` = triangle
+//!   address bits + 1. One read is what one box test needs.
+//! - triangle ([`triangle_record_bits`]): v0, v1, v2 (9 × 32 bits, bits 0–287), the casts-shadow
+//!   flag (bit 288), the global index (triangle address bits, from 289). The image's reserved
+//!   word is not stored. One read is what one Möller-Trumbore lane and its hit need.
+//!
+//! The loader (`start_load`, then the stream): the header, N nodes and T triangles in image
+//! order, each record written when its last word arrives. It checks what is cheap in
+//! hardware as the words pass: magic and version, N and T against this memory's capacity, every
+//! link (a node link below N, a leaf within T; the root too), each global index below T, flags
+//! other than bit 0, reserved words other than 0, and `tlast` exactly on the image's last word.
+//! The first failure stops the load with a [`LoadError`] code, the index of the word that showed
+//! it and that word. What needs the whole tree (a cycle or a shared subtree, duplicate global
+//! indices) is not checked here: the driver runs `SceneImage::from_words` before streaming
+//! (`scene_memory_driver`).
+//!
+//! `s_tready`: low while idle, loaded or failed (a stream sent without `start_load` waits); high
+//! every cycle from `start_load` until the beat with `tlast`, including after an error, whose
+//! remaining words are drained (dropped) so that a DMA never stalls on a refused image. It is
+//! low in the cycle of `start_load`, which restarts any load and replaces the scene.
+//!
+//! Read ports: an address in, the record's fields out one cycle later (block RAM read latency).
+//!
+//! yosys xc7 (`cargo test --release -p hdl --test scene_memory -- --ignored --nocapture
+//! scene_memory_resources`): 9/10 address bits 6 RAMB36 + 17 RAMB18, 406 LUT, 1,182 FF;
+//! 12/13 (4,096 nodes, 8,192 triangles) 117 RAMB36, 706 LUT, 1,199 FF (docs/scene-image.md).
+//!
+//! rust-hdl cannot derive widths: `NB`, `TB` address bits (capacity 2^NB nodes, 2^TB
+//! triangles, [`capacity_for`]), `LF`, `LC` link widths, `NW`, `TW` record widths, all checked
+//! by [`SceneMemory::new`]; the aliases below fix them per configuration.
+
+use rust_hdl::prelude::*;
+use sw_renderer::scene_image::{HEADER_WORDS, MAGIC, NODE_WORDS, TRIANGLE_WORDS, VERSION};
+
+/// Bits of the boxes in a node record (12 fp32 words).
+pub const BOX_BITS: usize = 12 * 32;
+/// Bits of the vertices in a triangle record (9 fp32 words).
+pub const VERTEX_BITS: usize = 9 * 32;
+/// Width of `error_code`.
+pub const ERROR_CODE_BITS: usize = 4;
+
+/// What the loader refused, as `error_code` (0: no error).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub enum LoadError {
+    /// Word 0 is not [`MAGIC`].
+    BadMagic = 1,
+    /// Word 1 is not [`VERSION`].
+    BadVersion = 2,
+    /// N (word 2) is beyond the node capacity.
+    TooManyNodes = 3,
+    /// T (word 3) is beyond the triangle capacity.
+    TooManyTriangles = 4,
+    /// A link's count is 0 and its first ≥ N (the word is the count; the first precedes it).
+    NodeLink = 5,
+    /// A link's first + count > T (the word is the count).
+    LeafLink = 6,
+    /// A triangle's global index ≥ T.
+    GlobalIndex = 7,
+    /// A triangle's flags have a bit other than bit 0.
+    BadFlags = 8,
+    /// A reserved word is not 0.
+    Reserved = 9,
+    /// `tlast` before the image's last word.
+    EarlyLast = 10,
+    /// The image's last word without `tlast` (the rest of the packet is drained).
+    MissingLast = 11,
+}
+
+impl LoadError {
+    pub const ALL: [LoadError; 11] = [
+        LoadError::BadMagic,
+        LoadError::BadVersion,
+        LoadError::TooManyNodes,
+        LoadError::TooManyTriangles,
+        LoadError::NodeLink,
+        LoadError::LeafLink,
+        LoadError::GlobalIndex,
+        LoadError::BadFlags,
+        LoadError::Reserved,
+        LoadError::EarlyLast,
+        LoadError::MissingLast,
+    ];
+
+    pub fn code(self) -> u64 {
+        self as u64
+    }
+
+    /// The error of an `error_code`, `None` for 0 or a code no error has.
+    pub fn from_code(code: u64) -> Option<LoadError> {
+        LoadError::ALL.into_iter().find(|e| e.code() == code)
+    }
+
+    fn constant(self) -> Constant<Bits<ERROR_CODE_BITS>> {
+        Constant::new(self.code().into())
+    }
+}
+
+/// Nodes and triangles a memory with these address bits holds.
+pub fn capacity_for(node_bits: usize, triangle_bits: usize) -> (usize, usize) {
+    (1 << node_bits, 1 << triangle_bits)
+}
+
+/// The smallest (node, triangle) address bits whose [`capacity_for`] holds `nodes` and
+/// `triangles` (at least 1 bit each: a RAM has an address).
+pub fn address_bits_for(nodes: usize, triangles: usize) -> (usize, usize) {
+    let bits = |n: usize| (n.max(2) - 1).ilog2() as usize + 1;
+    (bits(nodes), bits(triangles))
+}
+
+/// `LF`: a link's first is a node or a triangle index.
+pub fn link_first_bits(node_bits: usize, triangle_bits: usize) -> usize {
+    node_bits.max(triangle_bits)
+}
+
+/// `LC`: a leaf's count reaches the triangle capacity itself.
+pub fn link_count_bits(triangle_bits: usize) -> usize {
+    triangle_bits + 1
+}
+
+/// `NW`: boxes and two links.
+pub fn node_record_bits(node_bits: usize, triangle_bits: usize) -> usize {
+    BOX_BITS + 2 * (link_first_bits(node_bits, triangle_bits) + link_count_bits(triangle_bits))
+}
+
+/// `TW`: vertices, the flag and the global index.
+pub fn triangle_record_bits(triangle_bits: usize) -> usize {
+    VERTEX_BITS + 1 + triangle_bits
+}
+
+/// The loader's states, as the `state` register's values (a `Bits` register with constants:
+/// rust-hdl's `LogicState` enums leave unused parameters that fail Verilator's lint).
+#[derive(Copy, Clone, Debug, PartialEq)]
+#[repr(u8)]
+enum LoadState {
+    Idle,
+    Header,
+    Nodes,
+    Triangles,
+    Loaded,
+    /// Refused; the rest of the packet is dropped up to its `tlast`.
+    Drain,
+    /// Refused, packet over.
+    Failed,
+}
+
+/// Width of the `state` register.
+const STATE_BITS: usize = 3;
+
+// Power-up: the `state` register starts at 0, idle.
+const _: () = assert!(LoadState::Idle as u8 == 0);
+
+impl LoadState {
+    fn constant(self) -> Constant<Bits<STATE_BITS>> {
+        Constant::new((self as u64).into())
+    }
+}
+
+#[derive(LogicBlock)]
+pub struct SceneMemory<
+    const NB: usize,
+    const TB: usize,
+    const LF: usize,
+    const LC: usize,
+    const NW: usize,
+    const TW: usize,
+> {
+    pub clock: Signal<In, Clock>,
+    /// Starts a load (any state): the next stream word is the image's word 0.
+    pub start_load: Signal<In, Bit>,
+    pub s_tdata: Signal<In, Bits<32>>,
+    pub s_tvalid: Signal<In, Bit>,
+    pub s_tlast: Signal<In, Bit>,
+    pub s_tready: Signal<Out, Bit>,
+    pub loading: Signal<Out, Bit>,
+    pub loaded: Signal<Out, Bit>,
+    pub error: Signal<Out, Bit>,
+    /// A [`LoadError`] code, 0 while there is none.
+    pub error_code: Signal<Out, Bits<ERROR_CODE_BITS>>,
+    /// The stream index of the word that showed the error, and that word.
+    pub error_word: Signal<Out, Bits<32>>,
+    pub error_value: Signal<Out, Bits<32>>,
+    /// N and T of the image (valid once the header has passed).
+    pub nodes: Signal<Out, Bits<32>>,
+    pub triangles: Signal<Out, Bits<32>>,
+    /// The root's link and padded box (x y z).
+    pub root_first: Signal<Out, Bits<LF>>,
+    pub root_count: Signal<Out, Bits<LC>>,
+    pub root_min: [Signal<Out, Bits<32>>; 3],
+    pub root_max: [Signal<Out, Bits<32>>; 3],
+    /// Node read port: the node at `node_address`, one cycle later.
+    pub node_address: Signal<In, Bits<NB>>,
+    /// `min[2·axis + child]`, `max[2·axis + child]` (the box test's inputs).
+    pub min: [Signal<Out, Bits<32>>; 6],
+    pub max: [Signal<Out, Bits<32>>; 6],
+    pub child_first: [Signal<Out, Bits<LF>>; 2],
+    pub child_count: [Signal<Out, Bits<LC>>; 2],
+    /// Triangle read port: the record at `triangle_address`, one cycle later.
+    pub triangle_address: Signal<In, Bits<TB>>,
+    /// v0 x y z, v1 x y z, v2 x y z.
+    pub vert: [Signal<Out, Bits<32>>; 9],
+    pub global_index: Signal<Out, Bits<TB>>,
+    pub casts_shadow: Signal<Out, Bit>,
+    node_ram: RAM<Bits<NW>, NB>,
+    triangle_ram: RAM<Bits<TW>, TB>,
+    state: DFF<Bits<STATE_BITS>>,
+    /// Stream index of the next word, and of the image's last word (from the header).
+    word: DFF<Bits<32>>,
+    last: DFF<Bits<32>>,
+    /// Word within the current record, and the record's index.
+    k: DFF<Bits<4>>,
+    record: DFF<Bits<32>>,
+    n: DFF<Bits<32>>,
+    t: DFF<Bits<32>>,
+    /// The previous word (a link's first when its count arrives).
+    prev: DFF<Bits<32>>,
+    root_first_reg: DFF<Bits<LF>>,
+    root_count_reg: DFF<Bits<LC>>,
+    root_box: DFF<Bits<192>>,
+    /// The record being assembled: boxes shift in from the top, child 0's link.
+    boxes: DFF<Bits<BOX_BITS>>,
+    first0: DFF<Bits<LF>>,
+    count0: DFF<Bits<LC>>,
+    verts: DFF<Bits<VERTEX_BITS>>,
+    index: DFF<Bits<TB>>,
+    error_code_reg: DFF<Bits<ERROR_CODE_BITS>>,
+    error_word_reg: DFF<Bits<32>>,
+    error_value_reg: DFF<Bits<32>>,
+    s_header: Constant<Bits<STATE_BITS>>,
+    s_nodes: Constant<Bits<STATE_BITS>>,
+    s_triangles: Constant<Bits<STATE_BITS>>,
+    s_loaded: Constant<Bits<STATE_BITS>>,
+    s_drain: Constant<Bits<STATE_BITS>>,
+    s_failed: Constant<Bits<STATE_BITS>>,
+    magic: Constant<Bits<32>>,
+    version: Constant<Bits<32>>,
+    /// The capacity, compared with N and T.
+    max_nodes: Constant<Bits<32>>,
+    max_triangles: Constant<Bits<32>>,
+    /// Bit offsets of the links in a node record, of the flag and index in a triangle record.
+    at_first0: Constant<Bits<16>>,
+    at_count0: Constant<Bits<16>>,
+    at_first1: Constant<Bits<16>>,
+    at_count1: Constant<Bits<16>>,
+    at_flag: Constant<Bits<16>>,
+    at_index: Constant<Bits<16>>,
+    /// The image's last header word, its last node word, its last triangle word.
+    header_end: Constant<Bits<32>>,
+    node_end: Constant<Bits<4>>,
+    triangle_end: Constant<Bits<4>>,
+    e_magic: Constant<Bits<ERROR_CODE_BITS>>,
+    e_version: Constant<Bits<ERROR_CODE_BITS>>,
+    e_nodes: Constant<Bits<ERROR_CODE_BITS>>,
+    e_triangles: Constant<Bits<ERROR_CODE_BITS>>,
+    e_node_link: Constant<Bits<ERROR_CODE_BITS>>,
+    e_leaf_link: Constant<Bits<ERROR_CODE_BITS>>,
+    e_index: Constant<Bits<ERROR_CODE_BITS>>,
+    e_flags: Constant<Bits<ERROR_CODE_BITS>>,
+    e_reserved: Constant<Bits<ERROR_CODE_BITS>>,
+    e_early_last: Constant<Bits<ERROR_CODE_BITS>>,
+    e_missing_last: Constant<Bits<ERROR_CODE_BITS>>,
+    /// A beat is taken this cycle.
+    take: Signal<Local, Bit>,
+    /// The error this word shows (0: none).
+    check: Signal<Local, Bits<ERROR_CODE_BITS>>,
+    /// This word is a link's count (the root's, or a node child's).
+    is_count: Signal<Local, Bit>,
+    /// This word is the image's last.
+    is_last: Signal<Local, Bit>,
+    /// first + count of the link whose count this is (33 bits: no wrap).
+    leaf_end: Signal<Local, Bits<33>>,
+    next_record: Signal<Local, Bits<32>>,
+    node_read: Signal<Local, Bits<NW>>,
+    triangle_read: Signal<Local, Bits<TW>>,
+}
+
+/// A memory for the small test images (16 nodes, 32 triangles).
+pub type SceneMemory4x5 = SceneMemory<4, 5, 5, 6, 406, 294>;
+/// Glasses (425 nodes, 720 triangles) fits: 512 nodes, 1,024 triangles.
+pub type SceneMemory9x10 = SceneMemory<9, 10, 10, 11, 426, 299>;
+/// 2,048 nodes, 4,096 triangles.
+pub type SceneMemory11x12 = SceneMemory<11, 12, 12, 13, 434, 301>;
+/// Glass pen and Utah teapot (3,876 nodes, 6,322 triangles) fit: 4,096 nodes, 8,192 triangles.
+pub type SceneMemory12x13 = SceneMemory<12, 13, 13, 14, 438, 302>;
+
+impl<
+        const NB: usize,
+        const TB: usize,
+        const LF: usize,
+        const LC: usize,
+        const NW: usize,
+        const TW: usize,
+    > Default for SceneMemory<NB, TB, LF, LC, NW, TW>
+{
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<
+        const NB: usize,
+        const TB: usize,
+        const LF: usize,
+        const LC: usize,
+        const NW: usize,
+        const TW: usize,
+    > SceneMemory<NB, TB, LF, LC, NW, TW>
+{
+    /// Panics when a width parameter is not the one derived from `NB` and `TB`.
+    pub fn new() -> Self {
+        let (nodes, triangles) = capacity_for(NB, TB);
+        // N and T are compared as 32-bit words.
+        assert!(NB < 32 && TB < 32, "{NB}/{TB} address bits: at most 31");
+        let want = [
+            ("LF", LF, link_first_bits(NB, TB)),
+            ("LC", LC, link_count_bits(TB)),
+            ("NW", NW, node_record_bits(NB, TB)),
+            ("TW", TW, triangle_record_bits(TB)),
+        ];
+        for (name, got, want) in want {
+            assert_eq!(
+                got, want,
+                "{name} for {NB} node and {TB} triangle address bits"
+            );
+        }
+        let c32 = |x: usize| Constant::new((x as u64).into());
+        let c16 = |x: usize| Constant::new((x as u64).into());
+        let c4 = |x: usize| Constant::new((x as u64).into());
+        Self {
+            clock: Default::default(),
+            start_load: Default::default(),
+            s_tdata: Default::default(),
+            s_tvalid: Default::default(),
+            s_tlast: Default::default(),
+            s_tready: Default::default(),
+            loading: Default::default(),
+            loaded: Default::default(),
+            error: Default::default(),
+            error_code: Default::default(),
+            error_word: Default::default(),
+            error_value: Default::default(),
+            nodes: Default::default(),
+            triangles: Default::default(),
+            root_first: Default::default(),
+            root_count: Default::default(),
+            root_min: Default::default(),
+            root_max: Default::default(),
+            node_address: Default::default(),
+            min: Default::default(),
+            max: Default::default(),
+            child_first: Default::default(),
+            child_count: Default::default(),
+            triangle_address: Default::default(),
+            vert: Default::default(),
+            global_index: Default::default(),
+            casts_shadow: Default::default(),
+            node_ram: Default::default(),
+            triangle_ram: Default::default(),
+            state: Default::default(),
+            word: Default::default(),
+            last: Default::default(),
+            k: Default::default(),
+            record: Default::default(),
+            n: Default::default(),
+            t: Default::default(),
+            prev: Default::default(),
+            root_first_reg: Default::default(),
+            root_count_reg: Default::default(),
+            root_box: Default::default(),
+            boxes: Default::default(),
+            first0: Default::default(),
+            count0: Default::default(),
+            verts: Default::default(),
+            index: Default::default(),
+            error_code_reg: Default::default(),
+            error_word_reg: Default::default(),
+            error_value_reg: Default::default(),
+            s_header: LoadState::Header.constant(),
+            s_nodes: LoadState::Nodes.constant(),
+            s_triangles: LoadState::Triangles.constant(),
+            s_loaded: LoadState::Loaded.constant(),
+            s_drain: LoadState::Drain.constant(),
+            s_failed: LoadState::Failed.constant(),
+            magic: Constant::new(u64::from(MAGIC).into()),
+            version: Constant::new(u64::from(VERSION).into()),
+            max_nodes: c32(nodes),
+            max_triangles: c32(triangles),
+            at_first0: c16(BOX_BITS),
+            at_count0: c16(BOX_BITS + LF),
+            at_first1: c16(BOX_BITS + LF + LC),
+            at_count1: c16(BOX_BITS + 2 * LF + LC),
+            at_flag: c16(VERTEX_BITS),
+            at_index: c16(VERTEX_BITS + 1),
+            header_end: c32(HEADER_WORDS - 1),
+            node_end: c4(NODE_WORDS - 1),
+            triangle_end: c4(TRIANGLE_WORDS - 1),
+            e_magic: LoadError::BadMagic.constant(),
+            e_version: LoadError::BadVersion.constant(),
+            e_nodes: LoadError::TooManyNodes.constant(),
+            e_triangles: LoadError::TooManyTriangles.constant(),
+            e_node_link: LoadError::NodeLink.constant(),
+            e_leaf_link: LoadError::LeafLink.constant(),
+            e_index: LoadError::GlobalIndex.constant(),
+            e_flags: LoadError::BadFlags.constant(),
+            e_reserved: LoadError::Reserved.constant(),
+            e_early_last: LoadError::EarlyLast.constant(),
+            e_missing_last: LoadError::MissingLast.constant(),
+            take: Default::default(),
+            check: Default::default(),
+            is_count: Default::default(),
+            is_last: Default::default(),
+            leaf_end: Default::default(),
+            next_record: Default::default(),
+            node_read: Default::default(),
+            triangle_read: Default::default(),
+        }
+    }
+}
+
+impl<
+        const NB: usize,
+        const TB: usize,
+        const LF: usize,
+        const LC: usize,
+        const NW: usize,
+        const TW: usize,
+    > Logic for SceneMemory<NB, TB, LF, LC, NW, TW>
+{
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(
+            self,
+            clock,
+            state,
+            word,
+            last,
+            k,
+            record,
+            n,
+            t,
+            prev,
+            root_first_reg,
+            root_count_reg,
+            root_box,
+            boxes,
+            first0,
+            count0,
+            verts,
+            index,
+            error_code_reg,
+            error_word_reg,
+            error_value_reg
+        );
+        self.node_ram.read_clock.next = self.clock.val();
+        self.node_ram.write_clock.next = self.clock.val();
+        self.triangle_ram.read_clock.next = self.clock.val();
+        self.triangle_ram.write_clock.next = self.clock.val();
+
+        self.s_tready.next = ((self.state.q.val() == self.s_header.val())
+            | (self.state.q.val() == self.s_nodes.val())
+            | (self.state.q.val() == self.s_triangles.val())
+            | (self.state.q.val() == self.s_drain.val()))
+            & !self.start_load.val();
+        self.take.next = self.s_tready.val() & self.s_tvalid.val();
+        self.is_last.next = self.word.q.val() == self.last.q.val();
+        self.check.next = 0.into();
+        self.is_count.next = false;
+        self.leaf_end.next =
+            bit_cast::<33, 32>(self.prev.q.val()) + bit_cast::<33, 32>(self.s_tdata.val());
+        self.next_record.next = self.record.q.val() + 1;
+
+        // A node is written with its last word (child 1's count), a triangle with its
+        // reserved word; the record is what was gathered plus this word.
+        self.node_ram.write_enable.next = false;
+        self.node_ram.write_address.next = bit_cast::<NB, 32>(self.record.q.val());
+        self.node_ram.write_data.next = bit_cast::<NW, BOX_BITS>(self.boxes.q.val())
+            | (bit_cast::<NW, LF>(self.first0.q.val()) << self.at_first0.val())
+            | (bit_cast::<NW, LC>(self.count0.q.val()) << self.at_count0.val())
+            | (bit_cast::<NW, LF>(bit_cast::<LF, 32>(self.prev.q.val())) << self.at_first1.val())
+            | (bit_cast::<NW, LC>(bit_cast::<LC, 32>(self.s_tdata.val())) << self.at_count1.val());
+        self.triangle_ram.write_enable.next = false;
+        self.triangle_ram.write_address.next = bit_cast::<TB, 32>(self.record.q.val());
+        self.triangle_ram.write_data.next = bit_cast::<TW, VERTEX_BITS>(self.verts.q.val())
+            | (bit_cast::<TW, 1>(bit_cast::<1, 32>(self.prev.q.val())) << self.at_flag.val())
+            | (bit_cast::<TW, TB>(self.index.q.val()) << self.at_index.val());
+
+        if self.take.val() {
+            self.word.d.next = self.word.q.val() + 1;
+            self.prev.d.next = self.s_tdata.val();
+            if self.state.q.val() == self.s_header.val() {
+                if (self.word.q.val() == 0) & (self.s_tdata.val() != self.magic.val()) {
+                    self.check.next = self.e_magic.val();
+                }
+                if (self.word.q.val() == 1) & (self.s_tdata.val() != self.version.val()) {
+                    self.check.next = self.e_version.val();
+                }
+                if self.word.q.val() == 2 {
+                    self.n.d.next = self.s_tdata.val();
+                    if self.s_tdata.val() > self.max_nodes.val() {
+                        self.check.next = self.e_nodes.val();
+                    }
+                }
+                if self.word.q.val() == 3 {
+                    self.t.d.next = self.s_tdata.val();
+                    // 16 + 16·N + 12·T words: the last is one less.
+                    self.last.d.next = self.header_end.val()
+                        + (self.n.q.val() << 4)
+                        + (self.s_tdata.val() << 3)
+                        + (self.s_tdata.val() << 2);
+                    if self.s_tdata.val() > self.max_triangles.val() {
+                        self.check.next = self.e_triangles.val();
+                    }
+                }
+                if self.word.q.val() == 5 {
+                    self.is_count.next = true;
+                    self.root_first_reg.d.next = bit_cast::<LF, 32>(self.prev.q.val());
+                    self.root_count_reg.d.next = bit_cast::<LC, 32>(self.s_tdata.val());
+                }
+                if (self.word.q.val() >= 6) & (self.word.q.val() < 12) {
+                    self.root_box.d.next = (self.root_box.q.val() >> 32)
+                        | (bit_cast::<192, 32>(self.s_tdata.val()) << 160);
+                }
+                if (self.word.q.val() >= 12) & self.s_tdata.val().any() {
+                    self.check.next = self.e_reserved.val();
+                }
+                if self.word.q.val() == self.header_end.val() {
+                    self.k.d.next = 0.into();
+                    self.record.d.next = 0.into();
+                    if self.n.q.val().any() {
+                        self.state.d.next = self.s_nodes.val();
+                    } else {
+                        self.state.d.next = self.s_triangles.val();
+                    }
+                }
+            } else if self.state.q.val() == self.s_nodes.val() {
+                self.k.d.next = self.k.q.val() + 1;
+                if self.k.q.val() < 12 {
+                    self.boxes.d.next = (self.boxes.q.val() >> 32)
+                        | (bit_cast::<BOX_BITS, 32>(self.s_tdata.val()) << 352);
+                }
+                if self.k.q.val() == 13 {
+                    self.is_count.next = true;
+                    self.first0.d.next = bit_cast::<LF, 32>(self.prev.q.val());
+                    self.count0.d.next = bit_cast::<LC, 32>(self.s_tdata.val());
+                }
+                if self.k.q.val() == self.node_end.val() {
+                    self.is_count.next = true;
+                    self.node_ram.write_enable.next = true;
+                    self.k.d.next = 0.into();
+                    self.record.d.next = self.next_record.val();
+                    if self.next_record.val() == self.n.q.val() {
+                        self.record.d.next = 0.into();
+                        self.state.d.next = self.s_triangles.val();
+                    }
+                }
+            } else if self.state.q.val() == self.s_triangles.val() {
+                self.k.d.next = self.k.q.val() + 1;
+                if self.k.q.val() < 9 {
+                    self.verts.d.next = (self.verts.q.val() >> 32)
+                        | (bit_cast::<VERTEX_BITS, 32>(self.s_tdata.val()) << 256);
+                }
+                if self.k.q.val() == 9 {
+                    self.index.d.next = bit_cast::<TB, 32>(self.s_tdata.val());
+                    if self.s_tdata.val() >= self.t.q.val() {
+                        self.check.next = self.e_index.val();
+                    }
+                }
+                if (self.k.q.val() == 10) & (self.s_tdata.val() >> 1).any() {
+                    self.check.next = self.e_flags.val();
+                }
+                if self.k.q.val() == self.triangle_end.val() {
+                    if self.s_tdata.val().any() {
+                        self.check.next = self.e_reserved.val();
+                    }
+                    self.triangle_ram.write_enable.next = true;
+                    self.k.d.next = 0.into();
+                    self.record.d.next = self.next_record.val();
+                }
+            }
+            // A link (prev, this word): a node below N, else a leaf within T. The empty
+            // scene's root (0, 0) with N = T = 0 is the one node link to no node.
+            if self.is_count.val() {
+                if !self.s_tdata.val().any() {
+                    if (self.prev.q.val() >= self.n.q.val())
+                        & !(!self.prev.q.val().any()
+                            & !self.n.q.val().any()
+                            & !self.t.q.val().any())
+                    {
+                        self.check.next = self.e_node_link.val();
+                    }
+                } else if self.leaf_end.val() > bit_cast::<33, 32>(self.t.q.val()) {
+                    self.check.next = self.e_leaf_link.val();
+                }
+            }
+            if self.state.q.val() == self.s_drain.val() {
+                if self.s_tlast.val() {
+                    self.state.d.next = self.s_failed.val();
+                }
+            } else {
+                if self.check.val().any() {
+                    self.error_code_reg.d.next = self.check.val();
+                    self.error_word_reg.d.next = self.word.q.val();
+                    self.error_value_reg.d.next = self.s_tdata.val();
+                    self.state.d.next = self.s_drain.val();
+                    if self.s_tlast.val() {
+                        self.state.d.next = self.s_failed.val();
+                    }
+                } else if self.s_tlast.val() & !self.is_last.val() {
+                    self.error_code_reg.d.next = self.e_early_last.val();
+                    self.error_word_reg.d.next = self.word.q.val();
+                    self.error_value_reg.d.next = self.s_tdata.val();
+                    self.state.d.next = self.s_failed.val();
+                } else if self.is_last.val() & !self.s_tlast.val() {
+                    self.error_code_reg.d.next = self.e_missing_last.val();
+                    self.error_word_reg.d.next = self.word.q.val();
+                    self.error_value_reg.d.next = self.s_tdata.val();
+                    self.state.d.next = self.s_drain.val();
+                } else if self.is_last.val() {
+                    self.state.d.next = self.s_loaded.val();
+                }
+            }
+        }
+        if self.start_load.val() {
+            self.state.d.next = self.s_header.val();
+            self.word.d.next = 0.into();
+            self.last.d.next = self.header_end.val();
+            self.error_code_reg.d.next = 0.into();
+            self.error_word_reg.d.next = 0.into();
+            self.error_value_reg.d.next = 0.into();
+        }
+
+        self.loading.next = (self.state.q.val() == self.s_header.val())
+            | (self.state.q.val() == self.s_nodes.val())
+            | (self.state.q.val() == self.s_triangles.val());
+        self.loaded.next = self.state.q.val() == self.s_loaded.val();
+        self.error.next = self.error_code_reg.q.val().any();
+        self.error_code.next = self.error_code_reg.q.val();
+        self.error_word.next = self.error_word_reg.q.val();
+        self.error_value.next = self.error_value_reg.q.val();
+        self.nodes.next = self.n.q.val();
+        self.triangles.next = self.t.q.val();
+        self.root_first.next = self.root_first_reg.q.val();
+        self.root_count.next = self.root_count_reg.q.val();
+        self.root_min[0].next = self.root_box.q.val().get_bits::<32>(0);
+        self.root_min[1].next = self.root_box.q.val().get_bits::<32>(32);
+        self.root_min[2].next = self.root_box.q.val().get_bits::<32>(64);
+        self.root_max[0].next = self.root_box.q.val().get_bits::<32>(96);
+        self.root_max[1].next = self.root_box.q.val().get_bits::<32>(128);
+        self.root_max[2].next = self.root_box.q.val().get_bits::<32>(160);
+
+        self.node_ram.read_address.next = self.node_address.val();
+        self.node_read.next = self.node_ram.read_data.val();
+        self.min[0].next = self.node_read.val().get_bits::<32>(0);
+        self.min[1].next = self.node_read.val().get_bits::<32>(32);
+        self.min[2].next = self.node_read.val().get_bits::<32>(64);
+        self.min[3].next = self.node_read.val().get_bits::<32>(96);
+        self.min[4].next = self.node_read.val().get_bits::<32>(128);
+        self.min[5].next = self.node_read.val().get_bits::<32>(160);
+        self.max[0].next = self.node_read.val().get_bits::<32>(192);
+        self.max[1].next = self.node_read.val().get_bits::<32>(224);
+        self.max[2].next = self.node_read.val().get_bits::<32>(256);
+        self.max[3].next = self.node_read.val().get_bits::<32>(288);
+        self.max[4].next = self.node_read.val().get_bits::<32>(320);
+        self.max[5].next = self.node_read.val().get_bits::<32>(352);
+        self.child_first[0].next = bit_cast::<LF, NW>(self.node_read.val() >> self.at_first0.val());
+        self.child_count[0].next = bit_cast::<LC, NW>(self.node_read.val() >> self.at_count0.val());
+        self.child_first[1].next = bit_cast::<LF, NW>(self.node_read.val() >> self.at_first1.val());
+        self.child_count[1].next = bit_cast::<LC, NW>(self.node_read.val() >> self.at_count1.val());
+
+        self.triangle_ram.read_address.next = self.triangle_address.val();
+        self.triangle_read.next = self.triangle_ram.read_data.val();
+        self.vert[0].next = self.triangle_read.val().get_bits::<32>(0);
+        self.vert[1].next = self.triangle_read.val().get_bits::<32>(32);
+        self.vert[2].next = self.triangle_read.val().get_bits::<32>(64);
+        self.vert[3].next = self.triangle_read.val().get_bits::<32>(96);
+        self.vert[4].next = self.triangle_read.val().get_bits::<32>(128);
+        self.vert[5].next = self.triangle_read.val().get_bits::<32>(160);
+        self.vert[6].next = self.triangle_read.val().get_bits::<32>(192);
+        self.vert[7].next = self.triangle_read.val().get_bits::<32>(224);
+        self.vert[8].next = self.triangle_read.val().get_bits::<32>(256);
+        self.casts_shadow.next =
+            bit_cast::<1, TW>(self.triangle_read.val() >> self.at_flag.val()).any();
+        self.global_index.next =
+            bit_cast::<TB, TW>(self.triangle_read.val() >> self.at_index.val());
+    }
+}
