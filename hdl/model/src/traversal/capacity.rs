@@ -16,9 +16,10 @@
 //!
 //! Every ray visits every chunk: the walk of a chunk starts with its root box, so a ray that
 //! misses a chunk, or reaches it only beyond its nearest hit so far, costs one box test in
-//! that pass. A top-level tree of chunk boxes walked per ray would save only that test and
-//! the ray's trip over the bus, and needs a second walk, in the ARM or the unit; the passes
-//! are few (2–6 for the thesis scenes, `docs/traversal-capacity.md`).
+//! that pass. That is the simplest sound design; its price is the ray's trip to every chunk
+//! (the ARM packs and folds it once per pass), which the projection measures as most of what
+//! chunking costs (BENCHMARKS.md). A top-level tree of chunk boxes walked per ray would keep
+//! rays from chunks they cannot need, at the price of a second walk and per-ray routing.
 
 use std::fmt;
 
