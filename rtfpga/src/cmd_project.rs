@@ -10,6 +10,7 @@ use hw_model::traversal::{TraversalEngine, DEFAULT_STACK_DEPTH};
 use sim::projection::{
     self, Board, Calibration, Design, Frontend, Role, Setup, Traversal, Workload, Workloads,
 };
+use sw_renderer::render::RenderOptions;
 use sw_renderer::scene::Scene;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -80,6 +81,14 @@ pub struct Args {
     /// ray and read its answer.
     #[arg(long, default_value_t = 40.0)]
     pack_cycles: f64,
+    /// Traversal: the unit's scene memory.
+    #[command(flatten)]
+    memory: crate::engine::MemoryArgs,
+    /// Edge of the renderer's square tiles: one tile's rays per level form a wavefront (a
+    /// chunked unit loads every chunk once per wavefront).
+    #[arg(long, default_value_t = RenderOptions::default().tile_size,
+          value_parser = clap::value_parser!(u32).range(1..=4096))]
+    tile_size: u32,
     /// Print the calibration table (measured vs modelled thesis times).
     #[arg(long)]
     calibration: bool,
@@ -98,6 +107,11 @@ pub fn run(a: Args) -> Result<()> {
         bail!("nothing to do: give --scene to project a frame and/or --calibration");
     }
     let design = design(&a)?;
+    if a.design != DesignKind::Traversal
+        && (a.memory.scene_capacity.is_some() || a.memory.no_chunks)
+    {
+        bail!("--scene-capacity and --no-chunks describe the traversal unit: use them with --design traversal");
+    }
     let thesis_scenes = match &a.thesis_scenes {
         Some(dir) => dir.clone(),
         None => sw_renderer::thesis_scenes::locate()?.with_context(|| {
@@ -145,8 +159,9 @@ pub fn run(a: Args) -> Result<()> {
                     a.lanes as usize,
                     a.slots as usize,
                 )),
+                memory: a.memory.memory(),
             };
-            workload = workload.with_unit(&scene, &engine)?;
+            workload = workload.with_unit(&scene, &engine, a.tile_size)?;
         }
         print_projection(&workload, &design, &calibration.board)?;
     }
@@ -238,6 +253,15 @@ fn print_projection(w: &Workload, d: &Design, b: &Board) -> Result<()> {
             u.box_tests as f64 / rays,
             u.mt_tests as f64 / rays,
             u.image_bytes
+        );
+        println!(
+            "scene memory: wavefronts={} passes={} ray_passes={} chunk_loads={} loaded_bytes={} load_cycles_per_ray={:.2}",
+            u.wavefronts,
+            u.passes,
+            u.ray_passes,
+            u.chunk_loads,
+            u.loaded_bytes,
+            projection::load_cycles(u, d).unwrap_or(0.0) / rays
         );
     }
     println!(

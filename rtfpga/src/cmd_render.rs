@@ -2,13 +2,13 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Context, Result};
+use anyhow::{bail, Context, Result};
 use clap::Args as ClapArgs;
 use sw_renderer::render::{render, save_png, RenderOptions};
 use sw_renderer::scene::Scene;
 use sw_renderer::spawn::SpawnPolicy;
 
-use crate::engine::{self, EngineKind, HwConfig, PrecisionArgs};
+use crate::engine::{self, EngineKind, HwConfig, MemoryArgs, PrecisionArgs};
 
 #[derive(ClapArgs)]
 pub struct Args {
@@ -27,6 +27,8 @@ pub struct Args {
     hw: HwConfig,
     #[command(flatten)]
     precision: PrecisionArgs,
+    #[command(flatten)]
+    memory: MemoryArgs,
     /// Output PNG.
     #[arg(long)]
     out: PathBuf,
@@ -45,9 +47,14 @@ pub fn image_side() -> clap::builder::RangedI64ValueParser<u32> {
 }
 
 pub fn run(a: Args) -> Result<()> {
+    if a.engine != EngineKind::Traversal
+        && (a.memory.scene_capacity.is_some() || a.memory.no_chunks)
+    {
+        bail!("--scene-capacity and --no-chunks describe the traversal unit: use them with --engine traversal");
+    }
     let scene = Scene::load(&a.scene)?;
     let (spawn, scale_exp) = a.precision.resolve(a.engine, &a.hw, &scene)?;
-    let engine = engine::make_scaled(a.engine, &a.hw, scale_exp)?;
+    let engine = engine::make_scaled(a.engine, &a.hw, scale_exp, a.memory.memory())?;
     let opts = RenderOptions {
         width: a.width,
         height: a.height,
@@ -80,6 +87,13 @@ pub fn run(a: Args) -> Result<()> {
         s.trace.rays() as f64 / secs.max(1e-9) / 1e6
     );
     let c = s.trace.cast;
+    if c.passes > 0 {
+        // The traversal unit's scene memory: one pass per wavefront and loaded chunk.
+        println!(
+            "unit_memory passes={} ray_passes={} chunk_loads={} loaded_bytes={}",
+            c.passes, c.ray_passes, c.chunk_loads, c.loaded_bytes
+        );
+    }
     if c.cycles > 0 {
         // The traversal unit's schedule model (not a co-simulation).
         let rays = s.trace.rays().max(1) as f64;

@@ -8,6 +8,8 @@ use sw_renderer::scene::Scene;
 use sw_renderer::scene_image::SceneImage;
 use sw_renderer::trace::PreparedScene;
 
+use crate::engine::MemoryArgs;
+
 #[derive(ClapArgs)]
 pub struct Args {
     /// Scene directory with objects.txt, a .toml scene, or a built-in scene name.
@@ -16,6 +18,9 @@ pub struct Args {
     /// Write the image's words (little-endian, the order the unit loads them) to this file.
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Also list the chunks a traversal unit holding NODES,TRIANGLES loads the scene in.
+    #[command(flatten)]
+    memory: MemoryArgs,
 }
 
 pub fn run(a: Args) -> Result<()> {
@@ -38,5 +43,22 @@ pub fn run(a: Args) -> Result<()> {
         image.depth(),
         image.bytes()
     );
+    if a.memory.scene_capacity.is_some() {
+        let parts = hw_model::traversal::capacity::chunks(&image, a.memory.memory())?;
+        println!(
+            "chunks={} chunk_bytes={}",
+            parts.len(),
+            parts.iter().map(SceneImage::bytes).sum::<usize>()
+        );
+        for (k, c) in parts.iter().enumerate() {
+            println!(
+                "chunk={k} triangles={} nodes={} depth={} bytes={}",
+                c.triangles.len(),
+                c.nodes.len(),
+                c.depth(),
+                c.bytes()
+            );
+        }
+    }
     Ok(())
 }

@@ -5,7 +5,7 @@ use anyhow::{bail, Result};
 use clap::{Args as ClapArgs, ValueEnum};
 use hdl::top::TopConfig;
 use hw_model::precision::{auto_scale_exp, spawn_policy, SceneRange};
-use hw_model::traversal::{TraversalEngine, DEFAULT_STACK_DEPTH};
+use hw_model::traversal::{SceneCapacity, SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
 use hw_model::ModelIntersector;
 use sim::hw_intersector::{HwIntersector, Mode};
 use sw_renderer::intersect::F32Intersector;
@@ -46,11 +46,17 @@ pub struct HwConfig {
 }
 
 pub fn make(kind: EngineKind, hw: &HwConfig) -> Result<Box<dyn RayEngine>> {
-    make_scaled(kind, hw, 0)
+    make_scaled(kind, hw, 0, MemoryArgs::default().memory())
 }
 
-/// The engine, its Möller-Trumbore queries scaled by 2^`scale_exp` (model engines only).
-pub fn make_scaled(kind: EngineKind, hw: &HwConfig, scale_exp: i32) -> Result<Box<dyn RayEngine>> {
+/// The engine, its Möller-Trumbore queries scaled by 2^`scale_exp` (model engines only), a
+/// traversal unit with the scene `memory`.
+pub fn make_scaled(
+    kind: EngineKind,
+    hw: &HwConfig,
+    scale_exp: i32,
+    memory: SceneMemory,
+) -> Result<Box<dyn RayEngine>> {
     Ok(match kind {
         EngineKind::F32 => Box::new(F32Intersector),
         EngineKind::Model => Box::new(ModelIntersector {
@@ -58,7 +64,7 @@ pub fn make_scaled(kind: EngineKind, hw: &HwConfig, scale_exp: i32) -> Result<Bo
             scale_exp,
         }),
         EngineKind::Hw => Box::new(HwIntersector::new(&hw.top_config()?, Mode::Stream)?),
-        EngineKind::Traversal => Box::new(hw.traversal_engine(scale_exp)),
+        EngineKind::Traversal => Box::new(hw.traversal_engine(scale_exp, memory)),
     })
 }
 
@@ -125,11 +131,57 @@ impl PrecisionArgs {
     }
 }
 
+/// The traversal unit's scene memory when no `--scene-capacity` is given: unbounded until
+/// the RTL's scene memory states its capacity (then this returns it).
+fn default_capacity() -> Option<SceneCapacity> {
+    None
+}
+
+/// `--scene-capacity` and `--no-chunks`: the traversal unit's scene memory.
+#[derive(ClapArgs, Clone, Debug, Default)]
+pub struct MemoryArgs {
+    /// Traversal unit: inner nodes and triangles its scene memory holds, as NODES,TRIANGLES
+    /// (e.g. 2048,4096); larger scenes render in chunked passes [default: unbounded].
+    #[arg(long, value_name = "NODES,TRIANGLES", value_parser = parse_capacity)]
+    pub scene_capacity: Option<SceneCapacity>,
+    /// Traversal unit: refuse a scene larger than --scene-capacity instead of chunking it.
+    #[arg(long)]
+    pub no_chunks: bool,
+}
+
+impl MemoryArgs {
+    pub fn memory(&self) -> SceneMemory {
+        match (
+            self.scene_capacity.or_else(default_capacity),
+            self.no_chunks,
+        ) {
+            (None, _) => SceneMemory::Unbounded,
+            (Some(c), true) => SceneMemory::Whole(c),
+            (Some(c), false) => SceneMemory::Chunked(c),
+        }
+    }
+}
+
+/// `NODES,TRIANGLES` as a capacity.
+fn parse_capacity(s: &str) -> Result<SceneCapacity, String> {
+    let expected = || format!("`{s}`: expected NODES,TRIANGLES, two counts such as 2048,4096");
+    let (nodes, triangles) = s.split_once(',').ok_or_else(expected)?;
+    let count = |x: &str| {
+        x.trim()
+            .parse::<u32>()
+            .map_err(|e| format!("{}: {e}", expected()))
+    };
+    Ok(SceneCapacity {
+        nodes: count(nodes)?,
+        triangles: count(triangles)?,
+    })
+}
+
 impl HwConfig {
     /// The traversal unit's model in this configuration, its Möller-Trumbore queries scaled
-    /// by 2^`scale_exp`; timed by its schedule model when the format has hardware (any other
-    /// format has no lane latency to time with).
-    pub fn traversal_engine(&self, scale_exp: i32) -> TraversalEngine {
+    /// by 2^`scale_exp`, holding scenes in `memory`; timed by its schedule model when the
+    /// format has hardware (any other format has no lane latency to time with).
+    pub fn traversal_engine(&self, scale_exp: i32, memory: SceneMemory) -> TraversalEngine {
         let timing = hw_model::HwFormat::try_from(self.format).ok().map(|f| {
             hdl::traversal::timing::unit_timing(f, self.depth, self.lanes, self.slots as usize)
         });
@@ -138,6 +190,7 @@ impl HwConfig {
             stack_depth: DEFAULT_STACK_DEPTH,
             scale_exp,
             timing,
+            memory,
         }
     }
 

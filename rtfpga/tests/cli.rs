@@ -490,6 +490,76 @@ fn render_traversal_equals_the_software_image_and_reports_the_units_schedule() {
     );
 }
 
+/// A traversal unit with a scene memory smaller than the scene renders in chunked passes
+/// (the same image), refuses it with --no-chunks naming both sizes, and a malformed capacity
+/// is a usage error.
+#[test]
+fn render_traversal_with_a_small_scene_memory_chunks_or_names_the_sizes() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("t.png");
+    let base = [
+        "render",
+        "--scene",
+        "utah_teapot",
+        "--width",
+        "24",
+        "--height",
+        "16",
+        "--engine",
+        "traversal",
+        "--out",
+        s(&out),
+        "--quiet",
+    ];
+    let args = |extra: &[&'static str]| [&base[..], extra].concat();
+    let stdout = ok(&args(&["--scene-capacity", "1000,2000"]));
+    assert_eq!(
+        read_png(&out),
+        library_render("utah_teapot", 24, 16, &F32Intersector)
+    );
+    let memory = stdout
+        .lines()
+        .find(|l| l.starts_with("unit_memory "))
+        .unwrap_or_else(|| panic!("no unit_memory line: {stdout}"));
+    let loads: u64 = memory
+        .split_whitespace()
+        .find_map(|kv| kv.strip_prefix("chunk_loads="))
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no chunk_loads: {memory}"));
+    assert!(loads >= 4, "a teapot in 1,000-node chunks: {memory}");
+    let chunks = ok(&[
+        "scene-image",
+        "--scene",
+        "utah_teapot",
+        "--scene-capacity",
+        "1000,2000",
+    ]);
+    assert!(
+        chunks.lines().filter(|l| l.starts_with("chunk=")).count() >= 4,
+        "{chunks}"
+    );
+    fails(
+        &args(&["--scene-capacity", "2048,4096", "--no-chunks"]),
+        1,
+        &["nodes and 6,322 triangles; this unit holds 2,048 nodes and 4,096 triangles"],
+    );
+    fails(
+        &args(&["--scene-capacity", "100,1"]),
+        1,
+        &["holds 100 nodes and 1 triangles; its BVH has a leaf of"],
+    );
+    fails(
+        &args(&["--scene-capacity", "2048"]),
+        2,
+        &["NODES,TRIANGLES"],
+    );
+    fails(
+        &args(&["--scene-capacity", "2048,-1"]),
+        2,
+        &["--scene-capacity"],
+    );
+}
+
 #[test]
 fn scene_image_writes_the_words_it_reports() {
     let dir = tempfile::tempdir().unwrap();

@@ -12,7 +12,7 @@ pub use calibration::{
     calibrate, Calibration, CalibrationRow, Measurement, Role, Setup, Workloads,
     THESIS_MEASUREMENTS,
 };
-pub use cost::{project, Board, Breakdown, Design, Frontend, ARM_MHZ};
+pub use cost::{load_cycles, project, Board, Breakdown, Design, Frontend, ARM_MHZ};
 pub use workload::{Traversal, UnitWork, Workload};
 
 /// Why a projection or calibration could not be made.

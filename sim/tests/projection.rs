@@ -445,7 +445,11 @@ fn the_traversal_design_streams_rays_and_answers_beside_the_units_cycles() {
         mt_tests: 2_000,
         cycles,
         wavefronts: 10,
+        passes: 10,
+        ray_passes: 2_000,
         image_bytes: 64_000,
+        chunk_loads: 0,
+        loaded_bytes: 64_000,
     };
     let w = |cycles| Workload {
         scene: "s".into(),
@@ -486,4 +490,24 @@ fn the_traversal_design_streams_rays_and_answers_beside_the_units_cycles() {
     // The ARM with the BVH walk pays the MT tests and the box tests.
     let walk = b.arm_bvh_walk_s(&w(1)).unwrap();
     assert!((walk - (2_000.0 * 500e-9 + 3_000.0 * 125e-9 + 10_000.0 * 125e-9)).abs() < 1e-12);
+
+    // In 3 chunks: 30 passes streaming 5,000 rays (40,000 cycles in), 30 chunk loads of
+    // 200,000 bytes in all (50,000 cycles), each pass and load started over AXI4-Lite.
+    let mut chunked = w(1_000);
+    chunked.unit = Some(UnitWork {
+        passes: 30,
+        ray_passes: 5_000,
+        chunk_loads: 30,
+        loaded_bytes: 200_000,
+        ..unit(1_000)
+    });
+    let p = project(&chunked, &d, &b).unwrap();
+    assert!((p.accel_s - 90_000.0 * cycle).abs() < 1e-12, "{p:?}");
+    let arm = 2_000.0 * 500e-9 + 5_000.0 * 66.7 / 667e6;
+    assert!((p.arm_s - arm).abs() < 1e-12, "{p:?}");
+    let access = b.access_ns(100.0) * 1e-9;
+    assert!(
+        (p.bus_s - (30.0 * 8.0 + 30.0 * 4.0) * access).abs() < 1e-12,
+        "{p:?}"
+    );
 }

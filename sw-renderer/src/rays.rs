@@ -70,6 +70,15 @@ pub struct CastStats {
     /// Clock cycles of a traversal unit (simulated or from its schedule model; 0 for
     /// software).
     pub cycles: u64,
+    /// A traversal unit whose scene memory holds only part of the scene: passes (one per
+    /// wavefront and loaded chunk; a resident scene makes one per wavefront) …
+    pub passes: u64,
+    /// … rays sent into the unit, once for every pass they take part in …
+    pub ray_passes: u64,
+    /// … chunks loaded into its scene memory and their bytes (0 while the whole scene stays
+    /// resident).
+    pub chunk_loads: u64,
+    pub loaded_bytes: u64,
 }
 
 impl AddAssign for CastStats {
@@ -79,6 +88,10 @@ impl AddAssign for CastStats {
         self.box_tests += o.box_tests;
         self.node_visits += o.node_visits;
         self.cycles += o.cycles;
+        self.passes += o.passes;
+        self.ray_passes += o.ray_passes;
+        self.chunk_loads += o.chunk_loads;
+        self.loaded_bytes += o.loaded_bytes;
     }
 }
 

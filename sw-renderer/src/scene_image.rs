@@ -8,7 +8,9 @@
 //!
 //! Every field is a little-endian 32-bit word. In order:
 //! - header, [`HEADER_WORDS`] words: magic, version, node count N, triangle count T, the
-//!   root's link (first, count), the root's padded box (min x y z, max x y z), 4 reserved 0;
+//!   root's link (first, count), the root's padded box (min x y z, max x y z), the scene's
+//!   triangle count S (global indices are below it: S = T for a whole scene, more for a
+//!   chunk of a larger one), 3 reserved 0;
 //! - N inner nodes of [`NODE_WORDS`] words: both children's padded boxes, `min[axis][child]`
 //!   (x0 x1 y0 y1 z0 z1) then `max[axis][child]`, then the links (first, count) of child 0
 //!   and child 1;
@@ -26,7 +28,8 @@ use crate::world::WorldTriangle;
 
 /// "RTSI" as a little-endian word.
 pub const MAGIC: u32 = u32::from_le_bytes(*b"RTSI");
-pub const VERSION: u32 = 1;
+/// Version 2: header word 12 holds the scene's triangle count (chunks of a larger scene).
+pub const VERSION: u32 = 2;
 pub const HEADER_WORDS: usize = 16;
 pub const NODE_WORDS: usize = 16;
 pub const TRIANGLE_WORDS: usize = 12;
@@ -78,6 +81,9 @@ pub struct SceneImage {
     pub root_box: ([f32; 3], [f32; 3]),
     pub nodes: Vec<ImageNode>,
     pub triangles: Vec<ImageTriangle>,
+    /// Triangles of the whole scene: every global index is below it (`triangles.len()` for a
+    /// whole scene; a chunk keeps its scene's global indices).
+    pub scene_triangles: u32,
 }
 
 /// Why a word stream is not a scene image the unit may walk.
@@ -119,11 +125,16 @@ pub enum SceneImageError {
         "scene image: {from} links to node {node} again: the tree has a cycle or a shared subtree"
     )]
     ReachedTwice { from: String, node: u32 },
-    #[error("scene image: triangle record {slot} has global index {index}, but there are {triangles} triangles")]
+    #[error("scene image: triangle record {slot} has global index {index}, but the scene has {scene_triangles} triangles")]
     IndexOutOfRange {
         slot: usize,
         index: u32,
+        scene_triangles: u32,
+    },
+    #[error("scene image: {triangles} triangle records, but the scene has only {scene_triangles}")]
+    MoreThanTheScene {
         triangles: u32,
+        scene_triangles: u32,
     },
     #[error("scene image: triangle records {first} and {second} both have global index {index}")]
     DuplicateIndex {
@@ -163,6 +174,7 @@ impl SceneImage {
                     casts_shadow: casts_shadow[t as usize],
                 })
                 .collect(),
+            scene_triangles: triangles.len() as u32,
         }
     }
 
@@ -180,7 +192,7 @@ impl SceneImage {
         ]);
         w.extend(self.root_box.0.map(f));
         w.extend(self.root_box.1.map(f));
-        w.extend([0; 4]);
+        w.extend([self.scene_triangles, 0, 0, 0]);
         for n in &self.nodes {
             w.extend(n.boxes.min.iter().flatten().map(|&x| f(x)));
             w.extend(n.boxes.max.iter().flatten().map(|&x| f(x)));
@@ -229,7 +241,7 @@ impl SceneImage {
             0 => Ok(()),
             value => Err(SceneImageError::Reserved { word, value }),
         };
-        (12..HEADER_WORDS).try_for_each(reserved)?;
+        (13..HEADER_WORDS).try_for_each(reserved)?;
         let f = |i: usize| f32::from_bits(w[i]);
         let xyz = |i: usize| [f(i), f(i + 1), f(i + 2)];
         let pairs = |i: usize| [[f(i), f(i + 1)], [f(i + 2), f(i + 3)], [f(i + 4), f(i + 5)]];
@@ -264,6 +276,7 @@ impl SceneImage {
                     }
                 })
                 .collect(),
+            scene_triangles: w[12],
         };
         for k in 0..triangles as usize {
             let i = tri_at(k);
@@ -282,24 +295,39 @@ impl SceneImage {
     /// The structural checks of [`SceneImage::from_words`] on an image in memory.
     pub fn check(&self) -> Result<(), SceneImageError> {
         let (n, t) = (self.nodes.len() as u32, self.triangles.len() as u32);
-        let mut seen = vec![None::<usize>; self.triangles.len()];
-        for (slot, tri) in self.triangles.iter().enumerate() {
-            let index = tri.index;
-            let entry = seen
-                .get_mut(index as usize)
-                .ok_or(SceneImageError::IndexOutOfRange {
-                    slot,
-                    index,
-                    triangles: t,
-                })?;
-            if let Some(first) = *entry {
-                return Err(SceneImageError::DuplicateIndex {
-                    index,
-                    first,
-                    second: slot,
-                });
-            }
-            *entry = Some(slot);
+        let scene_triangles = self.scene_triangles;
+        if t > scene_triangles {
+            return Err(SceneImageError::MoreThanTheScene {
+                triangles: t,
+                scene_triangles,
+            });
+        }
+        if let Some((slot, tri)) =
+            (self.triangles.iter().enumerate()).find(|(_, tri)| tri.index >= scene_triangles)
+        {
+            return Err(SceneImageError::IndexOutOfRange {
+                slot,
+                index: tri.index,
+                scene_triangles,
+            });
+        }
+        // Sorted (index, slot) pairs, not a table of S entries: S is a word of the stream.
+        let mut by_index: Vec<(u32, usize)> = (self.triangles.iter().enumerate())
+            .map(|(slot, tri)| (tri.index, slot))
+            .collect();
+        by_index.sort_unstable();
+        // The first slot (in record order) whose index an earlier record already has.
+        if let Some((index, first, second)) = by_index
+            .windows(2)
+            .filter(|p| p[0].0 == p[1].0)
+            .map(|p| (p[0].0, p[0].1, p[1].1))
+            .min_by_key(|&(_, _, second)| second)
+        {
+            return Err(SceneImageError::DuplicateIndex {
+                index,
+                first,
+                second,
+            });
         }
         if t == 0 {
             // An empty scene: nothing to walk, and no node may claim otherwise.
@@ -425,6 +453,30 @@ mod tests {
         let mut w = good.clone();
         w[t0 + 9] = w[t0 + TRIANGLE_WORDS + 9];
         assert!(reject(&w).contains("both have global index"));
+        let mut w = good.clone();
+        w[12] = 1;
+        assert!(reject(&w).contains("2 triangle records, but the scene has only 1"));
+    }
+
+    /// A chunk keeps its scene's global indices: they may reach beyond its own records, up
+    /// to the scene's count in word 12 (which the loader never allocates by).
+    #[test]
+    fn a_chunk_holds_global_indices_below_its_scenes_count() {
+        let mut img = small();
+        img.scene_triangles = 1000;
+        img.triangles[0].index = 999;
+        let w = img.to_words();
+        assert_eq!(w[12], 1000);
+        assert_eq!(SceneImage::from_words(&w).unwrap(), img);
+        img.triangles[1].index = 1000;
+        assert!(reject(&img.to_words())
+            .contains("triangle record 1 has global index 1000, but the scene has 1000 triangles"));
+        let mut img = small();
+        img.scene_triangles = u32::MAX;
+        img.triangles[2].index = u32::MAX - 1;
+        img.triangles[1].index = u32::MAX - 1;
+        assert!(reject(&img.to_words())
+            .contains("triangle records 1 and 2 both have global index 4294967294"));
     }
 
     /// A hand-made image: root → node 0 → (node 1, leaf 0..1), node 1 → (leaf 1..2, leaf 2..3).
@@ -449,6 +501,7 @@ mod tests {
                 },
             ],
             triangles: vec![tri(2), tri(0), tri(1)],
+            scene_triangles: 3,
         }
     }
 
@@ -487,6 +540,7 @@ mod tests {
             root_box: ([0.0; 3], [0.0; 3]),
             nodes: vec![],
             triangles: vec![],
+            scene_triangles: 0,
         };
         assert_eq!(SceneImage::from_words(&img.to_words()).unwrap(), img);
         let mut bad = img.to_words();

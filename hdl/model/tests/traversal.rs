@@ -1,9 +1,15 @@
 //! The traversal unit's model against independent references: brute force over every
 //! triangle (random meshes and rays, proptest), the software renderer (whole renders of the
-//! built-in and the thesis' scenes, fp32 images identical), and its failure modes.
+//! built-in and the thesis' scenes, fp32 images identical), the same unit in chunked passes
+//! against it whole (random meshes and capacities, the thesis' scenes), and its failure
+//! modes.
 
 use hw_model::precision::{auto_scale_exp, spawn_policy, SceneRange};
-use hw_model::traversal::{TraversalEngine, TraversalError, TraversalModel, UnitCounters, UnitRay};
+use hw_model::traversal::capacity::chunks;
+use hw_model::traversal::{
+    ChunkedModel, SceneCapacity, SceneMemory, TraversalEngine, TraversalError, TraversalModel,
+    UnitCounters, UnitRay,
+};
 use hw_model::{lookup, mt_model, Format, ModelIntersector};
 use proptest::prelude::*;
 use sw_renderer::bvh::Bvh;
@@ -13,7 +19,7 @@ use sw_renderer::intersect::{F32Intersector, MtQuery};
 use sw_renderer::math::V3;
 use sw_renderer::render::{render, RenderError, RenderOptions};
 use sw_renderer::scene::Scene;
-use sw_renderer::scene_image::SceneImage;
+use sw_renderer::scene_image::{ChildBoxes, ImageNode, ImageTriangle, Link, SceneImage};
 use sw_renderer::thesis_scenes;
 use sw_renderer::world::WorldTriangle;
 
@@ -276,6 +282,7 @@ fn fp32_renders_of_the_builtin_scenes_equal_the_software() {
         stack_depth: 64,
         scale_exp: 0,
         timing: None,
+        memory: SceneMemory::Unbounded,
     };
     for name in sw_renderer::scene::builtin::names() {
         let scene = Scene::load(name).unwrap();
@@ -300,6 +307,7 @@ fn fp32_renders_of_the_thesis_scenes_equal_the_software() {
         stack_depth: 64,
         scale_exp: 0,
         timing: None,
+        memory: SceneMemory::Unbounded,
     };
     for name in thesis_scenes::SCENE_DIRS {
         let scene = Scene::load(root.join(name).to_str().unwrap()).unwrap();
@@ -320,6 +328,7 @@ fn a_render_whose_stack_overflows_fails_with_the_engines_error() {
         stack_depth: 2,
         scale_exp: 0,
         timing: None,
+        memory: SceneMemory::Unbounded,
     };
     let opts = RenderOptions {
         width: Some(16),
@@ -350,6 +359,7 @@ fn format_aware_renders_equal_the_bvh_path_in_a_narrow_scaled_format() {
             stack_depth: 64,
             scale_exp,
             timing: None,
+            memory: SceneMemory::Unbounded,
         };
         let bvh = ModelIntersector {
             format: fp16,
@@ -359,5 +369,228 @@ fn format_aware_renders_equal_the_bvh_path_in_a_narrow_scaled_format() {
         let b = render(&scene, &bvh, &opts).unwrap().image;
         let diff = compare(&a, &b).unwrap();
         assert_eq!(diff.differing_pixels, 0, "{name}: {diff:?}");
+    }
+}
+
+// ---- scenes larger than the unit's scene memory: chunked passes ---------------------------
+
+/// A capacity from a few units of the mesh's largest leaf (so most meshes split, some
+/// fit whole) and up to 12 inner nodes.
+fn capacity() -> impl Strategy<Value = (u32, u32, u32)> {
+    (0u32..12, 0u32..4, 0u32..6)
+}
+
+fn largest_leaf(image: &SceneImage) -> u32 {
+    let root = std::iter::once(image.root);
+    (root.chain(image.nodes.iter().flat_map(|n| n.child)))
+        .filter(|l| l.is_leaf())
+        .map(|l| l.count)
+        .max()
+        .unwrap_or(0)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+    /// Chunks fit, load through the checking loader, hold every triangle record once with its
+    /// global index; and the chunked unit answers as the unchunked one: closest-hit rays the
+    /// same hit bit for bit, any-hit rays occluded exactly when it is (by a counting,
+    /// shadow-casting triangle).
+    #[test]
+    fn chunked_passes_answer_as_the_whole_scene(
+        tris in mesh(),
+        rays in prop::collection::vec(ray(), 1..24),
+        (nodes, leaf_units, extra) in capacity(),
+    ) {
+        let (whole, casts) = unit(&tris, fp32(), 64);
+        let image = whole.image();
+        let cap = SceneCapacity { nodes, triangles: largest_leaf(image) * leaf_units.max(1) + extra };
+        let parts = chunks(image, SceneMemory::Chunked(cap)).unwrap();
+        let fits = cap.holds(SceneCapacity::of(image));
+        prop_assert_eq!(parts.len() == 1, fits);
+        let mut indices = Vec::new();
+        for c in &parts {
+            prop_assert!(cap.holds(SceneCapacity::of(c)));
+            prop_assert_eq!(&SceneImage::from_words(&c.to_words()).unwrap(), c);
+            indices.extend(c.triangles.iter().map(|t| t.index));
+        }
+        indices.sort_unstable();
+        prop_assert_eq!(indices, (0..tris.len() as u32).collect::<Vec<_>>());
+
+        let chunked = ChunkedModel::new(fp32(), 64, 0, image, SceneMemory::Chunked(cap)).unwrap();
+        prop_assert_eq!(chunked.chunks().len(), parts.len());
+        for r in &rays {
+            let want = whole.trace(r, &mut UnitCounters::default()).unwrap();
+            let mut counters = UnitCounters::default();
+            let got = chunked.trace(r, &mut counters).unwrap();
+            if r.any_hit {
+                prop_assert_eq!(got.is_some(), want.is_some(), "{:?}", r);
+                if let Some(h) = got {
+                    prop_assert!(casts[h.triangle as usize] && r.window().counts(h.triangle, &mt_model(&fp32(), &MtQuery {
+                        orig: r.orig,
+                        dir: r.dir,
+                        v0: tris[h.triangle as usize].verts[0].to_array(),
+                        v1: tris[h.triangle as usize].verts[1].to_array(),
+                        v2: tris[h.triangle as usize].verts[2].to_array(),
+                    })), "{:?}: {:?}", r, h);
+                }
+            } else {
+                prop_assert_eq!(got, want, "{:?}", r);
+                // Every pass walks the ray.
+                prop_assert_eq!(counters.rays, parts.len() as u64);
+            }
+        }
+    }
+}
+
+/// Two records of one triangle (equal t) in two chunks, the lower global index in the
+/// later one: the carried t_max must still let it win, as the unchunked walk does.
+#[test]
+fn an_equally_near_hit_with_a_lower_index_in_a_later_chunk_wins() {
+    let tri = |index| ImageTriangle {
+        verts: [[-1.0, -1.0, 2.0], [1.0, -1.0, 2.0], [0.0, 1.0, 2.0]],
+        index,
+        casts_shadow: true,
+    };
+    let b = [-1.5f32, 2.5];
+    let boxes = ChildBoxes {
+        min: [[b[0]; 2]; 3],
+        max: [[b[1]; 2]; 3],
+    };
+    let image = SceneImage {
+        root: Link { first: 0, count: 0 },
+        root_box: ([b[0]; 3], [b[1]; 3]),
+        nodes: vec![ImageNode {
+            boxes,
+            child: [Link { first: 0, count: 1 }, Link { first: 1, count: 1 }],
+        }],
+        triangles: vec![tri(1), tri(0)],
+        scene_triangles: 2,
+    };
+    let ray = UnitRay {
+        orig: [0.0, 0.0, 0.0],
+        dir: [0.0, 0.0, 1.0],
+        t_max: NO_BOUND,
+        ..UnitRay::default()
+    };
+    let whole = TraversalModel::new(fp32(), 8, image.clone());
+    let want = whole.trace(&ray, &mut UnitCounters::default()).unwrap();
+    assert_eq!(want.map(|h| (h.triangle, h.t)), Some((0, 2.0)));
+    let cap = SceneCapacity {
+        nodes: 0,
+        triangles: 1,
+    };
+    let chunked = ChunkedModel::new(fp32(), 8, 0, &image, SceneMemory::Chunked(cap)).unwrap();
+    assert_eq!(chunked.chunks().len(), 2);
+    assert_eq!(chunked.chunks()[0].image().triangles[0].index, 1);
+    assert_eq!(
+        chunked.trace(&ray, &mut UnitCounters::default()).unwrap(),
+        want
+    );
+}
+
+/// A unit that cannot hold a scene says what the scene needs and what it holds.
+#[test]
+fn a_scene_the_unit_cannot_hold_is_an_error_naming_the_sizes() {
+    let scene = Scene::load("utah_teapot").unwrap();
+    let prepared = sw_renderer::trace::PreparedScene::new(&scene).unwrap();
+    let need = SceneCapacity::of(&SceneImage::new(&prepared));
+    let holds = SceneCapacity {
+        nodes: 2048,
+        triangles: 4096,
+    };
+    let engine = |memory| TraversalEngine {
+        format: fp32(),
+        stack_depth: 64,
+        scale_exp: 0,
+        timing: None,
+        memory,
+    };
+    let opts = RenderOptions {
+        width: Some(8),
+        height: Some(6),
+        ..Default::default()
+    };
+    let e = render(&scene, &engine(SceneMemory::Whole(holds)), &opts).unwrap_err();
+    assert!(matches!(e, RenderError::Engine { .. }));
+    let msg = format!(
+        "scene needs {need}; this unit holds 2,048 nodes and 4,096 triangles; chunked passes are disabled"
+    );
+    assert!(e.to_string().contains(&msg), "{e}");
+    assert!(msg.contains(&format!("{} triangles", thousand(need.triangles))));
+    let tiny = SceneCapacity {
+        nodes: 100,
+        triangles: 1,
+    };
+    let e = render(&scene, &engine(SceneMemory::Chunked(tiny)), &opts).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("this unit holds 100 nodes and 1 triangles; its BVH has a leaf of"),
+        "{e}"
+    );
+    let none = SceneCapacity::default();
+    let e = render(&scene, &engine(SceneMemory::Chunked(none)), &opts).unwrap_err();
+    assert!(
+        e.to_string().contains("holds 0 nodes and 0 triangles"),
+        "{e}"
+    );
+}
+
+/// "6322" as "6,322", independently of the library's formatting.
+fn thousand(n: u32) -> String {
+    match n {
+        0..=999 => n.to_string(),
+        _ => format!("{},{:03}", thousand(n / 1000), n % 1000),
+    }
+}
+
+/// Whole renders: every thesis scene through a unit whose memory holds a third of the
+/// scene (at least 3 chunks where the scene has more than one leaf) equals the unchunked
+/// render, and reports its passes and chunk loads.
+#[test]
+fn chunked_renders_of_the_thesis_scenes_equal_the_unchunked_unit() {
+    let Some(root) = thesis_scenes::for_test(
+        "traversal::chunked_renders_of_the_thesis_scenes_equal_the_unchunked_unit",
+    ) else {
+        return;
+    };
+    let engine = |memory| TraversalEngine {
+        format: fp32(),
+        stack_depth: 64,
+        scale_exp: 0,
+        timing: None,
+        memory,
+    };
+    let opts = RenderOptions {
+        width: Some(64),
+        height: Some(36),
+        ..Default::default()
+    };
+    for name in thesis_scenes::SCENE_DIRS {
+        let scene = Scene::load(root.join(name).to_str().unwrap()).unwrap();
+        let prepared = sw_renderer::trace::PreparedScene::new(&scene).unwrap();
+        let image = SceneImage::new(&prepared);
+        let need = SceneCapacity::of(&image);
+        let third = SceneCapacity {
+            nodes: need.nodes / 3,
+            triangles: (need.triangles / 3).max(largest_leaf(&image)),
+        };
+        let memory = SceneMemory::Chunked(third);
+        let parts = chunks(&image, memory).unwrap().len();
+        if need.nodes > 0 {
+            assert!(parts >= 3, "{name}: {parts} chunks");
+        }
+        let whole = render(&scene, &engine(SceneMemory::Unbounded), &opts).unwrap();
+        let chunked = render(&scene, &engine(memory), &opts).unwrap();
+        let diff = compare(&chunked.image, &whole.image).unwrap();
+        assert_eq!(diff.differing_pixels, 0, "{name}: {diff:?}");
+        let (c, w) = (chunked.stats.trace.cast, whole.stats.trace.cast);
+        assert_eq!(w.chunk_loads, 0, "{name}: a resident scene is loaded once");
+        assert_eq!(w.passes, w.batches, "{name}");
+        if parts > 1 {
+            assert!(c.chunk_loads >= c.batches && c.chunk_loads <= c.batches * parts as u64);
+            assert!(c.loaded_bytes >= c.chunk_loads * 64, "{name}: {c:?}");
+            assert!(c.ray_passes > w.ray_passes, "{name}: {c:?}");
+        }
     }
 }

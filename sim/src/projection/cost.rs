@@ -3,7 +3,7 @@
 //! Times are seconds, frequencies MHz, per-event costs nanoseconds. The equations are
 //! derived in `docs/projection.md`; the constants of [`Board`] come from the calibration.
 
-use super::workload::{Traversal, Workload};
+use super::workload::{Traversal, UnitWork, Workload};
 use super::ProjectionError;
 
 /// Clock of the ZedBoard's Cortex-A9 cores.
@@ -27,6 +27,8 @@ pub const HIT_BYTES: f64 = 4.0 * hw_model::traversal::HIT_WORDS as f64;
 /// AXI-Lite accesses to start one batch on an AXI DMA (MM2S and S2MM: address, length,
 /// control each) and to see it finish (one status read each).
 pub const DMA_ACCESSES_PER_BATCH: f64 = 8.0;
+/// A chunk load uses one channel (MM2S) of such a batch.
+pub const DMA_ACCESSES_PER_LOAD: f64 = DMA_ACCESSES_PER_BATCH / 2.0;
 
 /// The board's fitted constants.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -244,8 +246,7 @@ pub fn project(w: &Workload, d: &Design, b: &Board) -> Result<Breakdown, Project
             dma_efficiency,
             pack_arm_cycles,
         } => {
-            let bytes_per_s =
-                f64::from(hp_ports) * HP_PORT_BYTES_PER_CYCLE * dma_efficiency / cycle_s;
+            let bytes_per_s = dma_bytes_per_cycle(hp_ports, dma_efficiency) / cycle_s;
             // Read and write channels run in parallel; the slower of them and the lanes sets the pace.
             let streaming = (n * QUERY_BYTES / bytes_per_s)
                 .max(n * RESULT_BYTES / bytes_per_s)
@@ -269,20 +270,47 @@ pub fn project(w: &Workload, d: &Design, b: &Board) -> Result<Breakdown, Project
                         .into(),
                 )
             })?;
-            let bytes_per_s =
-                f64::from(hp_ports) * HP_PORT_BYTES_PER_CYCLE * dma_efficiency / cycle_s;
-            let rays = w.rays() as f64;
+            let bytes_per_s = dma_bytes_per_cycle(hp_ports, dma_efficiency) / cycle_s;
+            // Every pass streams the rays that take part in it (closest-hit rays carry their
+            // nearest hit as t_max); the ARM writes each and folds its answer.
+            let rays = unit.ray_passes as f64;
             // Rays in and answers out stream in parallel with the unit's work; the slowest
-            // of the three sets the pace (the cycles already hold each wavefront's drain).
+            // of the three sets the pace (the cycles already hold each pass' drain).
             let streaming = (rays * RAY_BYTES / bytes_per_s)
                 .max(rays * HIT_BYTES / bytes_per_s)
                 .max(unit.cycles as f64 * cycle_s);
             Breakdown {
                 tests,
                 arm_s: b.arm_rays_s(w) + rays * pack_arm_cycles / (ARM_MHZ * 1e6),
-                bus_s: unit.wavefronts as f64 * DMA_ACCESSES_PER_BATCH * access_s,
-                accel_s: streaming + unit.image_bytes as f64 / bytes_per_s,
+                bus_s: (unit.passes as f64 * DMA_ACCESSES_PER_BATCH
+                    + unit.chunk_loads as f64 * DMA_ACCESSES_PER_LOAD)
+                    * access_s,
+                // The scene memory is one buffer: a load waits for the pass before it.
+                accel_s: streaming + unit_loads(unit, hp_ports, dma_efficiency) * cycle_s,
             }
         }
     })
+}
+
+/// Bytes a DMA moves per fabric cycle through `hp_ports` HP ports at `efficiency`.
+fn dma_bytes_per_cycle(hp_ports: u32, efficiency: f64) -> f64 {
+    f64::from(hp_ports) * HP_PORT_BYTES_PER_CYCLE * efficiency
+}
+
+/// Fabric cycles of a frame's scene-memory loads (the whole image, or every chunk load).
+fn unit_loads(unit: &UnitWork, hp_ports: u32, efficiency: f64) -> f64 {
+    unit.loaded_bytes as f64 / dma_bytes_per_cycle(hp_ports, efficiency)
+}
+
+/// Fabric cycles the traversal design spends loading its scene memory for the frame
+/// (`None` for the other designs).
+pub fn load_cycles(unit: &UnitWork, d: &Design) -> Option<f64> {
+    match d.frontend {
+        Frontend::Traversal {
+            hp_ports,
+            dma_efficiency,
+            ..
+        } => Some(unit_loads(unit, hp_ports, dma_efficiency)),
+        _ => None,
+    }
 }

@@ -55,10 +55,19 @@ pub struct UnitWork {
     pub node_visits: u64,
     pub mt_tests: u64,
     pub cycles: u64,
-    /// Wavefronts (one per level of a tile's ray tree): DMA transfers each way.
+    /// Wavefronts (one per level of a tile's ray tree).
     pub wavefronts: u64,
-    /// Bytes of the scene image loaded before the frame.
+    /// Passes: one per wavefront and chunk of the scene in the unit (one per wavefront while
+    /// the whole scene is resident): DMA transfers each way.
+    pub passes: u64,
+    /// Rays sent into the unit, once per pass they take part in.
+    pub ray_passes: u64,
+    /// Bytes of the whole scene image.
     pub image_bytes: u64,
+    /// Chunks loaded during the frame (0: the whole image is loaded once before it) …
+    pub chunk_loads: u64,
+    /// … and the bytes loaded into the unit's scene memory for the frame, either way.
+    pub loaded_bytes: u64,
 }
 
 impl Workload {
@@ -96,11 +105,13 @@ impl Workload {
     }
 
     /// Adds the traversal unit's work: the same frame rendered through `engine` (whose
-    /// `timing` must be set, for the cycles).
+    /// `timing` must be set, for the cycles) in square tiles of `tile_size` pixels (a tile's
+    /// level of rays is one wavefront).
     pub fn with_unit(
         mut self,
         scene: &Scene,
         engine: &TraversalEngine,
+        tile_size: u32,
     ) -> Result<Workload, ProjectionError> {
         if engine.timing.is_none() {
             return Err(ProjectionError::Invalid(
@@ -110,6 +121,7 @@ impl Workload {
         let opts = RenderOptions {
             width: Some(self.width),
             height: Some(self.height),
+            tile_size,
             ..Default::default()
         };
         let stats = render(scene, engine, &opts)
@@ -118,13 +130,22 @@ impl Workload {
             .trace;
         let prepared = sw_renderer::trace::PreparedScene::new(scene)
             .map_err(|e| ProjectionError::Scene(e.to_string()))?;
+        let image_bytes = sw_renderer::scene_image::SceneImage::new(&prepared).bytes() as u64;
+        let c = stats.cast;
         self.unit = Some(UnitWork {
-            box_tests: stats.cast.box_tests,
-            node_visits: stats.cast.node_visits,
-            mt_tests: stats.cast.mt_tests,
-            cycles: stats.cast.cycles,
-            wavefronts: stats.cast.batches,
-            image_bytes: sw_renderer::scene_image::SceneImage::new(&prepared).bytes() as u64,
+            box_tests: c.box_tests,
+            node_visits: c.node_visits,
+            mt_tests: c.mt_tests,
+            cycles: c.cycles,
+            wavefronts: c.batches,
+            passes: c.passes,
+            ray_passes: c.ray_passes,
+            image_bytes,
+            chunk_loads: c.chunk_loads,
+            loaded_bytes: match c.chunk_loads {
+                0 => image_bytes,
+                _ => c.loaded_bytes,
+            },
         });
         Ok(self)
     }

@@ -19,9 +19,11 @@
 //! conservative, so in fp32 every answer equals the software renderer's.
 
 pub mod box_test;
+pub mod capacity;
 mod engine;
 pub mod schedule;
 
+pub use capacity::{CapacityError, ChunkedModel, SceneCapacity, SceneMemory};
 pub use engine::TraversalEngine;
 
 use sw_renderer::hit::{nearer, remaining_bound, Hit, Window};
