@@ -6,7 +6,9 @@
 //! The Verilated memory loads a thesis scene
 //! (sim/tests/scene_memory_verilator.rs).
 
-use hdl::traversal::scene_memory::{address_bits_for, capacity_for, LoadError, SceneMemory4x5};
+use hdl::traversal::scene_memory::{
+    address_bits_for, capacity_for, LoadError, SceneMemory4x5, INDEX_BITS,
+};
 use hdl::traversal::scene_memory_driver::{
     check_before_load, status_result, LoadStatus, MemoryConfig, SceneMemoryError,
 };
@@ -17,7 +19,7 @@ use rust_hdl::prelude::*;
 use sw_renderer::bvh::Bvh;
 use sw_renderer::math::V3;
 use sw_renderer::scene::Scene;
-use sw_renderer::scene_image::{SceneImage, HEADER_WORDS, NODE_WORDS, TRIANGLE_WORDS};
+use sw_renderer::scene_image::{SceneImage, HEADER_WORDS, NODE_WORDS, TRIANGLE_WORDS, VERSION};
 use sw_renderer::trace::PreparedScene;
 use sw_renderer::world::WorldTriangle;
 
@@ -207,6 +209,25 @@ fn images_load_and_read_back_word_for_word_with_gaps() {
     status_result(&status, &empty, CONFIG).unwrap();
 }
 
+/// A chunk of a larger scene (`hw_model::traversal::capacity`) keeps its scene's global
+/// indices, which reach beyond this memory's own triangle capacity: they load and read back.
+#[test]
+fn a_chunks_global_indices_beyond_the_capacity_load() {
+    let mesh = mesh();
+    let (n, t) = (mesh[2] as usize, mesh[3] as usize);
+    let tri = |k: usize, w: usize| HEADER_WORDS + NODE_WORDS * n + TRIANGLE_WORDS * k + w;
+    let scene = 100_000;
+    let mut words = with(&mesh, 12, scene);
+    for k in 0..t {
+        words[tri(k, 9)] += scene - t as u32;
+    }
+    SceneImage::from_words(&words).unwrap();
+    let mut bench = Bench::new(8, 0.1);
+    let status = bench.load(&words, last(&words));
+    status_result(&status, &words, CONFIG).unwrap();
+    bench.read_back(&words);
+}
+
 #[test]
 fn back_to_back_beats_load_at_one_word_a_cycle() {
     let mut bench = Bench::new(2, 0.0);
@@ -254,12 +275,29 @@ fn malformed_images_are_refused_with_their_code_word_and_value() {
             "magic",
         ),
         (
-            with(&mesh, 1, 2),
+            with(&mesh, 1, VERSION + 1),
             mesh.len() - 1,
             LoadError::BadVersion,
             1,
-            2,
-            "version 2",
+            VERSION + 1,
+            "this memory reads version",
+        ),
+        // The scene's triangle count S: at least T, at most what a global index can name.
+        (
+            with(&mesh, 12, t as u32 - 1),
+            mesh.len() - 1,
+            LoadError::SceneTriangles,
+            12,
+            t as u32 - 1,
+            "at least the image's 28 triangles",
+        ),
+        (
+            with(&mesh, 12, (1 << INDEX_BITS) + 1),
+            mesh.len() - 1,
+            LoadError::SceneTriangles,
+            12,
+            (1 << INDEX_BITS) + 1,
+            "at most 16777216",
         ),
         (
             with(&mesh, 2, max_nodes as u32 + 1),
@@ -426,6 +464,12 @@ fn random_corruptions_get_the_software_loaders_verdict() {
                 Ok(()),
             ) => whole_tree += 1,
             (Err(_), Err(_)) => refused += 1,
+            // A global index has INDEX_BITS bits; the software loader has no such limit.
+            (Ok(_), Err(SceneMemoryError::Refused { error, .. }))
+                if *error == LoadError::SceneTriangles && words[12] > 1 << INDEX_BITS =>
+            {
+                refused += 1
+            }
             _ => panic!("{what}"),
         }
     }

@@ -9,13 +9,14 @@
 //!   = max(node, triangle address bits); a count reaches the whole capacity, `LC` = triangle
 //!   address bits + 1. One read is what one box test needs.
 //! - triangle ([`triangle_record_bits`]): v0, v1, v2 (9 × 32 bits, bits 0–287), the casts-shadow
-//!   flag (bit 288), the global index (triangle address bits, from 289). The image's reserved
+//!   flag (bit 288), the global index ([`INDEX_BITS`], from 289). The image's reserved
 //!   word is not stored. One read is what one Möller-Trumbore lane and its hit need.
 //!
 //! The loader (`start_load`, then the stream): the header, N nodes and T triangles in image
 //! order, each record written when its last word arrives. It checks what is cheap in
 //! hardware as the words pass: magic and version, N and T against this memory's capacity, every
-//! link (a node link below N, a leaf within T; the root too), each global index below T, flags
+//! link (a node link below N, a leaf within T; the root too), the scene's triangle count S
+//! (T ≤ S ≤ 2^[`INDEX_BITS`]), each global index below S, flags
 //! other than bit 0, reserved words other than 0, and `tlast` exactly on the image's last word.
 //! The first failure stops the load with a [`LoadError`] code, the index of the word that showed
 //! it and that word. What needs the whole tree (a cycle or a shared subtree, duplicate global
@@ -44,6 +45,10 @@ use sw_renderer::scene_image::{HEADER_WORDS, MAGIC, NODE_WORDS, TRIANGLE_WORDS, 
 pub const BOX_BITS: usize = 12 * 32;
 /// Bits of the vertices in a triangle record (9 fp32 words).
 pub const VERTEX_BITS: usize = 9 * 32;
+/// Bits of a global triangle index: a scene (a whole one, or the scene a chunk of it belongs
+/// to) has at most 2^24 triangles. A chunk's indices reach beyond its own capacity, so the
+/// width does not follow the triangle address bits.
+pub const INDEX_BITS: usize = 24;
 /// Width of `error_code`.
 pub const ERROR_CODE_BITS: usize = 4;
 
@@ -63,7 +68,7 @@ pub enum LoadError {
     NodeLink = 5,
     /// A link's first + count > T (the word is the count).
     LeafLink = 6,
-    /// A triangle's global index ≥ T.
+    /// A triangle's global index ≥ S (header word 12).
     GlobalIndex = 7,
     /// A triangle's flags have a bit other than bit 0.
     BadFlags = 8,
@@ -73,10 +78,12 @@ pub enum LoadError {
     EarlyLast = 10,
     /// The image's last word without `tlast` (the rest of the packet is drained).
     MissingLast = 11,
+    /// The scene's triangle count S (word 12) is below T or beyond 2^[`INDEX_BITS`].
+    SceneTriangles = 12,
 }
 
 impl LoadError {
-    pub const ALL: [LoadError; 11] = [
+    pub const ALL: [LoadError; 12] = [
         LoadError::BadMagic,
         LoadError::BadVersion,
         LoadError::TooManyNodes,
@@ -88,6 +95,7 @@ impl LoadError {
         LoadError::Reserved,
         LoadError::EarlyLast,
         LoadError::MissingLast,
+        LoadError::SceneTriangles,
     ];
 
     pub fn code(self) -> u64 {
@@ -132,8 +140,8 @@ pub fn node_record_bits(node_bits: usize, triangle_bits: usize) -> usize {
 }
 
 /// `TW`: vertices, the flag and the global index.
-pub fn triangle_record_bits(triangle_bits: usize) -> usize {
-    VERTEX_BITS + 1 + triangle_bits
+pub const fn triangle_record_bits() -> usize {
+    VERTEX_BITS + 1 + INDEX_BITS
 }
 
 /// The loader's states, as the `state` register's values (a `Bits` register with constants:
@@ -207,7 +215,7 @@ pub struct SceneMemory<
     pub triangle_address: Signal<In, Bits<TB>>,
     /// v0 x y z, v1 x y z, v2 x y z.
     pub vert: [Signal<Out, Bits<32>>; 9],
-    pub global_index: Signal<Out, Bits<TB>>,
+    pub global_index: Signal<Out, Bits<INDEX_BITS>>,
     pub casts_shadow: Signal<Out, Bit>,
     node_ram: RAM<Bits<NW>, NB>,
     triangle_ram: RAM<Bits<TW>, TB>,
@@ -230,7 +238,9 @@ pub struct SceneMemory<
     first0: DFF<Bits<LF>>,
     count0: DFF<Bits<LC>>,
     verts: DFF<Bits<VERTEX_BITS>>,
-    index: DFF<Bits<TB>>,
+    index: DFF<Bits<INDEX_BITS>>,
+    /// The scene's triangle count S (header word 12).
+    scene_triangles: DFF<Bits<32>>,
     error_code_reg: DFF<Bits<ERROR_CODE_BITS>>,
     error_word_reg: DFF<Bits<32>>,
     error_value_reg: DFF<Bits<32>>,
@@ -245,6 +255,7 @@ pub struct SceneMemory<
     /// The capacity, compared with N and T.
     max_nodes: Constant<Bits<32>>,
     max_triangles: Constant<Bits<32>>,
+    max_scene_triangles: Constant<Bits<32>>,
     /// Bit offsets of the links in a node record, of the flag and index in a triangle record.
     at_first0: Constant<Bits<16>>,
     at_count0: Constant<Bits<16>>,
@@ -267,6 +278,7 @@ pub struct SceneMemory<
     e_reserved: Constant<Bits<ERROR_CODE_BITS>>,
     e_early_last: Constant<Bits<ERROR_CODE_BITS>>,
     e_missing_last: Constant<Bits<ERROR_CODE_BITS>>,
+    e_scene_triangles: Constant<Bits<ERROR_CODE_BITS>>,
     /// A beat is taken this cycle.
     take: Signal<Local, Bit>,
     /// The error this word shows (0: none).
@@ -283,13 +295,13 @@ pub struct SceneMemory<
 }
 
 /// A memory for the small test images (16 nodes, 32 triangles).
-pub type SceneMemory4x5 = SceneMemory<4, 5, 5, 6, 406, 294>;
+pub type SceneMemory4x5 = SceneMemory<4, 5, 5, 6, 406, { triangle_record_bits() }>;
 /// Glasses (425 nodes, 720 triangles) fits: 512 nodes, 1,024 triangles.
-pub type SceneMemory9x10 = SceneMemory<9, 10, 10, 11, 426, 299>;
+pub type SceneMemory9x10 = SceneMemory<9, 10, 10, 11, 426, { triangle_record_bits() }>;
 /// 2,048 nodes, 4,096 triangles.
-pub type SceneMemory11x12 = SceneMemory<11, 12, 12, 13, 434, 301>;
+pub type SceneMemory11x12 = SceneMemory<11, 12, 12, 13, 434, { triangle_record_bits() }>;
 /// Glass pen and Utah teapot (3,876 nodes, 6,322 triangles) fit: 4,096 nodes, 8,192 triangles.
-pub type SceneMemory12x13 = SceneMemory<12, 13, 13, 14, 438, 302>;
+pub type SceneMemory12x13 = SceneMemory<12, 13, 13, 14, 438, { triangle_record_bits() }>;
 
 impl<
         const NB: usize,
@@ -323,7 +335,7 @@ impl<
             ("LF", LF, link_first_bits(NB, TB)),
             ("LC", LC, link_count_bits(TB)),
             ("NW", NW, node_record_bits(NB, TB)),
-            ("TW", TW, triangle_record_bits(TB)),
+            ("TW", TW, triangle_record_bits()),
         ];
         for (name, got, want) in want {
             assert_eq!(
@@ -380,6 +392,7 @@ impl<
             count0: Default::default(),
             verts: Default::default(),
             index: Default::default(),
+            scene_triangles: Default::default(),
             error_code_reg: Default::default(),
             error_word_reg: Default::default(),
             error_value_reg: Default::default(),
@@ -393,6 +406,7 @@ impl<
             version: Constant::new(u64::from(VERSION).into()),
             max_nodes: c32(nodes),
             max_triangles: c32(triangles),
+            max_scene_triangles: c32(1 << INDEX_BITS),
             at_first0: c16(BOX_BITS),
             at_count0: c16(BOX_BITS + LF),
             at_first1: c16(BOX_BITS + LF + LC),
@@ -413,6 +427,7 @@ impl<
             e_reserved: LoadError::Reserved.constant(),
             e_early_last: LoadError::EarlyLast.constant(),
             e_missing_last: LoadError::MissingLast.constant(),
+            e_scene_triangles: LoadError::SceneTriangles.constant(),
             take: Default::default(),
             check: Default::default(),
             is_count: Default::default(),
@@ -455,6 +470,7 @@ impl<
             count0,
             verts,
             index,
+            scene_triangles,
             error_code_reg,
             error_word_reg,
             error_value_reg
@@ -490,7 +506,7 @@ impl<
         self.triangle_ram.write_address.next = bit_cast::<TB, 32>(self.record.q.val());
         self.triangle_ram.write_data.next = bit_cast::<TW, VERTEX_BITS>(self.verts.q.val())
             | (bit_cast::<TW, 1>(bit_cast::<1, 32>(self.prev.q.val())) << self.at_flag.val())
-            | (bit_cast::<TW, TB>(self.index.q.val()) << self.at_index.val());
+            | (bit_cast::<TW, INDEX_BITS>(self.index.q.val()) << self.at_index.val());
 
         if self.take.val() {
             self.word.d.next = self.word.q.val() + 1;
@@ -528,7 +544,15 @@ impl<
                     self.root_box.d.next = (self.root_box.q.val() >> 32)
                         | (bit_cast::<192, 32>(self.s_tdata.val()) << 160);
                 }
-                if (self.word.q.val() >= 12) & self.s_tdata.val().any() {
+                if self.word.q.val() == 12 {
+                    self.scene_triangles.d.next = self.s_tdata.val();
+                    if (self.s_tdata.val() < self.t.q.val())
+                        | (self.s_tdata.val() > self.max_scene_triangles.val())
+                    {
+                        self.check.next = self.e_scene_triangles.val();
+                    }
+                }
+                if (self.word.q.val() >= 13) & self.s_tdata.val().any() {
                     self.check.next = self.e_reserved.val();
                 }
                 if self.word.q.val() == self.header_end.val() {
@@ -568,8 +592,8 @@ impl<
                         | (bit_cast::<VERTEX_BITS, 32>(self.s_tdata.val()) << 256);
                 }
                 if self.k.q.val() == 9 {
-                    self.index.d.next = bit_cast::<TB, 32>(self.s_tdata.val());
-                    if self.s_tdata.val() >= self.t.q.val() {
+                    self.index.d.next = bit_cast::<INDEX_BITS, 32>(self.s_tdata.val());
+                    if self.s_tdata.val() >= self.scene_triangles.q.val() {
                         self.check.next = self.e_index.val();
                     }
                 }
@@ -689,6 +713,6 @@ impl<
         self.casts_shadow.next =
             bit_cast::<1, TW>(self.triangle_read.val() >> self.at_flag.val()).any();
         self.global_index.next =
-            bit_cast::<TB, TW>(self.triangle_read.val() >> self.at_index.val());
+            bit_cast::<INDEX_BITS, TW>(self.triangle_read.val() >> self.at_index.val());
     }
 }

@@ -11,7 +11,7 @@ use sw_renderer::scene_image::{
 };
 use thiserror::Error;
 
-use super::scene_memory::{capacity_for, LoadError};
+use super::scene_memory::{capacity_for, LoadError, INDEX_BITS};
 
 /// A scene memory's address bits: its capacity is [`capacity_for`] them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -179,7 +179,8 @@ pub fn status_result(
             format!("links to triangles {first}..{first}+{value}, but there are {t} triangles")
         }
         LoadError::GlobalIndex => {
-            format!("global index {value}, but there are {t} triangles")
+            let scene = words.get(12).copied().unwrap_or_default();
+            format!("global index {value}, but the scene has {scene} triangles")
         }
         LoadError::BadFlags => {
             format!("flags {value:#x}; only bit 0 (casts shadows) is defined")
@@ -189,6 +190,11 @@ pub fn status_result(
             "tlast before the image's last word (the header's {n} nodes and {t} triangles need \
              {} words)",
             image_words(n, t)
+        ),
+        LoadError::SceneTriangles => format!(
+            "the scene's triangle count is {value}; it must be at least the image's {t} \
+             triangles and at most {} (global indices have {INDEX_BITS} bits)",
+            1u64 << INDEX_BITS
         ),
         LoadError::MissingLast => format!(
             "no tlast on the image's last word (the header's {n} nodes and {t} triangles need \
