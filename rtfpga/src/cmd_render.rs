@@ -54,7 +54,8 @@ pub fn run(a: Args) -> Result<()> {
     }
     let scene = Scene::load(&a.scene)?;
     let (spawn, scale_exp) = a.precision.resolve(a.engine, &a.hw, &scene)?;
-    let engine = engine::make_scaled(a.engine, &a.hw, scale_exp, a.memory.memory())?;
+    let made = engine::make_scaled(a.engine, &a.hw, scale_exp, a.memory.memory())?;
+    let engine = made.engine;
     let opts = RenderOptions {
         width: a.width,
         height: a.height,
@@ -86,6 +87,17 @@ pub fn run(a: Args) -> Result<()> {
         secs,
         s.trace.rays() as f64 / secs.max(1e-9) / 1e6
     );
+    if let Some(dual) = &made.dual {
+        let d = dual.stats();
+        println!(
+            "dual_precision pair={} tests={} certain_misses={} forwarded={} forwarded_share={:.4}",
+            dual.filter.pair,
+            d.tests,
+            d.certain_misses,
+            d.forwarded(),
+            d.forwarded_share()
+        );
+    }
     let c = s.trace.cast;
     if c.passes > 0 {
         // The traversal unit's scene memory: one pass per wavefront and loaded chunk.

@@ -33,9 +33,10 @@ pub fn run(a: Args) -> Result<()> {
     let options = SynthOptions::default();
     if let Some(op) = &a.op {
         let op: Op = op.parse()?;
-        let rtl = hdl::formats::rtl(a.hw.format.try_into()?, op, a.stages)?;
+        let format = a.hw.single_format()?;
+        let rtl = hdl::formats::rtl(format.try_into()?, op, a.stages)?;
         let report = synthesize(&rtl.verilog, hdl::verilog::TOP, &options)?;
-        let label = format!("{} {} stages={}", a.hw.format, op, a.stages);
+        let label = format!("{} {} stages={}", format, op, a.stages);
         return print(&label, &report, rtl.latency, None, a.json);
     }
     let config = a.hw.top_config()?;

@@ -123,7 +123,7 @@ fn timed(isect: &dyn Intersector, queries: &[MtQuery], quiet: bool) -> Result<Ve
 
 fn replay_trace(a: ReplayArgs) -> Result<()> {
     let queries = read_trace(&a.trace)?;
-    let model = ModelIntersector::new(a.hw.format);
+    let model = ModelIntersector::new(a.hw.single_format()?);
     let want = if a.engine != ReplayEngine::Hw {
         Some(timed(&model, &queries, a.quiet)?)
     } else {

@@ -4,9 +4,10 @@
 use anyhow::{bail, Result};
 use clap::{Args as ClapArgs, ValueEnum};
 use hdl::top::TopConfig;
+use hw_model::dual::{DualIntersector, FormatChoice};
 use hw_model::precision::{auto_scale_exp, spawn_policy, SceneRange};
 use hw_model::traversal::{SceneCapacity, SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
-use hw_model::ModelIntersector;
+use hw_model::{Format, ModelIntersector};
 use sim::hw_intersector::{HwIntersector, Mode};
 use sw_renderer::intersect::F32Intersector;
 use sw_renderer::rays::RayEngine;
@@ -30,9 +31,10 @@ pub enum EngineKind {
 #[derive(ClapArgs, Clone, Debug)]
 pub struct HwConfig {
     /// Number format of the datapath: a catalogue name (`rtfpga formats`), or for the model
-    /// engine any spelling such as e8m14 or fx<24,8>.
+    /// engine any spelling such as e8m14 or fx<24,8>, or a dual-precision pair
+    /// FILTER/FALLBACK such as fp16/fp32 (docs/precision.md).
     #[arg(long, default_value = "fp32")]
-    pub format: hw_model::Format,
+    pub format: FormatChoice,
     /// Pipeline registers per operator.
     #[arg(long, default_value_t = 1)]
     pub depth: usize,
@@ -46,26 +48,42 @@ pub struct HwConfig {
 }
 
 pub fn make(kind: EngineKind, hw: &HwConfig) -> Result<Box<dyn RayEngine>> {
-    make_scaled(kind, hw, 0, MemoryArgs::default().memory())
+    Ok(make_scaled(kind, hw, 0, MemoryArgs::default().memory())?.engine)
 }
 
-/// The engine, its Möller-Trumbore queries scaled by 2^`scale_exp` (model engines only), a
-/// traversal unit with the scene `memory`.
+/// An engine, and for a dual-precision pair a handle on its counters.
+pub struct Made {
+    pub engine: Box<dyn RayEngine>,
+    /// Shares the engine's counters (`--format FILTER/FALLBACK`).
+    pub dual: Option<DualIntersector>,
+}
+
+/// The engine, its Möller-Trumbore queries scaled by 2^`scale_exp` (model engines only; a
+/// pair scales its filter, its fallback answers the queries as given), a traversal unit with
+/// the scene `memory`.
 pub fn make_scaled(
     kind: EngineKind,
     hw: &HwConfig,
     scale_exp: i32,
     memory: SceneMemory,
-) -> Result<Box<dyn RayEngine>> {
-    Ok(match kind {
+) -> Result<Made> {
+    if let (EngineKind::Model, FormatChoice::Pair(pair)) = (kind, hw.format) {
+        let dual = DualIntersector::new(pair, scale_exp);
+        return Ok(Made {
+            engine: Box::new(dual.clone()),
+            dual: Some(dual),
+        });
+    }
+    let engine: Box<dyn RayEngine> = match kind {
         EngineKind::F32 => Box::new(F32Intersector),
         EngineKind::Model => Box::new(ModelIntersector {
-            format: hw.format,
+            format: hw.single_format()?,
             scale_exp,
         }),
         EngineKind::Hw => Box::new(HwIntersector::new(&hw.top_config()?, Mode::Stream)?),
-        EngineKind::Traversal => Box::new(hw.traversal_engine(scale_exp, memory)),
-    })
+        EngineKind::Traversal => Box::new(hw.traversal_engine(scale_exp, memory)?),
+    };
+    Ok(Made { engine, dual: None })
 }
 
 /// How spawned rays start (`--spawn`, docs/precision.md).
@@ -109,7 +127,12 @@ impl PrecisionArgs {
         hw: &HwConfig,
         scene: &Scene,
     ) -> Result<(SpawnPolicy, i32)> {
-        let fp32 = hw.format == hw_model::Format::Float { exp: 8, man: 23 };
+        // A pair answers as its fallback (unscaled); only its filter is scaled.
+        let (answers, scaled) = match hw.format {
+            FormatChoice::Single(f) => (f, f),
+            FormatChoice::Pair(p) => (p.fallback, p.filter),
+        };
+        let fp32 = answers == Format::Float { exp: 8, man: 23 };
         let model = matches!(kind, EngineKind::Model | EngineKind::Traversal);
         // Unscaled unless asked: auto scaling measured no better in any format and worse in
         // e5m14 and the fixed formats (docs/precision.md).
@@ -119,13 +142,14 @@ impl PrecisionArgs {
             ScaleKind::Auto if !model => {
                 bail!("--scale auto needs the model or traversal engine (the others see fp32 queries as given)")
             }
-            ScaleKind::Auto => auto_scale_exp(&hw.format, &SceneRange::of(scene)?),
+            ScaleKind::Auto => auto_scale_exp(&scaled, &SceneRange::of(scene)?),
         };
+        let answer_scale = if answers == scaled { scale_exp } else { 0 };
         let thesis = kind == EngineKind::F32 || fp32;
         let spawn = match self.spawn {
             Some(SpawnKind::Thesis) => SpawnPolicy::Thesis,
             None if thesis => SpawnPolicy::Thesis,
-            Some(SpawnKind::FormatAware) | None => spawn_policy(&hw.format, scale_exp),
+            Some(SpawnKind::FormatAware) | None => spawn_policy(&answers, answer_scale),
         };
         Ok((spawn, scale_exp))
     }
@@ -178,26 +202,37 @@ fn parse_capacity(s: &str) -> Result<SceneCapacity, String> {
 }
 
 impl HwConfig {
+    /// The datapath's one format: a pair is an error here, dual precision is model-only.
+    pub fn single_format(&self) -> Result<Format> {
+        match self.format {
+            FormatChoice::Single(format) => Ok(format),
+            FormatChoice::Pair(pair) => bail!(
+                "--format {pair}: dual precision is model-only so far (render or bench with --engine model); no hardware, traversal unit or co-simulation takes a format pair yet"
+            ),
+        }
+    }
+
     /// The traversal unit's model in this configuration, its Möller-Trumbore queries scaled
     /// by 2^`scale_exp`, holding scenes in `memory`; timed by its schedule model when the
     /// format has hardware (any other format has no lane latency to time with).
-    pub fn traversal_engine(&self, scale_exp: i32, memory: SceneMemory) -> TraversalEngine {
-        let timing = hw_model::HwFormat::try_from(self.format).ok().map(|f| {
+    pub fn traversal_engine(&self, scale_exp: i32, memory: SceneMemory) -> Result<TraversalEngine> {
+        let format = self.single_format()?;
+        let timing = hw_model::HwFormat::try_from(format).ok().map(|f| {
             hdl::traversal::timing::unit_timing(f, self.depth, self.lanes, self.slots as usize)
         });
-        TraversalEngine {
-            format: self.format,
+        Ok(TraversalEngine {
+            format,
             stack_depth: DEFAULT_STACK_DEPTH,
             scale_exp,
             timing,
             memory,
-        }
+        })
     }
 
     /// The accelerator of this configuration: an error if the format has no hardware.
-    pub fn top_config(&self) -> Result<TopConfig, hw_model::FormatError> {
+    pub fn top_config(&self) -> Result<TopConfig> {
         Ok(TopConfig::new(
-            self.format.try_into()?,
+            self.single_format()?.try_into()?,
             self.depth,
             self.lanes,
         ))

@@ -321,6 +321,115 @@ fn render_model_fp16_writes_the_models_image() {
     );
 }
 
+/// A format pair renders the fallback's image and reports the share of tests it forwarded.
+#[test]
+fn render_model_with_a_format_pair_writes_the_fallbacks_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_png = dir.path().join("dual.png");
+    let out = ok(&[
+        "render",
+        "--scene",
+        "utah_teapot",
+        "--width",
+        "32",
+        "--height",
+        "18",
+        "--engine",
+        "model",
+        "--format",
+        "fp16/fp32",
+        "--out",
+        s(&out_png),
+        "--quiet",
+    ]);
+    assert!(out.contains("engine=model fp16/fp32 spawn=thesis"), "{out}");
+    let line = out
+        .lines()
+        .find(|l| l.starts_with("dual_precision "))
+        .unwrap_or_else(|| panic!("no dual_precision line:\n{out}"));
+    let field = |key: &str| -> f64 {
+        let v = line.split(' ').find_map(|w| w.strip_prefix(key)).unwrap();
+        v.parse().unwrap()
+    };
+    let (tests, forwarded) = (field("tests="), field("forwarded="));
+    assert!(tests > 0.0 && forwarded < tests, "{line}");
+    assert!(
+        (field("forwarded_share=") - forwarded / tests).abs() < 1e-4,
+        "{line}"
+    );
+    let fp32 = ModelIntersector::new(hw_model::lookup("fp32").unwrap());
+    assert_eq!(
+        read_png(&out_png),
+        library_render("utah_teapot", 32, 18, &fp32),
+        "the fp16/fp32 render differs from the fp32 model's"
+    );
+}
+
+/// Bad pairs are usage errors naming what is wrong; a pair where only one format can be
+/// used is an error saying dual precision is model-only.
+#[test]
+fn format_pairs_are_checked_and_model_only() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_png = dir.path().join("x.png");
+    let render = |format: &'static str, engine: &'static str| {
+        [
+            "render",
+            "--scene",
+            "simple_plane",
+            "--width",
+            "8",
+            "--height",
+            "8",
+            "--engine",
+            engine,
+            "--format",
+            format,
+            "--out",
+            s(&out_png),
+        ]
+        .map(str::to_string)
+    };
+    for (format, needle) in [
+        ("fp32/fp16", "not narrower"),
+        ("fp16/xyz", "xyz"),
+        ("fp16/fp16", "same format"),
+        ("fp16/", "FILTER/FALLBACK"),
+        ("a/b/c", "FILTER/FALLBACK"),
+        ("fx32_16/fp32", "float formats only"),
+    ] {
+        let args = render(format, "model");
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        fails(&args, 2, &[format, needle]);
+    }
+    let model_only = "dual precision is model-only";
+    for engine in ["hw", "traversal"] {
+        let args = render("fp16/fp32", engine);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        fails(&args, 1, &["fp16/fp32", model_only]);
+    }
+    let out_dir = s(dir.path());
+    fails(
+        &["verilog", "--format", "fp16/fp32", "--out", out_dir],
+        1,
+        &[model_only],
+    );
+    fails(&["synth", "--format", "fp16/fp32"], 1, &[model_only]);
+    fails(
+        &[
+            "cosim",
+            "--scene",
+            "simple_plane",
+            "--format",
+            "fp16/fp32",
+            "--out",
+            s(&out_png),
+        ],
+        1,
+        &[model_only],
+    );
+    assert!(!out_png.exists());
+}
+
 /// Without --spawn a narrow model render is format-aware; `--scale auto` scales it; the
 /// render line says both.
 #[test]

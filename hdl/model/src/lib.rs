@@ -8,6 +8,7 @@
 //! model ([`traversal`]); the renderer itself depends on no hardware crate.
 
 pub mod catalogue;
+pub mod dual;
 pub mod engine;
 mod fixed;
 mod float;
@@ -17,6 +18,7 @@ pub mod precision;
 pub mod traversal;
 
 pub use catalogue::{catalogue, lookup, HwFormat, NamedFormat};
+pub use dual::{DualIntersector, FormatChoice, FormatPair};
 pub use engine::ModelIntersector;
 pub use format::{Format, FormatError, Overflow, Quant};
 pub use mt::{mt_model, mt_model_scaled, scale_query, MtQuery, MtResult};

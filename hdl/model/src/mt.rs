@@ -76,7 +76,19 @@ pub fn mt_model(format: &Format, q: &MtQuery) -> MtResult {
     with_arith!(format, f => mt_in(f, q))
 }
 
-fn mt_in<A: Arith>(f: A, q: &MtQuery) -> MtResult {
+/// The datapath's values before the tests, as raw bits of the format.
+struct Datapath {
+    det: u64,
+    /// The numerators s·p, dir·q, e2·q of u, v, t.
+    num: [u64; 3],
+    u: u64,
+    v: u64,
+    t: u64,
+    /// u + v, as the last test adds them.
+    uv: u64,
+}
+
+fn datapath<A: Arith>(f: A, q: &MtQuery) -> Datapath {
     let (orig, dir, v0) = (load(f, &q.orig), load(f, &q.dir), load(f, &q.v0));
     let e1 = sub(f, &load(f, &q.v1), &v0);
     let e2 = sub(f, &load(f, &q.v2), &v0);
@@ -84,27 +96,76 @@ fn mt_in<A: Arith>(f: A, q: &MtQuery) -> MtResult {
     let det = dot(f, &e1, &p);
     let inv = f.recip(det);
     let s = sub(f, &orig, &v0);
-    let u = f.mul(dot(f, &s, &p), inv);
+    let su = dot(f, &s, &p);
+    let u = f.mul(su, inv);
     let qv = cross(f, &s, &e1);
-    let v = f.mul(dot(f, &dir, &qv), inv);
-    let t = f.mul(dot(f, &e2, &qv), inv);
+    let dq = dot(f, &dir, &qv);
+    let v = f.mul(dq, inv);
+    let eq = dot(f, &e2, &qv);
+    let t = f.mul(eq, inv);
+    Datapath {
+        det,
+        num: [su, dq, eq],
+        u,
+        v,
+        t,
+        uv: f.add(u, v),
+    }
+}
 
+fn mt_in<A: Arith>(f: A, q: &MtQuery) -> MtResult {
+    tests(f, &datapath(f, q))
+}
+
+/// The tests on the datapath's values, and the result converted back to fp32.
+fn tests<A: Arith>(f: A, d: &Datapath) -> MtResult {
     let (zero, one, eps) = (
         f.convert_in_f32(0.0),
         f.convert_in_f32(1.0),
         f.convert_in_f32(DET_EPSILON),
     );
-    let parallel = f.lt(det, eps) && f.lt(f.neg(eps), det);
+    let parallel = f.lt(d.det, eps) && f.lt(f.neg(eps), d.det);
     let hit = !parallel
-        && !f.lt(u, zero)
-        && !f.lt(one, u)
-        && !f.lt(v, zero)
-        && !f.lt(one, f.add(u, v))
-        && f.lt(zero, t);
+        && !f.lt(d.u, zero)
+        && !f.lt(one, d.u)
+        && !f.lt(d.v, zero)
+        && !f.lt(one, d.uv)
+        && f.lt(zero, d.t);
     MtResult {
         hit,
-        t: f.convert_out_f32(t),
-        u: f.convert_out_f32(u),
-        v: f.convert_out_f32(v),
+        t: f.convert_out_f32(d.t),
+        u: f.convert_out_f32(d.u),
+        v: f.convert_out_f32(d.v),
     }
+}
+
+/// The values the tests compare, exactly (every valid format's values are f64 values).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MtValues {
+    pub det: f64,
+    /// The numerators s·p, dir·q, e2·q of u, v, t.
+    pub num: [f64; 3],
+    pub u: f64,
+    pub v: f64,
+    pub t: f64,
+    pub uv: f64,
+}
+
+/// [`mt_model`] in `format` and the intermediates its tests compare (the dual-precision
+/// filter's inputs, `crate::dual`).
+pub fn mt_traced(format: &Format, q: &MtQuery) -> (MtResult, MtValues) {
+    let (result, d) = with_arith!(format, f => {
+        let d = datapath(f, q);
+        (tests(f, &d), d)
+    });
+    let x = |bits| format.to_f64(bits);
+    let values = MtValues {
+        det: x(d.det),
+        num: d.num.map(x),
+        u: x(d.u),
+        v: x(d.v),
+        t: x(d.t),
+        uv: x(d.uv),
+    };
+    (result, values)
 }

@@ -1,0 +1,259 @@
+//! Dual precision against its fallback: filter + fallback answers every query as the
+//! fallback alone (random queries aimed at the tests' edges, whole renders of the thesis'
+//! scenes), a margin below the derived bound is caught wrongly rejecting hits, and bad
+//! pairs are clear errors.
+
+use hw_model::dual::{DualError, DualIntersector, Filter, FormatChoice, FormatPair};
+use hw_model::{lookup, mt_model, FormatError, ModelIntersector, MtQuery, MtResult};
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+use sw_renderer::intersect::Intersector;
+use sw_renderer::rays::RayEngine;
+use sw_renderer::render::{render, RenderOptions};
+use sw_renderer::scene::Scene;
+use sw_renderer::thesis_scenes;
+
+type P = [f32; 3];
+
+fn add(a: P, b: P) -> P {
+    std::array::from_fn(|k| a[k] + b[k])
+}
+fn sub(a: P, b: P) -> P {
+    std::array::from_fn(|k| a[k] - b[k])
+}
+fn scale(a: P, s: f32) -> P {
+    a.map(|x| x * s)
+}
+fn cross(a: P, b: P) -> P {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn norm(a: P) -> f32 {
+    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
+}
+
+/// `x` moved by up to `ulps` fp32 ulps either way.
+fn nudge(r: &mut StdRng, x: f32, ulps: i32) -> f32 {
+    let k = r.gen_range(-ulps..=ulps);
+    if x == 0.0 {
+        k as f32 * f32::EPSILON * 0.5
+    } else {
+        f32::from_bits((x.to_bits() as i32 + k) as u32)
+    }
+}
+
+/// A barycentric pair (a, b) on or within a few ulps of an edge of the triangle (a = 0,
+/// b = 0, a = 1, a + b = 1), or anywhere near it.
+fn near_edge(r: &mut StdRng) -> (f32, f32) {
+    let x: f32 = r.gen_range(-0.2..1.2);
+    match r.gen_range(0..5) {
+        0 => (nudge(r, 0.0, 4), x),
+        1 => (x, nudge(r, 0.0, 4)),
+        2 => (nudge(r, 1.0, 4), nudge(r, 0.0, 4)),
+        3 => (x, nudge(r, 1.0 - x, 4)),
+        _ => (x, r.gen_range(-0.2..1.2)),
+    }
+}
+
+fn point(r: &mut StdRng, size: f32) -> P {
+    std::array::from_fn(|_| r.gen_range(-size..size))
+}
+
+/// One query of a mix: rays at barycentric edges, near-parallel rays (det near the
+/// fallback's 1e-8 threshold), grazing rays, origins on the plane (t near 0), random rays;
+/// scenes from 2^-12 to 2^12 units; thin and large triangles.
+fn query(r: &mut StdRng) -> MtQuery {
+    // Mostly scene-like sizes, some far outside a narrow format's range.
+    let size = 2f32.powi(if r.gen_bool(0.7) {
+        r.gen_range(-3..=3)
+    } else {
+        r.gen_range(-12..=12)
+    });
+    let v0 = point(r, size);
+    let spread = size * 2f32.powi(-r.gen_range(0..8));
+    let (v1, v2) = (add(v0, point(r, spread)), add(v0, point(r, spread)));
+    let (e1, e2) = (sub(v1, v0), sub(v2, v0));
+    let n = cross(e1, e2);
+    let n_len = norm(n).max(f32::MIN_POSITIVE);
+    let (a, b) = near_edge(r);
+    let target = add(v0, add(scale(e1, a), scale(e2, b)));
+    let kind = r.gen_range(0..5);
+    let orig = match kind {
+        // On the plane (a few ulps off): t near 0 for any direction.
+        3 => target.map(|x| nudge(r, x, 2)),
+        _ => add(target, point(r, size * 4.0)),
+    };
+    let dir = match kind {
+        // In the plane plus a component making det ≈ ±(0.25..4)·1e-8.
+        1 | 2 => {
+            let w = if r.gen_bool(0.5) { e1 } else { e2 };
+            let det = if kind == 1 {
+                r.gen_range(0.25..4.0) * 1e-8
+            } else {
+                r.gen_range(1e-4..1e-2) * norm(w) * n_len
+            };
+            let sign = if r.gen_bool(0.5) { 1.0 } else { -1.0 };
+            add(w, scale(n, sign * det / (n_len * n_len)))
+        }
+        3 => point(r, 1.0),
+        _ => sub(target, orig),
+    };
+    MtQuery {
+        orig,
+        dir,
+        v0,
+        v1,
+        v2,
+    }
+}
+
+fn queries(seed: u64, n: usize) -> Vec<MtQuery> {
+    let mut r = StdRng::seed_from_u64(seed);
+    (0..n).map(|_| query(&mut r)).collect()
+}
+
+fn pair(s: &str) -> FormatPair {
+    FormatPair::parse(s).unwrap()
+}
+
+/// The queries where the fallback hits: what a filter must never reject.
+fn fallback_hits(pair: &FormatPair, qs: &[MtQuery]) -> Vec<(MtQuery, MtResult)> {
+    qs.iter()
+        .map(|q| (*q, mt_model(&pair.fallback, q)))
+        .filter(|(_, r)| r.hit)
+        .collect()
+}
+
+/// Dual == fallback on every query: `hit` always, t, u, v bits on every fallback hit.
+fn check_equal(pair: FormatPair, scale_exp: i32, qs: &[MtQuery]) -> f64 {
+    let dual = DualIntersector::new(pair, scale_exp);
+    let mut got = vec![MtResult::default(); qs.len()];
+    dual.intersect_batch(qs, &mut got).unwrap();
+    let mut hits = 0;
+    for (q, g) in qs.iter().zip(&got) {
+        let want = mt_model(&pair.fallback, q);
+        assert_eq!(g.hit, want.hit, "{pair} scale {scale_exp}: {q:?}");
+        if want.hit {
+            hits += 1;
+            assert!(g.same_bits(&want), "{pair}: {q:?}: {g:?} vs {want:?}");
+        }
+    }
+    let stats = dual.stats();
+    assert_eq!(stats.tests, qs.len() as u64);
+    assert!(hits > qs.len() / 10, "{pair}: only {hits} hits");
+    1.0 - stats.forwarded_share()
+}
+
+#[test]
+fn filter_and_fallback_equal_the_fallback_on_a_million_queries() {
+    let qs = queries(17, 1_000_000);
+    let decided = check_equal(pair("fp16/fp32"), 0, &qs);
+    // Not vacuous: the filter decides a share alone (most queries are built to be close
+    // calls).
+    assert!(decided > 0.02, "fp16 decided only {decided:.3}");
+    let some = &qs[..100_000];
+    for (p, k) in [("fp16/fp32", -2), ("e6m13/fp32", 0), ("bf16/fp24", 0)] {
+        let decided = check_equal(pair(p), k, some);
+        assert!(decided > 0.02, "{p} decided only {decided:.3}");
+        println!("{p} scaled by 2^{k}: {decided:.3} decided by the filter");
+    }
+}
+
+/// The margin is the bound, not a bound with room to spare: with a quarter of it the same
+/// kind of queries hold hits the filter would reject.
+#[test]
+fn a_quarter_of_the_margin_rejects_hits() {
+    let qs = queries(17, 300_000);
+    for p in ["fp16/fp32", "e6m13/fp32"] {
+        let filter = Filter::new(pair(p), 0);
+        let hits = fallback_hits(&filter.pair, &qs);
+        let wrong = hits
+            .iter()
+            .filter(|(q, _)| filter.certain_miss(q, 0.25))
+            .count();
+        assert!(
+            wrong > 0,
+            "{p}: no hit rejected with a quarter of the margin"
+        );
+        assert!(hits.iter().all(|(q, _)| !filter.certain_miss(q, 1.0)));
+    }
+}
+
+fn render_small(scene: &Scene, engine: &dyn RayEngine) -> image::RgbImage {
+    let opts = RenderOptions {
+        width: Some(64),
+        height: Some(36),
+        progress: false,
+        ..Default::default()
+    };
+    render(scene, engine, &opts).unwrap().image
+}
+
+#[test]
+fn dual_renders_of_the_thesis_scenes_equal_the_fallbacks() {
+    let Some(root) =
+        thesis_scenes::for_test("dual::dual_renders_of_the_thesis_scenes_equal_the_fallbacks")
+    else {
+        return;
+    };
+    let fp32 = ModelIntersector::new(lookup("fp32").unwrap());
+    for name in thesis_scenes::SCENE_DIRS {
+        let scene = Scene::load(root.join(name).to_str().unwrap()).unwrap();
+        let want = render_small(&scene, &fp32);
+        for p in ["fp16/fp32", "e6m13/fp32"] {
+            let dual = DualIntersector::new(pair(p), 0);
+            let got = render_small(&scene, &dual);
+            assert!(got.as_raw() == want.as_raw(), "{name} {p}: images differ");
+            let s = dual.stats();
+            assert!(s.certain_misses > 0, "{name} {p}: {s:?}");
+        }
+    }
+}
+
+#[test]
+fn bad_pairs_are_clear_errors() {
+    let err = |s: &str| FormatPair::parse(s).unwrap_err();
+    assert!(matches!(err("fp32/fp16"), DualError::NotNarrower { .. }));
+    let msg = err("fp32/fp16").to_string();
+    assert!(
+        msg.contains("not narrower") && msg.contains("fp32/fp16"),
+        "{msg}"
+    );
+    // A wider exponent is as wrong as more fraction bits.
+    assert!(matches!(err("bf16/fp16"), DualError::NotNarrower { .. }));
+    match err("fp16/xyz") {
+        DualError::Half { half, source, .. } => {
+            assert_eq!(half, "fallback");
+            assert!(matches!(source, FormatError::Unknown(_)));
+        }
+        e => panic!("{e:?}"),
+    }
+    assert!(err("fp16/xyz").to_string().contains("xyz"));
+    assert!(matches!(
+        err("e1m3/fp32"),
+        DualError::Half { half: "filter", .. }
+    ));
+    assert!(matches!(err("fp32/e8m23"), DualError::Equal(_)));
+    assert!(matches!(err("fx32_16/fp32"), DualError::Fixed { .. }));
+    assert!(err("fx32_16/fp32")
+        .to_string()
+        .contains("float formats only"));
+    for bad in ["fp16/", "/fp32", "a/b/c", "fp16//fp32", "/"] {
+        assert!(matches!(err(bad), DualError::Malformed(_)), "{bad}");
+    }
+    // Spelled as a format: a `/` makes it a pair.
+    let choice: FormatChoice = "e6m13/fp32".parse().unwrap();
+    assert_eq!(choice, FormatChoice::Pair(pair("e6m13/fp32")));
+    assert_eq!(choice.to_string(), "e6m13/fp32");
+    assert_eq!(
+        "fp16".parse::<FormatChoice>().unwrap(),
+        FormatChoice::Single(lookup("fp16").unwrap())
+    );
+    assert_eq!(
+        Intersector::name(&DualIntersector::new(pair(" FP16 / fp32 "), 0)),
+        "model fp16/fp32"
+    );
+}
