@@ -30,9 +30,7 @@
 //!
 //! Read ports: an address in, the record's fields out one cycle later (block RAM read latency).
 //!
-//! yosys xc7 (`cargo test --release -p hdl --test scene_memory -- --ignored --nocapture
-//! scene_memory_resources`): 9/10 address bits 6 RAMB36 + 17 RAMB18, 406 LUT, 1,182 FF;
-//! 12/13 (4,096 nodes, 8,192 triangles) 117 RAMB36, 706 LUT, 1,199 FF (docs/scene-image.md).
+//! Resources at three capacities (yosys xc7): docs/scene-image.md, "Scene memory in block RAM".
 //!
 //! rust-hdl cannot derive widths: `NB`, `TB` address bits (capacity 2^NB nodes, 2^TB
 //! triangles, [`capacity_for`]), `LF`, `LC` link widths, `NW`, `TW` record widths, all checked
