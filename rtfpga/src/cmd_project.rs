@@ -159,7 +159,7 @@ pub fn run(a: Args) -> Result<()> {
                     a.lanes as usize,
                     a.slots as usize,
                 )),
-                memory: a.memory.memory(),
+                memory: a.memory.memory(a.lanes as usize),
             };
             workload = workload.with_unit(&scene, &engine, a.tile_size)?;
         }

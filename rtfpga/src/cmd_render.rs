@@ -54,7 +54,7 @@ pub fn run(a: Args) -> Result<()> {
     }
     let scene = Scene::load(&a.scene)?;
     let (spawn, scale_exp) = a.precision.resolve(a.engine, &a.hw, &scene)?;
-    let made = engine::make_scaled(a.engine, &a.hw, scale_exp, a.memory.memory())?;
+    let made = engine::make_scaled(a.engine, &a.hw, scale_exp, a.memory.memory(a.hw.lanes))?;
     let engine = made.engine;
     let opts = RenderOptions {
         width: a.width,

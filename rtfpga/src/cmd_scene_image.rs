@@ -44,7 +44,8 @@ pub fn run(a: Args) -> Result<()> {
         image.bytes()
     );
     if a.memory.scene_capacity.is_some() {
-        let parts = hw_model::traversal::capacity::chunks(&image, a.memory.memory())?;
+        // The capacity is given, so the lane count that would choose a default is irrelevant.
+        let parts = hw_model::traversal::capacity::chunks(&image, a.memory.memory(1))?;
         println!(
             "chunks={} chunk_bytes={}",
             parts.len(),

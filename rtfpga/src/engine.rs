@@ -4,6 +4,7 @@
 use anyhow::{bail, Result};
 use clap::{Args as ClapArgs, ValueEnum};
 use hdl::top::TopConfig;
+use hdl::traversal::scene_memory;
 use hw_model::dual::{DualIntersector, FormatChoice};
 use hw_model::precision::{auto_scale_exp, spawn_policy, SceneRange};
 use hw_model::traversal::{SceneCapacity, SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
@@ -48,7 +49,7 @@ pub struct HwConfig {
 }
 
 pub fn make(kind: EngineKind, hw: &HwConfig) -> Result<Box<dyn RayEngine>> {
-    Ok(make_scaled(kind, hw, 0, MemoryArgs::default().memory())?.engine)
+    Ok(make_scaled(kind, hw, 0, MemoryArgs::default().memory(hw.lanes))?.engine)
 }
 
 /// An engine, and for a dual-precision pair a handle on its counters.
@@ -155,17 +156,23 @@ impl PrecisionArgs {
     }
 }
 
-/// The traversal unit's scene memory when no `--scene-capacity` is given: unbounded until
-/// the RTL's scene memory states its capacity (then this returns it).
-fn default_capacity() -> Option<SceneCapacity> {
-    None
+/// The traversal unit's scene memory when no `--scene-capacity` is given: the block-RAM
+/// memory a unit of `lanes` lanes carries on the XC7Z020.
+fn default_capacity(lanes: usize) -> SceneCapacity {
+    let (node_bits, triangle_bits) = scene_memory::zynq_address_bits(lanes);
+    let (nodes, triangles) = scene_memory::capacity_for(node_bits, triangle_bits);
+    SceneCapacity {
+        nodes: nodes as u32,
+        triangles: triangles as u32,
+    }
 }
 
 /// `--scene-capacity` and `--no-chunks`: the traversal unit's scene memory.
 #[derive(ClapArgs, Clone, Debug, Default)]
 pub struct MemoryArgs {
     /// Traversal unit: inner nodes and triangles its scene memory holds, as NODES,TRIANGLES
-    /// (e.g. 2048,4096); larger scenes render in chunked passes [default: unbounded].
+    /// (e.g. 2048,4096); larger scenes render in chunked passes [default: the unit's block-RAM
+    /// memory on the XC7Z020: 4096,8192 beside one lane, 2048,4096 beside more].
     #[arg(long, value_name = "NODES,TRIANGLES", value_parser = parse_capacity)]
     pub scene_capacity: Option<SceneCapacity>,
     /// Traversal unit: refuse a scene larger than --scene-capacity instead of chunking it.
@@ -174,14 +181,14 @@ pub struct MemoryArgs {
 }
 
 impl MemoryArgs {
-    pub fn memory(&self) -> SceneMemory {
-        match (
-            self.scene_capacity.or_else(default_capacity),
-            self.no_chunks,
-        ) {
-            (None, _) => SceneMemory::Unbounded,
-            (Some(c), true) => SceneMemory::Whole(c),
-            (Some(c), false) => SceneMemory::Chunked(c),
+    /// The memory of a unit with `lanes` lanes.
+    pub fn memory(&self, lanes: usize) -> SceneMemory {
+        let capacity = self
+            .scene_capacity
+            .unwrap_or_else(|| default_capacity(lanes));
+        match self.no_chunks {
+            true => SceneMemory::Whole(capacity),
+            false => SceneMemory::Chunked(capacity),
         }
     }
 }

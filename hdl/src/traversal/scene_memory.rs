@@ -115,6 +115,18 @@ pub fn capacity_for(node_bits: usize, triangle_bits: usize) -> (usize, usize) {
     (1 << node_bits, 1 << triangle_bits)
 }
 
+/// The address bits of the scene memory a unit of `lanes` fp32 Möller-Trumbore lanes (depth
+/// 5) carries on the XC7Z020: the largest power-of-two memory whose block RAM fits beside the
+/// lanes and the slot stacks (yosys; docs/scene-image.md, "Resources and what fits the
+/// XC7Z020"). Narrower formats' lanes use less block RAM, so this is their safe choice too.
+pub fn zynq_address_bits(lanes: usize) -> (usize, usize) {
+    if lanes <= 1 {
+        (12, 13)
+    } else {
+        (11, 12)
+    }
+}
+
 /// The smallest (node, triangle) address bits whose [`capacity_for`] holds `nodes` and
 /// `triangles` (at least 1 bit each: a RAM has an address).
 pub fn address_bits_for(nodes: usize, triangles: usize) -> (usize, usize) {
