@@ -34,20 +34,19 @@ fn queries(n: usize, seed: u64) -> Vec<MtQuery> {
                     v0: bits(),
                     v1: bits(),
                     v2: bits(),
+                    t_min: 0.0,
                 };
             }
             let mut p = |r: f32| [0; 3].map(|_| rng.gen_range(-r..r));
             let (v0, v1, v2, orig) = (p(2.0), p(2.0), p(2.0), p(8.0));
             let (a, b) = (rng.gen_range(-0.3..1.0f32), rng.gen_range(-0.3..1.0f32));
-            let dir =
-                [0, 1, 2].map(|k| v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]) - orig[k]);
-            MtQuery {
-                orig,
-                dir,
-                v0,
-                v1,
-                v2,
-            }
+            // The hit is at t = 1: random lower bounds on both sides of it.
+            let t_min = if i % 3 == 0 {
+                rng.gen_range(0.0..2.0f32)
+            } else {
+                0.0
+            };
+            MtQuery::aimed(orig, [v0, v1, v2], (a, b), t_min)
         })
         .collect()
 }
@@ -143,7 +142,7 @@ fn bus_errors_are_reported_not_ignored() {
     let mut accel = Accel::new(&top).unwrap();
     let mut bus = AxiLiteMaster::new(Completion::Poll);
     assert_eq!(
-        bus.write_resp(&mut accel, 0x4C, 1).unwrap(),
+        bus.write_resp(&mut accel, 0x68, 1).unwrap(),
         regmap::RESP_SLVERR
     );
     let e = bus.write(&mut accel, regmap::T, 1).unwrap_err().to_string();

@@ -40,6 +40,7 @@ fn brute_force(
                 v0: t.verts[0].to_array(),
                 v1: t.verts[1].to_array(),
                 v2: t.verts[2].to_array(),
+                t_min: ray.t_min,
             };
             (k as u32, mt_model(format, &q))
         })
