@@ -220,7 +220,7 @@ foreach line [split $arch "\n"] {
         }
     }
 }
-check_equal "architecture.md register table has 25 registers" [llength [lsort -unique $arch_offsets]] 25
+check_equal "architecture.md register table has 26 registers" [llength [lsort -unique $arch_offsets]] 26
 if {$real_header ne ""} {
     set offsets {}
     if {[catch {rtfpga::registers_from_header $real_header} real_regs]} {

@@ -13,6 +13,8 @@ typedef struct {
 typedef struct {
     float Orig[3];
     float Dir[3];
+    /* A hit needs t > TMin (0: every hit in front of the origin). */
+    float TMin;
 } XRtfpga_Ray;
 
 typedef struct {

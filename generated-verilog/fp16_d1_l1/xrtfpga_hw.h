@@ -29,6 +29,7 @@
 // 0x40 : V2_X — triangle vertex 2 x (fp32 bits) (Read/Write)
 // 0x44 : V2_Y — triangle vertex 2 y (fp32 bits) (Read/Write)
 // 0x48 : V2_Z — triangle vertex 2 z (fp32 bits) (Read/Write)
+// 0x4c : T_MIN — lower bound: a hit needs t > t_min (fp32 bits, compared in the core's format) (Read/Write)
 // 0x50 : RESULT — result flags of the last completed test (Read)
 //        bit 0 - HIT (Read): the ray hits the triangle
 // 0x54 : T — distance along the ray (fp32 bits) (Read)
@@ -75,6 +76,8 @@
 #define XRTFPGA_CONTROL_BITS_V2_Y_DATA           32
 #define XRTFPGA_CONTROL_ADDR_V2_Z_DATA           0x48
 #define XRTFPGA_CONTROL_BITS_V2_Z_DATA           32
+#define XRTFPGA_CONTROL_ADDR_T_MIN_DATA          0x4c
+#define XRTFPGA_CONTROL_BITS_T_MIN_DATA          32
 #define XRTFPGA_CONTROL_ADDR_RESULT_DATA         0x50
 #define XRTFPGA_CONTROL_BITS_RESULT_DATA         1
 #define XRTFPGA_CONTROL_ADDR_T_DATA              0x54
@@ -100,8 +103,8 @@
 #define XRTFPGA_CONTROL_ISR_READY_MASK           0x00000002u
 #define XRTFPGA_CONTROL_RESULT_HIT_MASK          0x00000001u
 
-#define XRTFPGA_CONTROL_OPERAND_COUNT            15
-#define XRTFPGA_CONTROL_ID_VALUE                 0x52460100u
+#define XRTFPGA_CONTROL_OPERAND_COUNT            16
+#define XRTFPGA_CONTROL_ID_VALUE                 0x52460101u
 #define XRTFPGA_CONTROL_CONFIG_FORMAT(w) ((unsigned)(w) & 0xffu)
 #define XRTFPGA_CONTROL_CONFIG_DEPTH(w)  (((unsigned)(w) >> 8) & 0xffu)
 #define XRTFPGA_CONTROL_CONFIG_LANES(w)  (((unsigned)(w) >> 16) & 0xffu)

@@ -58,6 +58,7 @@ void XRtfpga_WriteRay(XRtfpga *InstancePtr, const XRtfpga_Ray *Ray)
         WriteReg(InstancePtr, RayOffsets[i], FloatBits(Ray->Orig[i]));
         WriteReg(InstancePtr, RayOffsets[3 + i], FloatBits(Ray->Dir[i]));
     }
+    WriteReg(InstancePtr, XRTFPGA_CONTROL_ADDR_T_MIN_DATA, FloatBits(Ray->TMin));
 }
 
 void XRtfpga_WriteTriangle(XRtfpga *InstancePtr, const XRtfpga_Triangle *Tri)

@@ -178,7 +178,7 @@ fn offset_list(offsets: &[usize]) -> String {
 }
 
 fn data_macro(offset: usize) -> String {
-    addr_macro(regmap::register_at(offset).expect("result offsets are in the table"))
+    addr_macro(regmap::register_at(offset).expect("register offsets are in the table"))
 }
 
 /// The bare-metal driver: (`xrtfpga.h`, `xrtfpga.c`). It needs the BSP's `xil_io.h` and the
@@ -201,6 +201,8 @@ typedef struct {{
 typedef struct {{
     float Orig[3];
     float Dir[3];
+    /* A hit needs t > TMin (0: every hit in front of the origin). */
+    float TMin;
 }} XRtfpga_Ray;
 
 typedef struct {{
@@ -293,6 +295,7 @@ void XRtfpga_WriteRay(XRtfpga *InstancePtr, const XRtfpga_Ray *Ray)
         WriteReg(InstancePtr, RayOffsets[i], FloatBits(Ray->Orig[i]));
         WriteReg(InstancePtr, RayOffsets[3 + i], FloatBits(Ray->Dir[i]));
     }}
+    WriteReg(InstancePtr, {t_min}, FloatBits(Ray->TMin));
 }}
 
 void XRtfpga_WriteTriangle(XRtfpga *InstancePtr, const XRtfpga_Triangle *Tri)
@@ -398,7 +401,8 @@ u32 XRtfpga_InterruptGetStatus(XRtfpga *InstancePtr)
 }}
 "#,
         ray = offset_list(&regmap::OPERANDS[..6]),
-        tri = offset_list(&regmap::OPERANDS[6..]),
+        tri = offset_list(&regmap::OPERANDS[6..crate::mt::T_MIN_WORD]),
+        t_min = data_macro(regmap::T_MIN),
         result = data_macro(regmap::RESULT),
         t = data_macro(regmap::T),
         u = data_macro(regmap::U),

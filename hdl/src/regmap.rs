@@ -33,6 +33,8 @@ pub const V1_Z: usize = 0x3C;
 pub const V2_X: usize = 0x40;
 pub const V2_Y: usize = 0x44;
 pub const V2_Z: usize = 0x48;
+/// The query's lower bound: a hit needs t > T_MIN (fp32 bits; reset 0, the reference's t > 0).
+pub const T_MIN: usize = 0x4C;
 /// Result flags: bit 0 hit.
 pub const RESULT: usize = 0x50;
 pub const T: usize = 0x54;
@@ -43,10 +45,11 @@ pub const ID: usize = 0x60;
 /// Configuration of the attached core, packed by [`ConfigWord::pack`].
 pub const CONFIG: usize = 0x64;
 
-/// The 15 operands in port order: origin xyz, direction xyz, v0 xyz, v1 xyz, v2 xyz.
-pub const OPERANDS: [usize; 15] = [
+/// The 16 operands in port order: origin xyz, direction xyz, v0 xyz, v1 xyz, v2 xyz, t_min
+/// (`hdl::mt::query_words`, the stream slot's words 0–15).
+pub const OPERANDS: [usize; 16] = [
     ORIG_X, ORIG_Y, ORIG_Z, DIR_X, DIR_Y, DIR_Z, V0_X, V0_Y, V0_Z, V1_X, V1_Y, V1_Z, V2_X, V2_Y,
-    V2_Z,
+    V2_Z, T_MIN,
 ];
 pub const OPERAND_COUNT: usize = OPERANDS.len();
 
@@ -70,8 +73,9 @@ pub const RESP_SLVERR: u32 = 0b10;
 
 /// "RF" (ray/FPGA) in the upper half of the id register.
 pub const ACCEL_ID: u16 = 0x5246;
-/// Version of this register map.
-pub const VERSION: (u8, u8) = (1, 0);
+/// Version of this register map (1.1: T_MIN at 0x4C; a 1.0 driver that never writes it
+/// gets 1.0's t > 0).
+pub const VERSION: (u8, u8) = (1, 1);
 /// The value the id register reads.
 pub const ID_VALUE: u32 = (ACCEL_ID as u32) << 16 | (VERSION.0 as u32) << 8 | VERSION.1 as u32;
 
@@ -235,6 +239,12 @@ pub const REGISTERS: &[Register] = &[
     fp32("V2_X", V2_X, Access::Rw, "triangle vertex 2 x (fp32 bits)"),
     fp32("V2_Y", V2_Y, Access::Rw, "triangle vertex 2 y (fp32 bits)"),
     fp32("V2_Z", V2_Z, Access::Rw, "triangle vertex 2 z (fp32 bits)"),
+    fp32(
+        "T_MIN",
+        T_MIN,
+        Access::Rw,
+        "lower bound: a hit needs t > t_min (fp32 bits, compared in the core's format)",
+    ),
     Register {
         name: "RESULT",
         offset: RESULT,
@@ -329,6 +339,7 @@ mod tests {
             assert_eq!(register_at(off).unwrap().access, Access::Rw);
         }
         assert_eq!(OPERANDS[14], 0x48);
+        assert_eq!(OPERANDS[15], T_MIN);
     }
 
     #[test]
@@ -338,6 +349,7 @@ mod tests {
             (GIE, 0x04),
             (IER, 0x08),
             (ISR, 0x0C),
+            (T_MIN, 0x4C),
             (RESULT, 0x50),
             (T, 0x54),
             (U, 0x58),
@@ -349,9 +361,8 @@ mod tests {
             assert_eq!(c, v);
             assert!(register_at(c).is_some());
         }
-        assert!(register_at(0x4C).is_none());
         assert!(register_at(0x68).is_none());
-        assert_eq!(REGISTERS.len(), 4 + 15 + 4 + 2);
+        assert_eq!(REGISTERS.len(), 4 + 16 + 4 + 2);
     }
 
     #[test]
@@ -373,6 +384,6 @@ mod tests {
         };
         assert_eq!(c.pack(), 0x0004_0307);
         assert_eq!(ConfigWord::unpack(c.pack()), c);
-        assert_eq!(ID_VALUE, 0x5246_0100);
+        assert_eq!(ID_VALUE, 0x5246_0101);
     }
 }

@@ -487,7 +487,7 @@ fn registers_read_write_and_read_only() {
             x = m.expect(sim, x, off, before)?;
         }
         // Unmapped offsets: SLVERR both ways, reads 0, no side effect on neighbours.
-        for off in [0x4C, 0x68, 0x6C, 0x70, 0x7C] {
+        for off in [0x68, 0x6C, 0x70, 0x7C] {
             x = m.write_expect(sim, x, off, 0x1234_5678, regmap::RESP_SLVERR)?;
             let (nx, resp, data) = m.read_resp(sim, x, off)?;
             x = nx;
@@ -580,11 +580,12 @@ fn back_to_back_transactions_are_not_throttled() {
             x = m.expect(sim, x, off, operand_value(i, 7))?;
         }
         let reads = m.cycles - start;
-        println!("15 writes: {writes} cycles, 15 reads: {reads} cycles");
+        let n = OPERAND_COUNT as u64;
+        println!("{n} writes: {writes} cycles, {n} reads: {reads} cycles");
         // Address and data are taken in the first cycle, the register written in the
         // second, the response accepted in the third; a read answers the cycle after.
-        check!(sim, x, writes <= 15 * 3);
-        check!(sim, x, reads <= 15 * 2);
+        check!(sim, x, writes <= n * 3);
+        check!(sim, x, reads <= n * 2);
         // A write and a read at the same time, to different registers and to the same one.
         let (nx, b, r) = m.transact(
             sim,

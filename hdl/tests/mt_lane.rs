@@ -16,6 +16,18 @@ fn query(orig: [f32; 3], dir: [f32; 3], v0: [f32; 3], v1: [f32; 3], v2: [f32; 3]
         v0,
         v1,
         v2,
+        t_min: 0.0,
+    }
+}
+
+/// A lower bound for a query whose hit (if any) is near t = 4: mostly 0 (the reference's
+/// rays), else on either side of the hit, negative, or NaN/±Inf.
+fn random_t_min(rng: &mut StdRng) -> f32 {
+    match rng.gen_range(0..8) {
+        0 | 1 => rng.gen_range(0.0..8.0),
+        2 => -rng.gen_range(0.0..8.0f32),
+        3 => [f32::NAN, f32::INFINITY, f32::NEG_INFINITY][rng.gen_range(0..3)],
+        _ => 0.0,
     }
 }
 
@@ -42,25 +54,58 @@ fn edge_cases() -> Vec<MtQuery> {
         on(0.25, 0.25, [0.0, 0.0, f32::INFINITY]),
         on(1e-40, 0.25, down), // subnormal input
         on(3.0e4, 0.25, down), // overflows fp16's and the fixed formats' range
+        // The lower bound around the hit at t = 2 (exact in every format).
+        MtQuery {
+            t_min: 1.75,
+            ..on(0.25, 0.25, down)
+        }, // hit: t > t_min
+        MtQuery {
+            t_min: 2.0,
+            ..on(0.25, 0.25, down)
+        }, // miss: t = t_min
+        MtQuery {
+            t_min: f32::NAN,
+            ..on(0.25, 0.25, down)
+        },
+        MtQuery {
+            t_min: f32::INFINITY,
+            ..on(0.25, 0.25, down)
+        },
+        MtQuery {
+            t_min: f32::NEG_INFINITY,
+            ..on(0.25, 0.25, down)
+        },
+        MtQuery {
+            t_min: 1e-40,
+            ..on(0.25, 0.25, down)
+        }, // subnormal: flushed
     ]
 }
 
 /// Rays from random points towards random points near a random triangle (about half hit),
-/// then random bit patterns; all coordinates within ±4 so the fixed formats can hold them.
+/// then random bit patterns; all coordinates within ±4 so the fixed formats can hold them;
+/// random lower bounds (`random_t_min`).
 fn random_queries(n: usize, seed: u64) -> Vec<MtQuery> {
     let mut rng = StdRng::seed_from_u64(seed);
     (0..n)
         .map(|i| {
             if i % 4 == 3 {
+                let t_min = f32::from_bits(rng.gen());
                 let mut bits = || [0; 3].map(|_| f32::from_bits(rng.gen()));
-                return query(bits(), bits(), bits(), bits(), bits());
+                return MtQuery {
+                    t_min,
+                    ..query(bits(), bits(), bits(), bits(), bits())
+                };
             }
             let mut point = |r: f32| [0; 3].map(|_| rng.gen_range(-r..r));
             let (v0, v1, v2, orig, target) =
                 (point(2.0), point(2.0), point(2.0), point(4.0), point(0.5));
             let centre = [0, 1, 2].map(|k| (v0[k] + v1[k] + v2[k]) / 3.0 + target[k]);
             let dir = [0, 1, 2].map(|k| (centre[k] - orig[k]) / 4.0);
-            query(orig, dir, v0, v1, v2)
+            MtQuery {
+                t_min: random_t_min(&mut rng),
+                ..query(orig, dir, v0, v1, v2)
+            }
         })
         .collect()
 }

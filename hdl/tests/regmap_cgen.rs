@@ -53,7 +53,7 @@ void Xil_Out32(UINTPTR a, u32 v) {
 }
 int main(void) {
     XRtfpga dev;
-    XRtfpga_Ray ray = {{1.0f, 2.0f, 3.0f}, {0.5f, 0.25f, -1.0f}};
+    XRtfpga_Ray ray = {{1.0f, 2.0f, 3.0f}, {0.5f, 0.25f, -1.0f}, 0.125f};
     XRtfpga_Triangle tri = {{7.0f, 8.0f, 9.0f}, {10.0f, 11.0f, 12.0f}, {13.0f, 14.0f, 15.0f}};
     XRtfpga_Result res;
     regs[XRTFPGA_CONTROL_ADDR_ID_DATA / 4] = XRTFPGA_CONTROL_ID_VALUE;
@@ -64,7 +64,7 @@ int main(void) {
            XRtfpga_ReadId(&dev), XRTFPGA_CONTROL_CONFIG_FORMAT(XRtfpga_ReadConfig(&dev)),
            XRTFPGA_CONTROL_CONFIG_DEPTH(XRtfpga_ReadConfig(&dev)),
            XRTFPGA_CONTROL_CONFIG_LANES(XRtfpga_ReadConfig(&dev)));
-    for (int i = 0; i < 15; i++) printf("%g ", f(regs[4 + i]));
+    for (int i = 0; i < XRTFPGA_CONTROL_OPERAND_COUNT; i++) printf("%g ", f(regs[4 + i]));
     printf("\n");
     static const char *const Names[] = XRTFPGA_CONTROL_FORMAT_NAMES;
     unsigned code = XRTFPGA_CONTROL_CONFIG_FORMAT(XRtfpga_ReadConfig(&dev));
@@ -114,6 +114,7 @@ fn every_register_appears_with_its_offset() {
     }
     assert!(header.contains("#define XRTFPGA_CONTROL_ADDR_AP_CTRL"));
     assert!(header.contains("#define XRTFPGA_CONTROL_ADDR_V2_Z_DATA"));
+    assert!(header.contains("#define XRTFPGA_CONTROL_ADDR_T_MIN_DATA"));
 }
 
 #[test]
@@ -164,7 +165,7 @@ fn driver_writes_and_reads_the_mapped_offsets() {
     );
     assert_eq!(
         lines.next().unwrap().trim(),
-        "1 2 3 0.5 0.25 -1 7 8 9 10 11 12 13 14 15"
+        "1 2 3 0.5 0.25 -1 7 8 9 10 11 12 13 14 15 0.125"
     );
     // The header's code -> name table is the catalogue's.
     let fp16 = hw_model::HwFormat::named("fp16");

@@ -5,7 +5,7 @@
 
 use hdl::mt::query_words;
 use hdl::regmap;
-use hdl::top::stream::{CTRL_VALID, FIFO_DEPTH, FLAG_HIT, FLAG_VALID, TAG_SHIFT};
+use hdl::top::stream::{CTRL_VALID, FIFO_DEPTH, FLAG_HIT, FLAG_VALID, IN_LANE_BITS, TAG_SHIFT};
 use hdl::top::{top_verilog, TopConfig};
 use hw_model::HwFormat;
 use hw_model::{mt_model, MtQuery, MtResult};
@@ -188,19 +188,25 @@ impl Top {
     }
 }
 
-/// Random queries, about half of them aimed through their triangle (hits).
+/// Random queries, about half of them aimed through their triangle (hits at t = 1), every
+/// third with a lower bound on either side of that.
 fn queries(n: usize, seed: u64) -> Vec<MtQuery> {
     let mut rng = StdRng::seed_from_u64(seed);
-    let mut p = || {
-        [
-            rng.gen_range(-4.0f32..4.0),
-            rng.gen_range(-4.0f32..4.0),
-            rng.gen_range(-4.0f32..4.0),
-        ]
-    };
     (0..n)
         .map(|i| {
+            let mut p = || {
+                [
+                    rng.gen_range(-4.0f32..4.0),
+                    rng.gen_range(-4.0f32..4.0),
+                    rng.gen_range(-4.0f32..4.0),
+                ]
+            };
             let (orig, v0, v1, v2, other) = (p(), p(), p(), p(), p());
+            let t_min = if i % 3 == 0 {
+                rng.gen_range(0.0..2.0)
+            } else {
+                0.0
+            };
             let target = if i % 2 == 0 {
                 // A point inside the triangle: weights 0.2, 0.3, 0.5 of the vertices.
                 std::array::from_fn(|k| 0.2 * v0[k] + 0.3 * v1[k] + 0.5 * v2[k])
@@ -213,6 +219,7 @@ fn queries(n: usize, seed: u64) -> Vec<MtQuery> {
                 v0,
                 v1,
                 v2,
+                t_min,
             }
         })
         .collect()
@@ -298,7 +305,7 @@ fn stream(
     }
     let tag = |b: usize, lane: usize| ((b * lanes + lane) as u32) & 0xFF_FFFF;
     let beat_words = |b: usize| -> Vec<u32> {
-        let mut w = Vec::with_capacity(16 * lanes);
+        let mut w = Vec::with_capacity(IN_LANE_BITS / 32 * lanes);
         for (lane, q) in beats[b].iter().enumerate() {
             match q {
                 Some(i) => {
@@ -306,7 +313,7 @@ fn stream(
                     w.push(CTRL_VALID | tag(b, lane) << TAG_SHIFT);
                 }
                 None => {
-                    w.extend([0x3f80_0000; 15]);
+                    w.extend([0x3f80_0000; regmap::OPERAND_COUNT]);
                     w.push(tag(b, lane) << TAG_SHIFT);
                 }
             }

@@ -312,7 +312,7 @@ impl Accel {
         self.output[self.layout.outputs[port as usize]]
     }
 
-    /// Lane `lane`'s slot of `s_axis_tdata` (16 words: query, then the control word).
+    /// Lane `lane`'s slot of `s_axis_tdata` (the query's words, then the control word).
     #[inline]
     pub fn in_slot(&mut self, lane: usize) -> &mut [u32] {
         let at = self.layout.s_tdata + lane * IN_LANE_WORDS;

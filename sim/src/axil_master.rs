@@ -1,6 +1,7 @@
 //! An AXI4-Lite master driving `s_axi_control` channel by channel, and the thesis' bare-metal
-//! sequence for one test on it: write the 15 operands, write ap_start, wait for completion
-//! (poll ap_done, or the `interrupt` line with GIE/IER set), read hit, t, u, v.
+//! sequence for one test on it: write the operands (the thesis' 15 and, since register map
+//! 1.1, T_MIN: one write more per test), write ap_start, wait for completion (poll ap_done,
+//! or the `interrupt` line with GIE/IER set), read hit, t, u, v.
 //!
 //! Transactions are blocking, like `Xil_Out32`/`Xil_In32` on the Zynq: one outstanding at a
 //! time; `bready`/`rready` are high from the start. Addresses come from `hdl::regmap`.

@@ -1,7 +1,7 @@
 //! Batches of queries through the accelerator's AXI4-Stream front end, cycle by cycle.
 //!
-//! Each input beat carries one query per lane (docs/stream.md: words 0–14 the query, word 15
-//! `valid | tag << 8`); a beat is presented until `s_axis_tready` takes it and the next one
+//! Each input beat carries one query per lane (docs/stream.md: words 0–15 the query with its
+//! t_min, word 16 `valid | tag << 8`); a beat is presented until `s_axis_tready` takes it and the next one
 //! follows in the next cycle, so every lane gets a query each cycle the front end is ready.
 //! Output beat k answers input beat k: its slots are matched to the queries by position and
 //! checked against the tags, the valid flags and `tlast`.
@@ -9,7 +9,9 @@
 use crate::accel_model::{Accel, In, Out};
 use crate::cosim_error::CosimError;
 use hdl::mt::query_words;
-use hdl::top::stream::{CTRL_VALID, FIFO_DEPTH, FLAG_HIT, FLAG_VALID, TAG_BITS, TAG_SHIFT};
+use hdl::top::stream::{
+    CTRL_VALID, CTRL_WORD, FIFO_DEPTH, FLAG_HIT, FLAG_VALID, TAG_BITS, TAG_SHIFT,
+};
 use hw_model::{MtQuery, MtResult};
 
 /// What one batch cost.
@@ -45,8 +47,8 @@ fn load_beat(accel: &mut Accel, queries: &[MtQuery], beat: usize) {
         let slot = accel.in_slot(lane);
         match queries.get(index) {
             Some(q) => {
-                slot[..15].copy_from_slice(&query_words(q));
-                slot[15] = CTRL_VALID | (index as u32 & TAG_MASK) << TAG_SHIFT;
+                slot[..CTRL_WORD].copy_from_slice(&query_words(q));
+                slot[CTRL_WORD] = CTRL_VALID | (index as u32 & TAG_MASK) << TAG_SHIFT;
             }
             None => slot.fill(0),
         }

@@ -2,6 +2,8 @@
 //! (format in docs/trace.md) and replayed into any intersector for benchmarks and equivalence.
 
 use crate::cosim_error::CosimError;
+use hdl::mt::{query_from_words, query_words};
+use hdl::regmap::OPERAND_COUNT;
 use hw_model::{MtQuery, MtResult};
 use rayon::prelude::*;
 use std::io::{Read, Write};
@@ -11,11 +13,12 @@ use sw_renderer::intersect::Intersector;
 use sw_renderer::rays::EngineError;
 
 pub const MAGIC: [u8; 8] = *b"RTFTRACE";
-pub const VERSION: u32 = 1;
+/// 2: records carry t_min (version 1 had 15 values a query).
+pub const VERSION: u32 = 2;
 /// Bytes before the first record: magic, version, reserved flags, count.
 pub const HEADER_BYTES: usize = 8 + 4 + 4 + 8;
-/// Bytes of one record: 15 little-endian f32.
-pub const RECORD_BYTES: usize = 15 * 4;
+/// Bytes of one record: the query's 16 little-endian f32 (`hdl::mt::query_words`).
+pub const RECORD_BYTES: usize = OPERAND_COUNT * 4;
 
 fn trace_error(path: &Path, message: impl Into<String>) -> CosimError {
     CosimError::Trace {
@@ -24,12 +27,7 @@ fn trace_error(path: &Path, message: impl Into<String>) -> CosimError {
     }
 }
 
-/// The 15 fields of a query in record order.
-fn fields(q: &MtQuery) -> impl Iterator<Item = f32> + '_ {
-    [q.orig, q.dir, q.v0, q.v1, q.v2].into_iter().flatten()
-}
-
-/// Writes `queries` to `path` as a version-1 trace.
+/// Writes `queries` to `path` as a version-2 trace.
 pub fn write_trace(path: &Path, queries: &[MtQuery]) -> Result<(), CosimError> {
     let mut bytes = Vec::with_capacity(HEADER_BYTES + queries.len() * RECORD_BYTES);
     bytes.extend_from_slice(&MAGIC);
@@ -37,8 +35,8 @@ pub fn write_trace(path: &Path, queries: &[MtQuery]) -> Result<(), CosimError> {
     bytes.extend_from_slice(&0u32.to_le_bytes());
     bytes.extend_from_slice(&(queries.len() as u64).to_le_bytes());
     for q in queries {
-        for x in fields(q) {
-            bytes.extend_from_slice(&x.to_le_bytes());
+        for w in query_words(q) {
+            bytes.extend_from_slice(&w.to_le_bytes());
         }
     }
     std::fs::File::create(path)
@@ -100,15 +98,9 @@ pub fn read_trace(path: &Path) -> Result<Vec<MtQuery>, CosimError> {
     Ok(bytes[HEADER_BYTES..]
         .chunks_exact(RECORD_BYTES)
         .map(|r| {
-            let f = |k: usize| f32::from_le_bytes(r[4 * k..4 * k + 4].try_into().expect("4 bytes"));
-            let v = |k: usize| [f(3 * k), f(3 * k + 1), f(3 * k + 2)];
-            MtQuery {
-                orig: v(0),
-                dir: v(1),
-                v0: v(2),
-                v1: v(3),
-                v2: v(4),
-            }
+            query_from_words(&std::array::from_fn(|k| {
+                u32::from_le_bytes(r[4 * k..4 * k + 4].try_into().expect("4 bytes"))
+            }))
         })
         .collect())
 }
@@ -229,6 +221,7 @@ mod tests {
             v0: [3.0; 3],
             v1: [k; 3],
             v2: [f32::INFINITY, 1e-40, -k],
+            t_min: -k,
         }
     }
 
@@ -243,7 +236,7 @@ mod tests {
             HEADER_BYTES + 100 * RECORD_BYTES
         );
         let back = read_trace(&path).unwrap();
-        let bits = |q: &MtQuery| fields(q).map(f32::to_bits).collect::<Vec<_>>();
+        let bits = |q: &MtQuery| query_words(q).to_vec();
         assert_eq!(
             back.iter().map(bits).collect::<Vec<_>>(),
             queries.iter().map(bits).collect::<Vec<_>>()

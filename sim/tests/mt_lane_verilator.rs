@@ -8,6 +8,7 @@
 
 use hdl::formats::{fp16, fp32, fx32_16};
 use hdl::mt::{query_words, Lane, LaneOutput};
+use hdl::regmap::OPERAND_COUNT;
 use hw_model::{mt_model, MtQuery, MtResult};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use sim::{build, run_pipelined, BuildOptions, ModelSpec};
@@ -19,7 +20,18 @@ fn grid(rng: &mut StdRng, max: f32, bits: i32) -> f32 {
     rng.gen_range(-steps..=steps) as f32 * 2f32.powi(-bits)
 }
 
-/// Random queries of four kinds, in turn:
+/// A lower bound for a query whose hit (if any) is near t = 1: mostly 0 (the reference's
+/// rays), else around the hit, negative, or NaN/±Inf.
+fn t_min(rng: &mut StdRng) -> f32 {
+    match rng.gen_range(0..8) {
+        0 | 1 => rng.gen_range(0.0..2.0),
+        2 => -rng.gen_range(0.0..2.0f32),
+        3 => [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 1.0][rng.gen_range(0..4)],
+        _ => 0.0,
+    }
+}
+
+/// Random queries of four kinds, in turn, each with a random lower bound (`t_min`):
 /// 0. a ray from a random point aimed near the centre of a random triangle, coordinates
 ///    uniform within ±`scale` (about half hit);
 /// 1. the same on the dyadic grid k/16 (exact cancellations, hits on edges and vertices,
@@ -48,15 +60,7 @@ fn queries(n: usize, scale: f32, seed: u64) -> Vec<MtQuery> {
                 } else {
                     (a, b)
                 };
-                let dir =
-                    [0, 1, 2].map(|k| v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]) - orig[k]);
-                MtQuery {
-                    orig,
-                    dir,
-                    v0,
-                    v1,
-                    v2,
-                }
+                MtQuery::aimed(orig, [v0, v1, v2], (a, b), t_min(&mut rng))
             }
             2 => {
                 let mut p = |r: f32| [0; 3].map(|_| rng.gen_range(-r..r));
@@ -76,6 +80,7 @@ fn queries(n: usize, scale: f32, seed: u64) -> Vec<MtQuery> {
                     v0,
                     v1,
                     v2,
+                    t_min: t_min(&mut rng),
                 }
             }
             _ => {
@@ -86,6 +91,7 @@ fn queries(n: usize, scale: f32, seed: u64) -> Vec<MtQuery> {
                     v0: bits(),
                     v1: bits(),
                     v2: bits(),
+                    t_min: f32::from_bits(rng.gen()),
                 }
             }
         })
@@ -102,17 +108,17 @@ fn run_lane<L: Lane>(verilog: String, depth: usize, queries: &[MtQuery]) -> Vec<
     let names =
         |ports: &[sim::verilator::Port]| ports.iter().map(|p| p.name.clone()).collect::<Vec<_>>();
     let mut want_inputs = vec!["valid_in".to_string()];
-    want_inputs.extend((0..15).map(|i| format!("query${i}")));
+    want_inputs.extend((0..OPERAND_COUNT).map(|i| format!("query${i}")));
     assert_eq!(names(&sim.interface().inputs), want_inputs);
     assert_eq!(
         names(&sim.interface().outputs),
         ["valid_out", "hit", "t", "u", "v"]
     );
-    let inputs: Vec<[u64; 16]> = queries
+    let inputs: Vec<[u64; OPERAND_COUNT + 1]> = queries
         .iter()
         .enumerate()
         .map(|(i, q)| {
-            let mut words = [u64::from(i % 7 != 6); 16];
+            let mut words = [u64::from(i % 7 != 6); OPERAND_COUNT + 1];
             for (w, q) in words[1..].iter_mut().zip(query_words(q)) {
                 *w = u64::from(q);
             }

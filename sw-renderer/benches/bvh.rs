@@ -62,6 +62,7 @@ fn query(o: V3, d: V3, t: &WorldTriangle) -> MtQuery {
         v0: t.verts[0].to_array(),
         v1: t.verts[1].to_array(),
         v2: t.verts[2].to_array(),
+        t_min: 0.0,
     }
 }
 

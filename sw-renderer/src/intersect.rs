@@ -16,6 +16,27 @@ pub struct MtQuery {
     pub v0: [f32; 3],
     pub v1: [f32; 3],
     pub v2: [f32; 3],
+    /// The ray's lower bound: a hit needs `t > t_min` (0: the reference's `t > 0`).
+    pub t_min: f32,
+}
+
+impl MtQuery {
+    /// A ray from `orig` towards the point at barycentric `(a, b)` of the triangle `verts`
+    /// (`v0 + a·(v1 − v0) + b·(v2 − v0)`, so `t` = 1 there), hits beyond `t_min`: the test
+    /// generators' common query.
+    pub fn aimed(orig: [f32; 3], verts: [[f32; 3]; 3], (a, b): (f32, f32), t_min: f32) -> MtQuery {
+        let [v0, v1, v2] = verts;
+        MtQuery {
+            orig,
+            dir: std::array::from_fn(|k| {
+                v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]) - orig[k]
+            }),
+            v0,
+            v1,
+            v2,
+            t_min,
+        }
+    }
 }
 
 /// The result of one test. `t`, `u`, `v` are whatever the datapath computed, also on a miss
@@ -74,7 +95,8 @@ pub const DET_EPSILON: f32 = 1e-8;
 /// e1 = v1−v0, e2 = v2−v0, p = d×e2, det = e1·p, inv = 1/det, s = o−v0, u = (s·p)·inv,
 /// q = s×e1, v = (d·q)·inv, t = (e2·q)·inv. The rejections are written as the C++
 /// `if (fabs(det) < eps) …; if (u < 0 || u > 1) …; if (v < 0 || u + v > 1) …` so NaNs fall
-/// through them exactly as there; a hit also needs t > 0. t, u, v are returned on a miss too.
+/// through them exactly as there; a hit also needs `t > q.t_min` (the reference's `t > 0`
+/// at `t_min = 0`). t, u, v are returned on a miss too.
 #[inline]
 pub fn mt_f32(q: &MtQuery) -> MtResult {
     let mut r = [MtResult::default()];
@@ -182,12 +204,13 @@ fn mt_lanes<const N: usize>(queries: &[MtQuery], results: &mut [MtResult]) {
     let qv = s.cross(e1);
     let v = lanewise(dir.dot(qv), inv, |a, b| a * b);
     let t = lanewise(e2.dot(qv), inv, |a, b| a * b);
+    let t_min: [f32; N] = std::array::from_fn(|i| queries[i].t_min);
     for (i, r) in results.iter_mut().enumerate().take(N) {
         let parallel = (det[i] < DET_EPSILON) & (det[i] > -DET_EPSILON);
         let hit = !parallel
             & !((u[i] < 0.0) | (u[i] > 1.0))
             & !((v[i] < 0.0) | (u[i] + v[i] > 1.0))
-            & (t[i] > 0.0);
+            & (t[i] > t_min[i]);
         *r = MtResult {
             hit,
             t: t[i],
@@ -208,6 +231,7 @@ mod tests {
             v0: [0.0, 0.0, 0.0],
             v1: [1.0, 0.0, 0.0],
             v2: [0.0, 1.0, 0.0],
+            t_min: 0.0,
         }
     }
 
@@ -266,7 +290,7 @@ mod tests {
         let v = dir.dot(qv) * inv;
         let t = e2.dot(qv) * inv;
         let parallel = det < DET_EPSILON && det > -DET_EPSILON;
-        let hit = !parallel && !(u < 0.0 || u > 1.0) && !(v < 0.0 || u + v > 1.0) && t > 0.0;
+        let hit = !parallel && !(u < 0.0 || u > 1.0) && !(v < 0.0 || u + v > 1.0) && t > q.t_min;
         MtResult { hit, t, u, v }
     }
 
@@ -282,19 +306,13 @@ mod tests {
             .map(|i| {
                 let (orig, v0, v1, v2) = (p(3.0), p(1.0), p(1.0), p(1.0));
                 let (a, b) = (p(0.5)[0].abs(), p(0.5)[0].abs());
-                let dir = if i % 2 == 0 {
-                    std::array::from_fn(|k| {
-                        v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]) - orig[k]
-                    })
+                // Every third with a lower bound around the hit's t = 1.
+                let t_min = if i % 3 == 0 { p(2.0)[0] } else { 0.0 };
+                let q = MtQuery::aimed(orig, [v0, v1, v2], (a, b), t_min);
+                if i % 2 == 0 {
+                    q
                 } else {
-                    p(1.0)
-                };
-                MtQuery {
-                    orig,
-                    dir,
-                    v0,
-                    v1,
-                    v2,
+                    MtQuery { dir: p(1.0), ..q }
                 }
             })
             .collect();
@@ -315,6 +333,30 @@ mod tests {
             hits += usize::from(g.hit);
         }
         assert!(hits > 3000, "{hits} hits");
+    }
+
+    #[test]
+    fn a_hit_needs_t_above_t_min() {
+        let at = |t_min| {
+            mt_f32(&MtQuery {
+                t_min,
+                ..query([0.25, 0.5, 2.0], [0.0, 0.0, -1.0])
+            })
+        };
+        assert!(at(0.0).hit && at(1.999).hit && at(-1.0).hit && at(f32::NEG_INFINITY).hit);
+        for t_min in [2.0, 3.0, f32::INFINITY, f32::NAN] {
+            let r = at(t_min);
+            assert!(!r.hit, "t_min {t_min}");
+            assert_eq!((r.t, r.u, r.v), (2.0, 0.25, 0.5), "t, u, v still computed");
+        }
+    }
+
+    #[test]
+    fn aimed_queries_hit_their_point_at_t_1() {
+        let tri = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        let r = mt_f32(&MtQuery::aimed([0.0, 0.0, 4.0], tri, (0.25, 0.5), 0.0));
+        assert!(r.hit);
+        assert_eq!((r.t, r.u, r.v), (1.0, 0.25, 0.5));
     }
 
     #[test]

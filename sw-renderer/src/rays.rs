@@ -225,6 +225,9 @@ impl Batch {
                     v0: v0.to_array(),
                     v1: v1.to_array(),
                     v2: v2.to_array(),
+                    // The lanes apply the lower bound too; the window check below stays
+                    // (the f32 reference needs it, and it is exact).
+                    t_min: ray.t_min,
                 }
             }));
         self.ranges.push(start..self.candidates.len());

@@ -163,6 +163,7 @@ fn random_query(rng: &mut StdRng, on_edges: bool) -> MtQuery {
         v0,
         v1,
         v2,
+        t_min: 0.0,
     }
 }
 

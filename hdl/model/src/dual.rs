@@ -323,6 +323,7 @@ fn filter_input(q: &MtQuery, scale_exp: i32) -> Option<(MtQuery, [[Fed; 3]; 5])>
         v0: [0.0; 3],
         v1: moved(q.v1),
         v2: moved(q.v2),
+        t_min: q.t_min,
     };
     let fed_query = scale_query(&translated, scale_exp);
     let c = 2f64.powi(scale_exp);
@@ -439,7 +440,7 @@ impl Filter {
     }
 
     /// Whether the fallback certainly answers "miss": one of its tests (|det| < eps,
-    /// u < 0, u > 1, v < 0, u + v > 1, t ≤ 0) is decided by the filter's value lying beyond
+    /// u < 0, u > 1, v < 0, u + v > 1, t ≤ t_min) is decided by the filter's value lying beyond
     /// the threshold by more than `margin_scale` × (the filter's + the fallback's error
     /// bound). `margin_scale` is 1 for the derived bound; the tests shrink it to show that
     /// a smaller margin is wrong. Non-finite inputs, inexact scaling and possible overflow
@@ -491,6 +492,10 @@ impl Filter {
             quotient_errors(&n, &det, a, b)
         };
         let ((u_a, u_b), (v_a, v_b), (t_a, t_b)) = (errors(0)?, errors(1)?, errors(2)?);
+        // The fallback's hit needs t > t_min as the fallback holds it; a NaN t_min is left
+        // to the fallback, −∞ rules nothing out.
+        let fallback = &self.pair.fallback;
+        let t_min = fallback.to_f64(fallback.from_f32(q.t_min));
         // u + v: both quotients' errors, then one rounding in each format.
         let uv_a = u_a + v_a + a.error(x.u.abs() + x.v.abs());
         let uv_b = u_b + v_b + b.error(x.u.abs() + u_a + u_b + x.v.abs() + v_a + v_b);
@@ -498,7 +503,7 @@ impl Filter {
             || x.u - 1.0 > margin(u_a + u_b)
             || x.v < -margin(v_a + v_b)
             || x.uv - 1.0 > margin(uv_a + uv_b)
-            || x.t < -margin(t_a + t_b);
+            || (t_min.is_finite() && x.t - t_min < -margin(t_a + t_b));
         if certain {
             miss
         } else {

@@ -67,15 +67,9 @@ mod tests {
         let mut p = || [grid(r, 64.0, 8), grid(r, 64.0, 8), grid(r, 64.0, 8)];
         let (orig, v0, v1, v2) = (p(), p(), p(), p());
         let (a, b) = (grid(r, 1.0, 4).abs() - 0.125, grid(r, 1.0, 4).abs() - 0.125);
-        let dir =
-            std::array::from_fn(|k| v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]) - orig[k]);
-        MtQuery {
-            orig,
-            dir,
-            v0,
-            v1,
-            v2,
-        }
+        // The hit is at t = 1: lower bounds on both sides of it, and exactly at it.
+        let t_min = [0.0, 0.5, 1.0, 1.5][r.gen_range(0..4)];
+        MtQuery::aimed(orig, [v0, v1, v2], (a, b), t_min)
     }
 
     #[test]

@@ -45,8 +45,8 @@ fn load<A: Arith>(f: A, x: &[f32; 3]) -> V {
 
 /// `q` with every coordinate times 2^`scale_exp` (exact in fp32 unless it over- or
 /// underflows). Möller-Trumbore's t, u, v are ratios of products of equal degree in lengths,
-/// so they do not change; a format's datapath sees the scene at another magnitude
-/// (`crate::precision::auto_scale_exp`).
+/// so they do not change, and neither does `t_min`; a format's datapath sees the scene at
+/// another magnitude (`crate::precision::auto_scale_exp`).
 pub fn scale_query(q: &MtQuery, scale_exp: i32) -> MtQuery {
     let f = 2f32.powi(scale_exp);
     let s = |v: [f32; 3]| v.map(|x| x * f);
@@ -56,6 +56,7 @@ pub fn scale_query(q: &MtQuery, scale_exp: i32) -> MtQuery {
         v0: s(q.v0),
         v1: s(q.v1),
         v2: s(q.v2),
+        t_min: q.t_min,
     }
 }
 
@@ -71,6 +72,12 @@ pub fn mt_model_scaled(format: &Format, scale_exp: i32, q: &MtQuery) -> MtResult
 
 /// The test in `format`: fp32 inputs converted in, every operation rounded in the format,
 /// t, u, v converted back to fp32 (also on a miss).
+///
+/// The lower bound is compared in the format: `t_min` is converted in like the other 15
+/// words and a hit needs `t_min < t` by the format's `lt` (docs/precision.md, "Where t_min
+/// is applied"). So `t_min = 0` is exactly the reference's `t > 0`. In a float format a NaN
+/// `t_min` rejects every hit, `-Inf` accepts every `t` but NaN and `+Inf` rejects all; a fixed
+/// format converts NaN to 0 and ±Inf to its largest/smallest value (the SPEC's conversion).
 #[inline]
 pub fn mt_model(format: &Format, q: &MtQuery) -> MtResult {
     with_arith!(format, f => mt_in(f, q))
@@ -86,6 +93,8 @@ struct Datapath {
     t: u64,
     /// u + v, as the last test adds them.
     uv: u64,
+    /// The query's t_min in the format: a hit needs t_min < t.
+    t_min: u64,
 }
 
 fn datapath<A: Arith>(f: A, q: &MtQuery) -> Datapath {
@@ -110,6 +119,7 @@ fn datapath<A: Arith>(f: A, q: &MtQuery) -> Datapath {
         v,
         t,
         uv: f.add(u, v),
+        t_min: f.convert_in_f32(q.t_min),
     }
 }
 
@@ -130,7 +140,7 @@ fn tests<A: Arith>(f: A, d: &Datapath) -> MtResult {
         && !f.lt(one, d.u)
         && !f.lt(d.v, zero)
         && !f.lt(one, d.uv)
-        && f.lt(zero, d.t);
+        && f.lt(d.t_min, d.t);
     MtResult {
         hit,
         t: f.convert_out_f32(d.t),

@@ -64,7 +64,7 @@ fn point(r: &mut StdRng, size: f32) -> P {
 
 /// One query of a mix: rays at barycentric edges, near-parallel rays (det near the
 /// fallback's 1e-8 threshold), grazing rays, origins on the plane (t near 0), random rays;
-/// scenes from 2^-12 to 2^12 units; thin and large triangles.
+/// scenes from 2^-12 to 2^12 units; thin and large triangles; t_min 0, random or near t.
 fn query(r: &mut StdRng) -> MtQuery {
     // Mostly scene-like sizes, some far outside a narrow format's range.
     let size = 2f32.powi(if r.gen_bool(0.7) {
@@ -101,12 +101,20 @@ fn query(r: &mut StdRng) -> MtQuery {
         3 => point(r, 1.0),
         _ => sub(target, orig),
     };
+    // A hit needs t > t_min: mostly the reference's 0, some spawn-like t_min, some near the
+    // hit's t (1 for the aimed rays).
+    let t_min = match r.gen_range(0..8) {
+        0 => r.gen_range(0.0..2.0),
+        1 => nudge(r, 1.0, 4),
+        _ => 0.0,
+    };
     MtQuery {
         orig,
         dir,
         v0,
         v1,
         v2,
+        t_min,
     }
 }
 

@@ -1,12 +1,12 @@
 //! The modelled Möller-Trumbore test: fp32 equals a native-f32 MT with the same operation
 //! order whenever no value along the way is subnormal; every catalogue format computes an
-//! exactly representable case exactly.
+//! exactly representable case exactly; the lower bound `t_min` is compared in the format.
 
 mod common;
 
 use common::rng;
 use hw_model::mt::mt_model;
-use hw_model::{catalogue, MtQuery, MtResult};
+use hw_model::{catalogue, Format, MtQuery, MtResult};
 use rand::rngs::StdRng;
 use rand::Rng;
 
@@ -53,6 +53,7 @@ fn mt_native(q: &MtQuery) -> (MtResult, bool) {
             w.n(x);
         });
     }
+    w.n(q.t_min);
     let e1 = w.sub(q.v1, q.v0);
     let e2 = w.sub(q.v2, q.v0);
     let p = w.cross(q.dir, e2);
@@ -73,7 +74,7 @@ fn mt_native(q: &MtQuery) -> (MtResult, bool) {
         && !(1.0 < u)
         && !(v < 0.0)
         && !(1.0 < uv)
-        && 0.0 < t;
+        && q.t_min < t;
     (MtResult { hit, t, u, v }, w.0)
 }
 
@@ -92,8 +93,9 @@ fn point(r: &mut StdRng, span: f32) -> [f32; 3] {
 }
 
 /// Rays aimed near random triangles (about half hit), at scales from tiny to huge, plus
-/// degenerate triangles and rays of arbitrary bits.
-pub fn random_query(r: &mut StdRng) -> MtQuery {
+/// degenerate triangles and rays of arbitrary bits; one in five with a lower bound below or
+/// beyond the hit.
+fn random_query(r: &mut StdRng) -> MtQuery {
     let span = 2f32.powi(r.gen_range(-30..30));
     let (v0, v1, v2) = (point(r, span), point(r, span), point(r, span));
     let orig = point(r, span * 4.0);
@@ -103,12 +105,18 @@ pub fn random_query(r: &mut StdRng) -> MtQuery {
     let mut dir: [f32; 3] = std::array::from_fn(|k| target[k] - orig[k]);
     let len = dir.iter().map(|x| x * x).sum::<f32>().sqrt();
     dir.iter_mut().for_each(|x| *x /= len);
+    let t_min = if r.gen_range(0..5) == 0 {
+        r.gen_range(-1.0..1.0) * span * 8.0
+    } else {
+        0.0
+    };
     let mut q = MtQuery {
         orig,
         dir,
         v0,
         v1,
         v2,
+        t_min,
     };
     match r.gen_range(0..10) {
         0 => q.v2 = q.v1, // degenerate: det = 0
@@ -154,6 +162,7 @@ fn every_catalogue_format_computes_an_exact_case_exactly() {
         v0: [0.0, 0.0, 0.0],
         v1: [1.0, 0.0, 0.0],
         v2: [0.0, 1.0, 0.0],
+        t_min: 0.0,
     };
     let outside = MtQuery {
         orig: [0.75, 0.5, 2.0],
@@ -194,4 +203,61 @@ fn narrow_formats_deviate_from_fp32_on_general_queries() {
             "{name}: only {differ} of 2000 queries differ from fp32"
         );
     }
+}
+
+#[test]
+fn a_hit_needs_t_above_t_min_in_every_format() {
+    // t = 2 exactly in every format; 1.75 and 2.25 too.
+    let base = MtQuery {
+        orig: [0.25, 0.5, 2.0],
+        dir: [0.0, 0.0, -1.0],
+        v0: [0.0, 0.0, 0.0],
+        v1: [1.0, 0.0, 0.0],
+        v2: [0.0, 1.0, 0.0],
+        t_min: 0.0,
+    };
+    let hit = |format, t_min| mt_model(format, &MtQuery { t_min, ..base }).hit;
+    for named in catalogue() {
+        let (f, name) = (&named.format, named.name);
+        assert!(hit(f, 0.0) && hit(f, 1.75) && hit(f, -1.0), "{name}");
+        assert!(!hit(f, 2.0) && !hit(f, 2.25), "{name}: t = t_min is a miss");
+        assert!(!hit(f, f32::INFINITY), "{name}: +Inf rejects every t");
+        assert!(
+            hit(f, f32::NEG_INFINITY),
+            "{name}: -Inf rejects no finite t"
+        );
+        // NaN: no t is above it in a float format; fixed point converts it to 0.
+        let fixed = matches!(named.format, Format::Fixed { .. });
+        assert_eq!(hit(f, f32::NAN), fixed, "{name}: NaN t_min");
+        // t, u, v do not depend on the bound.
+        let (a, b) = (
+            mt_model(f, &base),
+            mt_model(f, &MtQuery { t_min: 3.0, ..base }),
+        );
+        assert_eq!((a.t, a.u, a.v), (b.t, b.u, b.v), "{name}");
+    }
+}
+
+#[test]
+fn fp32_t_min_just_below_t_hits_and_at_t_misses() {
+    let fp32 = hw_model::lookup("fp32").unwrap();
+    let mut r = rng(23);
+    let mut checked = 0;
+    for _ in 0..20_000 {
+        let q = MtQuery {
+            t_min: 0.0,
+            ..random_query(&mut r)
+        };
+        let base = mt_model(&fp32, &q);
+        if !base.hit || !base.t.is_normal() {
+            continue;
+        }
+        let at = |t_min: f32| mt_model(&fp32, &MtQuery { t_min, ..q }).hit;
+        let below = f32::from_bits(base.t.to_bits() - 1);
+        assert!(at(below), "{q:?}: t {} just above t_min", base.t);
+        assert!(!at(base.t), "{q:?}: t = t_min {}", base.t);
+        assert!(!at(f32::from_bits(base.t.to_bits() + 1)), "{q:?}");
+        checked += 1;
+    }
+    assert!(checked > 2_000, "only {checked} hits");
 }

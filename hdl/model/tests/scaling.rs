@@ -21,15 +21,7 @@ fn point() -> impl Strategy<Value = [f32; 3]> {
 fn query() -> impl Strategy<Value = MtQuery> {
     (point(), point(), point(), point(), 0i32..20, 0i32..20).prop_map(|(orig, v0, v1, v2, a, b)| {
         let (a, b) = (a as f32 / 16.0 - 0.125, b as f32 / 16.0 - 0.125);
-        let dir =
-            std::array::from_fn(|k| v0[k] + a * (v1[k] - v0[k]) + b * (v2[k] - v0[k]) - orig[k]);
-        MtQuery {
-            orig,
-            dir,
-            v0,
-            v1,
-            v2,
-        }
+        MtQuery::aimed(orig, [v0, v1, v2], (a, b), 0.0)
     })
 }
 
@@ -74,6 +66,7 @@ fn scaling_beyond_the_range_changes_results() {
         v0: [0.0, 0.0, 0.0],
         v1: [1.0, 0.0, 0.0],
         v2: [0.0, 1.0, 0.0],
+        t_min: 0.0,
     };
     let fp16 = lookup("fp16").unwrap();
     assert_eq!(mt_model_scaled(&fp16, 3, &q).t, 2.0);

@@ -46,6 +46,7 @@ fn brute_force(
                 v0: t.verts[0].to_array(),
                 v1: t.verts[1].to_array(),
                 v2: t.verts[2].to_array(),
+                t_min: ray.t_min,
             };
             (k as u32, mt_model(format, &q))
         })
@@ -432,6 +433,7 @@ proptest! {
                         v0: tris[h.triangle as usize].verts[0].to_array(),
                         v1: tris[h.triangle as usize].verts[1].to_array(),
                         v2: tris[h.triangle as usize].verts[2].to_array(),
+                        t_min: r.t_min,
                     })), "{:?}: {:?}", r, h);
                 }
             } else {

@@ -20,6 +20,7 @@ macro_rules! mt_lane {
             };
             use $crate::mt::delay::{Delay, Ring, RingPosition, WordDelay};
             use $crate::mt::schedule::{OpLatencies, Schedule};
+            use $crate::regmap::OPERAND_COUNT;
 
             fn schedule(depth: usize) -> Schedule {
                 $crate::mt::schedule(HW, depth)
@@ -130,7 +131,7 @@ macro_rules! mt_lane {
                 }
             }
 
-            /// One MT lane: a query (15 fp32 words: orig, dir, v0, v1, v2) every cycle in,
+            /// One MT lane: a query (16 fp32 words: orig, dir, v0, v1, v2, t_min) every cycle in,
             /// `hit` and t, u, v (fp32) out `latency(depth)` cycles later, with `valid_in`
             /// delayed alongside. `depth` is the pipeline registers per operator, each
             /// operator saturating at its own `max_stages()`. No reset: the valid line holds
@@ -139,16 +140,16 @@ macro_rules! mt_lane {
             pub struct MtLane {
                 pub clock: Signal<In, Clock>,
                 pub valid_in: Signal<In, Bit>,
-                pub query: [Signal<In, Bits<32>>; 15],
+                pub query: [Signal<In, Bits<32>>; OPERAND_COUNT],
                 pub valid_out: Signal<Out, Bit>,
                 pub hit: Signal<Out, Bit>,
                 pub t: Signal<Out, Bits<32>>,
                 pub u: Signal<Out, Bits<32>>,
                 pub v: Signal<Out, Bits<32>>,
-                /// query[i] in the format: orig 0..3, dir 3..6, v0 6..9, v1 9..12, v2 12..15
-                /// (`loaded`; the words themselves when the format is `RAW_FP32`).
-                load: [FromF32; 15],
-                loaded: [Signal<Local, Bits<WIDTH>>; 15],
+                /// query[i] in the format: orig 0..3, dir 3..6, v0 6..9, v1 9..12, v2 12..15,
+                /// t_min 15 (`loaded`; the words themselves when the format is `RAW_FP32`).
+                load: [FromF32; OPERAND_COUNT],
+                loaded: [Signal<Local, Bits<WIDTH>>; OPERAND_COUNT],
                 raw_word: Signal<Local, Bits<32>>,
                 raw_fp32: Constant<Bit>,
                 /// e1 = v1 − v0, e2 = v2 − v0, s = orig − v0.
@@ -161,11 +162,14 @@ macro_rules! mt_lane {
                 third_ring: Ring,
                 numerator_ring: Ring,
                 result_ring: Ring,
+                t_min_ring: Ring,
                 dir_at_cross: [WordDelay<Bits<WIDTH>>; 3],
                 dir_at_dot: [WordDelay<Bits<WIDTH>>; 3],
                 edge1_at_dot: [WordDelay<Bits<WIDTH>>; 3],
                 edge2_at_dot: [WordDelay<Bits<WIDTH>>; 3],
                 to_origin_at_dot: [WordDelay<Bits<WIDTH>>; 3],
+                /// t_min (in the format) waits for t.
+                t_min_at_test: WordDelay<Bits<WIDTH>>,
                 /// p = dir × e2, q = s × e1.
                 p: Cross,
                 q: Cross,
@@ -188,7 +192,7 @@ macro_rules! mt_lane {
                 u_above_one: Lt,
                 v_below_zero: Lt,
                 sum_above_one: Lt,
-                t_above_zero: Lt,
+                t_above_min: Lt,
                 parallel_at_out: Delay<Bit>,
                 in_range_at_out: Delay<Bit>,
                 sum_above_one_at_out: Delay<Bit>,
@@ -234,11 +238,13 @@ macro_rules! mt_lane {
                         third_ring: Ring::new(s.third_product()),
                         numerator_ring: Ring::new(s.numerator_to_scale()),
                         result_ring: Ring::new(s.result_to_out()),
+                        t_min_ring: Ring::new(s.t_min_to_test()),
                         dir_at_cross: delays(s.dir_to_cross()),
                         dir_at_dot: delays(s.edge_to_dot()),
                         edge1_at_dot: delays(s.edge_to_dot()),
                         edge2_at_dot: delays(s.edge_to_dot()),
                         to_origin_at_dot: delays(s.edge_to_dot()),
+                        t_min_at_test: WordDelay::new(s.t_min_to_test()),
                         p: Cross::new(ops),
                         q: Cross::new(ops),
                         det: Dot::new(&s),
@@ -259,7 +265,7 @@ macro_rules! mt_lane {
                         u_above_one: Lt::new(ops.lt),
                         v_below_zero: Lt::new(ops.lt),
                         sum_above_one: Lt::new(ops.lt),
-                        t_above_zero: Lt::new(ops.lt),
+                        t_above_min: Lt::new(ops.lt),
                         parallel_at_out: Delay::new(s.parallel_to_out()),
                         in_range_at_out: Delay::new(s.range_to_out()),
                         sum_above_one_at_out: Delay::new(s.sum_to_out()),
@@ -286,7 +292,7 @@ macro_rules! mt_lane {
             impl Logic for MtLane {
                 #[hdl_gen]
                 fn update(&mut self) {
-                    for i in 0..15 {
+                    for i in 0..OPERAND_COUNT {
                         self.load[i].clock.next = self.clock.val();
                         self.load[i].a.next = self.query[i].val();
                         self.loaded[i].next = self.load[i].y.val();
@@ -302,6 +308,11 @@ macro_rules! mt_lane {
                     self.third_ring.clock.next = self.clock.val();
                     self.numerator_ring.clock.next = self.clock.val();
                     self.result_ring.clock.next = self.clock.val();
+                    self.t_min_ring.clock.next = self.clock.val();
+                    self.t_min_at_test.clock.next = self.clock.val();
+                    self.t_min_at_test.at.next = self.t_min_ring.at.val();
+                    // Word 15 = T_MIN_WORD (a literal: hdl_gen would leak the name).
+                    self.t_min_at_test.d.next = self.loaded[15].val();
                     for i in 0..3 {
                         self.edge1[i].clock.next = self.clock.val();
                         self.edge2[i].clock.next = self.clock.val();
@@ -384,7 +395,7 @@ macro_rules! mt_lane {
                     self.u_above_one.clock.next = self.clock.val();
                     self.v_below_zero.clock.next = self.clock.val();
                     self.sum_above_one.clock.next = self.clock.val();
-                    self.t_above_zero.clock.next = self.clock.val();
+                    self.t_above_min.clock.next = self.clock.val();
                     self.det_below_eps.a.next = self.det.y.val();
                     self.det_below_eps.b.next = self.eps.val();
                     self.det_above_neg_eps.a.next = self.neg_eps.val();
@@ -397,8 +408,9 @@ macro_rules! mt_lane {
                     self.v_below_zero.b.next = self.zero.val();
                     self.sum_above_one.a.next = self.one.val();
                     self.sum_above_one.b.next = self.u_plus_v.y.val();
-                    self.t_above_zero.a.next = self.zero.val();
-                    self.t_above_zero.b.next = self.t_scale.y.val();
+                    // The lower bound in the format (hw_model::mt::mt_model; t_min = 0: t > 0).
+                    self.t_above_min.a.next = self.t_min_at_test.q.val();
+                    self.t_above_min.b.next = self.t_scale.y.val();
                     self.parallel_at_out.clock.next = self.clock.val();
                     self.in_range_at_out.clock.next = self.clock.val();
                     self.sum_above_one_at_out.clock.next = self.clock.val();
@@ -407,7 +419,7 @@ macro_rules! mt_lane {
                     self.in_range_at_out.d.next = !self.u_below_zero.y.val()
                         & !self.u_above_one.y.val()
                         & !self.v_below_zero.y.val()
-                        & self.t_above_zero.y.val();
+                        & self.t_above_min.y.val();
                     self.sum_above_one_at_out.d.next = self.sum_above_one.y.val();
                     self.hit.next = !self.parallel_at_out.q.val()
                         & self.in_range_at_out.q.val()
@@ -455,7 +467,7 @@ macro_rules! mt_lane {
                 fn clock(&mut self) -> &mut Signal<In, Clock> {
                     &mut self.clock
                 }
-                fn set_inputs(&mut self, valid: bool, query: &[u32; 15]) {
+                fn set_inputs(&mut self, valid: bool, query: &[u32; OPERAND_COUNT]) {
                     self.valid_in.next = valid;
                     for (port, &word) in self.query.iter_mut().zip(query) {
                         port.next = u64::from(word).into();

@@ -21,6 +21,7 @@ use rust_hdl::prelude::*;
 
 use crate::formats;
 use crate::operator::Op;
+use crate::regmap::{self, OPERAND_COUNT};
 use schedule::{OpLatencies, Schedule};
 
 /// The lane's timing in `format` at `depth`.
@@ -43,15 +44,36 @@ pub fn max_depth(format: HwFormat) -> usize {
         .unwrap_or(0)
 }
 
-/// A query as the lane's 15 input words: orig, dir, v0, v1, v2 (x, y, z each), fp32 bits.
-pub fn query_words(q: &MtQuery) -> [u32; 15] {
-    let mut words = [0; 15];
+/// A query as the lane's input words (the register map's operand order): orig, dir, v0, v1,
+/// v2 (x, y, z each), t_min, fp32 bits.
+pub fn query_words(q: &MtQuery) -> [u32; OPERAND_COUNT] {
+    let mut words = [0; OPERAND_COUNT];
     let fields = [q.orig, q.dir, q.v0, q.v1, q.v2];
     for (w, x) in words.iter_mut().zip(fields.iter().flatten()) {
         *w = x.to_bits();
     }
+    words[T_MIN_WORD] = q.t_min.to_bits();
     words
 }
+
+/// The query of [`query_words`] (bit for bit, NaN payloads included).
+pub fn query_from_words(words: &[u32; OPERAND_COUNT]) -> MtQuery {
+    let f = |k: usize| f32::from_bits(words[k]);
+    let v = |k: usize| [f(3 * k), f(3 * k + 1), f(3 * k + 2)];
+    MtQuery {
+        orig: v(0),
+        dir: v(1),
+        v0: v(2),
+        v1: v(3),
+        v2: v(4),
+        t_min: f(T_MIN_WORD),
+    }
+}
+
+/// Where t_min is among a query's words (after the 15 coordinates).
+pub const T_MIN_WORD: usize = (regmap::T_MIN - regmap::ORIG_X) / 4;
+// The lane (`lane.rs`) spells the index as a literal.
+const _: () = assert!(T_MIN_WORD == 15 && OPERAND_COUNT == 16);
 
 /// What a lane's outputs show in one cycle (t, u, v as fp32 bits).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -82,7 +104,7 @@ pub trait Lane: Block + Sized + 'static {
     fn new(depth: usize) -> Self;
     fn latency(depth: usize) -> usize;
     fn clock(&mut self) -> &mut Signal<In, Clock>;
-    fn set_inputs(&mut self, valid: bool, query: &[u32; 15]);
+    fn set_inputs(&mut self, valid: bool, query: &[u32; OPERAND_COUNT]);
     fn outputs(&self) -> LaneOutput;
 }
 

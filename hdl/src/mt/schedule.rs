@@ -11,8 +11,8 @@
 //! t_scale = t_recip + mul                  u = u'·inv, v = v'·inv, t = t'·inv
 //! t_sum   = t_scale + add                  u + v
 //! ```
-//! The tests follow with one comparison each (det against ±eps at t_dot, u, v, t at t_scale,
-//! u + v at t_sum) and t, u, v leave through to_f32; the lane's latency is the later of the
+//! The tests follow with one comparison each (det against ±eps at t_dot, u, v and t against
+//! 0, 1 and the loaded t_min at t_scale, u + v at t_sum) and t, u, v leave through to_f32; the lane's latency is the later of the
 //! last comparison and the conversions. Every other path is padded to it.
 
 use crate::operator::Op;
@@ -116,6 +116,10 @@ impl Schedule {
     pub fn third_product(&self) -> usize {
         self.ops.add
     }
+    /// t_min (loaded with the query) to its comparison with t (at t_scale).
+    pub fn t_min_to_test(&self) -> usize {
+        self.t_scale - self.t_load
+    }
     /// u', v', t' to the scaling by 1/det.
     pub fn numerator_to_scale(&self) -> usize {
         self.t_recip - self.t_dot
@@ -207,6 +211,7 @@ mod tests {
         assert_eq!(s.t_sum + ops.lt + s.sum_to_out(), s.latency);
         assert_eq!(s.t_load + s.dir_to_cross() + s.edge_to_dot(), s.t_cross);
         assert_eq!(s.t_dot + s.numerator_to_scale() + ops.mul, s.t_scale);
+        assert_eq!(s.t_load + s.t_min_to_test(), s.t_scale);
     }
 
     #[test]

@@ -7,7 +7,7 @@
 //! `m_tdata$<lane>`, `m_tvalid`, `m_tready`, `m_tlast`; [`super::wrapper`] renames them.
 
 /// Defines `LaneSlot` and `Accelerator` over the lane type `$lane`, which has the MT lane's
-/// ports (`clock`, `valid_in`, `query: [_; 15]`, `valid_out`, `hit`, `t`, `u`, `v`) and
+/// ports (`clock`, `valid_in`, `query: [_; 16]`, `valid_out`, `hit`, `t`, `u`, `v`) and
 /// `new(depth)` / `latency(depth)`.
 #[macro_export]
 macro_rules! accelerator {

@@ -2,9 +2,10 @@
 //! order through a result FIFO, plus the register-mode path into lane 0.
 //!
 //! Packet format (docs/stream.md): an input beat carries one [`IN_LANE_BITS`]-bit slot per
-//! lane (lane i at `tdata[512·i +: 512]`): words 0–14 are the query (fp32 bits: origin xyz,
-//! direction xyz, v0, v1, v2), word 15 is the lane's control word (bit 0 `valid`, bits 31:8 a
-//! 24-bit `tag`, bits 7:1 ignored). An output beat carries one [`OUT_LANE_BITS`]-bit slot per
+//! lane (lane i at `tdata[544·i +: 544]`): words 0–15 are the query in the register map's
+//! operand order (fp32 bits: origin xyz, direction xyz, v0, v1, v2, t_min), word 16
+//! ([`CTRL_WORD`]) is the lane's control word (bit 0 `valid`, bits 31:8 a 24-bit `tag`, bits
+//! 7:1 ignored). An output beat carries one [`OUT_LANE_BITS`]-bit slot per
 //! lane: word 0 flags (bit 0 `hit` (0 for an invalid lane), bit 1 `valid`, bits 31:8 the
 //! `tag`), words 1–3 t, u, v (fp32 bits). Output beat k answers input beat k; `tlast` is
 //! passed through.
@@ -18,14 +19,16 @@ use rust_hdl::prelude::*;
 
 use crate::regmap::OPERAND_COUNT;
 
-/// Bits of one lane's slot in an input beat (16 words).
-pub const IN_LANE_BITS: usize = 512;
+/// Where the control word is in a lane's input slot: after the query's operands.
+pub const CTRL_WORD: usize = OPERAND_COUNT;
+/// Bits of one lane's slot in an input beat (the query and the control word: 17 words).
+pub const IN_LANE_BITS: usize = 32 * (CTRL_WORD + 1);
 /// Bits of one lane's slot in an output beat (4 words).
 pub const OUT_LANE_BITS: usize = 128;
 /// Bits of the query inside a lane's input slot.
 pub const QUERY_BITS: usize = 32 * OPERAND_COUNT;
 // The kernel spells these values as literals (rust-hdl leaks named consts into Verilog).
-const _: () = assert!(QUERY_BITS == 480 && FIFO_ADDR_BITS == 9);
+const _: () = assert!(QUERY_BITS == 512 && FIFO_ADDR_BITS == 9);
 /// Address bits of the result FIFO.
 pub const FIFO_ADDR_BITS: usize = 9;
 /// Entries of the result FIFO (beats in flight plus beats waiting for `m_tready`).
@@ -37,7 +40,7 @@ const RESULT_BITS: usize = 97;
 /// Width of the latency counters (latencies up to 65535 cycles).
 const TIMER_BITS: usize = 16;
 
-/// Control word bits (word 15 of an input slot, word 0 of an output slot).
+/// Control word bits (word [`CTRL_WORD`] of an input slot, word 0 of an output slot).
 pub const CTRL_VALID: u32 = 1 << 0;
 pub const FLAG_HIT: u32 = 1 << 0;
 pub const FLAG_VALID: u32 = 1 << 1;
@@ -194,13 +197,13 @@ impl Logic for StreamFrontEnd {
 
         // Register mode: lane 0 takes the slave's operands on `reg_start`; the result is at
         // lane 0's outputs exactly `latency` cycles later.
-        // Operand k goes to bits 32k.. of the query: shift each in at the top (448 =
+        // Operand k goes to bits 32k.. of the query: shift each in at the top (480 =
         // QUERY_BITS - 32), moving the earlier ones down.
         self.reg_query.next = 0.into();
         for k in 0..OPERAND_COUNT {
             self.word.next = self.reg_operands[k].val();
             self.reg_query.next =
-                (self.reg_query.val() >> 32) | (bit_cast::<QUERY_BITS, 32>(self.word.val()) << 448);
+                (self.reg_query.val() >> 32) | (bit_cast::<QUERY_BITS, 32>(self.word.val()) << 480);
         }
         self.reg_active.next = self.reg_pending.q.val() | self.reg_start.val();
         self.reg_now.next = self.reg_timer.q.val();
@@ -262,9 +265,9 @@ impl Logic for StreamFrontEnd {
             self.side_ram[i].write_enable.next = self.accept.val();
             self.side_ram[i].write_address.next =
                 self.acc_ptr.q.val().get_bits::<FIFO_ADDR_BITS>(0);
-            // The control word (bits 480.. = QUERY_BITS) keeps valid and tag; bit 1 carries
+            // The control word (bits 512.. = QUERY_BITS) keeps valid and tag; bit 1 carries
             // this beat's tlast.
-            self.side_in.next = self.s_tdata[i].val().get_bits::<32>(480) & self.ctrl_keep.val();
+            self.side_in.next = self.s_tdata[i].val().get_bits::<32>(512) & self.ctrl_keep.val();
             if self.s_tlast.val() {
                 self.side_in.next = self.side_in.val() | self.side_tlast.val();
             }

@@ -221,11 +221,11 @@ mod tests {
         assert_eq!(names[..3], ["ap_clk", "ap_rst_n", "s_axi_control_awvalid"]);
         assert_eq!(p.len(), 2 + 17 + 1 + 8);
         let width = |n: &str| p.iter().find(|p| p.name == n).unwrap().width;
-        assert_eq!(width("s_axis_tdata"), 2048);
+        assert_eq!(width("s_axis_tdata"), 4 * 544);
         assert_eq!(width("m_axis_tdata"), 512);
         assert_eq!(width("s_axi_control_awaddr"), ADDR_BITS);
         let v = wrapper_verilog(2);
-        assert!(v.contains(".s_tdata$1(s_axis_tdata[1023:512])"), "{v}");
+        assert!(v.contains(".s_tdata$1(s_axis_tdata[1087:544])"), "{v}");
         assert!(v.contains(".m_tdata$0(m_axis_tdata[127:0])"), "{v}");
         assert!(v.contains("output wire [1:0] s_axi_control_bresp,"), "{v}");
     }

@@ -13,6 +13,7 @@ pub fn query(orig: V3, dir: V3, t: &WorldTriangle) -> MtQuery {
         v0: t.verts[0].to_array(),
         v1: t.verts[1].to_array(),
         v2: t.verts[2].to_array(),
+        t_min: 0.0,
     }
 }
 

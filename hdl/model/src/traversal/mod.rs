@@ -272,6 +272,7 @@ impl TraversalModel {
                     v0: tri.verts[0],
                     v1: tri.verts[1],
                     v2: tri.verts[2],
+                    t_min: window.t_min,
                 },
             );
             // The fp32 words compare as IEEE floats: t is never subnormal (the datapath
