@@ -260,8 +260,8 @@ mod tests {
         bad[0] = b'X';
         check(&bad, "magic");
         let mut bad = good.clone();
-        bad[8] = 2;
-        check(&bad, "version 2");
+        bad[8] = VERSION as u8 + 1;
+        check(&bad, &format!("version {}", VERSION + 1));
         let mut bad = good;
         bad[12] = 1;
         check(&bad, "flags");
