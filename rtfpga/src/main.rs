@@ -62,6 +62,13 @@ enum Command {
 }
 
 fn main() -> std::process::ExitCode {
+    // Rust ignores SIGPIPE, so a closed stdout (`rtfpga scene-image … | head`) would make
+    // println! panic; the default action ends the program quietly instead.
+    #[cfg(unix)]
+    // SAFETY: at start-up, before any other thread exists, restoring the default action.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(a) => cmd_render::run(a),
