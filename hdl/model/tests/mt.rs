@@ -153,17 +153,22 @@ fn fp32_model_equals_native_f32_without_subnormals() {
     );
 }
 
-#[test]
-fn every_catalogue_format_computes_an_exact_case_exactly() {
-    // det = 1, so every value is a short binary fraction that all formats hold.
-    let q = MtQuery {
+/// A ray down the z axis onto the unit right triangle at (0.25, 0.5), t = 2: det = 1, so
+/// every value is a short binary fraction that all formats hold.
+fn exact_case() -> MtQuery {
+    MtQuery {
         orig: [0.25, 0.5, 2.0],
         dir: [0.0, 0.0, -1.0],
         v0: [0.0, 0.0, 0.0],
         v1: [1.0, 0.0, 0.0],
         v2: [0.0, 1.0, 0.0],
         t_min: 0.0,
-    };
+    }
+}
+
+#[test]
+fn every_catalogue_format_computes_an_exact_case_exactly() {
+    let q = exact_case();
     let outside = MtQuery {
         orig: [0.75, 0.5, 2.0],
         ..q
@@ -208,14 +213,7 @@ fn narrow_formats_deviate_from_fp32_on_general_queries() {
 #[test]
 fn a_hit_needs_t_above_t_min_in_every_format() {
     // t = 2 exactly in every format; 1.75 and 2.25 too.
-    let base = MtQuery {
-        orig: [0.25, 0.5, 2.0],
-        dir: [0.0, 0.0, -1.0],
-        v0: [0.0, 0.0, 0.0],
-        v1: [1.0, 0.0, 0.0],
-        v2: [0.0, 1.0, 0.0],
-        t_min: 0.0,
-    };
+    let base = exact_case();
     let hit = |format, t_min| mt_model(format, &MtQuery { t_min, ..base }).hit;
     for named in catalogue() {
         let (f, name) = (&named.format, named.name);

@@ -501,13 +501,7 @@ fn a_scene_the_unit_cannot_hold_is_an_error_naming_the_sizes() {
         nodes: 2048,
         triangles: 4096,
     };
-    let engine = |memory| TraversalEngine {
-        format: fp32(),
-        stack_depth: 64,
-        scale_exp: 0,
-        timing: None,
-        memory,
-    };
+    let engine = fp32_unit;
     let opts = RenderOptions {
         width: Some(8),
         height: Some(6),
@@ -556,13 +550,7 @@ fn chunked_renders_of_the_thesis_scenes_equal_the_unchunked_unit() {
     ) else {
         return;
     };
-    let engine = |memory| TraversalEngine {
-        format: fp32(),
-        stack_depth: 64,
-        scale_exp: 0,
-        timing: None,
-        memory,
-    };
+    let engine = fp32_unit;
     let opts = RenderOptions {
         width: Some(64),
         height: Some(36),
@@ -594,5 +582,16 @@ fn chunked_renders_of_the_thesis_scenes_equal_the_unchunked_unit() {
             assert!(c.loaded_bytes >= c.chunk_loads * 64, "{name}: {c:?}");
             assert!(c.ray_passes > w.ray_passes, "{name}: {c:?}");
         }
+    }
+}
+
+/// The fp32 unit, untimed, with stacks deep enough for any BVH, holding scenes in `memory`.
+fn fp32_unit(memory: SceneMemory) -> TraversalEngine {
+    TraversalEngine {
+        format: fp32(),
+        stack_depth: 64,
+        scale_exp: 0,
+        timing: None,
+        memory,
     }
 }
