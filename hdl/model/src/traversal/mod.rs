@@ -21,10 +21,12 @@
 pub mod box_test;
 pub mod capacity;
 mod engine;
+pub mod packet;
 pub mod schedule;
 
 pub use capacity::{CapacityError, ChunkedModel, SceneCapacity, SceneMemory};
 pub use engine::TraversalEngine;
+pub use packet::{HIT_WORDS, RAY_WORDS};
 
 use sw_renderer::hit::{nearer, remaining_bound, Hit, Window};
 use sw_renderer::intersect::MtQuery;
@@ -40,12 +42,6 @@ use box_test::{box_test, ray_setup, t_hi, BoxResult};
 /// inner nodes deep (`rtfpga scene-image`). The software BVH may nest up to 64: a deeper
 /// walk is reported as a stack overflow, not cut short.
 pub const DEFAULT_STACK_DEPTH: usize = 32;
-
-/// Words of a ray on the unit's input stream: origin, direction, t_max (fp32), then the
-/// any-hit flag and the ray id in one word.
-pub const RAY_WORDS: usize = 8;
-/// Words of an answer on the output stream: ray id, hit flag, global triangle index, t, u, v.
-pub const HIT_WORDS: usize = 6;
 
 /// A ray as it enters the unit (fp32 words on the stream).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
