@@ -24,10 +24,11 @@
 use std::fmt;
 
 use sw_renderer::hit::{nearer, remaining_bound, Hit};
+use sw_renderer::rays::CastStats;
 use sw_renderer::scene_image::{ImageNode, Link, SceneImage};
 use thiserror::Error;
 
-use super::{Step, TraversalError, TraversalModel, UnitCounters, UnitRay};
+use super::{TraversalError, TraversalModel, UnitCounters, UnitRay};
 use crate::format::Format;
 
 /// What the unit's scene memory holds: inner nodes and triangle records.
@@ -246,7 +247,7 @@ fn extract(image: &SceneImage, root: Link, root_box: ([f32; 3], [f32; 3])) -> Sc
 
 /// What a ray carries from pass to pass.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Carry {
+struct Carry {
     best: Option<Hit>,
     /// An any-hit ray with its answer.
     occluded: bool,
@@ -266,15 +267,52 @@ impl Carry {
         self.occluded = ray.any_hit && hit.is_some();
         self.best = nearer(self.best, hit);
     }
+}
 
-    pub fn answer(&self) -> Option<Hit> {
-        self.best
+/// The chunked passes of one wavefront: the one pass loop of every unit engine (the model's
+/// and the Verilated unit's). Pass `k` (one per entry of `chunk_bytes`, the loaded chunk
+/// images' sizes) sends the rays that still need it, each with what it carries, to
+/// `pass(k, rays, answers)`, which answers them in order; `hits` gets every ray's folded
+/// answer. Returns the passes, chunk loads and loaded bytes (no loads while one chunk, the
+/// whole scene, stays resident).
+pub fn run_passes<E>(
+    chunk_bytes: &[u64],
+    rays: &[UnitRay],
+    hits: &mut [Option<Hit>],
+    mut pass: impl FnMut(usize, &[UnitRay], &mut [Option<Hit>]) -> Result<(), E>,
+) -> Result<CastStats, E> {
+    assert_eq!(rays.len(), hits.len(), "one answer per ray");
+    let mut carry = vec![Carry::default(); rays.len()];
+    let mut stats = CastStats::default();
+    let (mut sent, mut index, mut answers) = (Vec::new(), Vec::new(), Vec::new());
+    for (k, &bytes) in chunk_bytes.iter().enumerate() {
+        sent.clear();
+        index.clear();
+        for (i, (ray, c)) in rays.iter().zip(&carry).enumerate() {
+            if let Some(r) = c.next(ray) {
+                sent.push(r);
+                index.push(i);
+            }
+        }
+        if sent.is_empty() {
+            break;
+        }
+        stats.passes += 1;
+        if chunk_bytes.len() > 1 {
+            stats.chunk_loads += 1;
+            stats.loaded_bytes += bytes;
+        }
+        answers.clear();
+        answers.resize(sent.len(), None);
+        pass(k, &sent, &mut answers)?;
+        for (&i, &hit) in index.iter().zip(&answers) {
+            carry[i].fold(&rays[i], hit);
+        }
     }
-
-    /// Whether the ray takes part in the next pass.
-    pub fn pending(&self) -> bool {
-        !self.occluded
+    for (hit, c) in hits.iter_mut().zip(&carry) {
+        *hit = c.best;
     }
+    Ok(stats)
 }
 
 /// The unit with a scene in chunks (one chunk: the scene resident).
@@ -308,22 +346,11 @@ impl ChunkedModel {
         &self.chunks
     }
 
-    /// Pass `k` for `ray`: if it still takes part, walks chunk `k` (telling `step` each step)
-    /// and folds the answer into `carry`. Returns whether it walked.
-    pub fn pass(
-        &self,
-        k: usize,
-        ray: &UnitRay,
-        carry: &mut Carry,
-        counters: &mut UnitCounters,
-        step: &mut dyn FnMut(Step),
-    ) -> Result<bool, TraversalError> {
-        let Some(r) = carry.next(ray) else {
-            return Ok(false);
-        };
-        let hit = self.chunks[k].walk(&r, counters, step)?;
-        carry.fold(ray, hit);
-        Ok(true)
+    /// The sizes of the chunk images, as [`run_passes`] takes them.
+    pub fn chunk_bytes(&self) -> Vec<u64> {
+        (self.chunks.iter())
+            .map(|c| c.image().bytes() as u64)
+            .collect()
     }
 
     /// The answer to `ray` after every pass.
@@ -332,11 +359,19 @@ impl ChunkedModel {
         ray: &UnitRay,
         counters: &mut UnitCounters,
     ) -> Result<Option<Hit>, TraversalError> {
-        let mut carry = Carry::default();
-        for k in 0..self.chunks.len() {
-            self.pass(k, ray, &mut carry, counters, &mut |_| {})?;
-        }
-        Ok(carry.answer())
+        let mut hit = [None];
+        run_passes(
+            &self.chunk_bytes(),
+            std::slice::from_ref(ray),
+            &mut hit,
+            |k, rays, answers| {
+                for (r, a) in rays.iter().zip(answers) {
+                    *a = self.chunks[k].walk(r, counters, &mut |_| {})?;
+                }
+                Ok(())
+            },
+        )?;
+        Ok(hit[0])
     }
 }
 

@@ -5,9 +5,9 @@ use sw_renderer::rays::{CastStats, EngineError, Ray, RayCaster, RayEngine};
 use sw_renderer::scene_image::SceneImage;
 use sw_renderer::trace::PreparedScene;
 
-use super::capacity::{Carry, ChunkedModel, SceneMemory};
+use super::capacity::{run_passes, ChunkedModel, SceneMemory};
 use super::schedule::{schedule, UnitTiming};
-use super::{Step, UnitCounters, UnitRay};
+use super::{Step, TraversalError, UnitCounters, UnitRay};
 use crate::catalogue::catalogue;
 use crate::format::Format;
 
@@ -63,53 +63,38 @@ impl RayCaster for Caster {
     /// One pass per chunk, each with the rays that still need it. A resident scene (one
     /// chunk) stays loaded; chunks are loaded again for every wavefront.
     fn cast(&self, rays: &[Ray], hits: &mut [Option<Hit>]) -> Result<CastStats, EngineError> {
-        assert_eq!(rays.len(), hits.len(), "one answer per ray");
         let unit_rays: Vec<UnitRay> = (rays.iter().enumerate())
-            .map(|(id, ray)| UnitRay {
-                orig: ray.orig.to_array(),
-                dir: ray.dir.to_array(),
-                t_max: ray.bound,
-                t_min: ray.t_min,
-                exclude: ray.exclude,
-                any_hit: ray.shadow,
-                id: id as u32,
-            })
+            .map(|(id, ray)| UnitRay::of(ray, id as u32))
             .collect();
-        let mut carry = vec![Carry::default(); rays.len()];
-        let mut counters = UnitCounters::default();
-        let mut stats = CastStats {
-            batches: 1,
-            ..CastStats::default()
-        };
         let chunks = self.model.chunks();
-        for (k, chunk) in chunks.iter().enumerate() {
-            if !carry.iter().any(Carry::pending) {
-                break;
-            }
-            stats.passes += 1;
-            if chunks.len() > 1 {
-                stats.chunk_loads += 1;
-                stats.loaded_bytes += chunk.image().bytes() as u64;
-            }
-            let mut walks = Vec::new();
-            for (ray, carry) in unit_rays.iter().zip(carry.iter_mut()) {
-                let mut walk = Vec::new();
-                let record = &mut |s: Step| {
+        let mut counters = UnitCounters::default();
+        let mut cycles = 0;
+        let mut stats = run_passes(
+            &self.model.chunk_bytes(),
+            &unit_rays,
+            hits,
+            |k, rays, answers| {
+                let mut walks = Vec::new();
+                for (ray, answer) in rays.iter().zip(answers) {
+                    let mut walk = Vec::new();
+                    let record = &mut |s: Step| {
+                        if self.timing.is_some() {
+                            walk.push(s)
+                        }
+                    };
+                    *answer = chunks[k].walk(ray, &mut counters, record)?;
                     if self.timing.is_some() {
-                        walk.push(s)
+                        walks.push(walk);
                     }
-                };
-                if self.model.pass(k, ray, carry, &mut counters, record)? && self.timing.is_some() {
-                    walks.push(walk);
                 }
-            }
-            if let Some(t) = &self.timing {
-                stats.cycles += schedule(t, &walks).cycles;
-            }
-        }
-        for (hit, carry) in hits.iter_mut().zip(&carry) {
-            *hit = carry.answer();
-        }
+                if let Some(t) = &self.timing {
+                    cycles += schedule(t, &walks).cycles;
+                }
+                Ok::<_, TraversalError>(())
+            },
+        )?;
+        stats.batches = 1;
+        stats.cycles = cycles;
         stats.mt_tests = counters.mt_tests;
         stats.box_tests = counters.box_tests;
         stats.node_visits = counters.node_visits;

@@ -24,12 +24,13 @@ mod engine;
 pub mod packet;
 pub mod schedule;
 
-pub use capacity::{CapacityError, ChunkedModel, SceneCapacity, SceneMemory};
+pub use capacity::{run_passes, CapacityError, ChunkedModel, SceneCapacity, SceneMemory};
 pub use engine::TraversalEngine;
 pub use packet::{HIT_WORDS, RAY_WORDS};
 
 use sw_renderer::hit::{nearer, remaining_bound, Hit, Window};
 use sw_renderer::intersect::MtQuery;
+use sw_renderer::rays::Ray;
 use sw_renderer::scene_image::{ImageTriangle, Link, SceneImage};
 use thiserror::Error;
 
@@ -62,6 +63,19 @@ pub struct UnitRay {
 }
 
 impl UnitRay {
+    /// The renderer's `ray` as the unit takes it, tagged `id`.
+    pub fn of(ray: &Ray, id: u32) -> UnitRay {
+        UnitRay {
+            orig: ray.orig.to_array(),
+            dir: ray.dir.to_array(),
+            t_max: ray.bound,
+            t_min: ray.t_min,
+            exclude: ray.exclude,
+            any_hit: ray.shadow,
+            id,
+        }
+    }
+
     /// Which hits count (the renderer's rule, `sw_renderer::hit::Window`).
     pub fn window(&self) -> Window {
         Window {
