@@ -10,6 +10,7 @@ pub mod projection;
 pub mod stream_driver;
 pub mod sweep;
 pub mod trace;
+pub mod traversal_unit;
 pub mod verilator;
 
 pub use error::SimError;
