@@ -175,49 +175,28 @@ struct Layout {
     m_tdata: usize,
 }
 
-/// Offset of port `name` among `ports` (each taking whole 32-bit words), checking its width.
-fn offset(ports: &[Port], name: &str, width: Option<u32>) -> Result<usize, SimError> {
-    let mut at = 0;
-    for p in ports {
-        if p.name == name {
-            return match width {
-                Some(w) if w != p.width => Err(SimError::Interface(format!(
-                    "port `{name}` is {} bits wide, expected {w}",
-                    p.width
-                ))),
-                None if p.width > 32 => Err(SimError::Interface(format!(
-                    "port `{name}` is wider than 32 bits"
-                ))),
-                _ => Ok(at),
-            };
-        }
-        at += p.words();
-    }
-    Err(SimError::Interface(format!("`{TOP}` has no port `{name}`")))
-}
-
 impl Layout {
     fn new(iface: &Interface, lanes: usize) -> Result<Self, SimError> {
         let mut inputs = [0; IN_NAMES.len()];
         for (i, (port, name)) in IN_NAMES.iter().enumerate() {
             debug_assert_eq!(*port as usize, i);
-            inputs[i] = offset(&iface.inputs, name, None)?;
+            inputs[i] = iface.word_offset(Direction::Input, name, None)?;
         }
         let mut outputs = [0; OUT_NAMES.len()];
         for (i, (port, name)) in OUT_NAMES.iter().enumerate() {
             debug_assert_eq!(*port as usize, i);
-            outputs[i] = offset(&iface.outputs, name, None)?;
+            outputs[i] = iface.word_offset(Direction::Output, name, None)?;
         }
         Ok(Layout {
             inputs,
             outputs,
-            s_tdata: offset(
-                &iface.inputs,
+            s_tdata: iface.word_offset(
+                Direction::Input,
                 "s_axis_tdata",
                 Some((IN_LANE_BITS * lanes) as u32),
             )?,
-            m_tdata: offset(
-                &iface.outputs,
+            m_tdata: iface.word_offset(
+                Direction::Output,
                 "m_axis_tdata",
                 Some((OUT_LANE_BITS * lanes) as u32),
             )?,

@@ -57,6 +57,40 @@ impl Interface {
         self.outputs.iter().map(Port::words).sum()
     }
 
+    /// Word offset of port `name` in the packed inputs or outputs, checking its width
+    /// (`None`: at most 32 bits, one word).
+    pub fn word_offset(
+        &self,
+        direction: Direction,
+        name: &str,
+        width: Option<u32>,
+    ) -> Result<usize, SimError> {
+        let ports = match direction {
+            Direction::Input => &self.inputs,
+            Direction::Output => &self.outputs,
+        };
+        let mut at = 0;
+        for p in ports {
+            if p.name == name {
+                return match width {
+                    Some(w) if w != p.width => Err(SimError::Interface(format!(
+                        "port `{name}` is {} bits wide, expected {w}",
+                        p.width
+                    ))),
+                    None if p.width > 32 => Err(SimError::Interface(format!(
+                        "port `{name}` is {} bits wide, expected at most 32",
+                        p.width
+                    ))),
+                    _ => Ok(at),
+                };
+            }
+            at += p.words();
+        }
+        Err(SimError::Interface(format!(
+            "the model has no {direction:?} port `{name}`"
+        )))
+    }
+
     /// Appends one cycle's input words for `values` (one per input port, each ≤ 64 bits wide).
     pub fn pack_inputs(&self, values: &[u64], words: &mut Vec<u32>) -> Result<(), SimError> {
         check_narrow(&self.inputs, values.len(), "input")?;
@@ -139,6 +173,26 @@ mod tests {
         i.unpack_outputs(&words, &mut values).unwrap();
         assert_eq!(values, [0xAB_1234_5678, 5]);
         assert!(i.pack_inputs(&[1], &mut words).is_err());
+        assert_eq!(i.word_offset(Direction::Input, "b", Some(3)).unwrap(), 2);
+        assert_eq!(i.word_offset(Direction::Output, "y", None).unwrap(), 2);
+        for (dir, name, width, needle) in [
+            (
+                Direction::Input,
+                "a",
+                None,
+                "`a` is 40 bits wide, expected at most 32",
+            ),
+            (
+                Direction::Input,
+                "b",
+                Some(4),
+                "`b` is 3 bits wide, expected 4",
+            ),
+            (Direction::Output, "a", None, "no Output port `a`"),
+        ] {
+            let e = i.word_offset(dir, name, width).unwrap_err().to_string();
+            assert!(e.contains(needle), "{e}");
+        }
         let wide = Interface::new(&ports(), Some("clock")).unwrap();
         let e = wide
             .unpack_outputs(&[0; 4], &mut [0])
