@@ -37,15 +37,29 @@ pub const VERILATOR_WAIVERS: &[&str] = &["-Wno-WIDTH", "-Wno-DECLFILENAME", "-Wn
 ///   a common C++ word; Verilator renames it in its C++ and says so.
 pub const TOP_VERILATOR_WAIVERS: &[&str] = &["-Wno-VARHIDDEN", "-Wno-SYMRSVDWORD"];
 
+/// Verilator warnings waived for the traversal unit, on top of [`VERILATOR_WAIVERS`]:
+/// - UNOPTFLAT: the unit's kernel is one `always` block that reads its blocks' outputs and
+///   drives their inputs, and a block at a low depth passes some signals through zero-cycle
+///   delay lines, so Verilator sees a loop between always blocks where every real path
+///   crosses a register (the rust-hdl simulation settles every cycle, and the Verilated unit
+///   equals the model).
+pub const UNIT_VERILATOR_WAIVERS: &[&str] = &["-Wno-UNOPTFLAT"];
+
 /// `verilator --lint-only -Wall` with [`VERILATOR_WAIVERS`] on a generated block whose top
 /// module is [`TOP`]: `Err` with the first 20 lines of Verilator's complaint.
 pub fn verilator_lint(verilog: &str) -> Result<(), String> {
+    verilator_lint_waiving(verilog, &[])
+}
+
+/// [`verilator_lint`] with the `extra` waivers too.
+pub fn verilator_lint_waiving(verilog: &str, extra: &[&str]) -> Result<(), String> {
     let dir = tempfile::tempdir().map_err(|e| e.to_string())?;
     let path = dir.path().join("block.v");
     std::fs::write(&path, verilog).map_err(|e| e.to_string())?;
     let out = std::process::Command::new("verilator")
         .args(["--lint-only", "-Wall"])
         .args(VERILATOR_WAIVERS)
+        .args(extra)
         .args(["--top-module", TOP])
         .arg(&path)
         .output()

@@ -10,3 +10,4 @@ pub mod scene_memory;
 pub mod scene_memory_driver;
 pub mod stack;
 pub mod timing;
+pub mod unit;

@@ -37,6 +37,9 @@ pub struct SlotStacks<
     /// Sticky: a push found its slot's stack full (`overflow_slot`, the first such slot).
     pub overflow: Signal<Out, Bit>,
     pub overflow_slot: Signal<Out, Bits<SB>>,
+    /// The cycle after a push found its slot's stack full (not sticky): that slot.
+    pub dropped: Signal<Out, Bit>,
+    pub dropped_slot: Signal<Out, Bits<SB>>,
     sp: Vec<DFF<Bits<PB>>>,
     base: Vec<Constant<Bits<AB>>>,
     slot_id: Vec<Constant<Bits<SB>>>,
@@ -46,6 +49,8 @@ pub struct SlotStacks<
     empty_reg: DFF<Bit>,
     overflow_reg: DFF<Bit>,
     overflow_slot_reg: DFF<Bits<SB>>,
+    dropped_reg: DFF<Bit>,
+    dropped_slot_reg: DFF<Bits<SB>>,
     /// The pushing and the popping slot's stack pointer and RAM base.
     push_sp: Signal<Local, Bits<PB>>,
     push_base: Signal<Local, Bits<AB>>,
@@ -83,6 +88,8 @@ impl<const S: usize, const SB: usize, const PB: usize, const AB: usize, const W:
             pop_data: Default::default(),
             overflow: Default::default(),
             overflow_slot: Default::default(),
+            dropped: Default::default(),
+            dropped_slot: Default::default(),
             sp: (0..S).map(|_| Default::default()).collect(),
             base: (0..S)
                 .map(|s| Constant::new(((s * depth) as u64).into()))
@@ -94,6 +101,8 @@ impl<const S: usize, const SB: usize, const PB: usize, const AB: usize, const W:
             empty_reg: Default::default(),
             overflow_reg: Default::default(),
             overflow_slot_reg: Default::default(),
+            dropped_reg: Default::default(),
+            dropped_slot_reg: Default::default(),
             push_sp: Default::default(),
             push_base: Default::default(),
             pop_sp: Default::default(),
@@ -115,6 +124,8 @@ impl<const S: usize, const SB: usize, const PB: usize, const AB: usize, const W:
         self.empty_reg.clock.next = self.clock.val();
         self.overflow_reg.clock.next = self.clock.val();
         self.overflow_slot_reg.clock.next = self.clock.val();
+        self.dropped_reg.clock.next = self.clock.val();
+        self.dropped_slot_reg.clock.next = self.clock.val();
         // The two slots' pointers and bases (one-of-S selects).
         self.push_sp.next = 0.into();
         self.push_base.next = 0.into();
@@ -169,6 +180,10 @@ impl<const S: usize, const SB: usize, const PB: usize, const AB: usize, const W:
             self.overflow_reg.d.next = true;
             self.overflow_slot_reg.d.next = self.push_slot.val();
         }
+        self.dropped_reg.d.next = self.push.val() & !self.push_fits.val();
+        self.dropped_slot_reg.d.next = self.push_slot.val();
+        self.dropped.next = self.dropped_reg.q.val();
+        self.dropped_slot.next = self.dropped_slot_reg.q.val();
         self.overflow.next = self.overflow_reg.q.val();
         self.overflow_slot.next = self.overflow_slot_reg.q.val();
     }
@@ -192,7 +207,9 @@ mod tests {
         let mut stacks = vec![Vec::<u64>::new(); 6];
         // What the last cycle's pop must answer: Some(entry) or None (empty).
         let mut expect: Option<Option<u64>> = None;
-        let (mut pops, mut empties, mut overflowed) = (0, 0, None);
+        // The slot whose push the last cycle dropped.
+        let mut dropped: Option<u64> = None;
+        let (mut pops, mut empties, mut overflowed, mut drops) = (0, 0, None, 0);
         for cycle in 0..5_000 {
             let push_slot = rng.gen_range(0..6usize);
             let pop_slot = (push_slot + rng.gen_range(1..6)) % 6;
@@ -225,11 +242,17 @@ mod tests {
             if let Some(slot) = overflowed {
                 assert_eq!(uut.overflow_slot.val().to_u64(), slot);
             }
+            assert_eq!(uut.dropped.val(), dropped.is_some(), "cycle {cycle}");
+            if let Some(slot) = dropped.take() {
+                assert_eq!(uut.dropped_slot.val().to_u64(), slot, "cycle {cycle}");
+            }
             if push {
                 if stacks[push_slot].len() < DEPTH {
                     stacks[push_slot].push(data);
                 } else {
                     overflowed.get_or_insert(push_slot as u64);
+                    dropped = Some(push_slot as u64);
+                    drops += 1;
                 }
             }
             if pop {
@@ -244,6 +267,6 @@ mod tests {
             uut.clock.next = Clock { clk: true };
             assert!(simulate(&mut uut, 100));
         }
-        assert!(pops > 500 && empties > 100 && overflowed.is_some());
+        assert!(pops > 500 && empties > 100 && overflowed.is_some() && drops > 10);
     }
 }

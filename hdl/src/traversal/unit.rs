@@ -1,0 +1,1160 @@
+//! The traversal unit: the scene in block RAM, rays in, answers out — the blocks of this
+//! module around one Möller-Trumbore lane, bit for bit `hw_model::traversal::TraversalModel`
+//! (answers and counters). Ports and packets: docs/traversal-unit.md.
+//!
+//! `S` ray slots hold the rays in flight. A slot is in one of five states, kept as one bit
+//! vector each (a slot's bit set in at most one; none set while it waits for an answer):
+//! `busy` (holds a ray), `want_box`, `want_leaf`, `want_pop`, `want_out`. Four round-robin
+//! arbiters ([`RoundRobin`]) grant one slot each cycle to each shared resource:
+//!
+//! - the **box port**: the slot's node is read (or the root's box for a new ray), then the box
+//!   test of both children; its answer picks the next link (both entered: the farther is
+//!   pushed on the slot's stack with its entry distance, the nearer taken), or a pop;
+//! - the **leaf port**: one triangle of the slot's leaf a cycle is read and issued to the lane
+//!   (an excluded triangle, and a non-shadow-caster for an any-hit ray, is skipped: no test);
+//!   the slot waits after its last triangle;
+//! - the **stack port**: a pop, whose entry is skipped if it was entered beyond the slot's far
+//!   end `t_hi` (then it pops again), or ends the walk when the stack is empty;
+//! - the **hit output**: the slot's answer leaves, and the slot is free.
+//!
+//! The lane's answers fold into the slot's nearest hit in issue order (`HitUpdate`); after a
+//! leaf a closest-hit ray whose hit got nearer has its far end recomputed from `next_up(t)`
+//! (`FarEnd`) before it pops, an any-hit ray with a hit is done. Every write-back targets a
+//! slot in a distinct state, so writers never collide, and a slot's per-ray words are
+//! flip-flops read through one-hot selects.
+
+use hw_model::traversal::packet::{hit_word, ray_word, ANY_HIT, HAS_EXCLUDE, HIT_WORDS, RAY_WORDS};
+use hw_model::traversal::schedule::UnitTiming;
+use hw_model::HwFormat;
+use rust_hdl::prelude::*;
+use thiserror::Error;
+
+use super::arbiter::RoundRobin;
+use super::box_test::BoxTest;
+use super::far_end::FarEnd;
+use super::hit_update::{F32Order, HitUpdate};
+use super::ray_setup::RaySetupUnit;
+use super::scene_memory::{
+    triangle_record_bits, zynq_address_bits, SceneMemory, ERROR_CODE_BITS, INDEX_BITS,
+};
+use super::scene_memory_driver::MemoryConfig;
+use super::stack::SlotStacks;
+use super::timing::unit_timing;
+use crate::formats::fp32::MtLane;
+use crate::mt::delay::Delay;
+
+/// Bits of a ray packet and of an answer packet.
+pub const RAY_BITS: usize = 32 * RAY_WORDS;
+pub const HIT_BITS: usize = 32 * HIT_WORDS;
+/// A slot's box-test words: orig_lo x y z, orig_hi x y z, inv_dir x y z.
+const BOX_WORDS_BITS: usize = 9 * 32;
+/// A slot's lane words: orig x y z, dir x y z, t_min, t_max.
+const LANE_WORDS_BITS: usize = 8 * 32;
+/// A slot's nearest hit: t, u, v, triangle (zero-extended).
+const BEST_BITS: usize = 4 * 32;
+
+/// The unit. Const parameters (rust-hdl cannot derive widths): the scene memory's
+/// `NB, TB, LF, LC, NW, TW` (see [`SceneMemory`]); `S` slots addressed by `SB` bits; the
+/// stacks' pointer bits `PB` and RAM address bits `AB`; a stack entry of `W` = LF + LC + 32
+/// bits (a link and its entry distance).
+#[derive(LogicBlock)]
+pub struct TraversalUnit<
+    const NB: usize,
+    const TB: usize,
+    const LF: usize,
+    const LC: usize,
+    const NW: usize,
+    const TW: usize,
+    const S: usize,
+    const SB: usize,
+    const PB: usize,
+    const AB: usize,
+    const W: usize,
+> {
+    pub clock: Signal<In, Clock>,
+    pub reset_n: Signal<In, Bit>,
+    pub scene_start: Signal<In, Bit>,
+    pub scene_tdata: Signal<In, Bits<32>>,
+    pub scene_tvalid: Signal<In, Bit>,
+    pub scene_tlast: Signal<In, Bit>,
+    pub scene_tready: Signal<Out, Bit>,
+    pub scene_loaded: Signal<Out, Bit>,
+    pub scene_error: Signal<Out, Bit>,
+    pub scene_error_code: Signal<Out, Bits<ERROR_CODE_BITS>>,
+    pub scene_error_word: Signal<Out, Bits<32>>,
+    pub scene_error_value: Signal<Out, Bits<32>>,
+    pub ray_tdata: Signal<In, Bits<RAY_BITS>>,
+    pub ray_tvalid: Signal<In, Bit>,
+    pub ray_tready: Signal<Out, Bit>,
+    pub hit_tdata: Signal<Out, Bits<HIT_BITS>>,
+    pub hit_tvalid: Signal<Out, Bit>,
+    pub hit_tready: Signal<In, Bit>,
+    pub idle: Signal<Out, Bit>,
+    pub overflow: Signal<Out, Bit>,
+    pub overflow_ray: Signal<Out, Bits<32>>,
+    pub count_rays: Signal<Out, Bits<32>>,
+    pub count_node_visits: Signal<Out, Bits<32>>,
+    pub count_box_tests: Signal<Out, Bits<32>>,
+    pub count_mt_tests: Signal<Out, Bits<32>>,
+    pub count_busy_cycles: Signal<Out, Bits<32>>,
+
+    memory: SceneMemory<NB, TB, LF, LC, NW, TW>,
+    setup: RaySetupUnit,
+    boxes: BoxTest,
+    far: FarEnd,
+    lane: MtLane,
+    stacks: SlotStacks<S, SB, PB, AB, W>,
+    update: HitUpdate,
+    /// lt(t_hi, entry distance) of a popped entry: entered beyond the far end.
+    beyond: F32Order,
+    box_arb: RoundRobin<S>,
+    leaf_arb: RoundRobin<S>,
+    pop_arb: RoundRobin<S>,
+    out_arb: RoundRobin<S>,
+
+    // The slots' states (bit i: slot i).
+    busy: DFF<Bits<S>>,
+    want_box: DFF<Bits<S>>,
+    want_leaf: DFF<Bits<S>>,
+    want_pop: DFF<Bits<S>>,
+    want_out: DFF<Bits<S>>,
+    /// The next box test is the root's box.
+    at_root: DFF<Bits<S>>,
+    any_hit: DFF<Bits<S>>,
+    has_exclude: DFF<Bits<S>>,
+    best_valid: DFF<Bits<S>>,
+    /// The nearest hit changed during the current leaf.
+    changed: DFF<Bits<S>>,
+    // The slots' words.
+    box_words: Vec<DFF<Bits<BOX_WORDS_BITS>>>,
+    lane_words: Vec<DFF<Bits<LANE_WORDS_BITS>>>,
+    exclude: Vec<DFF<Bits<INDEX_BITS>>>,
+    ray_id: Vec<DFF<Bits<32>>>,
+    pad: Vec<DFF<Bits<32>>>,
+    t_hi: Vec<DFF<Bits<32>>>,
+    /// The current link: a node, or the leaf's next triangle and how many are left.
+    link_first: Vec<DFF<Bits<LF>>>,
+    link_count: Vec<DFF<Bits<LC>>>,
+    best: Vec<DFF<Bits<BEST_BITS>>>,
+    slot_id: Vec<Constant<Bits<SB>>>,
+    one: Constant<Bits<S>>,
+    one_count: Constant<Bits<LC>>,
+    /// A stack entry: the distance in bits 0–31, the count at 32, the first at `at_first`.
+    at_first: Constant<Bits<8>>,
+    abs_mask: Constant<Bits<32>>,
+    /// Where a word enters a packed record: its top word.
+    box_top: Constant<Bits<16>>,
+    hit_top: Constant<Bits<16>>,
+
+    // The box port: the granted slot's words, registered beside the node read.
+    box_valid: DFF<Bit>,
+    box_slot: DFF<Bits<SB>>,
+    box_root: DFF<Bit>,
+    box_words_q: DFF<Bits<BOX_WORDS_BITS>>,
+    box_t_hi: DFF<Bits<32>>,
+    /// The node's child links travel beside the box test.
+    child_first_at: [Delay<Bits<LF>>; 2],
+    child_count_at: [Delay<Bits<LC>>; 2],
+    root_at: Delay<Bit>,
+    // The leaf port: the slot's words, registered beside the triangle read.
+    leaf_valid: DFF<Bit>,
+    leaf_slot: DFF<Bits<SB>>,
+    leaf_last: DFF<Bit>,
+    leaf_words: DFF<Bits<LANE_WORDS_BITS>>,
+    leaf_any_hit: DFF<Bit>,
+    leaf_has_exclude: DFF<Bit>,
+    leaf_exclude: DFF<Bits<INDEX_BITS>>,
+    /// What travels beside the lane: issued (tested or skipped), tested, last of its leaf,
+    /// slot, triangle, the window.
+    issued_at: Delay<Bit>,
+    tested_at: Delay<Bit>,
+    last_at: Delay<Bit>,
+    slot_at: Delay<Bits<SB>>,
+    index_at: Delay<Bits<INDEX_BITS>>,
+    t_min_at: Delay<Bits<32>>,
+    t_max_at: Delay<Bits<32>>,
+    any_hit_at: Delay<Bit>,
+    // The stack port.
+    pop_valid: DFF<Bit>,
+    pop_slot: DFF<Bits<SB>>,
+    pop_t_hi: DFF<Bits<32>>,
+    // The hit output.
+    out_valid: DFF<Bit>,
+    out_data: DFF<Bits<HIT_BITS>>,
+    overflow_q: DFF<Bit>,
+    overflow_ray_q: DFF<Bits<32>>,
+    rays: DFF<Bits<32>>,
+    node_visits: DFF<Bits<32>>,
+    box_tests: DFF<Bits<32>>,
+    mt_tests: DFF<Bits<32>>,
+    busy_cycles: DFF<Bits<32>>,
+
+    // Combinational helpers.
+    ray_words: [Signal<Local, Bits<32>>; RAY_WORDS],
+    hit_words: [Signal<Local, Bits<32>>; HIT_WORDS],
+    free: Signal<Local, Bits<S>>,
+    enter: Signal<Local, Bits<S>>,
+    enter_slot: Signal<Local, Bits<SB>>,
+    accept: Signal<Local, Bit>,
+    box_grant_slot: Signal<Local, Bits<SB>>,
+    leaf_grant_slot: Signal<Local, Bits<SB>>,
+    pop_grant_slot: Signal<Local, Bits<SB>>,
+    /// Write-backs: one-hot slot masks and what they write.
+    setup_done: Signal<Local, Bits<S>>,
+    setup_slot: Signal<Local, Bits<SB>>,
+    box_done: Signal<Local, Bits<S>>,
+    box_done_slot: Signal<Local, Bits<SB>>,
+    box_link_first: Signal<Local, Bits<LF>>,
+    box_link_count: Signal<Local, Bits<LC>>,
+    /// The box answer enters a link (else: pop, or for the root, out).
+    box_enters: Signal<Local, Bit>,
+    pop_done: Signal<Local, Bits<S>>,
+    pop_link_first: Signal<Local, Bits<LF>>,
+    pop_link_count: Signal<Local, Bits<LC>>,
+    pop_enters: Signal<Local, Bit>,
+    pop_again: Signal<Local, Bit>,
+    lane_slot: Signal<Local, Bits<SB>>,
+    lane_done: Signal<Local, Bits<S>>,
+    lane_best_valid: Signal<Local, Bit>,
+    lane_changed: Signal<Local, Bit>,
+    lane_best: Signal<Local, Bits<BEST_BITS>>,
+    lane_pad: Signal<Local, Bits<32>>,
+    /// This result becomes the slot's nearest hit (closest-hit), or its answer (any-hit).
+    lane_take: Signal<Local, Bit>,
+    lane_any_hit: Signal<Local, Bit>,
+    far_done: Signal<Local, Bits<S>>,
+    far_slot: Signal<Local, Bits<SB>>,
+    leaf_grant: Signal<Local, Bits<S>>,
+    leaf_grant_last: Signal<Local, Bit>,
+    out_grant: Signal<Local, Bits<S>>,
+    skip: Signal<Local, Bit>,
+    next_up: Signal<Local, Bits<32>>,
+    new_t: Signal<Local, Bits<32>>,
+    entering: Signal<Local, Bits<S>>,
+    /// A word on its way into a packed record (an indexed word cannot go into `bit_cast`
+    /// directly: hdl_gen loses the index).
+    packed_word: Signal<Local, Bits<32>>,
+    box_link: Signal<Local, Bits<LF>>,
+    leaf_link: Signal<Local, Bits<LF>>,
+    ray_exclude: Signal<Local, Bits<INDEX_BITS>>,
+    setup_words: Signal<Local, Bits<BOX_WORDS_BITS>>,
+    out_word: Signal<Local, Bits<HIT_BITS>>,
+    box_visit: Signal<Local, Bit>,
+    next_busy: Signal<Local, Bits<S>>,
+    next_box: Signal<Local, Bits<S>>,
+    next_leaf: Signal<Local, Bits<S>>,
+    next_pop: Signal<Local, Bits<S>>,
+    next_out: Signal<Local, Bits<S>>,
+    next_changed: Signal<Local, Bits<S>>,
+    next_best_valid: Signal<Local, Bits<S>>,
+}
+
+// hdl_gen cannot index by a named constant, so the kernel spells the packets' word
+// indices as numbers; these assertions tie them to `packet`. A slot's lane words are the ray
+// packet's first eight words as they come.
+const _: () = assert!(
+    ray_word::ORIG == 0
+        && ray_word::DIR == 3
+        && ray_word::T_MAX == 6
+        && ray_word::T_MIN == 7
+        && ray_word::FLAGS == 8
+        && ray_word::EXCLUDE == 9
+        && ray_word::ID == 10
+        && ANY_HIT == 1 << 0
+        && HAS_EXCLUDE == 1 << 1
+);
+const _: () = assert!(
+    hit_word::ID == 0
+        && hit_word::FLAGS == 1
+        && hit_word::TRIANGLE == 2
+        && hit_word::T == 3
+        && hit_word::U == 4
+        && hit_word::V == 5
+);
+
+impl<
+        const NB: usize,
+        const TB: usize,
+        const LF: usize,
+        const LC: usize,
+        const NW: usize,
+        const TW: usize,
+        const S: usize,
+        const SB: usize,
+        const PB: usize,
+        const AB: usize,
+        const W: usize,
+    > TraversalUnit<NB, TB, LF, LC, NW, TW, S, SB, PB, AB, W>
+{
+    /// A unit whose operators have `depth` pipeline registers each (at most their maximum)
+    /// and whose slots have stacks of `stack_depth` entries.
+    pub fn new(depth: usize, stack_depth: usize) -> Self {
+        assert_eq!(W, LF + LC + 32, "a stack entry is a link and a distance");
+        assert!(
+            S <= 1 << SB && S <= 1 << 16,
+            "{S} slots need more than {SB} bits"
+        );
+        let lane_latency = MtLane::latency(depth);
+        let box_latency = super::box_test::latency(depth);
+        Self {
+            clock: Default::default(),
+            reset_n: Default::default(),
+            scene_start: Default::default(),
+            scene_tdata: Default::default(),
+            scene_tvalid: Default::default(),
+            scene_tlast: Default::default(),
+            scene_tready: Default::default(),
+            scene_loaded: Default::default(),
+            scene_error: Default::default(),
+            scene_error_code: Default::default(),
+            scene_error_word: Default::default(),
+            scene_error_value: Default::default(),
+            ray_tdata: Default::default(),
+            ray_tvalid: Default::default(),
+            ray_tready: Default::default(),
+            hit_tdata: Default::default(),
+            hit_tvalid: Default::default(),
+            hit_tready: Default::default(),
+            idle: Default::default(),
+            overflow: Default::default(),
+            overflow_ray: Default::default(),
+            count_rays: Default::default(),
+            count_node_visits: Default::default(),
+            count_box_tests: Default::default(),
+            count_mt_tests: Default::default(),
+            count_busy_cycles: Default::default(),
+            memory: SceneMemory::new(),
+            setup: RaySetupUnit::new(depth),
+            boxes: BoxTest::new(depth),
+            far: FarEnd::new(depth),
+            lane: MtLane::new(depth),
+            stacks: SlotStacks::new(stack_depth),
+            update: Default::default(),
+            beyond: Default::default(),
+            box_arb: Default::default(),
+            leaf_arb: Default::default(),
+            pop_arb: Default::default(),
+            out_arb: Default::default(),
+            busy: Default::default(),
+            want_box: Default::default(),
+            want_leaf: Default::default(),
+            want_pop: Default::default(),
+            want_out: Default::default(),
+            at_root: Default::default(),
+            any_hit: Default::default(),
+            has_exclude: Default::default(),
+            best_valid: Default::default(),
+            changed: Default::default(),
+            box_words: per_slot(S),
+            lane_words: per_slot(S),
+            exclude: per_slot(S),
+            ray_id: per_slot(S),
+            pad: per_slot(S),
+            t_hi: per_slot(S),
+            link_first: per_slot(S),
+            link_count: per_slot(S),
+            best: per_slot(S),
+            slot_id: (0..S).map(|s| Constant::new((s as u64).into())).collect(),
+            one: Constant::new(1.into()),
+            one_count: Constant::new(1.into()),
+            at_first: Constant::new(((LC + 32) as u64).into()),
+            abs_mask: Constant::new(0x7FFF_FFFFu64.into()),
+            box_top: Constant::new(((BOX_WORDS_BITS - 32) as u64).into()),
+            hit_top: Constant::new(((HIT_BITS - 32) as u64).into()),
+            box_valid: Default::default(),
+            box_slot: Default::default(),
+            box_root: Default::default(),
+            box_words_q: Default::default(),
+            box_t_hi: Default::default(),
+            child_first_at: std::array::from_fn(|_| Delay::new(box_latency)),
+            child_count_at: std::array::from_fn(|_| Delay::new(box_latency)),
+            root_at: Delay::new(box_latency),
+            leaf_valid: Default::default(),
+            leaf_slot: Default::default(),
+            leaf_last: Default::default(),
+            leaf_words: Default::default(),
+            leaf_any_hit: Default::default(),
+            leaf_has_exclude: Default::default(),
+            leaf_exclude: Default::default(),
+            issued_at: Delay::new(lane_latency),
+            tested_at: Delay::new(lane_latency),
+            last_at: Delay::new(lane_latency),
+            slot_at: Delay::new(lane_latency),
+            index_at: Delay::new(lane_latency),
+            t_min_at: Delay::new(lane_latency),
+            t_max_at: Delay::new(lane_latency),
+            any_hit_at: Delay::new(lane_latency),
+            pop_valid: Default::default(),
+            pop_slot: Default::default(),
+            pop_t_hi: Default::default(),
+            out_valid: Default::default(),
+            out_data: Default::default(),
+            overflow_q: Default::default(),
+            overflow_ray_q: Default::default(),
+            rays: Default::default(),
+            node_visits: Default::default(),
+            box_tests: Default::default(),
+            mt_tests: Default::default(),
+            busy_cycles: Default::default(),
+            ray_words: Default::default(),
+            hit_words: Default::default(),
+            free: Default::default(),
+            enter: Default::default(),
+            enter_slot: Default::default(),
+            accept: Default::default(),
+            box_grant_slot: Default::default(),
+            leaf_grant_slot: Default::default(),
+            pop_grant_slot: Default::default(),
+            setup_done: Default::default(),
+            setup_slot: Default::default(),
+            box_done: Default::default(),
+            box_done_slot: Default::default(),
+            box_link_first: Default::default(),
+            box_link_count: Default::default(),
+            box_enters: Default::default(),
+            pop_done: Default::default(),
+            pop_link_first: Default::default(),
+            pop_link_count: Default::default(),
+            pop_enters: Default::default(),
+            pop_again: Default::default(),
+            lane_slot: Default::default(),
+            lane_done: Default::default(),
+            lane_best_valid: Default::default(),
+            lane_changed: Default::default(),
+            lane_best: Default::default(),
+            lane_pad: Default::default(),
+            lane_take: Default::default(),
+            lane_any_hit: Default::default(),
+            far_done: Default::default(),
+            far_slot: Default::default(),
+            leaf_grant: Default::default(),
+            leaf_grant_last: Default::default(),
+            out_grant: Default::default(),
+            skip: Default::default(),
+            next_up: Default::default(),
+            new_t: Default::default(),
+            entering: Default::default(),
+            packed_word: Default::default(),
+            box_link: Default::default(),
+            leaf_link: Default::default(),
+            ray_exclude: Default::default(),
+            setup_words: Default::default(),
+            out_word: Default::default(),
+            box_visit: Default::default(),
+            next_busy: Default::default(),
+            next_box: Default::default(),
+            next_leaf: Default::default(),
+            next_pop: Default::default(),
+            next_out: Default::default(),
+            next_changed: Default::default(),
+            next_best_valid: Default::default(),
+        }
+    }
+}
+
+/// One register per slot.
+fn per_slot<T: Default>(slots: usize) -> Vec<T> {
+    (0..slots).map(|_| T::default()).collect()
+}
+
+impl<
+        const NB: usize,
+        const TB: usize,
+        const LF: usize,
+        const LC: usize,
+        const NW: usize,
+        const TW: usize,
+        const S: usize,
+        const SB: usize,
+        const PB: usize,
+        const AB: usize,
+        const W: usize,
+    > Logic for TraversalUnit<NB, TB, LF, LC, NW, TW, S, SB, PB, AB, W>
+{
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.memory.clock.next = self.clock.val();
+        self.setup.clock.next = self.clock.val();
+        self.boxes.clock.next = self.clock.val();
+        self.far.clock.next = self.clock.val();
+        self.lane.clock.next = self.clock.val();
+        self.stacks.clock.next = self.clock.val();
+        self.box_arb.clock.next = self.clock.val();
+        self.leaf_arb.clock.next = self.clock.val();
+        self.pop_arb.clock.next = self.clock.val();
+        self.out_arb.clock.next = self.clock.val();
+        dff_setup!(
+            self,
+            clock,
+            busy,
+            want_box,
+            want_leaf,
+            want_pop,
+            want_out,
+            at_root,
+            any_hit,
+            has_exclude,
+            best_valid,
+            changed,
+            box_valid,
+            box_slot,
+            box_root,
+            box_words_q,
+            box_t_hi,
+            leaf_valid,
+            leaf_slot,
+            leaf_last,
+            leaf_words,
+            leaf_any_hit,
+            leaf_has_exclude,
+            leaf_exclude,
+            pop_valid,
+            pop_slot,
+            pop_t_hi,
+            out_valid,
+            out_data,
+            overflow_q,
+            overflow_ray_q,
+            rays,
+            node_visits,
+            box_tests,
+            mt_tests,
+            busy_cycles
+        );
+        for i in 0..S {
+            self.box_words[i].clock.next = self.clock.val();
+            self.box_words[i].d.next = self.box_words[i].q.val();
+            self.lane_words[i].clock.next = self.clock.val();
+            self.lane_words[i].d.next = self.lane_words[i].q.val();
+            self.exclude[i].clock.next = self.clock.val();
+            self.exclude[i].d.next = self.exclude[i].q.val();
+            self.ray_id[i].clock.next = self.clock.val();
+            self.ray_id[i].d.next = self.ray_id[i].q.val();
+            self.pad[i].clock.next = self.clock.val();
+            self.pad[i].d.next = self.pad[i].q.val();
+            self.t_hi[i].clock.next = self.clock.val();
+            self.t_hi[i].d.next = self.t_hi[i].q.val();
+            self.link_first[i].clock.next = self.clock.val();
+            self.link_first[i].d.next = self.link_first[i].q.val();
+            self.link_count[i].clock.next = self.clock.val();
+            self.link_count[i].d.next = self.link_count[i].q.val();
+            self.best[i].clock.next = self.clock.val();
+            self.best[i].d.next = self.best[i].q.val();
+        }
+        for c in 0..2 {
+            self.child_first_at[c].clock.next = self.clock.val();
+            self.child_count_at[c].clock.next = self.clock.val();
+        }
+        self.root_at.clock.next = self.clock.val();
+        self.issued_at.clock.next = self.clock.val();
+        self.tested_at.clock.next = self.clock.val();
+        self.last_at.clock.next = self.clock.val();
+        self.slot_at.clock.next = self.clock.val();
+        self.index_at.clock.next = self.clock.val();
+        self.t_min_at.clock.next = self.clock.val();
+        self.t_max_at.clock.next = self.clock.val();
+        self.any_hit_at.clock.next = self.clock.val();
+
+        // ---- The scene memory and its stream.
+        self.memory.start_load.next = self.scene_start.val();
+        self.memory.s_tdata.next = self.scene_tdata.val();
+        self.memory.s_tvalid.next = self.scene_tvalid.val();
+        self.memory.s_tlast.next = self.scene_tlast.val();
+        self.scene_tready.next = self.memory.s_tready.val();
+        self.scene_loaded.next = self.memory.loaded.val();
+        self.scene_error.next = self.memory.error.val();
+        self.scene_error_code.next = self.memory.error_code.val();
+        self.scene_error_word.next = self.memory.error_word.val();
+        self.scene_error_value.next = self.memory.error_value.val();
+
+        // ---- Rays in: the lowest free slot, into the ray setup.
+        for k in 0..RAY_WORDS {
+            self.ray_words[k].next = self.ray_tdata.val().get_bits::<32>(32 * k);
+        }
+        self.free.next = !self.busy.q.val();
+        self.enter.next = self.free.val() & (!self.free.val() + self.one.val());
+        self.enter_slot.next = 0.into();
+        for i in 0..S {
+            if self.enter.val().get_bit(i) {
+                self.enter_slot.next = self.slot_id[i].val();
+            }
+        }
+        self.ray_tready.next =
+            self.memory.loaded.val() & self.free.val().any() & self.reset_n.val();
+        self.accept.next = self.ray_tready.val() & self.ray_tvalid.val();
+        self.entering.next = 0.into();
+        if self.accept.val() {
+            self.entering.next = self.enter.val();
+        }
+        self.setup.valid_in.next = self.accept.val();
+        self.setup.tag_in.next = bit_cast::<16, SB>(self.enter_slot.val());
+        for k in 0..3 {
+            self.setup.orig[k].next = self.ray_words[k].val();
+            self.setup.dir[k].next = self.ray_words[3 + k].val();
+        }
+        self.setup.bound.next = self.ray_words[6].val();
+        self.stacks.clear.next = self.accept.val();
+        self.stacks.clear_slot.next = self.enter_slot.val();
+        // The setup's answer: the slot's box words, pad and far end.
+        self.setup_slot.next = bit_cast::<SB, 16>(self.setup.tag_out.val());
+        self.setup_done.next = 0.into();
+        if self.setup.valid_out.val() {
+            self.setup_done.next = self.one.val() << self.setup_slot.val();
+        }
+        // Packed by shifting each word in from the top (word 0 ends lowest).
+        self.setup_words.next = 0.into();
+        for k in 0..3 {
+            self.packed_word.next = self.setup.orig_lo[k].val();
+            self.setup_words.next = (self.setup_words.val() >> 32)
+                | (bit_cast::<BOX_WORDS_BITS, 32>(self.packed_word.val()) << self.box_top.val());
+        }
+        for k in 0..3 {
+            self.packed_word.next = self.setup.orig_hi[k].val();
+            self.setup_words.next = (self.setup_words.val() >> 32)
+                | (bit_cast::<BOX_WORDS_BITS, 32>(self.packed_word.val()) << self.box_top.val());
+        }
+        for k in 0..3 {
+            self.packed_word.next = self.setup.inv_dir[k].val();
+            self.setup_words.next = (self.setup_words.val() >> 32)
+                | (bit_cast::<BOX_WORDS_BITS, 32>(self.packed_word.val()) << self.box_top.val());
+        }
+
+        // ---- The box port: the grant reads the slot's words and its node …
+        self.box_arb.request.next = self.want_box.q.val();
+        self.box_grant_slot.next = 0.into();
+        self.box_link.next = 0.into();
+        self.box_words_q.d.next = 0.into();
+        self.box_t_hi.d.next = 0.into();
+        for i in 0..S {
+            if self.box_arb.grant.val().get_bit(i) {
+                self.box_grant_slot.next = self.slot_id[i].val();
+                self.box_words_q.d.next = self.box_words[i].q.val();
+                self.box_t_hi.d.next = self.t_hi[i].q.val();
+                self.box_link.next = self.link_first[i].q.val();
+            }
+        }
+        self.memory.node_address.next = bit_cast::<NB, LF>(self.box_link.val());
+        self.box_valid.d.next = self.box_arb.grant.val().any();
+        self.box_slot.d.next = self.box_grant_slot.val();
+        self.box_root.d.next = (self.at_root.q.val() & self.box_arb.grant.val()).any();
+        // … the next cycle the test starts (a new ray's first test is the root's box) …
+        self.boxes.valid_in.next = self.box_valid.q.val();
+        self.boxes.tag_in.next = bit_cast::<16, SB>(self.box_slot.q.val());
+        for k in 0..3 {
+            self.boxes.orig_lo[k].next = self.box_words_q.q.val().get_bits::<32>(32 * k);
+            self.boxes.orig_hi[k].next = self.box_words_q.q.val().get_bits::<32>(32 * (3 + k));
+            self.boxes.inv_dir[k].next = self.box_words_q.q.val().get_bits::<32>(32 * (6 + k));
+        }
+        self.boxes.t_hi.next = self.box_t_hi.q.val();
+        for j in 0..6 {
+            self.boxes.min[j].next = self.memory.min[j].val();
+            self.boxes.max[j].next = self.memory.max[j].val();
+        }
+        if self.box_root.q.val() {
+            for j in 0..6 {
+                self.boxes.min[j].next = self.memory.root_min[j / 2].val();
+                self.boxes.max[j].next = self.memory.root_max[j / 2].val();
+            }
+        }
+        for c in 0..2 {
+            self.child_first_at[c].d.next = self.memory.child_first[c].val();
+            self.child_count_at[c].d.next = self.memory.child_count[c].val();
+        }
+        self.root_at.d.next = self.box_root.q.val();
+        // … and its answer picks the next link, pushing the farther child when both are
+        // entered.
+        self.box_done_slot.next = bit_cast::<SB, 16>(self.boxes.tag_out.val());
+        self.box_done.next = 0.into();
+        if self.boxes.valid_out.val() {
+            self.box_done.next = self.one.val() << self.box_done_slot.val();
+        }
+        self.box_enters.next = false;
+        self.box_link_first.next = 0.into();
+        self.box_link_count.next = 0.into();
+        self.stacks.push.next = false;
+        self.stacks.push_slot.next = self.box_done_slot.val();
+        self.stacks.push_data.next = 0.into();
+        if self.root_at.q.val() {
+            self.box_enters.next = self.boxes.enters[0].val();
+            self.box_link_first.next = self.memory.root_first.val();
+            self.box_link_count.next = self.memory.root_count.val();
+        } else if self.boxes.enters[0].val() & self.boxes.enters[1].val() {
+            self.box_enters.next = true;
+            self.stacks.push.next = self.boxes.valid_out.val();
+            if self.boxes.first.val() {
+                self.box_link_first.next = self.child_first_at[1].q.val();
+                self.box_link_count.next = self.child_count_at[1].q.val();
+                self.stacks.push_data.next = (bit_cast::<W, LF>(self.child_first_at[0].q.val())
+                    << self.at_first.val())
+                    | (bit_cast::<W, LC>(self.child_count_at[0].q.val()) << 32)
+                    | bit_cast::<W, 32>(self.boxes.near[0].val());
+            } else {
+                self.box_link_first.next = self.child_first_at[0].q.val();
+                self.box_link_count.next = self.child_count_at[0].q.val();
+                self.stacks.push_data.next = (bit_cast::<W, LF>(self.child_first_at[1].q.val())
+                    << self.at_first.val())
+                    | (bit_cast::<W, LC>(self.child_count_at[1].q.val()) << 32)
+                    | bit_cast::<W, 32>(self.boxes.near[1].val());
+            }
+        } else if self.boxes.enters[0].val() {
+            self.box_enters.next = true;
+            self.box_link_first.next = self.child_first_at[0].q.val();
+            self.box_link_count.next = self.child_count_at[0].q.val();
+        } else if self.boxes.enters[1].val() {
+            self.box_enters.next = true;
+            self.box_link_first.next = self.child_first_at[1].q.val();
+            self.box_link_count.next = self.child_count_at[1].q.val();
+        }
+        self.box_visit.next = self.boxes.valid_out.val() & self.box_enters.val();
+
+        // ---- The stack port: a pop answers the next cycle.
+        self.pop_arb.request.next = self.want_pop.q.val();
+        self.pop_grant_slot.next = 0.into();
+        self.pop_t_hi.d.next = 0.into();
+        for i in 0..S {
+            if self.pop_arb.grant.val().get_bit(i) {
+                self.pop_grant_slot.next = self.slot_id[i].val();
+                self.pop_t_hi.d.next = self.t_hi[i].q.val();
+            }
+        }
+        self.stacks.pop.next = self.pop_arb.grant.val().any();
+        self.stacks.pop_slot.next = self.pop_grant_slot.val();
+        self.pop_valid.d.next = self.pop_arb.grant.val().any();
+        self.pop_slot.d.next = self.pop_grant_slot.val();
+        self.pop_done.next = 0.into();
+        if self.pop_valid.q.val() {
+            self.pop_done.next = self.one.val() << self.pop_slot.q.val();
+        }
+        self.pop_link_first.next =
+            bit_cast::<LF, W>(self.stacks.pop_data.val() >> self.at_first.val());
+        self.pop_link_count.next = bit_cast::<LC, W>(self.stacks.pop_data.val() >> 32);
+        self.beyond.a.next = self.pop_t_hi.q.val();
+        self.beyond.b.next = bit_cast::<32, W>(self.stacks.pop_data.val());
+        self.pop_again.next = self.stacks.popped.val() & self.beyond.lt.val();
+        self.pop_enters.next = self.stacks.popped.val() & !self.beyond.lt.val();
+
+        // ---- The leaf port: one triangle a cycle; the slot waits after its last.
+        self.leaf_arb.request.next = self.want_leaf.q.val();
+        self.leaf_grant.next = self.leaf_arb.grant.val();
+        self.leaf_grant_slot.next = 0.into();
+        self.leaf_grant_last.next = false;
+        self.leaf_link.next = 0.into();
+        self.leaf_words.d.next = 0.into();
+        self.leaf_exclude.d.next = 0.into();
+        for i in 0..S {
+            if self.leaf_grant.val().get_bit(i) {
+                self.leaf_grant_slot.next = self.slot_id[i].val();
+                self.leaf_link.next = self.link_first[i].q.val();
+                self.leaf_grant_last.next = self.link_count[i].q.val() == self.one_count.val();
+                self.leaf_words.d.next = self.lane_words[i].q.val();
+                self.leaf_exclude.d.next = self.exclude[i].q.val();
+            }
+        }
+        self.memory.triangle_address.next = bit_cast::<TB, LF>(self.leaf_link.val());
+        self.leaf_valid.d.next = self.leaf_grant.val().any();
+        self.leaf_slot.d.next = self.leaf_grant_slot.val();
+        self.leaf_last.d.next = self.leaf_grant_last.val();
+        self.leaf_any_hit.d.next = (self.any_hit.q.val() & self.leaf_grant.val()).any();
+        self.leaf_has_exclude.d.next = (self.has_exclude.q.val() & self.leaf_grant.val()).any();
+        // The cycle after: the triangle is read, then tested or skipped.
+        self.skip.next = (self.leaf_any_hit.q.val() & !self.memory.casts_shadow.val())
+            | (self.leaf_has_exclude.q.val()
+                & (self.leaf_exclude.q.val() == self.memory.global_index.val()));
+        self.lane.valid_in.next = self.leaf_valid.q.val() & !self.skip.val();
+        for k in 0..6 {
+            self.lane.query[k].next = self.leaf_words.q.val().get_bits::<32>(32 * k);
+        }
+        for k in 0..9 {
+            self.lane.query[6 + k].next = self.memory.vert[k].val();
+        }
+        self.lane.query[15].next = self.leaf_words.q.val().get_bits::<32>(224);
+        self.t_min_at.d.next = self.leaf_words.q.val().get_bits::<32>(224);
+        self.t_max_at.d.next = self.leaf_words.q.val().get_bits::<32>(192);
+        self.issued_at.d.next = self.leaf_valid.q.val();
+        self.tested_at.d.next = self.leaf_valid.q.val() & !self.skip.val();
+        self.last_at.d.next = self.leaf_last.q.val();
+        self.slot_at.d.next = self.leaf_slot.q.val();
+        self.index_at.d.next = self.memory.global_index.val();
+        self.any_hit_at.d.next = self.leaf_any_hit.q.val();
+        // The lane's answer, folded into its slot's nearest hit (closest-hit) or kept as
+        // the first counting hit (any-hit).
+        self.lane_slot.next = self.slot_at.q.val();
+        self.lane_done.next = 0.into();
+        if self.issued_at.q.val() {
+            self.lane_done.next = self.one.val() << self.lane_slot.val();
+        }
+        self.lane_best.next = 0.into();
+        self.lane_pad.next = 0.into();
+        for i in 0..S {
+            if self.lane_slot.val() == self.slot_id[i].val() {
+                self.lane_best.next = self.best[i].q.val();
+                self.lane_pad.next = self.pad[i].q.val();
+            }
+        }
+        self.update.hit.next = self.lane.hit.val() & self.tested_at.q.val();
+        self.update.t.next = self.lane.t.val();
+        self.update.triangle.next = bit_cast::<32, INDEX_BITS>(self.index_at.q.val());
+        self.update.t_min.next = self.t_min_at.q.val();
+        self.update.bound.next = self.t_max_at.q.val();
+        self.update.best_valid.next = (self.best_valid.q.val() & self.lane_done.val()).any();
+        self.update.best_t.next = self.lane_best.val().get_bits::<32>(0);
+        self.update.best_triangle.next = self.lane_best.val().get_bits::<32>(96);
+        self.lane_any_hit.next = self.any_hit_at.q.val();
+        self.lane_take.next = self.update.closer.val();
+        if self.lane_any_hit.val() {
+            self.lane_take.next = self.update.counts.val() & !self.update.best_valid.val();
+        }
+        self.lane_best_valid.next = self.update.best_valid.val() | self.lane_take.val();
+        self.lane_changed.next =
+            (self.changed.q.val() & self.lane_done.val()).any() | self.lane_take.val();
+        // After a leaf with a nearer hit: the far end of next_up(t) (t is a counting hit's,
+        // so finite and not NaN).
+        self.new_t.next = self.lane_best.val().get_bits::<32>(0);
+        if self.lane_take.val() {
+            self.new_t.next = self.lane.t.val();
+        }
+        if !(self.new_t.val() & self.abs_mask.val()).any() {
+            self.next_up.next = 1.into();
+        } else if self.new_t.val().get_bit(31) {
+            self.next_up.next = self.new_t.val() - 1;
+        } else {
+            self.next_up.next = self.new_t.val() + 1;
+        }
+        self.far.valid_in.next = self.issued_at.q.val()
+            & self.last_at.q.val()
+            & !self.lane_any_hit.val()
+            & self.lane_changed.val();
+        self.far.tag_in.next = bit_cast::<16, SB>(self.lane_slot.val());
+        self.far.bound.next = self.next_up.val();
+        self.far.pad.next = self.lane_pad.val();
+        self.far_slot.next = bit_cast::<SB, 16>(self.far.tag_out.val());
+        self.far_done.next = 0.into();
+        if self.far.valid_out.val() {
+            self.far_done.next = self.one.val() << self.far_slot.val();
+        }
+
+        // ---- The hit output: one register, refilled in the cycle it drains.
+        self.out_arb.request.next = 0.into();
+        if !self.out_valid.q.val() | self.hit_tready.val() {
+            self.out_arb.request.next = self.want_out.q.val();
+        }
+        self.out_grant.next = self.out_arb.grant.val();
+        for k in 0..HIT_WORDS {
+            self.hit_words[k].next = 0.into();
+        }
+        for i in 0..S {
+            if self.out_grant.val().get_bit(i) {
+                self.hit_words[0].next = self.ray_id[i].q.val();
+                if self.best_valid.q.val().get_bit(i) {
+                    self.hit_words[1].next = 1.into();
+                    self.hit_words[3].next = self.best[i].q.val().get_bits::<32>(0);
+                    self.hit_words[4].next = self.best[i].q.val().get_bits::<32>(32);
+                    self.hit_words[5].next = self.best[i].q.val().get_bits::<32>(64);
+                    self.hit_words[2].next = self.best[i].q.val().get_bits::<32>(96);
+                }
+            }
+        }
+        self.out_word.next = 0.into();
+        for k in 0..HIT_WORDS {
+            self.packed_word.next = self.hit_words[k].val();
+            self.out_word.next = (self.out_word.val() >> 32)
+                | (bit_cast::<HIT_BITS, 32>(self.packed_word.val()) << self.hit_top.val());
+        }
+        if self.hit_tready.val() {
+            self.out_valid.d.next = false;
+        }
+        if self.out_grant.val().any() {
+            self.out_valid.d.next = true;
+            self.out_data.d.next = self.out_word.val();
+        }
+        self.hit_tvalid.next = self.out_valid.q.val();
+        self.hit_tdata.next = self.out_data.q.val();
+
+        // ---- The slots' states: each writer targets slots in its own state.
+        self.next_busy.next = (self.busy.q.val() & !self.out_grant.val()) | self.entering.val();
+        self.next_box.next = self.want_box.q.val() & !self.box_arb.grant.val();
+        self.next_leaf.next = self.want_leaf.q.val();
+        if self.leaf_grant_last.val() {
+            self.next_leaf.next = self.want_leaf.q.val() & !self.leaf_grant.val();
+        }
+        self.next_pop.next =
+            (self.want_pop.q.val() & !self.pop_arb.grant.val()) | self.far_done.val();
+        self.next_out.next = self.want_out.q.val() & !self.out_grant.val();
+        self.next_changed.next = self.changed.q.val() & !self.entering.val();
+        self.next_best_valid.next = self.best_valid.q.val() & !self.entering.val();
+        // A set-up ray tests the root's box; an empty scene answers a miss at once.
+        if self.memory.triangles.val().any() {
+            self.next_box.next = self.next_box.val() | self.setup_done.val();
+        } else {
+            self.next_out.next = self.next_out.val() | self.setup_done.val();
+        }
+        // The box answer: a node or a leaf entered, else a pop (for the root: the end).
+        if self.box_enters.val() {
+            if self.box_link_count.val().any() {
+                self.next_leaf.next = self.next_leaf.val() | self.box_done.val();
+            } else {
+                self.next_box.next = self.next_box.val() | self.box_done.val();
+            }
+        } else if self.root_at.q.val() {
+            self.next_out.next = self.next_out.val() | self.box_done.val();
+        } else {
+            self.next_pop.next = self.next_pop.val() | self.box_done.val();
+        }
+        // The pop's answer: an entry entered, one beyond the far end (pop again), the end.
+        if self.pop_enters.val() {
+            if self.pop_link_count.val().any() {
+                self.next_leaf.next = self.next_leaf.val() | self.pop_done.val();
+            } else {
+                self.next_box.next = self.next_box.val() | self.pop_done.val();
+            }
+        } else if self.pop_again.val() {
+            self.next_pop.next = self.next_pop.val() | self.pop_done.val();
+        } else {
+            self.next_out.next = self.next_out.val() | self.pop_done.val();
+        }
+        // The lane's answer; after a leaf's last: out (an any-hit ray with a hit), the far
+        // end (a nearer hit; it then pops), else a pop.
+        if self.lane_take.val() {
+            self.next_best_valid.next = self.next_best_valid.val() | self.lane_done.val();
+            if !self.lane_any_hit.val() {
+                self.next_changed.next = self.next_changed.val() | self.lane_done.val();
+            }
+        }
+        if self.issued_at.q.val() & self.last_at.q.val() {
+            self.next_changed.next = self.next_changed.val() & !self.lane_done.val();
+            if self.lane_any_hit.val() & self.lane_best_valid.val() {
+                self.next_out.next = self.next_out.val() | self.lane_done.val();
+            } else if self.lane_any_hit.val() | !self.lane_changed.val() {
+                self.next_pop.next = self.next_pop.val() | self.lane_done.val();
+            }
+        }
+        self.busy.d.next = self.next_busy.val();
+        self.want_box.d.next = self.next_box.val();
+        self.want_leaf.d.next = self.next_leaf.val();
+        self.want_pop.d.next = self.next_pop.val();
+        self.want_out.d.next = self.next_out.val();
+        self.changed.d.next = self.next_changed.val();
+        self.best_valid.d.next = self.next_best_valid.val();
+        self.at_root.d.next = (self.at_root.q.val() & !self.box_done.val()) | self.entering.val();
+        self.any_hit.d.next = self.any_hit.q.val() & !self.entering.val();
+        self.has_exclude.d.next = self.has_exclude.q.val() & !self.entering.val();
+        if self.ray_words[8].val().get_bit(0) {
+            self.any_hit.d.next = self.any_hit.d.val() | self.entering.val();
+        }
+        if self.ray_words[8].val().get_bit(1) {
+            self.has_exclude.d.next = self.has_exclude.d.val() | self.entering.val();
+        }
+
+        // ---- The slots' words.
+        self.packed_word.next = self.ray_words[9].val();
+        self.ray_exclude.next = bit_cast::<INDEX_BITS, 32>(self.packed_word.val());
+        for i in 0..S {
+            if self.entering.val().get_bit(i) {
+                self.lane_words[i].d.next =
+                    bit_cast::<LANE_WORDS_BITS, RAY_BITS>(self.ray_tdata.val());
+                self.exclude[i].d.next = self.ray_exclude.val();
+                self.ray_id[i].d.next = self.ray_words[10].val();
+            }
+            if self.setup_done.val().get_bit(i) {
+                self.box_words[i].d.next = self.setup_words.val();
+                self.pad[i].d.next = self.setup.pad.val();
+                self.t_hi[i].d.next = self.setup.t_hi.val();
+            }
+            if self.far_done.val().get_bit(i) {
+                self.t_hi[i].d.next = self.far.t_hi.val();
+            }
+            if self.box_visit.val() & self.box_done.val().get_bit(i) {
+                self.link_first[i].d.next = self.box_link_first.val();
+                self.link_count[i].d.next = self.box_link_count.val();
+            }
+            if self.pop_enters.val() & self.pop_done.val().get_bit(i) {
+                self.link_first[i].d.next = self.pop_link_first.val();
+                self.link_count[i].d.next = self.pop_link_count.val();
+            }
+            if self.leaf_grant.val().get_bit(i) {
+                self.link_first[i].d.next = self.link_first[i].q.val() + 1;
+                self.link_count[i].d.next = self.link_count[i].q.val() - 1;
+            }
+            if self.lane_take.val() & self.lane_done.val().get_bit(i) {
+                self.best[i].d.next = bit_cast::<BEST_BITS, 32>(self.lane.t.val())
+                    | (bit_cast::<BEST_BITS, 32>(self.lane.u.val()) << 32)
+                    | (bit_cast::<BEST_BITS, 32>(self.lane.v.val()) << 64)
+                    | (bit_cast::<BEST_BITS, INDEX_BITS>(self.index_at.q.val()) << 96);
+            }
+        }
+
+        // ---- Status and counters.
+        self.overflow_q.d.next = self.overflow_q.q.val();
+        self.overflow_ray_q.d.next = self.overflow_ray_q.q.val();
+        if self.stacks.dropped.val() & !self.overflow_q.q.val() {
+            self.overflow_q.d.next = true;
+            for i in 0..S {
+                if self.stacks.dropped_slot.val() == self.slot_id[i].val() {
+                    self.overflow_ray_q.d.next = self.ray_id[i].q.val();
+                }
+            }
+        }
+        if self.accept.val() {
+            self.rays.d.next = self.rays.q.val() + 1;
+        }
+        if self.box_arb.grant.val().any() {
+            self.box_tests.d.next = self.box_tests.q.val() + 1;
+        }
+        if self.lane.valid_in.val() {
+            self.mt_tests.d.next = self.mt_tests.q.val() + 1;
+        }
+        if self.box_visit.val() & self.pop_enters.val() {
+            self.node_visits.d.next = self.node_visits.q.val() + 2;
+        } else if self.box_visit.val() | self.pop_enters.val() {
+            self.node_visits.d.next = self.node_visits.q.val() + 1;
+        }
+        if self.busy.q.val().any() {
+            self.busy_cycles.d.next = self.busy_cycles.q.val() + 1;
+        }
+        if !self.reset_n.val() {
+            self.busy.d.next = 0.into();
+            self.want_box.d.next = 0.into();
+            self.want_leaf.d.next = 0.into();
+            self.want_pop.d.next = 0.into();
+            self.want_out.d.next = 0.into();
+            self.out_valid.d.next = false;
+            self.overflow_q.d.next = false;
+            self.rays.d.next = 0.into();
+            self.node_visits.d.next = 0.into();
+            self.box_tests.d.next = 0.into();
+            self.mt_tests.d.next = 0.into();
+            self.busy_cycles.d.next = 0.into();
+        }
+        self.idle.next = !self.busy.q.val().any() & !self.out_valid.q.val();
+        self.overflow.next = self.overflow_q.q.val();
+        self.overflow_ray.next = self.overflow_ray_q.q.val();
+        self.count_rays.next = self.rays.q.val();
+        self.count_node_visits.next = self.node_visits.q.val();
+        self.count_box_tests.next = self.box_tests.q.val();
+        self.count_mt_tests.next = self.mt_tests.q.val();
+        self.count_busy_cycles.next = self.busy_cycles.q.val();
+    }
+}
+
+/// The unit at each scene memory size the XC7Z020 takes (`scene_memory`'s aliases), with 32
+/// slots (`timing::DEFAULT_SLOTS`) and stack RAMs of 1,024 entries (32 a slot at most).
+pub type TraversalUnit4x5 =
+    TraversalUnit<4, 5, 5, 6, 406, { triangle_record_bits() }, 32, 5, 6, 10, 43>;
+pub type TraversalUnit9x10 =
+    TraversalUnit<9, 10, 10, 11, 426, { triangle_record_bits() }, 32, 5, 6, 10, 53>;
+pub type TraversalUnit11x12 =
+    TraversalUnit<11, 12, 12, 13, 434, { triangle_record_bits() }, 32, 5, 6, 10, 57>;
+pub type TraversalUnit12x13 =
+    TraversalUnit<12, 13, 13, 14, 438, { triangle_record_bits() }, 32, 5, 6, 10, 59>;
+
+/// Slots of every built unit, and the deepest stack its stack RAM holds.
+pub const UNIT_SLOTS: usize = 32;
+pub const MAX_STACK_DEPTH: usize = 32;
+
+/// What a unit is built from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct UnitConfig {
+    pub format: HwFormat,
+    pub depth: usize,
+    pub lanes: usize,
+    pub slots: usize,
+    pub stack_depth: usize,
+    pub memory: MemoryConfig,
+}
+
+/// A configuration the RTL does not build.
+#[derive(Clone, Debug, Error, PartialEq, Eq)]
+pub enum UnitConfigError {
+    #[error("the traversal unit's RTL has an fp32 lane only so far, not {0} (the model engine takes any format: `render --engine traversal --format {0}`)")]
+    Format(HwFormat),
+    #[error("the traversal unit's RTL has one Möller-Trumbore lane so far, not {0}")]
+    Lanes(usize),
+    #[error("the traversal unit's RTL has {UNIT_SLOTS} ray slots, not {0}")]
+    Slots(usize),
+    #[error("a stack of {0} entries: the unit's stacks hold 1 to {MAX_STACK_DEPTH}")]
+    StackDepth(usize),
+    #[error("no scene memory of {node_bits} node and {triangle_bits} triangle address bits is built (sizes: 4/5, 9/10, 11/12, 12/13)")]
+    Memory {
+        node_bits: usize,
+        triangle_bits: usize,
+    },
+}
+
+impl UnitConfig {
+    /// `slots` and `stack_depth` at their defaults, the scene memory that fits the XC7Z020
+    /// beside `lanes` lanes.
+    pub fn new(format: HwFormat, depth: usize, lanes: usize) -> UnitConfig {
+        let (node_bits, triangle_bits) = zynq_address_bits(lanes);
+        UnitConfig {
+            format,
+            depth,
+            lanes,
+            slots: UNIT_SLOTS,
+            stack_depth: hw_model::traversal::DEFAULT_STACK_DEPTH,
+            memory: MemoryConfig {
+                node_bits,
+                triangle_bits,
+            },
+        }
+    }
+
+    /// The unit's timing, as the schedule model takes it.
+    pub fn timing(&self) -> UnitTiming {
+        unit_timing(self.format, self.depth, self.lanes, self.slots)
+    }
+
+    /// Whether the RTL builds this configuration.
+    pub fn check(&self) -> Result<(), UnitConfigError> {
+        if self.format != HwFormat::FP32 {
+            return Err(UnitConfigError::Format(self.format));
+        }
+        if self.lanes != 1 {
+            return Err(UnitConfigError::Lanes(self.lanes));
+        }
+        if self.slots != UNIT_SLOTS {
+            return Err(UnitConfigError::Slots(self.slots));
+        }
+        if !(1..=MAX_STACK_DEPTH).contains(&self.stack_depth) {
+            return Err(UnitConfigError::StackDepth(self.stack_depth));
+        }
+        match (self.memory.node_bits, self.memory.triangle_bits) {
+            (4, 5) | (9, 10) | (11, 12) | (12, 13) => Ok(()),
+            (node_bits, triangle_bits) => Err(UnitConfigError::Memory {
+                node_bits,
+                triangle_bits,
+            }),
+        }
+    }
+}
+
+/// The unit's Verilog (rust-hdl's, top module `top`).
+pub fn unit_verilog(config: &UnitConfig) -> Result<String, UnitConfigError> {
+    config.check()?;
+    fn generate<U: Block>(unit: U) -> String {
+        let mut unit = Box::new(unit);
+        unit.connect_all();
+        generate_verilog(unit.as_ref())
+    }
+    let (d, s) = (config.depth, config.stack_depth);
+    let memory = (config.memory.node_bits, config.memory.triangle_bits);
+    Ok(with_big_stack(move || match memory {
+        (4, 5) => generate(TraversalUnit4x5::new(d, s)),
+        (9, 10) => generate(TraversalUnit9x10::new(d, s)),
+        (11, 12) => generate(TraversalUnit11x12::new(d, s)),
+        _ => generate(TraversalUnit12x13::new(d, s)),
+    }))
+}
+
+/// Runs `f` on a thread with a stack for the unit: building, connecting and generating it
+/// recurses through thousands of signals, beyond a default thread's stack.
+pub fn with_big_stack<T: Send>(f: impl FnOnce() -> T + Send) -> T {
+    const STACK_BYTES: usize = 1 << 30;
+    std::thread::scope(|scope| {
+        std::thread::Builder::new()
+            .stack_size(STACK_BYTES)
+            .spawn_scoped(scope, f)
+            .expect("a thread for the unit")
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+    })
+}
