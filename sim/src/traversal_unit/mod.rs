@@ -7,6 +7,12 @@
 //! must be answered exactly once; a watchdog turns a unit that stops making progress into
 //! an error describing its state instead of a hang.
 
+mod engine;
+mod verilated;
+
+pub use engine::{UnitEngine, UnitSimStats};
+pub use verilated::{unit_model, UnitModel, VerilatedUnit};
+
 use std::collections::HashMap;
 
 use hdl::traversal::scene_memory_driver::{
@@ -114,6 +120,9 @@ pub const WATCHDOG_CYCLES: u64 = 20_000;
 /// What goes wrong driving the unit.
 #[derive(Debug, thiserror::Error)]
 pub enum UnitError {
+    /// The RTL does not build this configuration.
+    #[error("traversal unit configuration: {0}")]
+    Config(#[from] hdl::traversal::unit::UnitConfigError),
     #[error(transparent)]
     Sim(#[from] SimError),
     /// The image was refused, by the driver's checks or the unit's loader.
@@ -244,10 +253,6 @@ impl<P: UnitPorts> UnitDriver<P> {
         };
         d.reset()?;
         Ok(d)
-    }
-
-    pub fn ports(&self) -> &P {
-        &self.ports
     }
 
     pub fn cycles(&self) -> u64 {

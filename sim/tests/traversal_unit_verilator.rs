@@ -1,0 +1,424 @@
+//! The Verilated traversal unit (`hdl::traversal::unit`) against its bit-accurate model
+//! `hw_model::traversal::TraversalModel`: answers bit for bit and the four counters, on
+//! random meshes and rays (proptest), with gaps and back-pressure on both streams, rays with
+//! NaN and infinite components; its failure modes (a scene too big, a malformed image, a
+//! stack overflow) as errors; the 7 thesis scenes rendered through it identical to the
+//! software. One Verilated build of the CLI's default configuration (fp32, depth 1, one
+//! lane, 4,096 nodes and 8,192 triangles) serves every test.
+
+use hdl::traversal::unit::UnitConfig;
+use hw_model::traversal::{TraversalError, TraversalModel, UnitCounters, UnitRay};
+use hw_model::{lookup, HwFormat};
+use proptest::prelude::*;
+use rand::{rngs::StdRng, Rng, SeedableRng};
+use sim::traversal_unit::{
+    unit_model, Traffic, UnitDriver, UnitEngine, UnitError, UnitRun, VerilatedUnit,
+};
+use sw_renderer::bvh::Bvh;
+use sw_renderer::compare::compare;
+use sw_renderer::hit::{Hit, NO_BOUND};
+use sw_renderer::intersect::F32Intersector;
+use sw_renderer::math::V3;
+use sw_renderer::render::{render, RenderOptions};
+use sw_renderer::scene::Scene;
+use sw_renderer::scene_image::{ChildBoxes, ImageNode, ImageTriangle, Link, SceneImage};
+use sw_renderer::thesis_scenes;
+use sw_renderer::world::WorldTriangle;
+
+fn config() -> UnitConfig {
+    UnitConfig::new(HwFormat::FP32, 1, 1)
+}
+
+/// A fresh, reset unit of [`config`] (the model is built once per process).
+fn unit() -> UnitDriver<VerilatedUnit> {
+    let c = config();
+    let model = unit_model(&c).unwrap();
+    UnitDriver::new(VerilatedUnit::new(&model).unwrap(), c.memory, c.stack_depth).unwrap()
+}
+
+/// `tris` as a scene image (objects of 8 triangles; odd objects cast no shadow).
+fn image(tris: &[WorldTriangle]) -> SceneImage {
+    let casts: Vec<bool> = tris.iter().map(|t| t.object % 2 == 0).collect();
+    SceneImage::from_bvh(&Bvh::build(tris), tris, &casts)
+}
+
+/// The model's answers and counters for `rays` on `image`.
+fn model(
+    image: &SceneImage,
+    rays: &[UnitRay],
+) -> Result<(Vec<Option<Hit>>, UnitCounters), TraversalError> {
+    let m = TraversalModel::new(lookup("fp32").unwrap(), config().stack_depth, image.clone());
+    let mut c = UnitCounters::default();
+    let answers = (rays.iter())
+        .map(|r| m.trace(r, &mut c))
+        .collect::<Result<_, _>>()?;
+    Ok((answers, c))
+}
+
+/// The unit's answers and run for `rays` on `image` (loaded first).
+fn on_unit(
+    d: &mut UnitDriver<VerilatedUnit>,
+    image: &SceneImage,
+    rays: &[UnitRay],
+    traffic: Traffic,
+) -> Result<(Vec<Option<Hit>>, UnitRun), UnitError> {
+    d.load(&image.to_words())?;
+    let mut answers = vec![None; rays.len()];
+    let run = d.run(rays, &mut answers, traffic)?;
+    Ok((answers, run))
+}
+
+/// Answers compared as bits (NaN-safe, −0 ≠ +0).
+fn bits(answers: &[Option<Hit>]) -> Vec<Option<[u32; 4]>> {
+    (answers.iter())
+        .map(|h| h.map(|h| [h.triangle, h.t.to_bits(), h.u.to_bits(), h.v.to_bits()]))
+        .collect()
+}
+
+fn v3() -> impl Strategy<Value = V3> {
+    // A coarse grid makes shared vertices, shared edges and duplicates likely.
+    (-4i32..=4, -4i32..=4, -4i32..=4)
+        .prop_map(|(x, y, z)| V3::new(x as f32, y as f32, z as f32) * 0.5)
+}
+
+fn mesh() -> impl Strategy<Value = Vec<WorldTriangle>> {
+    prop::collection::vec((v3(), v3(), v3(), 0usize..3), 1..40).prop_map(|raw| {
+        let mut tris: Vec<WorldTriangle> = Vec::new();
+        for (k, (a, b, c, kind)) in raw.into_iter().enumerate() {
+            let verts = match (kind, tris.last()) {
+                // A duplicate of the previous triangle (equal t, the lower index must win).
+                (1, Some(p)) => p.verts,
+                // A neighbour sharing the previous triangle's edge.
+                (2, Some(p)) => [p.verts[0], p.verts[2], c],
+                _ => [a, b, c],
+            };
+            tris.push(WorldTriangle {
+                verts,
+                normals: [V3::new(0.0, 0.0, 1.0); 3],
+                object: (k / 8) as u32,
+            });
+        }
+        tris
+    })
+}
+
+fn ray() -> impl Strategy<Value = UnitRay> {
+    let dir = prop_oneof![
+        (v3(), v3()).prop_map(|(a, b)| (b - a).to_array()),
+        // Axis-parallel rays: parallel to the faces of many grid triangles and to box slabs.
+        (0usize..3, prop::bool::ANY).prop_map(|(a, neg)| {
+            let mut d = [0.0f32; 3];
+            d[a] = if neg { -1.0 } else { 1.0 };
+            d
+        }),
+    ];
+    let t_max = prop_oneof![Just(NO_BOUND), Just(0.0f32), 0.1f32..6.0];
+    // Spawned rays: a t_min, a triangle excluded (indices beyond the mesh exclude nothing).
+    let t_min = prop_oneof![Just(0.0f32), 0.0f32..3.0];
+    let exclude = prop::option::of(0u32..40);
+    ((v3(), dir, t_max, prop::bool::ANY), (t_min, exclude)).prop_map(
+        |((o, dir, t_max, any_hit), (t_min, exclude))| UnitRay {
+            orig: (o + V3::new(0.13, 0.07, -0.11)).to_array(),
+            dir,
+            t_max,
+            t_min,
+            exclude,
+            any_hit,
+            id: 0,
+        },
+    )
+}
+
+/// `rays` with distinct ids spread over the 32 bits.
+fn numbered(mut rays: Vec<UnitRay>) -> Vec<UnitRay> {
+    for (k, r) in rays.iter_mut().enumerate() {
+        r.id = (k as u32).wrapping_mul(0x9E37_79B9);
+    }
+    rays
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    /// The unit answers every ray as the model does, bit for bit, and counts the same work.
+    #[test]
+    fn the_unit_equals_the_model_on_random_meshes_and_rays(
+        tris in mesh(),
+        rays in prop::collection::vec(ray(), 1..40),
+    ) {
+        let rays = numbered(rays);
+        let img = image(&tris);
+        let (want, counters) = model(&img, &rays).unwrap();
+        let mut d = unit();
+        let (got, run) = on_unit(&mut d, &img, &rays, Traffic::FULL_SPEED).unwrap();
+        prop_assert_eq!(bits(&got), bits(&want));
+        prop_assert_eq!(run.counters, counters);
+    }
+}
+
+/// 2,000 grid triangles on three planes and 600 rays through them.
+fn busy_scene() -> (SceneImage, Vec<UnitRay>) {
+    let mut rng = StdRng::seed_from_u64(17);
+    let tris: Vec<WorldTriangle> = (0..2000)
+        .map(|k| {
+            let (x, y, z) = ((k % 25) as f32, ((k / 25) % 27) as f32, (k / 675) as f32);
+            WorldTriangle {
+                verts: [
+                    V3::new(x, y, z),
+                    V3::new(x + 1.0, y, z),
+                    V3::new(x, y + 1.0, z + 0.5),
+                ],
+                normals: [V3::new(0.0, 0.0, 1.0); 3],
+                object: (k / 8) as u32,
+            }
+        })
+        .collect();
+    let rays = (0..600)
+        .map(|k| {
+            let o = [rng.gen_range(-5.0..30.0), rng.gen_range(-5.0..30.0), 6.0];
+            let to = [rng.gen_range(0.0..25.0), rng.gen_range(0.0..27.0), -1.0f32];
+            UnitRay {
+                orig: o,
+                dir: [to[0] - o[0], to[1] - o[1], to[2] - o[2]],
+                t_max: if k % 4 == 0 { 0.8 } else { NO_BOUND },
+                any_hit: k % 3 == 0,
+                id: 5000 + k as u32,
+                ..UnitRay::default()
+            }
+        })
+        .collect();
+    (image(&tris), rays)
+}
+
+#[test]
+fn gaps_and_back_pressure_on_both_streams_give_the_same_answers() {
+    let (img, rays) = busy_scene();
+    let (want, counters) = model(&img, &rays).unwrap();
+    assert!(want.iter().filter(|h| h.is_some()).count() > 200);
+    let mut d = unit();
+    let mut cycles = Vec::new();
+    for traffic in [
+        Traffic::FULL_SPEED,
+        Traffic {
+            ray_gap: 0.3,
+            hit_stall: 0.5,
+            seed: 1,
+        },
+        Traffic {
+            ray_gap: 0.9,
+            hit_stall: 0.95,
+            seed: 2,
+        },
+    ] {
+        let (got, run) = on_unit(&mut d, &img, &rays, traffic).unwrap();
+        assert_eq!(bits(&got), bits(&want), "{traffic:?}");
+        assert_eq!(run.counters, counters, "{traffic:?}");
+        cycles.push(run.cycles);
+    }
+    // The throttled streams took longer: the traffic reached the unit.
+    assert!(cycles[0] < cycles[1] && cycles[1] < cycles[2], "{cycles:?}");
+}
+
+#[test]
+fn rays_with_nan_or_infinite_components_end_as_the_model_ends_them() {
+    let (img, _) = busy_scene();
+    let (nan, inf) = (f32::NAN, f32::INFINITY);
+    let mut rays = Vec::new();
+    for (orig, dir, t_max) in [
+        ([nan, 0.2, 1.0], [0.0, 0.0, -1.0], NO_BOUND),
+        ([3.2, 3.2, 1.0], [nan, 0.0, -1.0], NO_BOUND),
+        ([inf, 0.2, 1.0], [0.0, 0.0, -1.0], NO_BOUND),
+        ([3.2, 3.2, 4.0], [0.0, 0.0, -inf], NO_BOUND),
+        ([3.2, 3.2, 4.0], [0.0, 0.0, -1.0], nan),
+        ([3.2, 3.2, 4.0], [0.0, 0.0, -1.0], inf),
+        ([3.2, 3.2, 4.0], [0.0, 0.0, 0.0], NO_BOUND),
+        ([-inf, -inf, -inf], [inf, inf, inf], NO_BOUND),
+        ([3.2, 3.2, 4.0], [1e-30, -1e-30, -1.0], NO_BOUND),
+    ] {
+        for any_hit in [false, true] {
+            rays.push(UnitRay {
+                orig,
+                dir,
+                t_max,
+                any_hit,
+                id: rays.len() as u32,
+                ..UnitRay::default()
+            });
+        }
+    }
+    let (want, counters) = model(&img, &rays).unwrap();
+    let (got, run) = on_unit(&mut unit(), &img, &rays, Traffic::FULL_SPEED).unwrap();
+    assert_eq!(bits(&got), bits(&want));
+    assert_eq!(run.counters, counters);
+}
+
+#[test]
+fn a_scene_too_big_for_the_unit_is_an_error_naming_the_sizes() {
+    // 9,000 triangles: more than the 8,192 this memory holds.
+    let tris: Vec<WorldTriangle> = (0..9000)
+        .map(|k| {
+            let (x, y) = ((k % 100) as f32, (k / 100) as f32);
+            WorldTriangle {
+                verts: [
+                    V3::new(x, y, 0.0),
+                    V3::new(x + 1.0, y, 0.0),
+                    V3::new(x, y + 1.0, 0.0),
+                ],
+                normals: [V3::new(0.0, 0.0, 1.0); 3],
+                object: 0,
+            }
+        })
+        .collect();
+    let e = unit()
+        .load(&image(&tris).to_words())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("9000 triangles") && e.contains("8192 triangles"),
+        "{e}"
+    );
+    // Through the engine with chunking off, the capacity check names both sizes.
+    let engine = UnitEngine::new(&config(), Traffic::FULL_SPEED, false).unwrap();
+    // All materials needs more than 4,096 nodes and 8,192 triangles.
+    let scene = Scene::load("all_materials").unwrap();
+    let opts = RenderOptions {
+        width: Some(8),
+        height: Some(4),
+        progress: false,
+        ..Default::default()
+    };
+    let e = render(&scene, &engine, &opts).unwrap_err().to_string();
+    assert!(
+        e.contains("this unit holds 4,096 nodes and 8,192 triangles; chunked passes are disabled"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_malformed_image_is_rejected_with_the_loaders_error() {
+    let (img, rays) = busy_scene();
+    let words = img.to_words();
+    let mut d = unit();
+    // A link out of range: the driver's whole-image check refuses it before streaming.
+    let mut bad = words.clone();
+    bad[16 + 12] = 70_000;
+    let e = d.load(&bad).unwrap_err().to_string();
+    assert!(e.contains("70000"), "{e}");
+    // A flag word of 2 streamed as is: the unit's loader refuses it, naming the word.
+    let mut bad = words.clone();
+    let at = words.len() - 2;
+    bad[at] = 2;
+    let status = d.stream_image(&bad).unwrap();
+    assert!(
+        !status.loaded && status.error_word as usize == at,
+        "{status:?}"
+    );
+    let c = config();
+    let e = hdl::traversal::scene_memory_driver::status_result(&status, &bad, c.memory)
+        .unwrap_err()
+        .to_string();
+    let last = img.triangles.len() - 1;
+    assert!(
+        e.contains(&format!("triangle record {last} word 10: flags")),
+        "{e}"
+    );
+    // No rays before a good load; after it the unit answers as the model.
+    let e = d
+        .run(&rays[..1], &mut [None], Traffic::FULL_SPEED)
+        .unwrap_err();
+    assert!(e.to_string().contains("no scene is loaded"), "{e}");
+    let (want, _) = model(&img, &rays).unwrap();
+    let (got, _) = on_unit(&mut d, &img, &rays, Traffic::FULL_SPEED).unwrap();
+    assert_eq!(bits(&got), bits(&want));
+}
+
+/// A degenerate tree: a chain of `n` inner nodes, all with the same box, each holding the
+/// next node (child 0, visited first) and a one-triangle leaf (child 1, pushed), so a ray
+/// through the box pushes one entry per level.
+fn chain(n: u32) -> SceneImage {
+    let b = ChildBoxes {
+        min: [[-1.0; 2]; 3],
+        max: [[1.0; 2]; 3],
+    };
+    let nodes = (0..n)
+        .map(|k| ImageNode {
+            boxes: b,
+            child: [
+                match k + 1 < n {
+                    true => Link {
+                        first: k + 1,
+                        count: 0,
+                    },
+                    false => Link { first: n, count: 1 },
+                },
+                Link { first: k, count: 1 },
+            ],
+        })
+        .collect();
+    let triangles = (0..=n)
+        .map(|k| {
+            let x = -0.9 + k as f32 * 0.01;
+            ImageTriangle {
+                verts: [[x, -0.5, 0.5], [x + 0.005, -0.5, 0.5], [x, -0.4, 0.5]],
+                index: k,
+                casts_shadow: true,
+            }
+        })
+        .collect();
+    SceneImage {
+        root: Link { first: 0, count: 0 },
+        root_box: ([-1.0; 3], [1.0; 3]),
+        nodes,
+        triangles,
+        scene_triangles: n + 1,
+    }
+}
+
+#[test]
+fn a_stack_overflow_is_reported_not_hung() {
+    let depth = config().stack_depth as u32;
+    let img = chain(depth + 8);
+    let img = SceneImage::from_words(&img.to_words()).unwrap();
+    let ray = UnitRay {
+        orig: [0.0, 0.0, 5.0],
+        dir: [0.0, 0.0, -1.0],
+        t_max: NO_BOUND,
+        id: 0xC0FFEE,
+        ..UnitRay::default()
+    };
+    let want = model(&img, &[ray]).unwrap_err();
+    let mut d = unit();
+    let e = on_unit(&mut d, &img, &[ray], Traffic::FULL_SPEED).unwrap_err();
+    match e {
+        UnitError::Traversal(got) => assert_eq!(got, want),
+        e => panic!("expected the overflow, got: {e}"),
+    }
+    // A chain the stack holds is walked to its end.
+    let img = chain(depth - 2);
+    let (want, counters) = model(&img, &[ray]).unwrap();
+    let (got, run) = on_unit(&mut d, &img, &[ray], Traffic::FULL_SPEED).unwrap();
+    assert_eq!((bits(&got), run.counters), (bits(&want), counters));
+}
+
+#[test]
+fn thesis_scenes_render_identical_to_the_software() {
+    let Some(root) =
+        thesis_scenes::for_test("traversal_unit_verilator::thesis_scenes_render_identical")
+    else {
+        return;
+    };
+    let engine = UnitEngine::new(&config(), Traffic::FULL_SPEED, true).unwrap();
+    let opts = RenderOptions {
+        width: Some(48),
+        height: Some(27),
+        progress: false,
+        ..Default::default()
+    };
+    for name in thesis_scenes::SCENE_DIRS {
+        let scene = Scene::load(root.join(name).to_str().unwrap()).unwrap();
+        let hw = render(&scene, &engine, &opts).unwrap();
+        let sw = render(&scene, &F32Intersector, &opts).unwrap();
+        let diff = compare(&hw.image, &sw.image).unwrap();
+        assert_eq!(diff.differing_pixels, 0, "{name}: {diff:?}");
+    }
+}
