@@ -1,19 +1,21 @@
-//! `rtfpga cosim`: render a scene through the Verilated accelerator, render it in software
-//! (f32) at the same size, report the simulated work and speed, last line `psnr_db=...`.
+//! `rtfpga cosim`: render a scene through the Verilated accelerator (`--unit mt`) or the
+//! Verilated traversal unit (`--unit traversal`), render it in software (f32) at the same
+//! size, report the simulated work and speed, last line `psnr_db=...`.
 
 use std::path::PathBuf;
 
-use anyhow::{Context, Result};
+use anyhow::{bail, Context, Result};
 use clap::{Args as ClapArgs, ValueEnum};
 use sim::accel_model::VcdWindow;
 use sim::axil_master::Completion;
 use sim::hw_intersector::{HwIntersector, Mode};
+use sim::traversal_unit::{Traffic, UnitEngine};
 use sw_renderer::compare;
 use sw_renderer::intersect::{F32Intersector, Intersector};
-use sw_renderer::render::{render, save_png, RenderOptions};
+use sw_renderer::render::{render, save_png, RenderOptions, RenderOutput};
 use sw_renderer::scene::Scene;
 
-use crate::engine::HwConfig;
+use crate::engine::{HwConfig, UnitKind};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum ModeArg {
@@ -30,6 +32,9 @@ pub struct Args {
     /// Scene directory with objects.txt, a .toml scene, or a built-in scene name.
     #[arg(long)]
     scene: String,
+    /// The hardware: the Möller-Trumbore accelerator, or the traversal unit.
+    #[arg(long, value_enum, default_value_t = UnitKind::Mt)]
+    unit: UnitKind,
     #[command(flatten)]
     hw: HwConfig,
     /// Override the scene's width (1 to 16384 pixels).
@@ -38,6 +43,7 @@ pub struct Args {
     /// Override the scene's height (1 to 16384 pixels).
     #[arg(long, value_parser = crate::cmd_render::image_side())]
     height: Option<u32>,
+    /// How queries reach the accelerator (`--unit mt`).
     #[arg(long, value_enum, default_value_t = ModeArg::Stream)]
     mode: ModeArg,
     /// Output PNG of the hardware render.
@@ -59,6 +65,9 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<()> {
     let scene = Scene::load(&a.scene)?;
+    if a.unit == UnitKind::Traversal {
+        return run_traversal(&a, &scene);
+    }
     let config = a.hw.top_config()?;
     let mode = match a.mode {
         ModeArg::Stream => Mode::Stream,
@@ -88,25 +97,10 @@ pub fn run(a: Args) -> Result<()> {
         },
         built.build_time.as_secs_f64()
     );
-    let opts = RenderOptions {
-        width: a.width,
-        height: a.height,
-        progress: !a.quiet,
-        ..Default::default()
-    };
-    let out = render(&scene, &hw, &opts);
+    let out = render(&scene, &hw, &options(&a));
     hw.close_vcd();
     let out = out.with_context(|| format!("co-simulating {}", hw.name()))?;
-    save_png(&out.image, &a.out).with_context(|| format!("writing {}", a.out.display()))?;
-    let sw = render(
-        &scene,
-        &F32Intersector,
-        &RenderOptions {
-            progress: false,
-            ..opts
-        },
-    )?;
-    let diff = compare::compare(&out.image, &sw.image)?;
+    let sw = save_and_render_software(&a, &scene, &out)?;
 
     let s = hw.stats();
     let wall = out.stats.render_time.as_secs_f64();
@@ -140,6 +134,32 @@ pub fn run(a: Args) -> Result<()> {
             a.vcd_from + a.vcd_cycles
         );
     }
+    print_comparison(&out, &sw)
+}
+
+/// The render options of `a`.
+fn options(a: &Args) -> RenderOptions {
+    RenderOptions {
+        width: a.width,
+        height: a.height,
+        progress: !a.quiet,
+        ..Default::default()
+    }
+}
+
+/// The hardware render saved, the software render (f32) at the same size.
+fn save_and_render_software(a: &Args, scene: &Scene, hw: &RenderOutput) -> Result<RenderOutput> {
+    save_png(&hw.image, &a.out).with_context(|| format!("writing {}", a.out.display()))?;
+    let opts = RenderOptions {
+        progress: false,
+        ..options(a)
+    };
+    Ok(render(scene, &F32Intersector, &opts)?)
+}
+
+/// `differing_pixels=…` and, last, `psnr_db=…` of the hardware render against the software.
+fn print_comparison(hw: &RenderOutput, sw: &RenderOutput) -> Result<()> {
+    let diff = compare::compare(&hw.image, &sw.image)?;
     println!(
         "differing_pixels={} max_abs_error={}",
         diff.differing_pixels, diff.max_abs_error
@@ -151,4 +171,64 @@ pub fn run(a: Args) -> Result<()> {
     };
     println!("psnr_db={psnr}");
     Ok(())
+}
+
+/// `--unit traversal`: the render's rays through the Verilated traversal unit (chunked
+/// passes when the scene exceeds its memory), its counters and cycles per render ray.
+fn run_traversal(a: &Args, scene: &Scene) -> Result<()> {
+    if a.mode != ModeArg::Stream || a.vcd.is_some() {
+        bail!("--mode register/register-irq and --vcd are options of --unit mt: the traversal unit takes its rays over its own stream");
+    }
+    let config = a.hw.unit_config()?;
+    let engine = UnitEngine::new(&config, Traffic::FULL_SPEED, true)?;
+    let name = sw_renderer::rays::RayEngine::name(&engine);
+    let built = engine.model();
+    println!(
+        "model {} ({}, {:.1} s)",
+        name,
+        if built.model.cached {
+            "cached"
+        } else {
+            "built"
+        },
+        built.build_time.as_secs_f64()
+    );
+    let out =
+        render(scene, &engine, &options(a)).with_context(|| format!("co-simulating {}", name))?;
+    let sw = save_and_render_software(a, scene, &out)?;
+    let c = out.stats.trace.cast;
+    let s = engine.stats();
+    let rays = out.stats.trace.rays();
+    let per_ray = |n: u64| n as f64 / rays.max(1) as f64;
+    let cycles = c.cycles.max(1) as f64;
+    println!(
+        "scene={} size={}x{} engine=\"{}\" rays={rays} cycles={} cycles_per_ray={:.2} node_visits_per_ray={:.2} box_tests_per_ray={:.2} mt_tests_per_ray={:.2} box_utilisation={:.4} lane_utilisation={:.4} busy_cycles={} instances={}",
+        scene.name,
+        out.image.width(),
+        out.image.height(),
+        name,
+        c.cycles,
+        per_ray(c.cycles),
+        per_ray(c.node_visits),
+        per_ray(c.box_tests),
+        per_ray(c.mt_tests),
+        c.box_tests as f64 / cycles,
+        c.mt_tests as f64 / (cycles * config.lanes as f64),
+        s.runs.busy_cycles,
+        s.instances
+    );
+    println!(
+        "unit_memory passes={} ray_passes={} chunk_loads={} loaded_bytes={} loads={} load_cycles={}",
+        c.passes, c.ray_passes, c.chunk_loads, c.loaded_bytes, s.loads, s.load_cycles
+    );
+    let sim_s = s.sim_time.as_secs_f64().max(1e-9);
+    println!(
+        "sim_cycles_per_s={:.0} rays_per_s={:.0} (per core: {} simulated cycles in {:.2} s of simulator wall time, summed over threads) wall_s={:.2}",
+        s.sim_cycles as f64 / sim_s,
+        rays as f64 / sim_s,
+        s.sim_cycles,
+        sim_s,
+        out.stats.render_time.as_secs_f64()
+    );
+    print_comparison(&out, &sw)
 }

@@ -1,17 +1,22 @@
-//! `rtfpga synth`: yosys Xilinx 7-series resources and logic depth of the whole accelerator
-//! or of one operator, and how many lanes of the configuration fit an XC7Z020.
+//! `rtfpga synth`: yosys Xilinx 7-series resources and logic depth of the whole accelerator,
+//! of one operator or of the traversal unit (`--unit traversal`), and whether it fits an
+//! XC7Z020 (for the accelerator also how many lanes would).
 
-use anyhow::Result;
+use anyhow::{bail, Result};
 use clap::Args as ClapArgs;
 
-use crate::engine::HwConfig;
+use crate::engine::{HwConfig, UnitKind};
 use hdl::operator::Op;
 use hdl::synth::{synthesize, SynthOptions, SynthReport};
 use hdl::top::fit::{fit_from, synthesize_top, LaneFit, Usage, XC7Z020};
 use hdl::top::TopConfig;
+use hdl::traversal::unit::unit_verilog;
 
 #[derive(ClapArgs)]
 pub struct Args {
+    /// The hardware: the Möller-Trumbore accelerator, or the traversal unit.
+    #[arg(long, value_enum, default_value_t = UnitKind::Mt)]
+    unit: UnitKind,
     #[command(flatten)]
     hw: HwConfig,
     /// Synthesise one operator of `--format` instead of the accelerator (add, sub, mul,
@@ -31,13 +36,30 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<()> {
     let options = SynthOptions::default();
+    if a.unit == UnitKind::Traversal {
+        if a.op.is_some() {
+            bail!("--op synthesises one operator of the accelerator's lane; it does not combine with --unit traversal");
+        }
+        let config = a.hw.unit_config()?;
+        let verilog = hdl::top::with_build_stack(move || unit_verilog(&config))?;
+        let report = synthesize(&verilog, "top", &options)?;
+        let label = format!(
+            "traversal unit {} d{} l{} {}x{}",
+            config.format,
+            config.depth,
+            config.lanes,
+            config.memory.node_bits,
+            config.memory.triangle_bits
+        );
+        return print(&label, &report, None, None, a.json);
+    }
     if let Some(op) = &a.op {
         let op: Op = op.parse()?;
         let format = a.hw.single_format()?;
         let rtl = hdl::formats::rtl(format.try_into()?, op, a.stages)?;
         let report = synthesize(&rtl.verilog, hdl::verilog::TOP, &options)?;
         let label = format!("{} {} stages={}", format, op, a.stages);
-        return print(&label, &report, rtl.latency, None, a.json);
+        return print(&label, &report, Some(rtl.latency), None, a.json);
     }
     let config = a.hw.top_config()?;
     config.validate()?;
@@ -63,7 +85,7 @@ pub fn run(a: Args) -> Result<()> {
     print(
         &config.dir_name(),
         &report,
-        config.lane_latency()?,
+        Some(config.lane_latency()?),
         fit,
         a.json,
     )
@@ -72,7 +94,7 @@ pub fn run(a: Args) -> Result<()> {
 fn print(
     label: &str,
     report: &SynthReport,
-    latency: usize,
+    latency: Option<usize>,
     fit: Option<LaneFit>,
     json: bool,
 ) -> Result<()> {
@@ -88,7 +110,9 @@ fn print(
     }
     println!("{}", SynthReport::markdown_header());
     println!("{}", report.markdown_row(label));
-    println!("\nlatency: {latency} cycles");
+    if let Some(latency) = latency {
+        println!("\nlatency: {latency} cycles");
+    }
     let d = XC7Z020;
     let pct = |used: u64, of: u64| 100.0 * used as f64 / of as f64;
     println!(

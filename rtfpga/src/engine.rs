@@ -5,6 +5,7 @@ use anyhow::{bail, Result};
 use clap::{Args as ClapArgs, ValueEnum};
 use hdl::top::TopConfig;
 use hdl::traversal::scene_memory;
+use hdl::traversal::unit::UnitConfig;
 use hw_model::dual::{DualIntersector, FormatChoice};
 use hw_model::precision::{auto_scale_exp, spawn_policy, SceneRange};
 use hw_model::traversal::{SceneCapacity, SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
@@ -25,6 +26,16 @@ pub enum EngineKind {
     Hw,
     /// The traversal unit's bit-accurate model: BVH and triangles in the unit's scene
     /// memory, rays in, hits out; Möller-Trumbore in `--format`.
+    Traversal,
+}
+
+/// Which hardware a co-simulation, Verilog or synthesis command means.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub enum UnitKind {
+    /// The Möller-Trumbore accelerator (`rtfpga_top`): queries in, results out.
+    #[default]
+    Mt,
+    /// The traversal unit: the scene in block RAM, rays in, hits out.
     Traversal,
 }
 
@@ -234,6 +245,15 @@ impl HwConfig {
             timing,
             memory,
         })
+    }
+
+    /// The traversal unit of this configuration, its scene memory the one that fits the
+    /// XC7Z020 beside `lanes` lanes: an error naming what the RTL does not build.
+    pub fn unit_config(&self) -> Result<UnitConfig> {
+        let mut config = UnitConfig::new(self.single_format()?.try_into()?, self.depth, self.lanes);
+        config.slots = self.slots as usize;
+        config.check()?;
+        Ok(config)
     }
 
     /// The accelerator of this configuration: an error if the format has no hardware.

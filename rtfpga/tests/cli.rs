@@ -1282,6 +1282,185 @@ fn cosim_of_a_small_simple_plane_matches_software() {
     assert_eq!(img, library_render("simple_plane", 16, 9, &F32Intersector));
 }
 
+/// `--unit traversal`: the configurations the unit's RTL does not build, and options of the
+/// accelerator only, are errors naming what is wrong, before any model is built; a bad
+/// `--unit` is a usage error.
+#[test]
+fn traversal_unit_options_refuse_what_the_rtl_does_not_build() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_png = dir.path().join("unit.png");
+    let out_dir = dir.path().join("v");
+    let cosim = |extra: &[&str]| -> Vec<String> {
+        let mut args: Vec<String> = ["cosim", "--unit", "traversal", "--scene", "simple_plane"]
+            .map(String::from)
+            .to_vec();
+        args.extend(extra.iter().map(|x| x.to_string()));
+        args.extend(["--out".to_string(), s(&out_png).to_string()]);
+        args
+    };
+    for (extra, needles) in [
+        (
+            &["--lanes", "2"][..],
+            &["one Möller-Trumbore lane so far, not 2"][..],
+        ),
+        (&["--format", "fp16"], &["fp32 lane only so far, not fp16"]),
+        (&["--slots", "16"], &["32 ray slots, not 16"]),
+        (&["--format", "fp16/fp32"], &["model-only"]),
+        (&["--mode", "register"], &["options of --unit mt"]),
+    ] {
+        let args = cosim(extra);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        fails(&args, 1, needles);
+    }
+    assert!(!out_png.exists());
+    fails(
+        &[
+            "verilog",
+            "--unit",
+            "traversal",
+            "--defaults",
+            "--out",
+            s(&out_dir),
+        ],
+        1,
+        &["--defaults"],
+    );
+    fails(
+        &[
+            "verilog",
+            "--unit",
+            "traversal",
+            "--lanes",
+            "3",
+            "--out",
+            s(&out_dir),
+        ],
+        1,
+        &["not 3"],
+    );
+    assert!(!out_dir.exists());
+    fails(
+        &["synth", "--unit", "traversal", "--op", "add"],
+        1,
+        &["--op", "--unit traversal"],
+    );
+    fails(
+        &["synth", "--unit", "traversal", "--format", "bf16"],
+        1,
+        &["not bf16"],
+    );
+    rtfpga()
+        .args([
+            "cosim",
+            "--unit",
+            "bvh",
+            "--scene",
+            "simple_plane",
+            "--out",
+            s(&out_png),
+        ])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("--unit"));
+}
+
+/// `verilog --unit traversal` writes the unit's Verilog and a config.json whose ports are the
+/// Verilog's, the streams as wide as the packets.
+#[test]
+fn verilog_of_the_traversal_unit_writes_its_verilog_and_config() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("unit");
+    let stdout = ok(&[
+        "verilog",
+        "--unit",
+        "traversal",
+        "--depth",
+        "2",
+        "--out",
+        s(&out_dir),
+    ]);
+    assert!(stdout.contains("4096 nodes and 8192 triangles"), "{stdout}");
+    let verilog = std::fs::read_to_string(out_dir.join("traversal_unit.v")).unwrap();
+    assert!(verilog.contains("module top"));
+    let config: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("config.json")).unwrap())
+            .unwrap();
+    assert_eq!(config["format"], "fp32");
+    assert_eq!(config["depth"], 2);
+    assert_eq!(config["memory"]["triangles"], 8192);
+    let width = |name: &str| {
+        config["ports"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|p| p["name"] == name)
+            .unwrap_or_else(|| panic!("no port {name} in {config}"))["width"]
+            .as_u64()
+            .unwrap()
+    };
+    use hw_model::traversal::packet::{HIT_WORDS, RAY_WORDS};
+    assert_eq!(width("ray_tdata"), 32 * RAY_WORDS as u64);
+    assert_eq!(width("hit_tdata"), 32 * HIT_WORDS as u64);
+    assert_eq!(width("overflow_ray"), 32);
+}
+
+/// `cosim --unit traversal` renders through the Verilated unit: its counters per ray, the
+/// simulation speed, and the image identical to the software's.
+#[test]
+fn cosim_of_the_traversal_unit_matches_software() {
+    if which("verilator").is_none() {
+        writeln!(
+            std::io::stderr(),
+            "cosim_of_the_traversal_unit_matches_software: skipped, no verilator on PATH"
+        )
+        .unwrap();
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out_png = dir.path().join("unit.png");
+    let mut cmd = rtfpga();
+    // A cold model cache builds the Verilated unit first.
+    cmd.timeout(Duration::from_secs(1800));
+    let out = cmd
+        .args([
+            "cosim",
+            "--unit",
+            "traversal",
+            "--scene",
+            "simple_plane",
+            "--width",
+            "16",
+            "--height",
+            "9",
+            "--out",
+            s(&out_png),
+            "--quiet",
+        ])
+        .assert()
+        .success()
+        .get_output()
+        .clone();
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    for key in [
+        "rays=",
+        "cycles=",
+        "cycles_per_ray=",
+        "box_tests_per_ray=",
+        "mt_tests_per_ray=",
+        "box_utilisation=",
+        "lane_utilisation=",
+        "sim_cycles_per_s=",
+        "rays_per_s=",
+    ] {
+        assert!(stdout.contains(key), "no {key} in:\n{stdout}");
+    }
+    assert_eq!(last_line(&stdout), "psnr_db=inf", "{stdout}");
+    assert_eq!(
+        read_png(&out_png),
+        library_render("simple_plane", 16, 9, &F32Intersector)
+    );
+}
+
 fn which(tool: &str) -> Option<PathBuf> {
     std::env::var_os("PATH").and_then(|paths| {
         std::env::split_paths(&paths)
