@@ -4,7 +4,9 @@
 //! NaN and infinite components; its failure modes (a scene too big, a malformed image, a
 //! stack overflow) as errors; the 7 thesis scenes rendered through it identical to the
 //! software. One Verilated build of the CLI's default configuration (fp32, depth 1, one
-//! lane, 4,096 nodes and 8,192 triangles) serves every test.
+//! lane, 4,096 nodes and 8,192 triangles) serves every test but the ignored one of chunked
+//! passes through the smallest memory. 131 s with a warm model cache (the thesis scenes
+//! 110 s of it); a cold build adds about 2 minutes.
 
 use hdl::traversal::unit::UnitConfig;
 use hw_model::traversal::{TraversalError, TraversalModel, UnitCounters, UnitRay};
@@ -421,4 +423,57 @@ fn thesis_scenes_render_identical_to_the_software() {
         let diff = compare(&hw.image, &sw.image).unwrap();
         assert_eq!(diff.differing_pixels, 0, "{name}: {diff:?}");
     }
+}
+
+/// A unit with the smallest scene memory (16 nodes, 32 triangles) renders the built-in
+/// Glasses (720 triangles) in chunked passes: the image is the software's, and the passes,
+/// chunk loads and the work counted equal the chunked model's. A second Verilated build (≈ 2
+/// min cold, 12 s warm), so not in the default suite, where the thesis' All materials runs
+/// in 4 chunks: `cargo test --release -p sim --test traversal_unit_verilator -- --ignored`.
+#[test]
+#[ignore]
+fn chunked_passes_through_the_unit_equal_the_chunked_model() {
+    use hdl::traversal::scene_memory_driver::MemoryConfig;
+    use hw_model::traversal::{SceneCapacity, SceneMemory, TraversalEngine};
+    let config = UnitConfig {
+        memory: MemoryConfig {
+            node_bits: 4,
+            triangle_bits: 5,
+        },
+        ..config()
+    };
+    let engine = UnitEngine::new(&config, Traffic::FULL_SPEED, true).unwrap();
+    let (nodes, triangles) = config.memory.capacity();
+    let model = TraversalEngine {
+        format: lookup("fp32").unwrap(),
+        stack_depth: config.stack_depth,
+        scale_exp: 0,
+        timing: None,
+        memory: SceneMemory::Chunked(SceneCapacity {
+            nodes: nodes as u32,
+            triangles: triangles as u32,
+        }),
+    };
+    let scene = Scene::load("glasses").unwrap();
+    let opts = RenderOptions {
+        width: Some(16),
+        height: Some(9),
+        progress: false,
+        ..Default::default()
+    };
+    let hw = render(&scene, &engine, &opts).unwrap();
+    let want = render(&scene, &model, &opts).unwrap();
+    let sw = render(&scene, &F32Intersector, &opts).unwrap();
+    assert_eq!(hw.image, sw.image);
+    let (h, m) = (hw.stats.trace.cast, want.stats.trace.cast);
+    assert!(h.chunk_loads > 20, "{h:?}");
+    assert_eq!(
+        (h.passes, h.chunk_loads, h.loaded_bytes, h.ray_passes),
+        (m.passes, m.chunk_loads, m.loaded_bytes, m.ray_passes)
+    );
+    assert_eq!(
+        (h.box_tests, h.mt_tests, h.node_visits),
+        (m.box_tests, m.mt_tests, m.node_visits)
+    );
+    assert!(h.cycles > h.ray_passes, "{h:?}");
 }
