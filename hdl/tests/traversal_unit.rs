@@ -3,10 +3,9 @@
 //! with t_min and an excluded triangle) streamed in, every answer and the counters equal to
 //! the model's. The Verilated unit runs the larger tests (sim/tests/traversal_unit_verilator.rs).
 
+use hdl::top::with_build_stack;
 use hdl::traversal::scene_memory_driver::{check_before_load, status_result, LoadStatus};
-use hdl::traversal::unit::{
-    unit_verilog, with_big_stack, TraversalUnit4x5, UnitConfig, UnitConfigError,
-};
+use hdl::traversal::unit::{unit_verilog, UnitConfig, UnitConfigError};
 use hdl::verilog::{verilator_lint_waiving, UNIT_VERILATOR_WAIVERS};
 use hw_model::traversal::packet::{hit_from_words, HIT_WORDS, RAY_WORDS};
 use hw_model::traversal::{TraversalModel, UnitCounters, UnitRay};
@@ -29,125 +28,140 @@ fn config() -> UnitConfig {
     c
 }
 
-struct Bench {
-    uut: Box<TraversalUnit4x5>,
-    cycles: u64,
-}
+/// A rust-hdl bench of the unit type `$unit` (the same ports in every format).
+macro_rules! bench {
+    ($unit:ty) => {
+        use super::*;
 
-impl Bench {
-    fn new() -> Self {
-        let mut uut = Box::new(TraversalUnit4x5::new(DEPTH, 32));
-        uut.connect_all();
-        let mut b = Bench { uut, cycles: 0 };
-        b.uut.reset_n.next = false;
-        for _ in 0..3 {
-            b.cycle();
+        pub struct Bench {
+            uut: Box<$unit>,
+            cycles: u64,
         }
-        b.uut.reset_n.next = true;
-        b
-    }
 
-    fn cycle(&mut self) {
-        self.uut.clock.next = Clock { clk: false };
-        assert!(simulate(self.uut.as_mut(), 1000));
-        self.uut.clock.next = Clock { clk: true };
-        assert!(simulate(self.uut.as_mut(), 1000));
-        self.cycles += 1;
-    }
+        impl Bench {
+            pub fn new() -> Self {
+                let mut uut = Box::new(<$unit>::new(DEPTH, 32));
+                uut.connect_all();
+                let mut b = Bench { uut, cycles: 0 };
+                b.uut.reset_n.next = false;
+                for _ in 0..3 {
+                    b.cycle();
+                }
+                b.uut.reset_n.next = true;
+                b
+            }
 
-    /// Outputs as the next rising edge will see them.
-    fn settle(&mut self) {
-        self.uut.clock.next = Clock { clk: false };
-        assert!(simulate(self.uut.as_mut(), 1000));
-    }
+            fn cycle(&mut self) {
+                self.uut.clock.next = Clock { clk: false };
+                assert!(simulate(self.uut.as_mut(), 1000));
+                self.uut.clock.next = Clock { clk: true };
+                assert!(simulate(self.uut.as_mut(), 1000));
+                self.cycles += 1;
+            }
 
-    fn load(&mut self, words: &[u32]) -> LoadStatus {
-        self.uut.scene_start.next = true;
-        self.cycle();
-        self.uut.scene_start.next = false;
-        for (i, &w) in words.iter().enumerate() {
-            self.uut.scene_tdata.next = u64::from(w).into();
-            self.uut.scene_tvalid.next = true;
-            self.uut.scene_tlast.next = i + 1 == words.len();
-            self.settle();
-            assert!(self.uut.scene_tready.val(), "scene word {i} not taken");
-            self.cycle();
-        }
-        self.uut.scene_tvalid.next = false;
-        self.cycle();
-        self.settle();
-        let u = &self.uut;
-        LoadStatus {
-            loading: false,
-            loaded: u.scene_loaded.val(),
-            error_code: u.scene_error_code.val().to_u64(),
-            error_word: u.scene_error_word.val().to_u64() as u32,
-            error_value: u.scene_error_value.val().to_u64() as u32,
-            nodes: words[2],
-            triangles: words[3],
-        }
-    }
+            /// Outputs as the next rising edge will see them.
+            fn settle(&mut self) {
+                self.uut.clock.next = Clock { clk: false };
+                assert!(simulate(self.uut.as_mut(), 1000));
+            }
 
-    /// Streams `rays` in, with the hit stream's `tready` low with chance `stall`, and
-    /// returns the answers by id and the counters.
-    fn run(
-        &mut self,
-        rays: &[UnitRay],
-        rng: &mut StdRng,
-        stall: f64,
-    ) -> (Vec<Option<Hit>>, UnitCounters) {
-        let mut answers: Vec<Option<Option<Hit>>> = vec![None; rays.len()];
-        let mut next = 0;
-        let mut done = 0;
-        let mut quiet = 0;
-        while done < rays.len() {
-            let mut data = Bits::<{ 32 * RAY_WORDS }>::default();
-            if next < rays.len() {
-                for (k, w) in rays[next].to_words().iter().enumerate() {
-                    data = data
-                        | (bit_cast::<{ 32 * RAY_WORDS }, 32>(u64::from(*w).into())
-                            << (32 * k) as u64);
+            pub fn load(&mut self, words: &[u32]) -> LoadStatus {
+                self.uut.scene_start.next = true;
+                self.cycle();
+                self.uut.scene_start.next = false;
+                for (i, &w) in words.iter().enumerate() {
+                    self.uut.scene_tdata.next = u64::from(w).into();
+                    self.uut.scene_tvalid.next = true;
+                    self.uut.scene_tlast.next = i + 1 == words.len();
+                    self.settle();
+                    assert!(self.uut.scene_tready.val(), "scene word {i} not taken");
+                    self.cycle();
+                }
+                self.uut.scene_tvalid.next = false;
+                self.cycle();
+                self.settle();
+                let u = &self.uut;
+                LoadStatus {
+                    loading: false,
+                    loaded: u.scene_loaded.val(),
+                    error_code: u.scene_error_code.val().to_u64(),
+                    error_word: u.scene_error_word.val().to_u64() as u32,
+                    error_value: u.scene_error_value.val().to_u64() as u32,
+                    nodes: words[2],
+                    triangles: words[3],
                 }
             }
-            self.uut.ray_tdata.next = data;
-            self.uut.ray_tvalid.next = next < rays.len();
-            self.uut.hit_tready.next = !rng.gen_bool(stall);
-            self.settle();
-            let took_ray = self.uut.ray_tvalid.val() && self.uut.ray_tready.val();
-            let took_hit = self.uut.hit_tvalid.val() && self.uut.hit_tready.val();
-            if took_hit {
-                let packet = self.uut.hit_tdata.val();
-                let words: [u32; HIT_WORDS] =
-                    std::array::from_fn(|k| packet.get_bits::<32>(32 * k).to_u64() as u32);
-                let (id, hit) = hit_from_words(&words);
-                let slot = &mut answers[id as usize];
-                assert!(slot.is_none(), "ray {id} answered twice");
-                *slot = Some(hit);
-                done += 1;
+
+            /// Streams `rays` in, with the hit stream's `tready` low with chance `stall`, and
+            /// returns the answers by id and the counters.
+            pub fn run(
+                &mut self,
+                rays: &[UnitRay],
+                rng: &mut StdRng,
+                stall: f64,
+            ) -> (Vec<Option<Hit>>, UnitCounters) {
+                let mut answers: Vec<Option<Option<Hit>>> = vec![None; rays.len()];
+                let mut next = 0;
+                let mut done = 0;
+                let mut quiet = 0;
+                while done < rays.len() {
+                    let mut data = Bits::<{ 32 * RAY_WORDS }>::default();
+                    if next < rays.len() {
+                        for (k, w) in rays[next].to_words().iter().enumerate() {
+                            data = data
+                                | (bit_cast::<{ 32 * RAY_WORDS }, 32>(u64::from(*w).into())
+                                    << (32 * k) as u64);
+                        }
+                    }
+                    self.uut.ray_tdata.next = data;
+                    self.uut.ray_tvalid.next = next < rays.len();
+                    self.uut.hit_tready.next = !rng.gen_bool(stall);
+                    self.settle();
+                    let took_ray = self.uut.ray_tvalid.val() && self.uut.ray_tready.val();
+                    let took_hit = self.uut.hit_tvalid.val() && self.uut.hit_tready.val();
+                    if took_hit {
+                        let packet = self.uut.hit_tdata.val();
+                        let words: [u32; HIT_WORDS] =
+                            std::array::from_fn(|k| packet.get_bits::<32>(32 * k).to_u64() as u32);
+                        let (id, hit) = hit_from_words(&words);
+                        let slot = &mut answers[id as usize];
+                        assert!(slot.is_none(), "ray {id} answered twice");
+                        *slot = Some(hit);
+                        done += 1;
+                    }
+                    self.cycle();
+                    if took_ray {
+                        next += 1;
+                    }
+                    quiet = if took_ray || took_hit { 0 } else { quiet + 1 };
+                    assert!(
+                        quiet < 2000,
+                        "the unit hangs: {done} of {} answered",
+                        rays.len()
+                    );
+                }
+                self.settle();
+                let u = &self.uut;
+                let c = |x: Bits<32>| x.to_u64();
+                assert!(!u.overflow.val(), "stack overflow reported");
+                let counters = UnitCounters {
+                    rays: c(u.count_rays.val()),
+                    node_visits: c(u.count_node_visits.val()),
+                    box_tests: c(u.count_box_tests.val()),
+                    mt_tests: c(u.count_mt_tests.val()),
+                };
+                (answers.into_iter().map(Option::unwrap).collect(), counters)
             }
-            self.cycle();
-            if took_ray {
-                next += 1;
-            }
-            quiet = if took_ray || took_hit { 0 } else { quiet + 1 };
-            assert!(
-                quiet < 2000,
-                "the unit hangs: {done} of {} answered",
-                rays.len()
-            );
         }
-        self.settle();
-        let u = &self.uut;
-        let c = |x: Bits<32>| x.to_u64();
-        assert!(!u.overflow.val(), "stack overflow reported");
-        let counters = UnitCounters {
-            rays: c(u.count_rays.val()),
-            node_visits: c(u.count_node_visits.val()),
-            box_tests: c(u.count_box_tests.val()),
-            mt_tests: c(u.count_mt_tests.val()),
-        };
-        (answers.into_iter().map(Option::unwrap).collect(), counters)
-    }
+    };
+}
+
+mod fp32_unit {
+    bench!(hdl::traversal::unit_top::fp32::Unit4x5);
+}
+
+mod fp16_unit {
+    bench!(hdl::traversal::unit_top::fp16::Unit4x5);
 }
 
 fn mesh(seed: u64, count: usize) -> (Vec<WorldTriangle>, Vec<bool>) {
@@ -197,52 +211,74 @@ fn rays(seed: u64, count: usize, triangles: u32) -> Vec<UnitRay> {
         .collect()
 }
 
+/// The fp32 unit: answers and counters equal the model's, with back-pressure on the hits.
 #[test]
-fn the_unit_answers_and_counts_as_the_model() {
-    with_big_stack(answers_and_counts);
+fn the_fp32_unit_answers_and_counts_as_the_model() {
+    with_build_stack(|| {
+        let (load, run) = (fp32_unit::Bench::load, fp32_unit::Bench::run);
+        answers_and_counts(FP32, fp32_unit::Bench::new(), load, run)
+    });
 }
 
-fn answers_and_counts() {
+/// fp16 through the unit: the lane's format changes the answers, the unit still equals the
+/// model in that format (unscaled).
+#[test]
+fn the_fp16_unit_answers_and_counts_as_the_model() {
+    with_build_stack(|| {
+        let (load, run) = (fp16_unit::Bench::load, fp16_unit::Bench::run);
+        answers_and_counts(FP16, fp16_unit::Bench::new(), load, run)
+    });
+}
+
+const FP32: Format = Format::Float { exp: 8, man: 23 };
+const FP16: Format = Format::Float { exp: 5, man: 10 };
+
+type Answers = (Vec<Option<Hit>>, UnitCounters);
+
+fn answers_and_counts<B>(
+    format: Format,
+    mut bench: B,
+    load: fn(&mut B, &[u32]) -> LoadStatus,
+    run: fn(&mut B, &[UnitRay], &mut StdRng, f64) -> Answers,
+) {
     let (tris, casts) = mesh(11, 24);
     let words = SceneImage::from_bvh(&Bvh::build(&tris), &tris, &casts).to_words();
     let config = config();
     let image = check_before_load(&words, config.memory).unwrap();
-    let mut bench = Bench::new();
-    let status = bench.load(&words);
+    let status = load(&mut bench, &words);
     status_result(&status, &words, config.memory).unwrap();
     let rays = rays(3, 40, tris.len() as u32);
-    let model = TraversalModel::new(Format::Float { exp: 8, man: 23 }, 32, image);
+    let model = TraversalModel::new(format, 32, image);
     let mut want_counters = UnitCounters::default();
-    let want: Vec<Option<Hit>> = rays
-        .iter()
+    let want: Vec<Option<Hit>> = (rays.iter())
         .map(|r| model.trace(r, &mut want_counters).unwrap())
         .collect();
     let mut rng = StdRng::seed_from_u64(1);
-    let (got, counters) = bench.run(&rays, &mut rng, 0.3);
+    let (got, counters) = run(&mut bench, &rays, &mut rng, 0.3);
     let bits =
         |h: &Option<Hit>| h.map(|h| (h.triangle, h.t.to_bits(), h.u.to_bits(), h.v.to_bits()));
     for (k, (g, w)) in got.iter().zip(&want).enumerate() {
         assert_eq!(bits(g), bits(w), "ray {k}: {:?}", rays[k]);
     }
-    assert!(
-        want.iter().filter(|h| h.is_some()).count() >= 5,
-        "too few hits to show anything"
-    );
+    let hits = want.iter().filter(|h| h.is_some()).count();
+    assert!(hits >= 5, "{hits} hits are too few to show anything");
     assert_eq!(counters, want_counters);
-    eprintln!("{} rays in {} cycles", rays.len(), bench.cycles);
+    if format != FP32 {
+        let fp32 = TraversalModel::new(FP32, 32, model.image().clone());
+        let differ = rays
+            .iter()
+            .zip(&want)
+            .any(|(r, w)| bits(&fp32.trace(r, &mut UnitCounters::default()).unwrap()) != bits(w));
+        assert!(
+            differ,
+            "{format} answered every ray as fp32: the lane's format is not shown"
+        );
+    }
 }
 
 #[test]
 fn unsupported_configurations_are_errors() {
     let ok = config();
-    assert_eq!(
-        unit_verilog(&UnitConfig {
-            format: HwFormat::named("fp16"),
-            ..ok
-        })
-        .unwrap_err(),
-        UnitConfigError::Format(HwFormat::named("fp16"))
-    );
     assert_eq!(
         unit_verilog(&UnitConfig { lanes: 2, ..ok }).unwrap_err(),
         UnitConfigError::Lanes(2)
@@ -265,6 +301,29 @@ fn unsupported_configurations_are_errors() {
 
 #[test]
 fn the_units_verilog_passes_verilator_lint() {
-    let verilog = unit_verilog(&config()).unwrap();
-    verilator_lint_waiving(&verilog, UNIT_VERILATOR_WAIVERS).unwrap();
+    for format in [HwFormat::FP32, HwFormat::named("fx32_16")] {
+        let verilog = unit_verilog(&UnitConfig { format, ..config() }).unwrap();
+        verilator_lint_waiving(&verilog, UNIT_VERILATOR_WAIVERS).unwrap();
+    }
+}
+
+/// yosys resources of the unit (fp32, depth 5, one lane) with the scene memory beside one
+/// lane on the XC7Z020 and with a small one:
+/// `cargo test --release -p hdl --test traversal_unit -- --ignored --nocapture unit_resources`.
+#[test]
+#[ignore]
+fn unit_resources() {
+    let designs: Vec<(String, String)> = [(12, 13), (9, 10)]
+        .into_iter()
+        .map(|(node_bits, triangle_bits)| {
+            let mut c = UnitConfig::new(HwFormat::FP32, 5, 1);
+            c.memory.node_bits = node_bits;
+            c.memory.triangle_bits = triangle_bits;
+            (
+                format!("unit fp32 d5, 1 lane, {node_bits}/{triangle_bits} memory"),
+                unit_verilog(&c).unwrap(),
+            )
+        })
+        .collect();
+    println!("{}", hdl::synth::markdown_table(&designs).unwrap());
 }

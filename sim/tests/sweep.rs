@@ -246,6 +246,15 @@ fn bad_configurations_are_rejected_with_file_line_and_key() {
         "{e}"
     );
 
+    let e = rejection(&with(r#"formats = ["fp32", "fp16/fp32"]"#));
+    assert_eq!((e.line, e.key.as_str()), (2, "formats"));
+    assert!(
+        e.message.contains("dual-precision pair") && e.message.contains("model"),
+        "{e}"
+    );
+    let e = rejection(&with(r#"formats = ["fp32/fp16"]"#));
+    assert!(e.message.contains("not narrower"), "{e}");
+
     let e = rejection(&with("lanes = [1, 0]"));
     assert_eq!((e.line, e.key.as_str()), (4, "lanes"));
     assert!(e.message.contains("0 lanes"), "{e}");

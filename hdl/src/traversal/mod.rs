@@ -11,3 +11,4 @@ pub mod scene_memory_driver;
 pub mod stack;
 pub mod timing;
 pub mod unit;
+pub mod unit_top;

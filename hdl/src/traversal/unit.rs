@@ -1,6 +1,8 @@
-//! The traversal unit: the scene in block RAM, rays in, answers out — the blocks of this
-//! module around one Möller-Trumbore lane, bit for bit `hw_model::traversal::TraversalModel`
-//! (answers and counters). Ports and packets: docs/traversal-unit.md.
+//! The traversal unit's core: the scene in block RAM, rays in, answers out — the blocks of
+//! this module assembled around the port of one Möller-Trumbore lane, which `unit_top` puts
+//! beside it in the configured format. The whole unit is bit for bit
+//! `hw_model::traversal::TraversalModel` (answers and counters). Ports and packets:
+//! docs/traversal-unit.md.
 //!
 //! `S` ray slots hold the rays in flight. A slot is in one of five states, kept as one bit
 //! vector each (a slot's bit set in at most one; none set while it waits for an answer):
@@ -40,8 +42,9 @@ use super::scene_memory::{
 use super::scene_memory_driver::MemoryConfig;
 use super::stack::SlotStacks;
 use super::timing::unit_timing;
-use crate::formats::fp32::MtLane;
 use crate::mt::delay::Delay;
+use crate::regmap::OPERAND_COUNT;
+use crate::top::with_build_stack;
 
 /// Bits of a ray packet and of an answer packet.
 pub const RAY_BITS: usize = 32 * RAY_WORDS;
@@ -58,7 +61,7 @@ const BEST_BITS: usize = 4 * 32;
 /// stacks' pointer bits `PB` and RAM address bits `AB`; a stack entry of `W` = LF + LC + 32
 /// bits (a link and its entry distance).
 #[derive(LogicBlock)]
-pub struct TraversalUnit<
+pub struct TraversalCore<
     const NB: usize,
     const TB: usize,
     const LF: usize,
@@ -97,12 +100,19 @@ pub struct TraversalUnit<
     pub count_box_tests: Signal<Out, Bits<32>>,
     pub count_mt_tests: Signal<Out, Bits<32>>,
     pub count_busy_cycles: Signal<Out, Bits<32>>,
+    /// The Möller-Trumbore lane, outside the core so that one core serves every format
+    /// (`unit_top`): a query a cycle out, its answer `lane_latency` cycles later in.
+    pub lane_valid: Signal<Out, Bit>,
+    pub lane_query: [Signal<Out, Bits<32>>; OPERAND_COUNT],
+    pub lane_hit: Signal<In, Bit>,
+    pub lane_t: Signal<In, Bits<32>>,
+    pub lane_u: Signal<In, Bits<32>>,
+    pub lane_v: Signal<In, Bits<32>>,
 
     memory: SceneMemory<NB, TB, LF, LC, NW, TW>,
     setup: RaySetupUnit,
     boxes: BoxTest,
     far: FarEnd,
-    lane: MtLane,
     stacks: SlotStacks<S, SB, PB, AB, W>,
     update: HitUpdate,
     /// lt(t_hi, entry distance) of a popped entry: entered beyond the far end.
@@ -284,17 +294,16 @@ impl<
         const PB: usize,
         const AB: usize,
         const W: usize,
-    > TraversalUnit<NB, TB, LF, LC, NW, TW, S, SB, PB, AB, W>
+    > TraversalCore<NB, TB, LF, LC, NW, TW, S, SB, PB, AB, W>
 {
-    /// A unit whose operators have `depth` pipeline registers each (at most their maximum)
-    /// and whose slots have stacks of `stack_depth` entries.
-    pub fn new(depth: usize, stack_depth: usize) -> Self {
+    /// A core whose operators have `depth` pipeline registers each (at most their maximum),
+    /// whose slots have stacks of `stack_depth` entries, for a lane of `lane_latency` cycles.
+    pub fn new(depth: usize, stack_depth: usize, lane_latency: usize) -> Self {
         assert_eq!(W, LF + LC + 32, "a stack entry is a link and a distance");
         assert!(
             S <= 1 << SB && S <= 1 << 16,
             "{S} slots need more than {SB} bits"
         );
-        let lane_latency = MtLane::latency(depth);
         let box_latency = super::box_test::latency(depth);
         Self {
             clock: Default::default(),
@@ -323,11 +332,16 @@ impl<
             count_box_tests: Default::default(),
             count_mt_tests: Default::default(),
             count_busy_cycles: Default::default(),
+            lane_valid: Default::default(),
+            lane_query: Default::default(),
+            lane_hit: Default::default(),
+            lane_t: Default::default(),
+            lane_u: Default::default(),
+            lane_v: Default::default(),
             memory: SceneMemory::new(),
             setup: RaySetupUnit::new(depth),
             boxes: BoxTest::new(depth),
             far: FarEnd::new(depth),
-            lane: MtLane::new(depth),
             stacks: SlotStacks::new(stack_depth),
             update: Default::default(),
             beyond: Default::default(),
@@ -469,7 +483,7 @@ impl<
         const PB: usize,
         const AB: usize,
         const W: usize,
-    > Logic for TraversalUnit<NB, TB, LF, LC, NW, TW, S, SB, PB, AB, W>
+    > Logic for TraversalCore<NB, TB, LF, LC, NW, TW, S, SB, PB, AB, W>
 {
     #[hdl_gen]
     fn update(&mut self) {
@@ -477,7 +491,6 @@ impl<
         self.setup.clock.next = self.clock.val();
         self.boxes.clock.next = self.clock.val();
         self.far.clock.next = self.clock.val();
-        self.lane.clock.next = self.clock.val();
         self.stacks.clock.next = self.clock.val();
         self.box_arb.clock.next = self.clock.val();
         self.leaf_arb.clock.next = self.clock.val();
@@ -760,14 +773,14 @@ impl<
         self.skip.next = (self.leaf_any_hit.q.val() & !self.memory.casts_shadow.val())
             | (self.leaf_has_exclude.q.val()
                 & (self.leaf_exclude.q.val() == self.memory.global_index.val()));
-        self.lane.valid_in.next = self.leaf_valid.q.val() & !self.skip.val();
+        self.lane_valid.next = self.leaf_valid.q.val() & !self.skip.val();
         for k in 0..6 {
-            self.lane.query[k].next = self.leaf_words.q.val().get_bits::<32>(32 * k);
+            self.lane_query[k].next = self.leaf_words.q.val().get_bits::<32>(32 * k);
         }
         for k in 0..9 {
-            self.lane.query[6 + k].next = self.memory.vert[k].val();
+            self.lane_query[6 + k].next = self.memory.vert[k].val();
         }
-        self.lane.query[15].next = self.leaf_words.q.val().get_bits::<32>(224);
+        self.lane_query[15].next = self.leaf_words.q.val().get_bits::<32>(224);
         self.t_min_at.d.next = self.leaf_words.q.val().get_bits::<32>(224);
         self.t_max_at.d.next = self.leaf_words.q.val().get_bits::<32>(192);
         self.issued_at.d.next = self.leaf_valid.q.val();
@@ -791,8 +804,8 @@ impl<
                 self.lane_pad.next = self.pad[i].q.val();
             }
         }
-        self.update.hit.next = self.lane.hit.val() & self.tested_at.q.val();
-        self.update.t.next = self.lane.t.val();
+        self.update.hit.next = self.lane_hit.val() & self.tested_at.q.val();
+        self.update.t.next = self.lane_t.val();
         self.update.triangle.next = bit_cast::<32, INDEX_BITS>(self.index_at.q.val());
         self.update.t_min.next = self.t_min_at.q.val();
         self.update.bound.next = self.t_max_at.q.val();
@@ -811,7 +824,7 @@ impl<
         // so finite and not NaN).
         self.new_t.next = self.lane_best.val().get_bits::<32>(0);
         if self.lane_take.val() {
-            self.new_t.next = self.lane.t.val();
+            self.new_t.next = self.lane_t.val();
         }
         if !(self.new_t.val() & self.abs_mask.val()).any() {
             self.next_up.next = 1.into();
@@ -976,9 +989,9 @@ impl<
                 self.link_count[i].d.next = self.link_count[i].q.val() - 1;
             }
             if self.lane_take.val() & self.lane_done.val().get_bit(i) {
-                self.best[i].d.next = bit_cast::<BEST_BITS, 32>(self.lane.t.val())
-                    | (bit_cast::<BEST_BITS, 32>(self.lane.u.val()) << 32)
-                    | (bit_cast::<BEST_BITS, 32>(self.lane.v.val()) << 64)
+                self.best[i].d.next = bit_cast::<BEST_BITS, 32>(self.lane_t.val())
+                    | (bit_cast::<BEST_BITS, 32>(self.lane_u.val()) << 32)
+                    | (bit_cast::<BEST_BITS, 32>(self.lane_v.val()) << 64)
                     | (bit_cast::<BEST_BITS, INDEX_BITS>(self.index_at.q.val()) << 96);
             }
         }
@@ -1000,7 +1013,7 @@ impl<
         if self.box_arb.grant.val().any() {
             self.box_tests.d.next = self.box_tests.q.val() + 1;
         }
-        if self.lane.valid_in.val() {
+        if self.lane_valid.val() {
             self.mt_tests.d.next = self.mt_tests.q.val() + 1;
         }
         if self.box_visit.val() & self.pop_enters.val() {
@@ -1036,16 +1049,17 @@ impl<
     }
 }
 
-/// The unit at each scene memory size the XC7Z020 takes (`scene_memory`'s aliases), with 32
-/// slots (`timing::DEFAULT_SLOTS`) and stack RAMs of 1,024 entries (32 a slot at most).
-pub type TraversalUnit4x5 =
-    TraversalUnit<4, 5, 5, 6, 406, { triangle_record_bits() }, 32, 5, 6, 10, 43>;
-pub type TraversalUnit9x10 =
-    TraversalUnit<9, 10, 10, 11, 426, { triangle_record_bits() }, 32, 5, 6, 10, 53>;
-pub type TraversalUnit11x12 =
-    TraversalUnit<11, 12, 12, 13, 434, { triangle_record_bits() }, 32, 5, 6, 10, 57>;
-pub type TraversalUnit12x13 =
-    TraversalUnit<12, 13, 13, 14, 438, { triangle_record_bits() }, 32, 5, 6, 10, 59>;
+/// The core at each scene memory size the XC7Z020 takes (`scene_memory`'s aliases), with 32
+/// slots (`timing::DEFAULT_SLOTS`) and stack RAMs of 1,024 entries (32 a slot at most);
+/// `unit_top` puts a lane beside it.
+pub type TraversalCore4x5 =
+    TraversalCore<4, 5, 5, 6, 406, { triangle_record_bits() }, 32, 5, 6, 10, 43>;
+pub type TraversalCore9x10 =
+    TraversalCore<9, 10, 10, 11, 426, { triangle_record_bits() }, 32, 5, 6, 10, 53>;
+pub type TraversalCore11x12 =
+    TraversalCore<11, 12, 12, 13, 434, { triangle_record_bits() }, 32, 5, 6, 10, 57>;
+pub type TraversalCore12x13 =
+    TraversalCore<12, 13, 13, 14, 438, { triangle_record_bits() }, 32, 5, 6, 10, 59>;
 
 /// Slots of every built unit, and the deepest stack its stack RAM holds.
 pub const UNIT_SLOTS: usize = 32;
@@ -1065,8 +1079,6 @@ pub struct UnitConfig {
 /// A configuration the RTL does not build.
 #[derive(Clone, Debug, Error, PartialEq, Eq)]
 pub enum UnitConfigError {
-    #[error("the traversal unit's RTL has an fp32 lane only so far, not {0} (the model engine takes any format: `render --engine traversal --format {0}`)")]
-    Format(HwFormat),
     #[error("the traversal unit's RTL has one Möller-Trumbore lane so far, not {0}")]
     Lanes(usize),
     #[error("the traversal unit's RTL has {UNIT_SLOTS} ray slots, not {0}")]
@@ -1105,9 +1117,6 @@ impl UnitConfig {
 
     /// Whether the RTL builds this configuration.
     pub fn check(&self) -> Result<(), UnitConfigError> {
-        if self.format != HwFormat::FP32 {
-            return Err(UnitConfigError::Format(self.format));
-        }
         if self.lanes != 1 {
             return Err(UnitConfigError::Lanes(self.lanes));
         }
@@ -1127,34 +1136,10 @@ impl UnitConfig {
     }
 }
 
-/// The unit's Verilog (rust-hdl's, top module `top`).
+/// The unit's Verilog (rust-hdl's, top module `top`): the core and the lane of the
+/// configuration's format (`unit_top`).
 pub fn unit_verilog(config: &UnitConfig) -> Result<String, UnitConfigError> {
     config.check()?;
-    fn generate<U: Block>(unit: U) -> String {
-        let mut unit = Box::new(unit);
-        unit.connect_all();
-        generate_verilog(unit.as_ref())
-    }
-    let (d, s) = (config.depth, config.stack_depth);
-    let memory = (config.memory.node_bits, config.memory.triangle_bits);
-    Ok(with_big_stack(move || match memory {
-        (4, 5) => generate(TraversalUnit4x5::new(d, s)),
-        (9, 10) => generate(TraversalUnit9x10::new(d, s)),
-        (11, 12) => generate(TraversalUnit11x12::new(d, s)),
-        _ => generate(TraversalUnit12x13::new(d, s)),
-    }))
-}
-
-/// Runs `f` on a thread with a stack for the unit: building, connecting and generating it
-/// recurses through thousands of signals, beyond a default thread's stack.
-pub fn with_big_stack<T: Send>(f: impl FnOnce() -> T + Send) -> T {
-    const STACK_BYTES: usize = 1 << 30;
-    std::thread::scope(|scope| {
-        std::thread::Builder::new()
-            .stack_size(STACK_BYTES)
-            .spawn_scoped(scope, f)
-            .expect("a thread for the unit")
-            .join()
-            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
-    })
+    let config = *config;
+    Ok(with_build_stack(move || super::unit_top::verilog(&config)))
 }

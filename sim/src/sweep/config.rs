@@ -338,6 +338,17 @@ fn check_formats(
 ) -> Result<Vec<HwFormat>, ConfigError> {
     let mut out = Vec::new();
     for f in src.non_empty(list, key)? {
+        if f.get_ref().contains('/') {
+            // A valid pair is still refused: no sweep stage takes one yet.
+            let why = match hw_model::dual::FormatPair::parse(f.get_ref()) {
+                Ok(pair) => format!(
+                    "`{pair}` is a dual-precision pair, which only the model engine takes so far \
+                     (`rtfpga render --engine model --format {pair}`); a sweep lists single formats"
+                ),
+                Err(e) => e.to_string(),
+            };
+            return Err(src.err(f, key, why));
+        }
         let format: HwFormat = f
             .get_ref()
             .parse()
