@@ -41,7 +41,7 @@ pub fn run(a: Args) -> Result<()> {
             bail!("--op synthesises one operator of the accelerator's lane; it does not combine with --unit traversal");
         }
         let config = a.hw.unit_config()?;
-        let verilog = hdl::top::with_build_stack(move || unit_verilog(&config))?;
+        let verilog = unit_verilog(&config)?;
         let report = synthesize(&verilog, "top", &options)?;
         let label = format!(
             "traversal unit {} d{} l{} {}x{}",

@@ -69,7 +69,7 @@ const UNIT_VERILOG_FILE: &str = "traversal_unit.v";
 /// its scene memory's capacity, the timing the schedule model takes and the port list.
 fn traversal_unit(hw: &HwConfig, out: &std::path::Path) -> Result<()> {
     let config = hw.unit_config()?;
-    let verilog = hdl::top::with_build_stack(move || unit_verilog(&config))?;
+    let verilog = unit_verilog(&config)?;
     let ports = sim::verilator::parse_ports(&verilog, "top")?;
     let (nodes, triangles) = config.memory.capacity();
     let timing = config.timing();

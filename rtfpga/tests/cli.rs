@@ -1303,7 +1303,6 @@ fn traversal_unit_options_refuse_what_the_rtl_does_not_build() {
             &["--lanes", "2"][..],
             &["one Möller-Trumbore lane so far, not 2"][..],
         ),
-        (&["--format", "fp16"], &["fp32 lane only so far, not fp16"]),
         (&["--slots", "16"], &["32 ray slots, not 16"]),
         (&["--format", "fp16/fp32"], &["model-only"]),
         (&["--mode", "register"], &["options of --unit mt"]),
@@ -1345,9 +1344,9 @@ fn traversal_unit_options_refuse_what_the_rtl_does_not_build() {
         &["--op", "--unit traversal"],
     );
     fails(
-        &["synth", "--unit", "traversal", "--format", "bf16"],
+        &["synth", "--unit", "traversal", "--lanes", "4"],
         1,
-        &["not bf16"],
+        &["not 4"],
     );
     rtfpga()
         .args([

@@ -5,7 +5,6 @@
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
-use hdl::top::with_build_stack;
 use hdl::traversal::unit::{unit_verilog, UnitConfig};
 use hw_model::traversal::packet::{HIT_WORDS, RAY_WORDS};
 
@@ -31,9 +30,7 @@ pub fn unit_model(config: &UnitConfig) -> Result<Arc<UnitModel>, UnitError> {
         return Ok(m.clone());
     }
     let start = Instant::now();
-    // rust-hdl walks the unit's hierarchy recursively: more than a default thread's stack.
-    let c = *config;
-    let verilog = with_build_stack(move || unit_verilog(&c))?;
+    let verilog = unit_verilog(config)?;
     let model = build(&ModelSpec::rust_hdl(verilog), &BuildOptions::default())?;
     let m = Arc::new(UnitModel {
         config: *config,
