@@ -9,6 +9,7 @@
 //! 110 s of it); a cold build adds about 2 minutes.
 
 use hdl::traversal::unit::UnitConfig;
+use hw_model::traversal::strategies::{mesh, ray};
 use hw_model::traversal::{TraversalError, TraversalModel, UnitCounters, UnitRay};
 use hw_model::{lookup, HwFormat};
 use proptest::prelude::*;
@@ -88,60 +89,6 @@ fn bits(answers: &[Option<Hit>]) -> Vec<Option<[u32; 4]>> {
     (answers.iter())
         .map(|h| h.map(|h| [h.triangle, h.t.to_bits(), h.u.to_bits(), h.v.to_bits()]))
         .collect()
-}
-
-fn v3() -> impl Strategy<Value = V3> {
-    // A coarse grid makes shared vertices, shared edges and duplicates likely.
-    (-4i32..=4, -4i32..=4, -4i32..=4)
-        .prop_map(|(x, y, z)| V3::new(x as f32, y as f32, z as f32) * 0.5)
-}
-
-fn mesh() -> impl Strategy<Value = Vec<WorldTriangle>> {
-    prop::collection::vec((v3(), v3(), v3(), 0usize..3), 1..40).prop_map(|raw| {
-        let mut tris: Vec<WorldTriangle> = Vec::new();
-        for (k, (a, b, c, kind)) in raw.into_iter().enumerate() {
-            let verts = match (kind, tris.last()) {
-                // A duplicate of the previous triangle (equal t, the lower index must win).
-                (1, Some(p)) => p.verts,
-                // A neighbour sharing the previous triangle's edge.
-                (2, Some(p)) => [p.verts[0], p.verts[2], c],
-                _ => [a, b, c],
-            };
-            tris.push(WorldTriangle {
-                verts,
-                normals: [V3::new(0.0, 0.0, 1.0); 3],
-                object: (k / 8) as u32,
-            });
-        }
-        tris
-    })
-}
-
-fn ray() -> impl Strategy<Value = UnitRay> {
-    let dir = prop_oneof![
-        (v3(), v3()).prop_map(|(a, b)| (b - a).to_array()),
-        // Axis-parallel rays: parallel to the faces of many grid triangles and to box slabs.
-        (0usize..3, prop::bool::ANY).prop_map(|(a, neg)| {
-            let mut d = [0.0f32; 3];
-            d[a] = if neg { -1.0 } else { 1.0 };
-            d
-        }),
-    ];
-    let t_max = prop_oneof![Just(NO_BOUND), Just(0.0f32), 0.1f32..6.0];
-    // Spawned rays: a t_min, a triangle excluded (indices beyond the mesh exclude nothing).
-    let t_min = prop_oneof![Just(0.0f32), 0.0f32..3.0];
-    let exclude = prop::option::of(0u32..40);
-    ((v3(), dir, t_max, prop::bool::ANY), (t_min, exclude)).prop_map(
-        |((o, dir, t_max, any_hit), (t_min, exclude))| UnitRay {
-            orig: (o + V3::new(0.13, 0.07, -0.11)).to_array(),
-            dir,
-            t_max,
-            t_min,
-            exclude,
-            any_hit,
-            id: 0,
-        },
-    )
 }
 
 /// `rays` with distinct ids spread over the 32 bits.

@@ -6,6 +6,7 @@
 
 use hw_model::precision::{auto_scale_exp, spawn_policy, SceneRange};
 use hw_model::traversal::capacity::chunks;
+use hw_model::traversal::strategies::{mesh, ray};
 use hw_model::traversal::{
     ChunkedModel, SceneCapacity, SceneMemory, TraversalEngine, TraversalError, TraversalModel,
     UnitCounters, UnitRay,
@@ -66,62 +67,6 @@ fn unit(tris: &[WorldTriangle], format: Format, stack: usize) -> (TraversalModel
     let image = SceneImage::from_bvh(&Bvh::build(tris), tris, &casts);
     let image = SceneImage::from_words(&image.to_words()).unwrap();
     (TraversalModel::new(format, stack, image), casts)
-}
-
-fn v3() -> impl Strategy<Value = V3> {
-    // A coarse grid makes shared vertices, shared edges and duplicates likely.
-    (-4i32..=4, -4i32..=4, -4i32..=4)
-        .prop_map(|(x, y, z)| V3::new(x as f32, y as f32, z as f32) * 0.5)
-}
-
-fn mesh() -> impl Strategy<Value = Vec<WorldTriangle>> {
-    prop::collection::vec((v3(), v3(), v3(), 0usize..3), 1..40).prop_map(|raw| {
-        let mut tris: Vec<WorldTriangle> = Vec::new();
-        for (k, (a, b, c, kind)) in raw.into_iter().enumerate() {
-            let verts = match (kind, tris.last()) {
-                // A duplicate of the previous triangle (equal t, the lower index must win).
-                (1, Some(p)) => p.verts,
-                // A neighbour sharing the previous triangle's edge.
-                (2, Some(p)) => [p.verts[0], p.verts[2], c],
-                _ => [a, b, c],
-            };
-            tris.push(WorldTriangle {
-                verts,
-                normals: [V3::new(0.0, 0.0, 1.0); 3],
-                object: (k / 8) as u32,
-            });
-        }
-        tris
-    })
-}
-
-fn ray() -> impl Strategy<Value = UnitRay> {
-    let dir = prop_oneof![
-        (v3(), v3()).prop_map(|(a, b)| (b - a).to_array()),
-        // Axis-parallel rays: parallel to the faces of many grid triangles and to box slabs.
-        (0usize..3, prop::bool::ANY).prop_map(|(a, neg)| {
-            let mut d = [0.0f32; 3];
-            d[a] = if neg { -1.0 } else { 1.0 };
-            d
-        }),
-    ];
-    let t_max = prop_oneof![Just(NO_BOUND), Just(0.0f32), 0.1f32..6.0];
-    // Spawned rays: a t_min, a triangle excluded (indices beyond the mesh exclude nothing).
-    let t_min = prop_oneof![Just(0.0f32), 0.0f32..3.0];
-    let exclude = prop::option::of(0u32..40);
-    (
-        (v3(), dir, t_max, prop::bool::ANY, any::<u32>()),
-        (t_min, exclude),
-    )
-        .prop_map(|((o, dir, t_max, any_hit, id), (t_min, exclude))| UnitRay {
-            orig: (o + V3::new(0.13, 0.07, -0.11)).to_array(),
-            dir,
-            t_max,
-            t_min,
-            exclude,
-            any_hit,
-            id,
-        })
 }
 
 proptest! {

@@ -23,6 +23,8 @@ pub mod capacity;
 mod engine;
 pub mod packet;
 pub mod schedule;
+#[cfg(feature = "strategies")]
+pub mod strategies;
 
 pub use capacity::{run_passes, CapacityError, ChunkedModel, SceneCapacity, SceneMemory};
 pub use engine::TraversalEngine;
