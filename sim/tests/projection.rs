@@ -474,10 +474,13 @@ fn the_traversal_design_streams_rays_and_answers_beside_the_units_cycles() {
         traversal: Traversal::Bvh,
         fpl_mhz: 100.0,
     };
-    // 4 bytes a cycle: 2,000 rays in take 16,000 cycles, their answers 12,000; the image
-    // 16,000 more. Below 16,000 unit cycles the input stream sets the pace, above it the unit.
+    // 4 bytes (a packet word) a cycle: 2,000 rays in take 2,000·RAY_WORDS cycles (22,000),
+    // their answers 2,000·HIT_WORDS (12,000); the image 16,000 more. Below 22,000 unit cycles
+    // the input stream sets the pace, above it the unit.
     let cycle = 1e-8;
-    for (cycles, pace) in [(1_000, 16_000.0), (50_000, 50_000.0)] {
+    let rays_in = (2_000 * hw_model::traversal::RAY_WORDS) as f64;
+    assert!(hw_model::traversal::HIT_WORDS < hw_model::traversal::RAY_WORDS);
+    for (cycles, pace) in [(1_000, rays_in), (50_000, 50_000.0)] {
         let p = project(&w(cycles), &d, &b).unwrap();
         assert_eq!(p.tests, 2_000);
         assert!(
