@@ -479,7 +479,7 @@ fn the_traversal_design_streams_rays_and_answers_beside_the_units_cycles() {
     // the input stream sets the pace, above it the unit.
     let cycle = 1e-8;
     let rays_in = (2_000 * hw_model::traversal::RAY_WORDS) as f64;
-    assert!(hw_model::traversal::HIT_WORDS < hw_model::traversal::RAY_WORDS);
+    const { assert!(hw_model::traversal::HIT_WORDS < hw_model::traversal::RAY_WORDS) };
     for (cycles, pace) in [(1_000, rays_in), (50_000, 50_000.0)] {
         let p = project(&w(cycles), &d, &b).unwrap();
         assert_eq!(p.tests, 2_000);
