@@ -494,8 +494,9 @@ fn the_traversal_design_streams_rays_and_answers_beside_the_units_cycles() {
     let walk = b.arm_bvh_walk_s(&w(1)).unwrap();
     assert!((walk - (2_000.0 * 500e-9 + 3_000.0 * 125e-9 + 10_000.0 * 125e-9)).abs() < 1e-12);
 
-    // In 3 chunks: 30 passes streaming 5,000 rays (40,000 cycles in), 30 chunk loads of
-    // 200,000 bytes in all (50,000 cycles), each pass and load started over AXI4-Lite.
+    // In 3 chunks: 30 passes streaming 5,000 rays (5,000·RAY_WORDS cycles in), 30 chunk
+    // loads of 200,000 bytes in all (50,000 cycles), each pass and load started over
+    // AXI4-Lite.
     let mut chunked = w(1_000);
     chunked.unit = Some(UnitWork {
         passes: 30,
@@ -505,7 +506,11 @@ fn the_traversal_design_streams_rays_and_answers_beside_the_units_cycles() {
         ..unit(1_000)
     });
     let p = project(&chunked, &d, &b).unwrap();
-    assert!((p.accel_s - 90_000.0 * cycle).abs() < 1e-12, "{p:?}");
+    let passes_in = (5_000 * hw_model::traversal::RAY_WORDS) as f64;
+    assert!(
+        (p.accel_s - (passes_in + 50_000.0) * cycle).abs() < 1e-12,
+        "{p:?}"
+    );
     let arm = 2_000.0 * 500e-9 + 5_000.0 * 66.7 / 667e6;
     assert!((p.arm_s - arm).abs() < 1e-12, "{p:?}");
     let access = b.access_ns(100.0) * 1e-9;
