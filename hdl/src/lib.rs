@@ -25,3 +25,8 @@ pub mod top;
 
 // The traversal unit's parts (issue 16).
 pub mod traversal;
+
+/// `n` default values: the blocks or signals of a `Vec` field, one per lane or slot.
+pub(crate) fn defaults<T: Default>(n: usize) -> Vec<T> {
+    (0..n).map(|_| T::default()).collect()
+}

@@ -17,6 +17,8 @@
 //! data is there and `m_tready` keeps up.
 use rust_hdl::prelude::*;
 
+use crate::defaults;
+
 use crate::regmap::OPERAND_COUNT;
 
 /// Where the control word is in a lane's input slot: after the query's operands.
@@ -124,26 +126,26 @@ impl StreamFrontEnd {
         Self {
             clock: Default::default(),
             reset_n: Default::default(),
-            s_tdata: per_lane(lanes),
+            s_tdata: defaults(lanes),
             s_tvalid: Default::default(),
             s_tready: Default::default(),
             s_tlast: Default::default(),
-            m_tdata: per_lane(lanes),
+            m_tdata: defaults(lanes),
             m_tvalid: Default::default(),
             m_tready: Default::default(),
             m_tlast: Default::default(),
             reg_start: Default::default(),
             reg_operands: Default::default(),
             reg_done: Default::default(),
-            lane_valid_in: per_lane(lanes),
-            lane_query: per_lane(lanes),
+            lane_valid_in: defaults(lanes),
+            lane_query: defaults(lanes),
             lane_valid_out: Default::default(),
-            lane_hit: per_lane(lanes),
-            lane_t: per_lane(lanes),
-            lane_u: per_lane(lanes),
-            lane_v: per_lane(lanes),
-            side_ram: per_lane(lanes),
-            result_ram: per_lane(lanes),
+            lane_hit: defaults(lanes),
+            lane_t: defaults(lanes),
+            lane_u: defaults(lanes),
+            lane_v: defaults(lanes),
+            side_ram: defaults(lanes),
+            result_ram: defaults(lanes),
             acc_ptr: Default::default(),
             res_ptr: Default::default(),
             rd_ptr: Default::default(),
@@ -174,10 +176,6 @@ impl StreamFrontEnd {
             flags: Default::default(),
         }
     }
-}
-
-fn per_lane<T: Default>(lanes: usize) -> Vec<T> {
-    (0..lanes).map(|_| T::default()).collect()
 }
 
 impl Logic for StreamFrontEnd {

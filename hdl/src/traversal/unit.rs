@@ -42,6 +42,7 @@ use super::scene_memory::{
 use super::scene_memory_driver::MemoryConfig;
 use super::stack::SlotStacks;
 use super::timing::unit_timing;
+use crate::defaults;
 use crate::mt::delay::Delay;
 use crate::regmap::OPERAND_COUNT;
 use crate::top::with_build_stack;
@@ -359,15 +360,15 @@ impl<
             has_exclude: Default::default(),
             best_valid: Default::default(),
             changed: Default::default(),
-            box_words: per_slot(S),
-            lane_words: per_slot(S),
-            exclude: per_slot(S),
-            ray_id: per_slot(S),
-            pad: per_slot(S),
-            t_hi: per_slot(S),
-            link_first: per_slot(S),
-            link_count: per_slot(S),
-            best: per_slot(S),
+            box_words: defaults(S),
+            lane_words: defaults(S),
+            exclude: defaults(S),
+            ray_id: defaults(S),
+            pad: defaults(S),
+            t_hi: defaults(S),
+            link_first: defaults(S),
+            link_count: defaults(S),
+            best: defaults(S),
             slot_id: (0..S).map(|s| Constant::new((s as u64).into())).collect(),
             one: Constant::new(1.into()),
             one_count: Constant::new(1.into()),
@@ -464,11 +465,6 @@ impl<
             next_best_valid: Default::default(),
         }
     }
-}
-
-/// One register per slot.
-fn per_slot<T: Default>(slots: usize) -> Vec<T> {
-    (0..slots).map(|_| T::default()).collect()
 }
 
 impl<
@@ -1062,7 +1058,9 @@ pub type TraversalCore12x13 =
     TraversalCore<12, 13, 13, 14, 438, { triangle_record_bits() }, 32, 5, 6, 10, 59>;
 
 /// Slots of every built unit, and the deepest stack its stack RAM holds.
-pub const UNIT_SLOTS: usize = 32;
+pub const UNIT_SLOTS: usize = super::timing::DEFAULT_SLOTS;
+// The aliases (here and in `unit_top`) spell S = 32, SB = 5 as numbers.
+const _: () = assert!(UNIT_SLOTS == 32);
 pub const MAX_STACK_DEPTH: usize = 32;
 
 /// What a unit is built from.
