@@ -9,7 +9,8 @@
 #
 # Environment: RTFPGA (the binary, default target/release/rtfpga), RTFPGA_THESIS_SCENES
 # (default ../shared/scenes/thesis), SIZE (default 320x180), OUT (work directory, default a
-# temporary one), SCALES (default "none auto").
+# temporary one), SCALES (default "none auto"), FILTERS (`--dual-filter` values, default
+# "linear").
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bin=${RTFPGA:-$root/target/release/rtfpga}
@@ -18,6 +19,7 @@ size=${SIZE:-320x180}
 out=${OUT:-$(mktemp -d)}
 mkdir -p "$out"
 read -r -a scales <<< "${SCALES:-none auto}"
+read -r -a filters <<< "${FILTERS:-linear}"
 w=${size%x*}
 h=${size#*x}
 pairs=("$@")
@@ -32,25 +34,28 @@ field() { grep -o "\b$1=[^ ]*" | head -1 | cut -d= -f2; }
 for s in "${scenes[@]}"; do
     [ -f "$out/ref_$s.png" ] || render "$s" "$out/ref_$s.png" --format fp32 >/dev/null
 done
-printf '| pair | scale |'
+printf '| pair | filter | scale |'
 for s in "${scenes[@]}"; do printf ' %s |' "${s%_scene}"; done
-printf ' all | images = fp32 |\n|---|---|'
+printf ' all | images = fp32 |\n|---|---|---|'
 for _ in "${scenes[@]}"; do printf -- '---|'; done
 printf -- '---|---|\n'
 for p in "${pairs[@]}"; do
-    for scale in "${scales[@]}"; do
-        printf '| %s | %s |' "$p" "$scale"
-        tests=0 forwarded=0 same=yes
-        for s in "${scenes[@]}"; do
-            img="$out/${p//\//_}_${scale}_$s.png"
-            line=$(render "$s" "$img" --format "$p" --scale "$scale" | grep '^dual_precision ')
-            t=$(field tests <<< "$line")
-            f=$(field forwarded <<< "$line")
-            printf ' %s |' "$(field forwarded_share <<< "$line")"
-            tests=$((tests + t))
-            forwarded=$((forwarded + f))
-            cmp -s <("$bin" compare "$out/ref_$s.png" "$img" | tail -1) <(echo 'psnr_db=inf') || same=no
+    for filter in "${filters[@]}"; do
+        for scale in "${scales[@]}"; do
+            printf '| %s | %s | %s |' "$p" "$filter" "$scale"
+            tests=0 forwarded=0 same=yes
+            for s in "${scenes[@]}"; do
+                img="$out/${p//\//_}_${filter}_${scale}_$s.png"
+                line=$(render "$s" "$img" --format "$p" --dual-filter "$filter" --scale "$scale" |
+                    grep '^dual_precision ')
+                t=$(field tests <<< "$line")
+                f=$(field forwarded <<< "$line")
+                printf ' %s |' "$(field forwarded_share <<< "$line")"
+                tests=$((tests + t))
+                forwarded=$((forwarded + f))
+                cmp -s <("$bin" compare "$out/ref_$s.png" "$img" | tail -1) <(echo 'psnr_db=inf') || same=no
+            done
+            printf ' %s | %s |\n' "$(awk -v f="$forwarded" -v t="$tests" 'BEGIN { printf "%.4f", f / t }')" "$same"
         done
-        printf ' %s | %s |\n' "$(awk -v f="$forwarded" -v t="$tests" 'BEGIN { printf "%.4f", f / t }')" "$same"
     done
 done

@@ -90,8 +90,9 @@ pub fn run(a: Args) -> Result<()> {
     if let Some(dual) = &made.dual {
         let d = dual.stats();
         println!(
-            "dual_precision pair={} tests={} certain_misses={} forwarded={} forwarded_share={:.4}",
+            "dual_precision pair={} filter={} tests={} certain_misses={} forwarded={} forwarded_share={:.4}",
             dual.filter.pair,
+            dual.filter.kind,
             d.tests,
             d.certain_misses,
             d.forwarded(),

@@ -6,7 +6,9 @@ use clap::{Args as ClapArgs, ValueEnum};
 use hdl::top::TopConfig;
 use hdl::traversal::scene_memory;
 use hdl::traversal::unit::UnitConfig;
-use hw_model::dual::{DualIntersector, FormatChoice};
+use hw_model::dual::{
+    BoundArith, DualIntersector, Filter, FilterKind, FormatChoice, DEFAULT_FILTER, HW_BOUND_BITS,
+};
 use hw_model::precision::{auto_scale_exp, spawn_policy, SceneRange};
 use hw_model::traversal::{SceneCapacity, SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
 use hw_model::{Format, ModelIntersector};
@@ -57,6 +59,39 @@ pub struct HwConfig {
     #[arg(long, default_value_t = hdl::traversal::timing::DEFAULT_SLOTS as u32,
           value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub slots: u32,
+    /// The filter of a dual-precision pair (docs/precision.md, "Dual precision").
+    #[arg(long, value_enum, default_value_t = DualFilter::default_choice())]
+    pub dual_filter: DualFilter,
+}
+
+/// `--dual-filter`: what a pair's filter computes and how it evaluates its bound.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum DualFilter {
+    /// Division-free, its bound on a coarse grid from the subtractors' rounding bound (what
+    /// a hardware filter evaluates).
+    Linear,
+    /// Division-free, its bound exact.
+    LinearExact,
+    /// A whole lane in the filter format (quotients), its bound exact.
+    Quotient,
+}
+
+impl DualFilter {
+    /// The name of the engines' [`DEFAULT_FILTER`].
+    fn default_choice() -> DualFilter {
+        *DualFilter::value_variants()
+            .iter()
+            .find(|f| f.kind() == DEFAULT_FILTER)
+            .expect("DEFAULT_FILTER has a --dual-filter name")
+    }
+
+    pub fn kind(self) -> FilterKind {
+        match self {
+            DualFilter::Linear => FilterKind::Linear(BoundArith::Coarse(HW_BOUND_BITS)),
+            DualFilter::LinearExact => FilterKind::Linear(BoundArith::Exact),
+            DualFilter::Quotient => FilterKind::Quotient,
+        }
+    }
 }
 
 pub fn make(kind: EngineKind, hw: &HwConfig) -> Result<Box<dyn RayEngine>> {
@@ -80,7 +115,8 @@ pub fn make_scaled(
     memory: SceneMemory,
 ) -> Result<Made> {
     if let (EngineKind::Model, FormatChoice::Pair(pair)) = (kind, hw.format) {
-        let dual = DualIntersector::new(pair, scale_exp);
+        let dual =
+            DualIntersector::with_filter(Filter::new(pair, scale_exp, hw.dual_filter.kind()));
         return Ok(Made {
             engine: Box::new(dual.clone()),
             dual: Some(dual),

@@ -321,48 +321,59 @@ fn render_model_fp16_writes_the_models_image() {
     );
 }
 
-/// A format pair renders the fallback's image and reports the share of tests it forwarded.
+/// A format pair renders the fallback's image with each filter and reports the share of
+/// tests it forwarded.
 #[test]
 fn render_model_with_a_format_pair_writes_the_fallbacks_image() {
     let dir = tempfile::tempdir().unwrap();
     let out_png = dir.path().join("dual.png");
-    let out = ok(&[
-        "render",
-        "--scene",
-        "utah_teapot",
-        "--width",
-        "32",
-        "--height",
-        "18",
-        "--engine",
-        "model",
-        "--format",
-        "fp16/fp32",
-        "--out",
-        s(&out_png),
-        "--quiet",
-    ]);
-    assert!(out.contains("engine=model fp16/fp32 spawn=thesis"), "{out}");
-    let line = out
-        .lines()
-        .find(|l| l.starts_with("dual_precision "))
-        .unwrap_or_else(|| panic!("no dual_precision line:\n{out}"));
-    let field = |key: &str| -> f64 {
-        let v = line.split(' ').find_map(|w| w.strip_prefix(key)).unwrap();
-        v.parse().unwrap()
-    };
-    let (tests, forwarded) = (field("tests="), field("forwarded="));
-    assert!(tests > 0.0 && forwarded < tests, "{line}");
-    assert!(
-        (field("forwarded_share=") - forwarded / tests).abs() < 1e-4,
-        "{line}"
-    );
     let fp32 = ModelIntersector::new(hw_model::lookup("fp32").unwrap());
-    assert_eq!(
-        read_png(&out_png),
-        library_render("utah_teapot", 32, 18, &fp32),
-        "the fp16/fp32 render differs from the fp32 model's"
-    );
+    let want = library_render("utah_teapot", 32, 18, &fp32);
+    for (args, filter) in [
+        (&[][..], "linear"),
+        (&["--dual-filter", "quotient"][..], "quotient"),
+        (&["--dual-filter", "linear-exact"][..], "linear-exact"),
+    ] {
+        let mut cmd = vec![
+            "render",
+            "--scene",
+            "utah_teapot",
+            "--width",
+            "32",
+            "--height",
+            "18",
+            "--engine",
+            "model",
+            "--format",
+            "fp16/fp32",
+            "--out",
+            s(&out_png),
+            "--quiet",
+        ];
+        cmd.extend(args);
+        let out = ok(&cmd);
+        assert!(out.contains("engine=model fp16/fp32 spawn=thesis"), "{out}");
+        let line = out
+            .lines()
+            .find(|l| l.starts_with("dual_precision "))
+            .unwrap_or_else(|| panic!("no dual_precision line:\n{out}"));
+        assert!(line.contains(&format!(" filter={filter} ")), "{line}");
+        let field = |key: &str| -> f64 {
+            let v = line.split(' ').find_map(|w| w.strip_prefix(key)).unwrap();
+            v.parse().unwrap()
+        };
+        let (tests, forwarded) = (field("tests="), field("forwarded="));
+        assert!(tests > 0.0 && forwarded < tests, "{line}");
+        assert!(
+            (field("forwarded_share=") - forwarded / tests).abs() < 1e-4,
+            "{line}"
+        );
+        assert_eq!(
+            read_png(&out_png),
+            want,
+            "the fp16/fp32 render with the {filter} filter differs from the fp32 model's"
+        );
+    }
 }
 
 /// Bad pairs are usage errors naming what is wrong; a pair where only one format can be

@@ -15,6 +15,8 @@ use sw_renderer::rays::EngineError;
 use thiserror::Error;
 
 use crate::mt::{mt_model, mt_traced, scale_query, DET_EPSILON};
+
+mod linear;
 use crate::{catalogue, lookup, Format, FormatError};
 
 #[derive(Debug, Error, PartialEq, Eq)]
@@ -187,6 +189,66 @@ impl Rounding {
     }
 }
 
+/// How a bound is evaluated: exactly (in f64; [`F64_SLACK`] covers f64's own roundings), or
+/// as a hardware bound network would, in a coarse float of `bits` fraction bits with every
+/// result rounded up. The bound's operations (sums, products, max) are monotone on
+/// non-negative values, so rounding each result up keeps every value an upper bound.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BoundArith {
+    Exact,
+    Coarse(u32),
+}
+
+impl BoundArith {
+    /// `x` ≥ 0, rounded up onto the arithmetic's grid.
+    fn up(self, x: f64) -> f64 {
+        match self {
+            BoundArith::Exact => x,
+            BoundArith::Coarse(bits) => {
+                if x == 0.0 || !x.is_finite() {
+                    return x;
+                }
+                // A floor one too high (x just below a power of two) makes the grid coarser,
+                // never the value smaller.
+                let quantum = 2f64.powi(x.log2().floor() as i32 - bits as i32);
+                (x / quantum).ceil() * quantum
+            }
+        }
+    }
+}
+
+/// A format's rounding and the arithmetic its bound is evaluated in.
+#[derive(Clone, Copy, Debug)]
+struct Ctx {
+    r: Rounding,
+    arith: BoundArith,
+}
+
+impl Ctx {
+    fn exact(r: Rounding) -> Ctx {
+        Ctx {
+            r,
+            arith: BoundArith::Exact,
+        }
+    }
+
+    fn up(&self, x: f64) -> f64 {
+        self.arith.up(x)
+    }
+
+    /// The largest error of rounding a value of at most `magnitude`, on the grid.
+    fn error(&self, magnitude: f64) -> f64 {
+        self.up(self.r.error(magnitude))
+    }
+
+    fn bounded(&self, mag: f64, err: f64) -> Bounded {
+        Bounded {
+            mag: self.up(mag),
+            err: self.up(err),
+        }
+    }
+}
+
 /// An intermediate of the datapath: |exact| ≤ `mag`, |computed − exact| ≤ `err`.
 #[derive(Clone, Copy, Debug)]
 struct Bounded {
@@ -204,41 +266,30 @@ struct Fed {
 
 impl Bounded {
     /// A fed coordinate converted into the format (one rounding, none if `exact`).
-    fn input(x: Fed, r: &Rounding, exact: bool) -> Bounded {
-        let conversion = if exact { 0.0 } else { r.error(x.value.abs()) };
-        Bounded {
-            mag: x.value.abs() + x.off,
-            err: x.off + conversion,
-        }
+    fn input(x: Fed, c: &Ctx, exact: bool) -> Bounded {
+        let conversion = if exact { 0.0 } else { c.error(x.value.abs()) };
+        c.bounded(x.value.abs() + x.off, x.off + conversion)
     }
 
     /// The difference of two fed coordinates: its magnitude is known (f64 rounds it by at
     /// most 2^-52), not only the sum of theirs.
-    fn difference(x: Fed, y: Fed, a: Bounded, b: Bounded, r: &Rounding) -> Bounded {
+    fn difference(x: Fed, y: Fed, a: Bounded, b: Bounded, c: &Ctx) -> Bounded {
         let mag = (x.value - y.value).abs() * (1.0 + f64::EPSILON) + x.off + y.off;
         let carried = a.err + b.err - x.off - y.off;
-        Bounded {
-            mag,
-            err: a.err + b.err + r.error(mag + carried),
-        }
+        c.bounded(mag, a.err + b.err + c.error(mag + carried))
     }
 
     /// a ± b: the operands' errors add, then one rounding of a value ≤ mag + err.
-    fn add(a: Bounded, b: Bounded, r: &Rounding) -> Bounded {
-        let (mag, carried) = (a.mag + b.mag, a.err + b.err);
-        Bounded {
-            mag,
-            err: carried + r.error(mag + carried),
-        }
+    fn add(a: Bounded, b: Bounded, c: &Ctx) -> Bounded {
+        let (mag, carried) = (c.up(a.mag + b.mag), c.up(a.err + b.err));
+        c.bounded(mag, carried + c.error(mag + carried))
     }
 
     /// a·b: |ãb̃ − ab| ≤ |a|·err_b + |b|·err_a + err_a·err_b, then one rounding.
-    fn mul(a: Bounded, b: Bounded, r: &Rounding) -> Bounded {
-        let (mag, carried) = (a.mag * b.mag, a.mag * b.err + b.mag * a.err + a.err * b.err);
-        Bounded {
-            mag,
-            err: carried + r.error(mag + carried),
-        }
+    fn mul(a: Bounded, b: Bounded, c: &Ctx) -> Bounded {
+        let mag = c.up(a.mag * b.mag);
+        let carried = c.up(c.up(a.mag * b.err) + c.up(b.mag * a.err) + c.up(a.err * b.err));
+        c.bounded(mag, carried + c.error(mag + carried))
     }
 
     /// The largest magnitude the computed value can have.
@@ -258,14 +309,21 @@ fn datapath_bounds(
     r: &Rounding,
     exact_inputs: bool,
 ) -> Option<(Bounded, [Bounded; 3])> {
-    let mut reach: f64 = 0.0;
-    let mut track = |b: Bounded| {
-        reach = reach.max(b.reach());
-        b
+    let c = Ctx::exact(*r);
+    let [orig, dir, v0, v1, v2] = q.map(|v| v.map(|x| Bounded::input(x, &c, exact_inputs)));
+    let sub = |i: usize, a: &BV| -> BV {
+        std::array::from_fn(|k| Bounded::difference(q[i][k], q[2][k], a[k], v0[k], &c))
     };
-    let load = |v: [Fed; 3]| v.map(|x| Bounded::input(x, r, exact_inputs));
-    let mul = |a, b| Bounded::mul(a, b, r);
-    let add = |a, b| Bounded::add(a, b, r);
+    let (e1, e2, s) = (sub(3, &v1), sub(4, &v2), sub(0, &orig));
+    let loads: Vec<Bounded> = [orig, v0, v1, v2].into_iter().flatten().collect();
+    product_bounds([dir, e1, e2, s], &loads, &c)
+}
+
+/// The bounds of det and the numerators from those of dir, e1, e2 and s (`inputs`);
+/// `loads` are other values the datapath holds, which must not overflow either.
+fn product_bounds(inputs: [BV; 4], loads: &[Bounded], c: &Ctx) -> Option<(Bounded, [Bounded; 3])> {
+    let mul = |a, b| Bounded::mul(a, b, c);
+    let add = |a, b| Bounded::add(a, b, c);
     let cross = |a: &BV, b: &BV| {
         [
             add(mul(a[1], b[2]), mul(a[2], b[1])),
@@ -274,21 +332,23 @@ fn datapath_bounds(
         ]
     };
     let dot = |a: &BV, b: &BV| add(add(mul(a[0], b[0]), mul(a[1], b[1])), mul(a[2], b[2]));
-    let [orig, dir, v0, v1, v2] = q.map(load);
-    let sub = |i: usize, a: &BV| -> BV {
-        std::array::from_fn(|k| Bounded::difference(q[i][k], q[2][k], a[k], v0[k], r))
-    };
-    let (e1, e2, s) = (sub(3, &v1), sub(4, &v2), sub(0, &orig));
+    let [dir, e1, e2, s] = inputs;
     let (p, qv) = (cross(&dir, &e2), cross(&s, &e1));
-    for b in [orig, dir, v0, v1, v2, e1, e2, s, p, qv].iter().flatten() {
-        track(*b);
-    }
+    let det = dot(&e1, &p);
+    let num = [dot(&s, &p), dot(&dir, &qv), dot(&e2, &qv)];
     // Inside a cross or dot every product and partial sum has a smaller mag and err than
     // the result (all terms are added in magnitude), so the results and the inputs cover
     // every intermediate's reach.
-    let det = track(dot(&e1, &p));
-    let num = [dot(&s, &p), dot(&dir, &qv), dot(&e2, &qv)].map(&mut track);
-    (reach <= r.max).then_some((det, num))
+    let reach = inputs
+        .iter()
+        .chain(&[p, qv])
+        .flatten()
+        .chain(loads)
+        .chain(&num)
+        .chain([&det])
+        .map(Bounded::reach)
+        .fold(0.0, f64::max);
+    (reach <= c.r.max).then_some((det, num))
 }
 
 /// An fp32 input as the datapath sees it: subnormals flushed (SPEC), exact in f64.
@@ -311,9 +371,15 @@ fn holds_fp32(format: &Format) -> bool {
 
 /// What the filter lane is fed: the query moved to v0 = 0 by fp32 subtractions (orig − v0,
 /// v1 − v0, v2 − v0; the exact test does not change under translation), then scaled by
-/// 2^`scale_exp`; with each coordinate's distance from the exact translated and scaled one.
-/// `None` if the scaling is inexact (a coordinate leaves fp32's normal range).
-fn filter_input(q: &MtQuery, scale_exp: i32) -> Option<(MtQuery, [[Fed; 3]; 5])> {
+/// 2^`scale_exp`; with each coordinate's distance from the exact translated and scaled one:
+/// the distance itself if `known_offsets`, else the bound of one fp32 rounding (what
+/// hardware knows). `None` if the scaling is inexact (a coordinate leaves fp32's normal
+/// range).
+fn filter_input(
+    q: &MtQuery,
+    scale_exp: i32,
+    known_offsets: bool,
+) -> Option<(MtQuery, [[Fed; 3]; 5])> {
     let flush = |x: f32| if x.is_subnormal() { 0.0 } else { x };
     let v0 = q.v0.map(flush);
     let moved = |p: [f32; 3]| -> [f32; 3] { std::array::from_fn(|k| flush(flush(p[k]) - v0[k])) };
@@ -344,9 +410,16 @@ fn filter_input(q: &MtQuery, scale_exp: i32) -> Option<(MtQuery, [[Fed; 3]; 5])>
             if fed[i][k] != unscaled[i][k] * c {
                 return None;
             }
-            // f64 rounds the exact difference by at most 2^-53 of it.
-            let want = exact_moved(i, k);
-            let off = (unscaled[i][k] - want).abs() + want.abs() * f64::EPSILON;
+            let off = if known_offsets {
+                // f64 rounds the exact difference by at most 2^-53 of it.
+                let want = exact_moved(i, k);
+                (unscaled[i][k] - want).abs() + want.abs() * f64::EPSILON
+            } else if matches!(i, 0 | 3 | 4) {
+                // |fl(z) − z| ≤ max(u·|z|, λ) with |z| ≤ |fl(z)|/(1 − u).
+                FP32_ROUNDING.error(unscaled[i][k].abs() * (1.0 + 4.0 * FP32_ROUNDING.unit))
+            } else {
+                0.0
+            };
             out[i][k] = Fed {
                 value: fed[i][k],
                 off: off * c,
@@ -355,6 +428,13 @@ fn filter_input(q: &MtQuery, scale_exp: i32) -> Option<(MtQuery, [[Fed; 3]; 5])>
     }
     Some((fed_query, out))
 }
+
+/// fp32's rounding (unit 2^-24, smallest normal 2^-126): the filter's subtractors.
+const FP32_ROUNDING: Rounding = Rounding {
+    unit: 1.0 / 16_777_216.0,
+    tiny: f32::MIN_POSITIVE as f64,
+    max: f32::MAX as f64,
+};
 
 /// Rounding errors, relative to f64's: the bounds are evaluated in f64 (a few dozen
 /// roundings of 2^-53 each); the final margins are widened by this factor to cover them.
@@ -411,6 +491,35 @@ fn quotient_errors(n: &Numerator, det: &Det, a: &Rounding, b: &Rounding) -> Opti
     (n_high_b / low_b + rounding_b <= b.max && 1.0 / low_b <= b.max).then_some((err_a, err_b))
 }
 
+/// Fraction bits of a hardware bound network's coarse float.
+pub const HW_BOUND_BITS: u32 = 3;
+
+/// The filter the engines use: the one hardware can build.
+pub const DEFAULT_FILTER: FilterKind = FilterKind::Linear(BoundArith::Coarse(HW_BOUND_BITS));
+
+/// What the filter computes and how its bound is evaluated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FilterKind {
+    /// A whole lane in the filter format (u, v, t as quotients, compared as the fallback
+    /// compares them); the bound evaluated exactly, from the subtractions' exact errors.
+    Quotient,
+    /// No reciprocal: the numerators compared with det ([`linear`]); the bound in the given
+    /// arithmetic (coarse: from the fp32 subtractors' rounding bound, as hardware knows it).
+    Linear(BoundArith),
+}
+
+impl fmt::Display for FilterKind {
+    /// The CLI's names (`--dual-filter`).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            FilterKind::Quotient => f.write_str("quotient"),
+            FilterKind::Linear(BoundArith::Exact) => f.write_str("linear-exact"),
+            FilterKind::Linear(BoundArith::Coarse(HW_BOUND_BITS)) => f.write_str("linear"),
+            FilterKind::Linear(BoundArith::Coarse(bits)) => write!(f, "linear-coarse{bits}"),
+        }
+    }
+}
+
 /// The filter: `pair.filter` on the query moved to v0 = 0 in fp32 and scaled by
 /// 2^`scale_exp` ([`filter_input`]). Moving first is what makes a narrow filter useful:
 /// converted as given, coordinates of 10–50 scene units carry a rounding error of the
@@ -420,6 +529,7 @@ fn quotient_errors(n: &Numerator, det: &Det, a: &Rounding, b: &Rounding) -> Opti
 pub struct Filter {
     pub pair: FormatPair,
     pub scale_exp: i32,
+    pub kind: FilterKind,
     a: Rounding,
     b: Rounding,
     /// The fallback's parallel-ray threshold, as it compares it.
@@ -427,12 +537,13 @@ pub struct Filter {
 }
 
 impl Filter {
-    pub fn new(pair: FormatPair, scale_exp: i32) -> Filter {
+    pub fn new(pair: FormatPair, scale_exp: i32, kind: FilterKind) -> Filter {
         let rounding = |f: &Format| Rounding::of(f).expect("FormatPair::parse admits floats only");
         let fb = pair.fallback;
         Filter {
             pair,
             scale_exp,
+            kind,
             a: rounding(&pair.filter),
             b: rounding(&fb),
             eps_b: fb.to_f64(fb.from_f32(DET_EPSILON)),
@@ -451,12 +562,20 @@ impl Filter {
 
     /// The filter's result, as a miss, if the query is a certain miss.
     fn decide(&self, q: &MtQuery, margin_scale: f64) -> Option<MtResult> {
+        match self.kind {
+            FilterKind::Quotient => self.decide_quotient(q, margin_scale),
+            FilterKind::Linear(arith) => self.decide_linear(q, margin_scale, arith),
+        }
+    }
+
+    /// [`Filter::decide`] for [`FilterKind::Quotient`].
+    fn decide_quotient(&self, q: &MtQuery, margin_scale: f64) -> Option<MtResult> {
         let (a, b) = (&self.a, &self.b);
         let exact = coords(q);
         if exact.iter().flatten().any(|x| !x.is_finite()) {
             return None;
         }
-        let (fed_query, fed_a) = filter_input(q, self.scale_exp)?;
+        let (fed_query, fed_a) = filter_input(q, self.scale_exp, true)?;
         let fed_b = exact.map(|v| v.map(|value| Fed { value, off: 0.0 }));
         let (det_a, num_a) = datapath_bounds(&fed_a, a, holds_fp32(&self.pair.filter))?;
         let (det_b, num_b) = datapath_bounds(&fed_b, b, holds_fp32(&self.pair.fallback))?;
@@ -549,10 +668,15 @@ pub struct DualIntersector {
 }
 
 impl DualIntersector {
-    /// `pair.filter` on queries scaled by 2^`filter_scale_exp`; the fallback unscaled.
+    /// `pair.filter` on queries scaled by 2^`filter_scale_exp`, a [`DEFAULT_FILTER`]; the
+    /// fallback unscaled.
     pub fn new(pair: FormatPair, filter_scale_exp: i32) -> DualIntersector {
+        DualIntersector::with_filter(Filter::new(pair, filter_scale_exp, DEFAULT_FILTER))
+    }
+
+    pub fn with_filter(filter: Filter) -> DualIntersector {
         DualIntersector {
-            filter: Filter::new(pair, filter_scale_exp),
+            filter,
             counters: Arc::default(),
         }
     }
@@ -594,5 +718,37 @@ impl Intersector for DualIntersector {
             .certain_misses
             .fetch_add(misses, Ordering::Relaxed);
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::BoundArith;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The coarse grid rounds up onto values of `bits` fraction bits, at most one
+        /// grid step (2^(1-bits) relative) above, and leaves grid values alone.
+        #[test]
+        fn coarse_rounding_is_upward_onto_the_grid(x in 1e-300f64..1e300, bits in 0u32..8) {
+            let up = BoundArith::Coarse(bits).up(x);
+            prop_assert!(up >= x);
+            prop_assert!(up <= x * (1.0 + 2f64.powi(1 - bits as i32)));
+            let e = up.log2().floor() as i32;
+            let steps = up / 2f64.powi(e - bits as i32);
+            prop_assert!(steps == steps.trunc() && steps <= 2f64.powi(bits as i32 + 1));
+            prop_assert_eq!(BoundArith::Coarse(bits).up(up), up);
+        }
+    }
+
+    #[test]
+    fn exact_bound_arithmetic_is_the_identity() {
+        for x in [0.0, 1e-30, 0.3, 7.0, f64::INFINITY] {
+            assert_eq!(BoundArith::Exact.up(x), x);
+            assert_eq!(
+                BoundArith::Coarse(3).up(x) == x,
+                x == 0.0 || x.is_infinite() || x == 7.0
+            );
+        }
     }
 }
