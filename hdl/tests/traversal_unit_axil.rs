@@ -295,3 +295,20 @@ fn the_axi4_lite_units_verilog_passes_verilator_lint() {
     }
     assert!(top.ports.iter().any(|p| p.name == "axi$awaddr"));
 }
+
+/// yosys resources of the unit's register slave alone (the unit's are BENCHMARKS.md "The
+/// assembled unit in yosys"):
+/// `cargo test --release -p hdl --test traversal_unit_axil -- --ignored --nocapture control_resources`.
+#[test]
+#[ignore]
+fn control_resources() {
+    let mut control = hdl::traversal::unit_axil::UnitControl::new(&UnitConfig::new(
+        HwFormat::FP32,
+        5,
+        1,
+    ));
+    control.connect_all();
+    let verilog = generate_verilog(&control);
+    let designs = [("unit register slave (regmap::unit)".to_string(), verilog)];
+    println!("{}", hdl::synth::markdown_table(&designs).unwrap());
+}
