@@ -302,11 +302,8 @@ fn the_axi4_lite_units_verilog_passes_verilator_lint() {
 #[test]
 #[ignore]
 fn control_resources() {
-    let mut control = hdl::traversal::unit_axil::UnitControl::new(&UnitConfig::new(
-        HwFormat::FP32,
-        5,
-        1,
-    ));
+    let mut control =
+        hdl::traversal::unit_axil::UnitControl::new(&UnitConfig::new(HwFormat::FP32, 5, 1));
     control.connect_all();
     let verilog = generate_verilog(&control);
     let designs = [("unit register slave (regmap::unit)".to_string(), verilog)];
