@@ -40,7 +40,8 @@ test: setup
 golden: build
 	$(RTFPGA) golden --out golden
 
-# Regenerate the committed Verilog of the default configurations (a test checks they are current).
+# Regenerate generated-verilog/ (a test checks it is current): the accelerator's default
+# configurations and the traversal unit's C driver and config.json.
 verilog: build
 	$(RTFPGA) verilog --defaults --out generated-verilog
 

@@ -844,22 +844,22 @@ module rtfpga_core$slave(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wv
     input wire  clock;
     input wire  reset_n;
     input wire  axi$awvalid;
-    output reg  axi$awready;
+    output wire  axi$awready;
     input wire  [6:0] axi$awaddr;
     input wire  axi$wvalid;
-    output reg  axi$wready;
+    output wire  axi$wready;
     input wire  [31:0] axi$wdata;
     input wire  [3:0] axi$wstrb;
-    output reg  axi$bvalid;
+    output wire  axi$bvalid;
     input wire  axi$bready;
-    output reg  [1:0] axi$bresp;
+    output wire  [1:0] axi$bresp;
     input wire  axi$arvalid;
-    output reg  axi$arready;
+    output wire  axi$arready;
     input wire  [6:0] axi$araddr;
-    output reg  axi$rvalid;
+    output wire  axi$rvalid;
     input wire  axi$rready;
-    output reg  [31:0] axi$rdata;
-    output reg  [1:0] axi$rresp;
+    output wire  [31:0] axi$rdata;
+    output wire  [1:0] axi$rresp;
     output reg  interrupt;
     output reg  start;
     output reg  [31:0] operands$0;
@@ -913,12 +913,6 @@ module rtfpga_core$slave(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wv
     localparam  word_v = 5'b10111;
     localparam  word_id = 5'b11000;
     localparam  word_config = 5'b11001;
-    localparam  lane_mask$0 = 32'hff;
-    localparam  lane_mask$1 = 32'hff00;
-    localparam  lane_mask$2 = 32'hff0000;
-    localparam  lane_mask$3 = 32'hff000000;
-    localparam  resp_okay = 2'b0;
-    localparam  resp_slverr = 2'b10;
     localparam  mask_ap_start = 32'h1;
     localparam  mask_ap_done = 32'h2;
     localparam  mask_ap_idle = 32'h4;
@@ -931,36 +925,18 @@ module rtfpga_core$slave(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wv
     localparam  no_interrupts = 2'b0;
     
     // Stub signals
-    reg  aw_full$d;
-    wire  aw_full$q;
-    reg  aw_full$clock;
-    reg  [4:0] aw_word$d;
-    wire  [4:0] aw_word$q;
-    reg  aw_word$clock;
-    reg  w_full$d;
-    wire  w_full$q;
-    reg  w_full$clock;
-    reg  [31:0] w_data$d;
-    wire  [31:0] w_data$q;
-    reg  w_data$clock;
-    reg  [3:0] w_strb$d;
-    wire  [3:0] w_strb$q;
-    reg  w_strb$clock;
-    reg  b_valid$d;
-    wire  b_valid$q;
-    reg  b_valid$clock;
-    reg  [1:0] b_resp$d;
-    wire  [1:0] b_resp$q;
-    reg  b_resp$clock;
-    reg  r_valid$d;
-    wire  r_valid$q;
-    reg  r_valid$clock;
-    reg  [31:0] r_data$d;
-    wire  [31:0] r_data$q;
-    reg  r_data$clock;
-    reg  [1:0] r_resp$d;
-    wire  [1:0] r_resp$q;
-    reg  r_resp$clock;
+    reg  bus$clock;
+    reg  bus$reset_n;
+    wire  bus$read;
+    wire  [4:0] bus$read_word;
+    reg  [31:0] bus$read_data;
+    reg  bus$read_ok;
+    wire  bus$write;
+    wire  [4:0] bus$write_word;
+    wire  [31:0] bus$write_data;
+    wire  [31:0] bus$write_mask;
+    wire  bus$write_byte0;
+    reg  bus$write_ok;
     reg  ap_start$d;
     wire  ap_start$q;
     reg  ap_start$clock;
@@ -1098,12 +1074,8 @@ module rtfpga_core$slave(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wv
     reg  v_q$clock;
     
     // Local signals
-    reg  write_now;
     reg  w_mapped;
     reg  w_readonly;
-    reg  [31:0] w_mask;
-    reg  read_now;
-    reg  [4:0] r_word;
     reg  r_mapped;
     reg  [31:0] r_mux;
     reg  launch;
@@ -1111,55 +1083,36 @@ module rtfpga_core$slave(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wv
     reg  [1:0] isr_next;
     
     // Sub module instances
-    rtfpga_core$slave$aw_full aw_full(
-        .d(aw_full$d),
-        .q(aw_full$q),
-        .clock(aw_full$clock)
-    );
-    rtfpga_core$slave$aw_word aw_word(
-        .d(aw_word$d),
-        .q(aw_word$q),
-        .clock(aw_word$clock)
-    );
-    rtfpga_core$slave$w_full w_full(
-        .d(w_full$d),
-        .q(w_full$q),
-        .clock(w_full$clock)
-    );
-    rtfpga_core$slave$w_data w_data(
-        .d(w_data$d),
-        .q(w_data$q),
-        .clock(w_data$clock)
-    );
-    rtfpga_core$slave$w_strb w_strb(
-        .d(w_strb$d),
-        .q(w_strb$q),
-        .clock(w_strb$clock)
-    );
-    rtfpga_core$slave$b_valid b_valid(
-        .d(b_valid$d),
-        .q(b_valid$q),
-        .clock(b_valid$clock)
-    );
-    rtfpga_core$slave$b_resp b_resp(
-        .d(b_resp$d),
-        .q(b_resp$q),
-        .clock(b_resp$clock)
-    );
-    rtfpga_core$slave$r_valid r_valid(
-        .d(r_valid$d),
-        .q(r_valid$q),
-        .clock(r_valid$clock)
-    );
-    rtfpga_core$slave$r_data r_data(
-        .d(r_data$d),
-        .q(r_data$q),
-        .clock(r_data$clock)
-    );
-    rtfpga_core$slave$r_resp r_resp(
-        .d(r_resp$d),
-        .q(r_resp$q),
-        .clock(r_resp$clock)
+    rtfpga_core$slave$bus bus(
+        .clock(bus$clock),
+        .reset_n(bus$reset_n),
+        .axi$awvalid(axi$awvalid),
+        .axi$awready(axi$awready),
+        .axi$awaddr(axi$awaddr),
+        .axi$wvalid(axi$wvalid),
+        .axi$wready(axi$wready),
+        .axi$wdata(axi$wdata),
+        .axi$wstrb(axi$wstrb),
+        .axi$bvalid(axi$bvalid),
+        .axi$bready(axi$bready),
+        .axi$bresp(axi$bresp),
+        .axi$arvalid(axi$arvalid),
+        .axi$arready(axi$arready),
+        .axi$araddr(axi$araddr),
+        .axi$rvalid(axi$rvalid),
+        .axi$rready(axi$rready),
+        .axi$rdata(axi$rdata),
+        .axi$rresp(axi$rresp),
+        .read(bus$read),
+        .read_word(bus$read_word),
+        .read_data(bus$read_data),
+        .read_ok(bus$read_ok),
+        .write(bus$write),
+        .write_word(bus$write_word),
+        .write_data(bus$write_data),
+        .write_mask(bus$write_mask),
+        .write_byte0(bus$write_byte0),
+        .write_ok(bus$write_ok)
     );
     rtfpga_core$slave$ap_start ap_start(
         .d(ap_start$d),
@@ -1389,16 +1342,6 @@ module rtfpga_core$slave(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wv
     
     // Update code
     always @(*) begin
-        aw_full$clock = clock;
-        aw_word$clock = clock;
-        w_full$clock = clock;
-        w_data$clock = clock;
-        w_strb$clock = clock;
-        b_valid$clock = clock;
-        b_resp$clock = clock;
-        r_valid$clock = clock;
-        r_data$clock = clock;
-        r_resp$clock = clock;
         ap_start$clock = clock;
         ap_done$clock = clock;
         ap_ready$clock = clock;
@@ -1412,16 +1355,6 @@ module rtfpga_core$slave(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wv
         t_q$clock = clock;
         u_q$clock = clock;
         v_q$clock = clock;
-        aw_full$d = aw_full$q;
-        aw_word$d = aw_word$q;
-        w_full$d = w_full$q;
-        w_data$d = w_data$q;
-        w_strb$d = w_strb$q;
-        b_valid$d = b_valid$q;
-        b_resp$d = b_resp$q;
-        r_valid$d = r_valid$q;
-        r_data$d = r_data$q;
-        r_resp$d = r_resp$q;
         ap_start$d = ap_start$q;
         ap_done$d = ap_done$q;
         ap_ready$d = ap_ready$q;
@@ -1515,26 +1448,15 @@ module rtfpga_core$slave(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wv
         held$15$clock = clock;
         held$15$d = held$15$q;
         operands$15 = held$15$q;
-        axi$awready = ~aw_full$q;
-        axi$wready = ~w_full$q;
-        axi$bvalid = b_valid$q;
-        axi$bresp = b_resp$q;
-        axi$arready = ~r_valid$q;
-        axi$rvalid = r_valid$q;
-        axi$rdata = r_data$q;
-        axi$rresp = r_resp$q;
+        bus$clock = clock;
+        bus$reset_n = reset_n;
         interrupt = gie$q & |(isr$q & ier$q);
         launch = ap_start$q & ~busy$q;
         start = start_q$q;
         core_done = done & busy$q;
-        if (r_valid$q & axi$rready) begin
-            r_valid$d = 1'b0;
-        end
-        read_now = axi$arvalid & ~r_valid$q;
-        r_word = axi$araddr[(32'h2)+:(5)];
         r_mapped = 1'b0;
         r_mux = 32'h0;
-        if (r_word == word_control) begin
+        if (bus$read_word == word_control) begin
             r_mapped = 1'b1;
             if (ap_start$q) begin
                 r_mux = r_mux | mask_ap_start;
@@ -1551,18 +1473,18 @@ module rtfpga_core$slave(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wv
             if (auto_restart$q) begin
                 r_mux = r_mux | mask_auto_restart;
             end
-            if (read_now) begin
+            if (bus$read) begin
                 ap_done$d = 1'b0;
                 ap_ready$d = 1'b0;
             end
         end
-        if (r_word == word_gie) begin
+        if (bus$read_word == word_gie) begin
             r_mapped = 1'b1;
             if (gie$q) begin
                 r_mux = mask_gie;
             end
         end
-        if (r_word == word_ier) begin
+        if (bus$read_word == word_ier) begin
             r_mapped = 1'b1;
             if (ier$q[0]) begin
                 r_mux = r_mux | mask_interrupt$0;
@@ -1571,7 +1493,7 @@ module rtfpga_core$slave(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wv
                 r_mux = r_mux | mask_interrupt$1;
             end
         end
-        if (r_word == word_isr) begin
+        if (bus$read_word == word_isr) begin
             r_mapped = 1'b1;
             if (isr$q[0]) begin
                 r_mux = r_mux | mask_interrupt$0;
@@ -1580,276 +1502,232 @@ module rtfpga_core$slave(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wv
                 r_mux = r_mux | mask_interrupt$1;
             end
         end
-        if (r_word == word_operand$0) begin
+        if (bus$read_word == word_operand$0) begin
             r_mapped = 1'b1;
             r_mux = args$0$q;
         end
-        if (r_word == word_operand$1) begin
+        if (bus$read_word == word_operand$1) begin
             r_mapped = 1'b1;
             r_mux = args$1$q;
         end
-        if (r_word == word_operand$2) begin
+        if (bus$read_word == word_operand$2) begin
             r_mapped = 1'b1;
             r_mux = args$2$q;
         end
-        if (r_word == word_operand$3) begin
+        if (bus$read_word == word_operand$3) begin
             r_mapped = 1'b1;
             r_mux = args$3$q;
         end
-        if (r_word == word_operand$4) begin
+        if (bus$read_word == word_operand$4) begin
             r_mapped = 1'b1;
             r_mux = args$4$q;
         end
-        if (r_word == word_operand$5) begin
+        if (bus$read_word == word_operand$5) begin
             r_mapped = 1'b1;
             r_mux = args$5$q;
         end
-        if (r_word == word_operand$6) begin
+        if (bus$read_word == word_operand$6) begin
             r_mapped = 1'b1;
             r_mux = args$6$q;
         end
-        if (r_word == word_operand$7) begin
+        if (bus$read_word == word_operand$7) begin
             r_mapped = 1'b1;
             r_mux = args$7$q;
         end
-        if (r_word == word_operand$8) begin
+        if (bus$read_word == word_operand$8) begin
             r_mapped = 1'b1;
             r_mux = args$8$q;
         end
-        if (r_word == word_operand$9) begin
+        if (bus$read_word == word_operand$9) begin
             r_mapped = 1'b1;
             r_mux = args$9$q;
         end
-        if (r_word == word_operand$10) begin
+        if (bus$read_word == word_operand$10) begin
             r_mapped = 1'b1;
             r_mux = args$10$q;
         end
-        if (r_word == word_operand$11) begin
+        if (bus$read_word == word_operand$11) begin
             r_mapped = 1'b1;
             r_mux = args$11$q;
         end
-        if (r_word == word_operand$12) begin
+        if (bus$read_word == word_operand$12) begin
             r_mapped = 1'b1;
             r_mux = args$12$q;
         end
-        if (r_word == word_operand$13) begin
+        if (bus$read_word == word_operand$13) begin
             r_mapped = 1'b1;
             r_mux = args$13$q;
         end
-        if (r_word == word_operand$14) begin
+        if (bus$read_word == word_operand$14) begin
             r_mapped = 1'b1;
             r_mux = args$14$q;
         end
-        if (r_word == word_operand$15) begin
+        if (bus$read_word == word_operand$15) begin
             r_mapped = 1'b1;
             r_mux = args$15$q;
         end
-        if (r_word == word_result) begin
+        if (bus$read_word == word_result) begin
             r_mapped = 1'b1;
             if (hit_q$q) begin
                 r_mux = mask_hit;
             end
         end
-        if (r_word == word_t) begin
+        if (bus$read_word == word_t) begin
             r_mapped = 1'b1;
             r_mux = t_q$q;
         end
-        if (r_word == word_u) begin
+        if (bus$read_word == word_u) begin
             r_mapped = 1'b1;
             r_mux = u_q$q;
         end
-        if (r_word == word_v) begin
+        if (bus$read_word == word_v) begin
             r_mapped = 1'b1;
             r_mux = v_q$q;
         end
-        if (r_word == word_id) begin
+        if (bus$read_word == word_id) begin
             r_mapped = 1'b1;
             r_mux = id;
         end
-        if (r_word == word_config) begin
+        if (bus$read_word == word_config) begin
             r_mapped = 1'b1;
             r_mux = configuration;
         end
-        if (read_now) begin
-            r_valid$d = 1'b1;
-            r_data$d = r_mux;
-            if (r_mapped) begin
-                r_resp$d = resp_okay;
-            end
-            else begin
-                r_resp$d = resp_slverr;
-            end
-        end
-        if (axi$awvalid & ~aw_full$q) begin
-            aw_full$d = 1'b1;
-            aw_word$d = axi$awaddr[(32'h2)+:(5)];
-        end
-        if (axi$wvalid & ~w_full$q) begin
-            w_full$d = 1'b1;
-            w_data$d = axi$wdata;
-            w_strb$d = axi$wstrb;
-        end
-        if (b_valid$q & axi$bready) begin
-            b_valid$d = 1'b0;
-        end
-        write_now = aw_full$q & w_full$q & ~b_valid$q;
-        w_mask = 32'h0;
-        if (w_strb$q[0]) begin
-            w_mask = w_mask | lane_mask$0;
-        end
-        if (w_strb$q[1]) begin
-            w_mask = w_mask | lane_mask$1;
-        end
-        if (w_strb$q[2]) begin
-            w_mask = w_mask | lane_mask$2;
-        end
-        if (w_strb$q[3]) begin
-            w_mask = w_mask | lane_mask$3;
-        end
+        bus$read_data = r_mux;
+        bus$read_ok = r_mapped;
         if (core_done) begin
             ap_start$d = auto_restart$q;
         end
         isr_next = isr$q;
         w_mapped = 1'b0;
         w_readonly = 1'b0;
-        if (aw_word$q == word_control) begin
+        if (bus$write_word == word_control) begin
             w_mapped = 1'b1;
-            if (write_now & w_strb$q[32'h0]) begin
-                if (w_data$q[32'h0]) begin
+            if (bus$write & bus$write_byte0) begin
+                if (bus$write_data[32'h0]) begin
                     ap_start$d = 1'b1;
                 end
-                auto_restart$d = w_data$q[32'h7];
+                auto_restart$d = bus$write_data[32'h7];
             end
         end
-        if (aw_word$q == word_gie) begin
+        if (bus$write_word == word_gie) begin
             w_mapped = 1'b1;
-            if (write_now & w_strb$q[32'h0]) begin
-                gie$d = w_data$q[32'h0];
+            if (bus$write & bus$write_byte0) begin
+                gie$d = bus$write_data[32'h0];
             end
         end
-        if (aw_word$q == word_ier) begin
+        if (bus$write_word == word_ier) begin
             w_mapped = 1'b1;
-            if (write_now & w_strb$q[32'h0]) begin
-                ier$d = w_data$q[(32'h0)+:(2)];
+            if (bus$write & bus$write_byte0) begin
+                ier$d = bus$write_data[(32'h0)+:(2)];
             end
         end
-        if (aw_word$q == word_isr) begin
+        if (bus$write_word == word_isr) begin
             w_mapped = 1'b1;
-            if (write_now & w_strb$q[32'h0]) begin
-                isr_next = isr_next ^ w_data$q[(32'h0)+:(2)];
+            if (bus$write & bus$write_byte0) begin
+                isr_next = isr_next ^ bus$write_data[(32'h0)+:(2)];
             end
         end
-        if (aw_word$q == word_operand$0) begin
+        if (bus$write_word == word_operand$0) begin
             w_mapped = 1'b1;
-            if (write_now) begin
-                args$0$d = (args$0$q & ~w_mask) | (w_data$q & w_mask);
+            if (bus$write) begin
+                args$0$d = (args$0$q & ~bus$write_mask) | (bus$write_data & bus$write_mask);
             end
         end
-        if (aw_word$q == word_operand$1) begin
+        if (bus$write_word == word_operand$1) begin
             w_mapped = 1'b1;
-            if (write_now) begin
-                args$1$d = (args$1$q & ~w_mask) | (w_data$q & w_mask);
+            if (bus$write) begin
+                args$1$d = (args$1$q & ~bus$write_mask) | (bus$write_data & bus$write_mask);
             end
         end
-        if (aw_word$q == word_operand$2) begin
+        if (bus$write_word == word_operand$2) begin
             w_mapped = 1'b1;
-            if (write_now) begin
-                args$2$d = (args$2$q & ~w_mask) | (w_data$q & w_mask);
+            if (bus$write) begin
+                args$2$d = (args$2$q & ~bus$write_mask) | (bus$write_data & bus$write_mask);
             end
         end
-        if (aw_word$q == word_operand$3) begin
+        if (bus$write_word == word_operand$3) begin
             w_mapped = 1'b1;
-            if (write_now) begin
-                args$3$d = (args$3$q & ~w_mask) | (w_data$q & w_mask);
+            if (bus$write) begin
+                args$3$d = (args$3$q & ~bus$write_mask) | (bus$write_data & bus$write_mask);
             end
         end
-        if (aw_word$q == word_operand$4) begin
+        if (bus$write_word == word_operand$4) begin
             w_mapped = 1'b1;
-            if (write_now) begin
-                args$4$d = (args$4$q & ~w_mask) | (w_data$q & w_mask);
+            if (bus$write) begin
+                args$4$d = (args$4$q & ~bus$write_mask) | (bus$write_data & bus$write_mask);
             end
         end
-        if (aw_word$q == word_operand$5) begin
+        if (bus$write_word == word_operand$5) begin
             w_mapped = 1'b1;
-            if (write_now) begin
-                args$5$d = (args$5$q & ~w_mask) | (w_data$q & w_mask);
+            if (bus$write) begin
+                args$5$d = (args$5$q & ~bus$write_mask) | (bus$write_data & bus$write_mask);
             end
         end
-        if (aw_word$q == word_operand$6) begin
+        if (bus$write_word == word_operand$6) begin
             w_mapped = 1'b1;
-            if (write_now) begin
-                args$6$d = (args$6$q & ~w_mask) | (w_data$q & w_mask);
+            if (bus$write) begin
+                args$6$d = (args$6$q & ~bus$write_mask) | (bus$write_data & bus$write_mask);
             end
         end
-        if (aw_word$q == word_operand$7) begin
+        if (bus$write_word == word_operand$7) begin
             w_mapped = 1'b1;
-            if (write_now) begin
-                args$7$d = (args$7$q & ~w_mask) | (w_data$q & w_mask);
+            if (bus$write) begin
+                args$7$d = (args$7$q & ~bus$write_mask) | (bus$write_data & bus$write_mask);
             end
         end
-        if (aw_word$q == word_operand$8) begin
+        if (bus$write_word == word_operand$8) begin
             w_mapped = 1'b1;
-            if (write_now) begin
-                args$8$d = (args$8$q & ~w_mask) | (w_data$q & w_mask);
+            if (bus$write) begin
+                args$8$d = (args$8$q & ~bus$write_mask) | (bus$write_data & bus$write_mask);
             end
         end
-        if (aw_word$q == word_operand$9) begin
+        if (bus$write_word == word_operand$9) begin
             w_mapped = 1'b1;
-            if (write_now) begin
-                args$9$d = (args$9$q & ~w_mask) | (w_data$q & w_mask);
+            if (bus$write) begin
+                args$9$d = (args$9$q & ~bus$write_mask) | (bus$write_data & bus$write_mask);
             end
         end
-        if (aw_word$q == word_operand$10) begin
+        if (bus$write_word == word_operand$10) begin
             w_mapped = 1'b1;
-            if (write_now) begin
-                args$10$d = (args$10$q & ~w_mask) | (w_data$q & w_mask);
+            if (bus$write) begin
+                args$10$d = (args$10$q & ~bus$write_mask) | (bus$write_data & bus$write_mask);
             end
         end
-        if (aw_word$q == word_operand$11) begin
+        if (bus$write_word == word_operand$11) begin
             w_mapped = 1'b1;
-            if (write_now) begin
-                args$11$d = (args$11$q & ~w_mask) | (w_data$q & w_mask);
+            if (bus$write) begin
+                args$11$d = (args$11$q & ~bus$write_mask) | (bus$write_data & bus$write_mask);
             end
         end
-        if (aw_word$q == word_operand$12) begin
+        if (bus$write_word == word_operand$12) begin
             w_mapped = 1'b1;
-            if (write_now) begin
-                args$12$d = (args$12$q & ~w_mask) | (w_data$q & w_mask);
+            if (bus$write) begin
+                args$12$d = (args$12$q & ~bus$write_mask) | (bus$write_data & bus$write_mask);
             end
         end
-        if (aw_word$q == word_operand$13) begin
+        if (bus$write_word == word_operand$13) begin
             w_mapped = 1'b1;
-            if (write_now) begin
-                args$13$d = (args$13$q & ~w_mask) | (w_data$q & w_mask);
+            if (bus$write) begin
+                args$13$d = (args$13$q & ~bus$write_mask) | (bus$write_data & bus$write_mask);
             end
         end
-        if (aw_word$q == word_operand$14) begin
+        if (bus$write_word == word_operand$14) begin
             w_mapped = 1'b1;
-            if (write_now) begin
-                args$14$d = (args$14$q & ~w_mask) | (w_data$q & w_mask);
+            if (bus$write) begin
+                args$14$d = (args$14$q & ~bus$write_mask) | (bus$write_data & bus$write_mask);
             end
         end
-        if (aw_word$q == word_operand$15) begin
+        if (bus$write_word == word_operand$15) begin
             w_mapped = 1'b1;
-            if (write_now) begin
-                args$15$d = (args$15$q & ~w_mask) | (w_data$q & w_mask);
+            if (bus$write) begin
+                args$15$d = (args$15$q & ~bus$write_mask) | (bus$write_data & bus$write_mask);
             end
         end
-        if ((aw_word$q == word_result) | (aw_word$q == word_t) | (aw_word$q == word_u) | (aw_word$q == word_v) | (aw_word$q == word_id) | (aw_word$q == word_config)) begin
+        if ((bus$write_word == word_result) | (bus$write_word == word_t) | (bus$write_word == word_u) | (bus$write_word == word_v) | (bus$write_word == word_id) | (bus$write_word == word_config)) begin
             w_mapped = 1'b1;
             w_readonly = 1'b1;
         end
-        if (write_now) begin
-            aw_full$d = 1'b0;
-            w_full$d = 1'b0;
-            b_valid$d = 1'b1;
-            if (w_mapped & ~w_readonly) begin
-                b_resp$d = resp_okay;
-            end
-            else begin
-                b_resp$d = resp_slverr;
-            end
-        end
+        bus$write_ok = w_mapped & ~w_readonly;
         start_q$d = launch;
         if (launch) begin
             busy$d = 1'b1;
@@ -1882,10 +1760,6 @@ module rtfpga_core$slave(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wv
         end
         isr$d = isr_next;
         if (~reset_n) begin
-            aw_full$d = 1'b0;
-            w_full$d = 1'b0;
-            b_valid$d = 1'b0;
-            r_valid$d = 1'b0;
             ap_start$d = 1'b0;
             ap_done$d = 1'b0;
             ap_ready$d = 1'b0;
@@ -2317,7 +2191,232 @@ module rtfpga_core$slave$auto_restart(d,q,clock);
 endmodule // rtfpga_core$slave$auto_restart
 
 
-module rtfpga_core$slave$aw_full(d,q,clock);
+module rtfpga_core$slave$bus(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wvalid,axi$wready,axi$wdata,axi$wstrb,axi$bvalid,axi$bready,axi$bresp,axi$arvalid,axi$arready,axi$araddr,axi$rvalid,axi$rready,axi$rdata,axi$rresp,read,read_word,read_data,read_ok,write,write_word,write_data,write_mask,write_byte0,write_ok);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset_n;
+    input wire  axi$awvalid;
+    output reg  axi$awready;
+    input wire  [6:0] axi$awaddr;
+    input wire  axi$wvalid;
+    output reg  axi$wready;
+    input wire  [31:0] axi$wdata;
+    input wire  [3:0] axi$wstrb;
+    output reg  axi$bvalid;
+    input wire  axi$bready;
+    output reg  [1:0] axi$bresp;
+    input wire  axi$arvalid;
+    output reg  axi$arready;
+    input wire  [6:0] axi$araddr;
+    output reg  axi$rvalid;
+    input wire  axi$rready;
+    output reg  [31:0] axi$rdata;
+    output reg  [1:0] axi$rresp;
+    output reg  read;
+    output reg  [4:0] read_word;
+    input wire  [31:0] read_data;
+    input wire  read_ok;
+    output reg  write;
+    output reg  [4:0] write_word;
+    output reg  [31:0] write_data;
+    output reg  [31:0] write_mask;
+    output reg  write_byte0;
+    input wire  write_ok;
+    
+    // Constant declarations
+    localparam  lane_mask$0 = 32'hff;
+    localparam  lane_mask$1 = 32'hff00;
+    localparam  lane_mask$2 = 32'hff0000;
+    localparam  lane_mask$3 = 32'hff000000;
+    localparam  resp_okay = 2'b0;
+    localparam  resp_slverr = 2'b10;
+    
+    // Stub signals
+    reg  aw_full$d;
+    wire  aw_full$q;
+    reg  aw_full$clock;
+    reg  [4:0] aw_word$d;
+    wire  [4:0] aw_word$q;
+    reg  aw_word$clock;
+    reg  w_full$d;
+    wire  w_full$q;
+    reg  w_full$clock;
+    reg  [31:0] w_data$d;
+    wire  [31:0] w_data$q;
+    reg  w_data$clock;
+    reg  [3:0] w_strb$d;
+    wire  [3:0] w_strb$q;
+    reg  w_strb$clock;
+    reg  b_valid$d;
+    wire  b_valid$q;
+    reg  b_valid$clock;
+    reg  [1:0] b_resp$d;
+    wire  [1:0] b_resp$q;
+    reg  b_resp$clock;
+    reg  r_valid$d;
+    wire  r_valid$q;
+    reg  r_valid$clock;
+    reg  [31:0] r_data$d;
+    wire  [31:0] r_data$q;
+    reg  r_data$clock;
+    reg  [1:0] r_resp$d;
+    wire  [1:0] r_resp$q;
+    reg  r_resp$clock;
+    
+    // Local signals
+    reg  [31:0] w_mask;
+    
+    // Sub module instances
+    rtfpga_core$slave$bus$aw_full aw_full(
+        .d(aw_full$d),
+        .q(aw_full$q),
+        .clock(aw_full$clock)
+    );
+    rtfpga_core$slave$bus$aw_word aw_word(
+        .d(aw_word$d),
+        .q(aw_word$q),
+        .clock(aw_word$clock)
+    );
+    rtfpga_core$slave$bus$w_full w_full(
+        .d(w_full$d),
+        .q(w_full$q),
+        .clock(w_full$clock)
+    );
+    rtfpga_core$slave$bus$w_data w_data(
+        .d(w_data$d),
+        .q(w_data$q),
+        .clock(w_data$clock)
+    );
+    rtfpga_core$slave$bus$w_strb w_strb(
+        .d(w_strb$d),
+        .q(w_strb$q),
+        .clock(w_strb$clock)
+    );
+    rtfpga_core$slave$bus$b_valid b_valid(
+        .d(b_valid$d),
+        .q(b_valid$q),
+        .clock(b_valid$clock)
+    );
+    rtfpga_core$slave$bus$b_resp b_resp(
+        .d(b_resp$d),
+        .q(b_resp$q),
+        .clock(b_resp$clock)
+    );
+    rtfpga_core$slave$bus$r_valid r_valid(
+        .d(r_valid$d),
+        .q(r_valid$q),
+        .clock(r_valid$clock)
+    );
+    rtfpga_core$slave$bus$r_data r_data(
+        .d(r_data$d),
+        .q(r_data$q),
+        .clock(r_data$clock)
+    );
+    rtfpga_core$slave$bus$r_resp r_resp(
+        .d(r_resp$d),
+        .q(r_resp$q),
+        .clock(r_resp$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        aw_full$clock = clock;
+        aw_word$clock = clock;
+        w_full$clock = clock;
+        w_data$clock = clock;
+        w_strb$clock = clock;
+        b_valid$clock = clock;
+        b_resp$clock = clock;
+        r_valid$clock = clock;
+        r_data$clock = clock;
+        r_resp$clock = clock;
+        aw_full$d = aw_full$q;
+        aw_word$d = aw_word$q;
+        w_full$d = w_full$q;
+        w_data$d = w_data$q;
+        w_strb$d = w_strb$q;
+        b_valid$d = b_valid$q;
+        b_resp$d = b_resp$q;
+        r_valid$d = r_valid$q;
+        r_data$d = r_data$q;
+        r_resp$d = r_resp$q;
+        axi$awready = ~aw_full$q;
+        axi$wready = ~w_full$q;
+        axi$bvalid = b_valid$q;
+        axi$bresp = b_resp$q;
+        axi$arready = ~r_valid$q;
+        axi$rvalid = r_valid$q;
+        axi$rdata = r_data$q;
+        axi$rresp = r_resp$q;
+        if (r_valid$q & axi$rready) begin
+            r_valid$d = 1'b0;
+        end
+        read = axi$arvalid & ~r_valid$q;
+        read_word = axi$araddr[(32'h2)+:(5)];
+        if (axi$arvalid & ~r_valid$q) begin
+            r_valid$d = 1'b1;
+            r_data$d = read_data;
+            if (read_ok) begin
+                r_resp$d = resp_okay;
+            end
+            else begin
+                r_resp$d = resp_slverr;
+            end
+        end
+        if (axi$awvalid & ~aw_full$q) begin
+            aw_full$d = 1'b1;
+            aw_word$d = axi$awaddr[(32'h2)+:(5)];
+        end
+        if (axi$wvalid & ~w_full$q) begin
+            w_full$d = 1'b1;
+            w_data$d = axi$wdata;
+            w_strb$d = axi$wstrb;
+        end
+        if (b_valid$q & axi$bready) begin
+            b_valid$d = 1'b0;
+        end
+        write = aw_full$q & w_full$q & ~b_valid$q;
+        write_word = aw_word$q;
+        write_data = w_data$q;
+        write_byte0 = w_strb$q[32'h0];
+        w_mask = 32'h0;
+        if (w_strb$q[0]) begin
+            w_mask = w_mask | lane_mask$0;
+        end
+        if (w_strb$q[1]) begin
+            w_mask = w_mask | lane_mask$1;
+        end
+        if (w_strb$q[2]) begin
+            w_mask = w_mask | lane_mask$2;
+        end
+        if (w_strb$q[3]) begin
+            w_mask = w_mask | lane_mask$3;
+        end
+        write_mask = w_mask;
+        if (aw_full$q & w_full$q & ~b_valid$q) begin
+            aw_full$d = 1'b0;
+            w_full$d = 1'b0;
+            b_valid$d = 1'b1;
+            if (write_ok) begin
+                b_resp$d = resp_okay;
+            end
+            else begin
+                b_resp$d = resp_slverr;
+            end
+        end
+        if (~reset_n) begin
+            aw_full$d = 1'b0;
+            w_full$d = 1'b0;
+            b_valid$d = 1'b0;
+            r_valid$d = 1'b0;
+        end
+    end
+    
+endmodule // rtfpga_core$slave$bus
+
+
+module rtfpga_core$slave$bus$aw_full(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -2333,10 +2432,10 @@ module rtfpga_core$slave$aw_full(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slave$aw_full
+endmodule // rtfpga_core$slave$bus$aw_full
 
 
-module rtfpga_core$slave$aw_word(d,q,clock);
+module rtfpga_core$slave$bus$aw_word(d,q,clock);
     
     // Module arguments
     input wire  [4:0] d;
@@ -2352,10 +2451,10 @@ module rtfpga_core$slave$aw_word(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slave$aw_word
+endmodule // rtfpga_core$slave$bus$aw_word
 
 
-module rtfpga_core$slave$b_resp(d,q,clock);
+module rtfpga_core$slave$bus$b_resp(d,q,clock);
     
     // Module arguments
     input wire  [1:0] d;
@@ -2371,10 +2470,10 @@ module rtfpga_core$slave$b_resp(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slave$b_resp
+endmodule // rtfpga_core$slave$bus$b_resp
 
 
-module rtfpga_core$slave$b_valid(d,q,clock);
+module rtfpga_core$slave$bus$b_valid(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -2390,7 +2489,121 @@ module rtfpga_core$slave$b_valid(d,q,clock);
        q <= d;
     end
           
-endmodule // rtfpga_core$slave$b_valid
+endmodule // rtfpga_core$slave$bus$b_valid
+
+
+module rtfpga_core$slave$bus$r_data(d,q,clock);
+    
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slave$bus$r_data
+
+
+module rtfpga_core$slave$bus$r_resp(d,q,clock);
+    
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slave$bus$r_resp
+
+
+module rtfpga_core$slave$bus$r_valid(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slave$bus$r_valid
+
+
+module rtfpga_core$slave$bus$w_data(d,q,clock);
+    
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slave$bus$w_data
+
+
+module rtfpga_core$slave$bus$w_full(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slave$bus$w_full
+
+
+module rtfpga_core$slave$bus$w_strb(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // rtfpga_core$slave$bus$w_strb
 
 
 module rtfpga_core$slave$busy(d,q,clock);
@@ -2792,63 +3005,6 @@ module rtfpga_core$slave$isr(d,q,clock);
 endmodule // rtfpga_core$slave$isr
 
 
-module rtfpga_core$slave$r_data(d,q,clock);
-    
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slave$r_data
-
-
-module rtfpga_core$slave$r_resp(d,q,clock);
-    
-    // Module arguments
-    input wire  [1:0] d;
-    output reg  [1:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 2'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slave$r_resp
-
-
-module rtfpga_core$slave$r_valid(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slave$r_valid
-
-
 module rtfpga_core$slave$start_q(d,q,clock);
     
     // Module arguments
@@ -2923,63 +3079,6 @@ module rtfpga_core$slave$v_q(d,q,clock);
     end
           
 endmodule // rtfpga_core$slave$v_q
-
-
-module rtfpga_core$slave$w_data(d,q,clock);
-    
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slave$w_data
-
-
-module rtfpga_core$slave$w_full(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slave$w_full
-
-
-module rtfpga_core$slave$w_strb(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // rtfpga_core$slave$w_strb
 
 
 module rtfpga_core$slots$0(clock,valid_in,query,valid_out,hit,t,u,v);

@@ -8,26 +8,25 @@ use std::fmt::Write;
 
 use hw_model::HwFormat;
 
-use crate::regmap::{self, Access, Register, REGISTERS};
+use crate::regmap::{self, unit, Access, Register, RegisterMap};
 
-/// Prefix of every generated C identifier.
-const PREFIX: &str = "XRTFPGA_CONTROL";
 /// File names of the generated sources (the driver includes the header by these names).
 pub const HEADER_FILE: &str = "xrtfpga_hw.h";
 pub const DRIVER_HEADER_FILE: &str = "xrtfpga.h";
 pub const DRIVER_SOURCE_FILE: &str = "xrtfpga.c";
+/// The traversal unit's (`regmap::unit`).
+pub const UNIT_HEADER_FILE: &str = "xrtfpga_unit_hw.h";
+pub const UNIT_DRIVER_HEADER_FILE: &str = "xrtfpga_unit.h";
+pub const UNIT_DRIVER_SOURCE_FILE: &str = "xrtfpga_unit.c";
 
-/// Registers that carry a value (operands, results, id, config) get Vitis' `_DATA` suffix;
-/// the block-control registers keep their bare name.
-fn is_data_register(r: &Register) -> bool {
-    ![regmap::CONTROL, regmap::GIE, regmap::IER, regmap::ISR].contains(&r.offset)
-}
-
-fn addr_macro(r: &Register) -> String {
-    if is_data_register(r) {
-        format!("{PREFIX}_ADDR_{}_DATA", r.name)
+/// Registers that carry a value (operands, results, id, config, counters) get Vitis'
+/// `_DATA` suffix; the block-control registers keep their bare name.
+fn addr_macro(map: &RegisterMap, r: &Register) -> String {
+    let prefix = map.c_prefix;
+    if map.control.contains(&r.offset) {
+        format!("{prefix}_ADDR_{}", r.name)
     } else {
-        format!("{PREFIX}_ADDR_{}", r.name)
+        format!("{prefix}_ADDR_{}_DATA", r.name)
     }
 }
 
@@ -37,20 +36,29 @@ fn access_text(a: Access) -> &'static str {
         Access::Ro => "Read",
         Access::Cor => "Read/COR",
         Access::W1t => "Read/TOW",
+        Access::Pulse => "Write 1/Pulse",
     }
 }
 
-/// The register-map header: addresses, widths, bit masks, id and config decoding.
-pub fn c_header() -> String {
+/// `#define NAME value` in the header's column layout.
+fn define(s: &mut String, name: &str, value: impl std::fmt::Display) {
+    writeln!(s, "#define {name:<40} {value}").unwrap();
+}
+
+/// A register-map header: addresses, widths, bit masks, `constants` (name after the
+/// prefix, value), the id and the CONFIG word's decoding, the format codes, then `tail`.
+fn map_header(map: &RegisterMap, file: &str, constants: &[(&str, String)], tail: &str) -> String {
+    let p = map.c_prefix;
     let mut s = String::new();
-    let guard = "XRTFPGA_HW_H";
-    writeln!(s, "// Generated from hdl/src/regmap.rs — do not edit.").unwrap();
+    let guard = file.to_ascii_uppercase().replace('.', "_");
+    writeln!(s, "// Generated from {} — do not edit.", map.source).unwrap();
     writeln!(
         s,
-        "// AXI4-Lite register map of the ray/triangle accelerator (s_axi_control)."
+        "// AXI4-Lite register map of the {} (s_axi_control).",
+        map.title
     )
     .unwrap();
-    for r in REGISTERS {
+    for r in map.registers {
         writeln!(
             s,
             "// 0x{:02x} : {} — {} ({})",
@@ -61,10 +69,14 @@ pub fn c_header() -> String {
         )
         .unwrap();
         for f in r.fields {
+            let bits = if f.width == 1 {
+                format!("bit {}", f.lsb)
+            } else {
+                format!("bits {}:{}", f.lsb + f.width - 1, f.lsb)
+            };
             writeln!(
                 s,
-                "//        bit {} - {} ({}): {}",
-                f.lsb,
+                "//        {bits} - {} ({}): {}",
                 f.name,
                 access_text(f.access),
                 f.description
@@ -78,115 +90,142 @@ pub fn c_header() -> String {
     )
     .unwrap();
     writeln!(s, "\n#ifndef {guard}\n#define {guard}\n").unwrap();
-    for r in REGISTERS {
-        writeln!(s, "#define {:<40} 0x{:02x}", addr_macro(r), r.offset).unwrap();
-        if is_data_register(r) {
-            writeln!(
-                s,
-                "#define {:<40} {}",
-                format!("{PREFIX}_BITS_{}_DATA", r.name),
-                r.width
-            )
-            .unwrap();
+    for r in map.registers {
+        define(&mut s, &addr_macro(map, r), format!("0x{:02x}", r.offset));
+        if !map.control.contains(&r.offset) {
+            define(&mut s, &format!("{p}_BITS_{}_DATA", r.name), r.width);
         }
     }
     writeln!(s).unwrap();
-    for r in REGISTERS {
+    for r in map.registers {
         for f in r.fields {
-            writeln!(
-                s,
-                "#define {:<40} 0x{:08x}u",
-                format!("{PREFIX}_{}_{}_MASK", r.name, f.name),
-                f.mask()
-            )
-            .unwrap();
+            define(
+                &mut s,
+                &format!("{p}_{}_{}_MASK", r.name, f.name),
+                format!("0x{:08x}u", f.mask()),
+            );
         }
     }
     writeln!(s).unwrap();
+    for (name, value) in constants {
+        define(&mut s, &format!("{p}_{name}"), value);
+    }
+    define(
+        &mut s,
+        &format!("{p}_ID_VALUE"),
+        format!("0x{:08x}u", map.id_value),
+    );
+    writeln!(s, "#define {p}_CONFIG_FORMAT(w) ((unsigned)(w) & 0xffu)").unwrap();
     writeln!(
         s,
-        "#define {:<40} {}",
-        format!("{PREFIX}_OPERAND_COUNT"),
-        regmap::OPERAND_COUNT
+        "#define {p}_CONFIG_DEPTH(w)  (((unsigned)(w) >> 8) & 0xffu)"
     )
     .unwrap();
     writeln!(
         s,
-        "#define {:<40} 0x{:08x}u",
-        format!("{PREFIX}_ID_VALUE"),
-        regmap::ID_VALUE
+        "#define {p}_CONFIG_LANES(w)  (((unsigned)(w) >> 16) & 0xffu)"
     )
     .unwrap();
-    writeln!(
-        s,
-        "#define {PREFIX}_CONFIG_FORMAT(w) ((unsigned)(w) & 0xffu)"
-    )
-    .unwrap();
-    writeln!(
-        s,
-        "#define {PREFIX}_CONFIG_DEPTH(w)  (((unsigned)(w) >> 8) & 0xffu)"
-    )
-    .unwrap();
-    writeln!(
-        s,
-        "#define {PREFIX}_CONFIG_LANES(w)  (((unsigned)(w) >> 16) & 0xffu)"
-    )
-    .unwrap();
-    format_codes(&mut s);
+    format_codes(&mut s, p);
+    s.push_str(tail);
     writeln!(s, "\n#endif // {guard}").unwrap();
     s
 }
 
+/// The accelerator's register-map header ([`HEADER_FILE`]).
+pub fn c_header() -> String {
+    map_header(
+        &regmap::MAP,
+        HEADER_FILE,
+        &[("OPERAND_COUNT", regmap::OPERAND_COUNT.to_string())],
+        "",
+    )
+}
+
+/// The traversal unit's register-map header ([`UNIT_HEADER_FILE`]): also the MEMORY
+/// word's decoding and the error code's position.
+pub fn unit_c_header() -> String {
+    let p = unit::MAP.c_prefix;
+    let memory = ["NODE_BITS", "TRIANGLE_BITS", "STACK_DEPTH", "SLOTS"]
+        .iter()
+        .enumerate()
+        .map(|(k, name)| {
+            format!(
+                "#define {p}_MEMORY_{name}(w) (((unsigned)(w) >> {}) & 0xffu)\n",
+                8 * k
+            )
+        })
+        .collect::<String>();
+    map_header(
+        &unit::MAP,
+        UNIT_HEADER_FILE,
+        &[
+            ("COUNTER_COUNT", unit::COUNTERS.len().to_string()),
+            ("RESET_CYCLES", unit::RESET_CYCLES.to_string()),
+            ("STATUS_ERROR_CODE_SHIFT", unit::ERROR_CODE_LSB.to_string()),
+        ],
+        &format!("\n// The MEMORY word's fields.\n{memory}"),
+    )
+}
+
 /// The CONFIG register's format codes: a macro a format and the code → name table.
-fn format_codes(s: &mut String) {
+fn format_codes(s: &mut String, p: &str) {
     writeln!(
         s,
-        "\n// Format codes of {PREFIX}_CONFIG_FORMAT (the format catalogue, `rtfpga formats`)."
+        "\n// Format codes of {p}_CONFIG_FORMAT (the format catalogue, `rtfpga formats`)."
     )
     .unwrap();
     for f in HwFormat::all() {
-        let name = format!("{PREFIX}_FORMAT_{}", f.name().to_ascii_uppercase());
-        writeln!(s, "#define {name:<40} {}", f.code()).unwrap();
+        let name = format!("{p}_FORMAT_{}", f.name().to_ascii_uppercase());
+        define(s, &name, f.code());
     }
-    writeln!(
-        s,
-        "#define {:<40} {}",
-        format!("{PREFIX}_FORMAT_COUNT"),
-        HwFormat::all().len()
-    )
-    .unwrap();
+    define(s, &format!("{p}_FORMAT_COUNT"), HwFormat::all().len());
     let names: Vec<String> = HwFormat::all().map(|f| format!("\"{f}\"")).collect();
     writeln!(
         s,
-        "// Names by code: static const char *const Names[] = {PREFIX}_FORMAT_NAMES;"
+        "// Names by code: static const char *const Names[] = {p}_FORMAT_NAMES;"
     )
     .unwrap();
-    writeln!(
-        s,
-        "#define {PREFIX}_FORMAT_NAMES {{ {} }}",
-        names.join(", ")
-    )
-    .unwrap();
+    writeln!(s, "#define {p}_FORMAT_NAMES {{ {} }}", names.join(", ")).unwrap();
 }
 
-fn offset_list(offsets: &[usize]) -> String {
+/// The address macros of `offsets`, one a line (a C initialiser list).
+fn offset_list(map: &RegisterMap, offsets: &[usize]) -> String {
     offsets
         .iter()
-        .map(|&o| addr_macro(regmap::register_at(o).expect("operand offsets are in the table")))
+        .map(|&o| addr_macro(map, map.register(o)))
         .collect::<Vec<_>>()
         .join(",\n    ")
 }
 
-fn data_macro(offset: usize) -> String {
-    addr_macro(regmap::register_at(offset).expect("register offsets are in the table"))
+fn data_macro(map: &RegisterMap, offset: usize) -> String {
+    addr_macro(map, map.register(offset))
+}
+
+/// The driver's access functions (`ReadReg`, `WriteReg` through the BSP) of `instance`.
+fn register_access(instance: &str) -> String {
+    format!(
+        r#"static u32 ReadReg(const {instance} *InstancePtr, u32 Offset)
+{{
+    return Xil_In32(InstancePtr->BaseAddress + Offset);
+}}
+
+static void WriteReg(const {instance} *InstancePtr, u32 Offset, u32 Value)
+{{
+    Xil_Out32(InstancePtr->BaseAddress + Offset, Value);
+}}
+"#
+    )
 }
 
 /// The bare-metal driver: (`xrtfpga.h`, `xrtfpga.c`). It needs the BSP's `xil_io.h` and the
 /// header from [`c_header`] saved as [`HEADER_FILE`].
 pub fn c_driver() -> (String, String) {
-    let p = PREFIX;
+    let map = &regmap::MAP;
+    let p = map.c_prefix;
+    let source = map.source;
     let header = format!(
-        r#"// Generated from hdl/src/regmap.rs — do not edit.
+        r#"// Generated from {source} — do not edit.
 // Bare-metal driver of the ray/triangle accelerator (register mode).
 #ifndef XRTFPGA_H
 #define XRTFPGA_H
@@ -248,7 +287,7 @@ u32 XRtfpga_InterruptGetStatus(XRtfpga *InstancePtr);
 "#
     );
     let source = format!(
-        r#"// Generated from hdl/src/regmap.rs — do not edit.
+        r#"// Generated from {source} — do not edit.
 #include <string.h>
 #include "{DRIVER_HEADER_FILE}"
 
@@ -274,16 +313,7 @@ static float BitsFloat(u32 Bits)
     return F;
 }}
 
-static u32 ReadReg(const XRtfpga *InstancePtr, u32 Offset)
-{{
-    return Xil_In32(InstancePtr->BaseAddress + Offset);
-}}
-
-static void WriteReg(const XRtfpga *InstancePtr, u32 Offset, u32 Value)
-{{
-    Xil_Out32(InstancePtr->BaseAddress + Offset, Value);
-}}
-
+{access}
 void XRtfpga_Initialize(XRtfpga *InstancePtr, UINTPTR BaseAddress)
 {{
     InstancePtr->BaseAddress = BaseAddress;
@@ -400,15 +430,195 @@ u32 XRtfpga_InterruptGetStatus(XRtfpga *InstancePtr)
     return ReadReg(InstancePtr, {p}_ADDR_ISR);
 }}
 "#,
-        ray = offset_list(&regmap::OPERANDS[..6]),
-        tri = offset_list(&regmap::OPERANDS[6..crate::mt::T_MIN_WORD]),
-        t_min = data_macro(regmap::T_MIN),
-        result = data_macro(regmap::RESULT),
-        t = data_macro(regmap::T),
-        u = data_macro(regmap::U),
-        v = data_macro(regmap::V),
-        id = data_macro(regmap::ID),
-        config = data_macro(regmap::CONFIG),
+        access = register_access("XRtfpga"),
+        ray = offset_list(map, &regmap::OPERANDS[..6]),
+        tri = offset_list(map, &regmap::OPERANDS[6..crate::mt::T_MIN_WORD]),
+        t_min = data_macro(map, regmap::T_MIN),
+        result = data_macro(map, regmap::RESULT),
+        t = data_macro(map, regmap::T),
+        u = data_macro(map, regmap::U),
+        v = data_macro(map, regmap::V),
+        id = data_macro(map, regmap::ID),
+        config = data_macro(map, regmap::CONFIG),
     );
     (header, source)
+}
+
+/// The traversal unit's bare-metal driver (`xrtfpga_unit.h`, `xrtfpga_unit.c`): id and
+/// configuration, scene load start and status, reset, the counters. The scene image, the
+/// rays and the answers travel on the unit's AXI4-Stream ports (a DMA's job). It needs the
+/// BSP's `xil_io.h` and the header from [`unit_c_header`] saved as [`UNIT_HEADER_FILE`].
+pub fn unit_c_driver() -> (String, String) {
+    let map = &unit::MAP;
+    let (p, source) = (map.c_prefix, map.source);
+    let header = format!(
+        r#"// Generated from {source} — do not edit.
+// Bare-metal driver of the traversal unit's control registers.
+#ifndef XRTFPGA_UNIT_H
+#define XRTFPGA_UNIT_H
+
+#include "xil_io.h"
+#include "{UNIT_HEADER_FILE}"
+
+typedef struct {{
+    UINTPTR BaseAddress;
+}} XRtfpga_unit;
+
+/* The unit's wrapping 32-bit counters. */
+typedef struct {{
+    u32 Rays;
+    u32 NodeVisits;
+    u32 BoxTests;
+    u32 MtTests;
+    u32 BusyCycles;
+}} XRtfpga_unit_Counters;
+
+/* The first refusal of a scene load: its code (0: none, docs/scene-image.md), the image
+   word's index and value. */
+typedef struct {{
+    u32 Code;
+    u32 Word;
+    u32 Value;
+}} XRtfpga_unit_SceneError;
+
+void XRtfpga_unit_Initialize(XRtfpga_unit *InstancePtr, UINTPTR BaseAddress);
+u32 XRtfpga_unit_ReadId(XRtfpga_unit *InstancePtr);
+u32 XRtfpga_unit_ReadConfig(XRtfpga_unit *InstancePtr);
+u32 XRtfpga_unit_ReadMemory(XRtfpga_unit *InstancePtr);
+u32 XRtfpga_unit_ReadStatus(XRtfpga_unit *InstancePtr);
+u32 XRtfpga_unit_IsIdle(XRtfpga_unit *InstancePtr);
+/* Begin a scene load (only while idle); then stream the image on the scene port. */
+void XRtfpga_unit_StartSceneLoad(XRtfpga_unit *InstancePtr);
+/* After the image: 1 loaded, 0 refused (Error filled in), -1 neither yet (still loading). */
+int XRtfpga_unit_SceneStatus(XRtfpga_unit *InstancePtr, XRtfpga_unit_SceneError *Error);
+u32 XRtfpga_unit_ReadSceneWords(XRtfpga_unit *InstancePtr);
+/* 1 if a ray's stack overflowed (sticky until a reset; RayId: the first such ray). */
+u32 XRtfpga_unit_Overflowed(XRtfpga_unit *InstancePtr, u32 *RayId);
+/* Reset the unit (slots emptied, counters and overflow cleared) and wait at most MaxPolls
+   status reads for the reset to end. Returns 0, or -1 if it did not end in time. */
+int XRtfpga_unit_Reset(XRtfpga_unit *InstancePtr, u32 MaxPolls);
+void XRtfpga_unit_ReadCounters(XRtfpga_unit *InstancePtr, XRtfpga_unit_Counters *Counters);
+/* Diff = After - Before, counter by counter, modulo 2^32 (the counters wrap). */
+void XRtfpga_unit_CountersSince(const XRtfpga_unit_Counters *Before,
+                                const XRtfpga_unit_Counters *After,
+                                XRtfpga_unit_Counters *Diff);
+
+#endif // XRTFPGA_UNIT_H
+"#
+    );
+    let driver = format!(
+        r#"// Generated from {source} — do not edit.
+#include "{UNIT_DRIVER_HEADER_FILE}"
+
+{access}
+void XRtfpga_unit_Initialize(XRtfpga_unit *InstancePtr, UINTPTR BaseAddress)
+{{
+    InstancePtr->BaseAddress = BaseAddress;
+}}
+
+u32 XRtfpga_unit_ReadId(XRtfpga_unit *InstancePtr)
+{{
+    return ReadReg(InstancePtr, {id});
+}}
+
+u32 XRtfpga_unit_ReadConfig(XRtfpga_unit *InstancePtr)
+{{
+    return ReadReg(InstancePtr, {config});
+}}
+
+u32 XRtfpga_unit_ReadMemory(XRtfpga_unit *InstancePtr)
+{{
+    return ReadReg(InstancePtr, {memory});
+}}
+
+u32 XRtfpga_unit_ReadStatus(XRtfpga_unit *InstancePtr)
+{{
+    return ReadReg(InstancePtr, {p}_ADDR_STATUS);
+}}
+
+u32 XRtfpga_unit_IsIdle(XRtfpga_unit *InstancePtr)
+{{
+    return (XRtfpga_unit_ReadStatus(InstancePtr) & {p}_STATUS_IDLE_MASK) != 0;
+}}
+
+void XRtfpga_unit_StartSceneLoad(XRtfpga_unit *InstancePtr)
+{{
+    WriteReg(InstancePtr, {p}_ADDR_CONTROL, {p}_CONTROL_LOAD_START_MASK);
+}}
+
+int XRtfpga_unit_SceneStatus(XRtfpga_unit *InstancePtr, XRtfpga_unit_SceneError *Error)
+{{
+    u32 Status = XRtfpga_unit_ReadStatus(InstancePtr);
+    if (Status & {p}_STATUS_SCENE_LOADED_MASK) {{
+        return 1;
+    }}
+    if (Status & {p}_STATUS_SCENE_ERROR_MASK) {{
+        Error->Code = (Status & {p}_STATUS_ERROR_CODE_MASK) >> {p}_STATUS_ERROR_CODE_SHIFT;
+        Error->Word = ReadReg(InstancePtr, {error_word});
+        Error->Value = ReadReg(InstancePtr, {error_value});
+        return 0;
+    }}
+    return -1;
+}}
+
+u32 XRtfpga_unit_ReadSceneWords(XRtfpga_unit *InstancePtr)
+{{
+    return ReadReg(InstancePtr, {scene_words});
+}}
+
+u32 XRtfpga_unit_Overflowed(XRtfpga_unit *InstancePtr, u32 *RayId)
+{{
+    if ((XRtfpga_unit_ReadStatus(InstancePtr) & {p}_STATUS_OVERFLOW_MASK) == 0) {{
+        return 0;
+    }}
+    *RayId = ReadReg(InstancePtr, {overflow_ray});
+    return 1;
+}}
+
+int XRtfpga_unit_Reset(XRtfpga_unit *InstancePtr, u32 MaxPolls)
+{{
+    WriteReg(InstancePtr, {p}_ADDR_CONTROL, {p}_CONTROL_RESET_MASK);
+    for (u32 Poll = 0; Poll < MaxPolls; Poll++) {{
+        if ((XRtfpga_unit_ReadStatus(InstancePtr) & {p}_STATUS_RESETTING_MASK) == 0) {{
+            return 0;
+        }}
+    }}
+    return -1;
+}}
+
+void XRtfpga_unit_ReadCounters(XRtfpga_unit *InstancePtr, XRtfpga_unit_Counters *Counters)
+{{
+    Counters->Rays = ReadReg(InstancePtr, {rays});
+    Counters->NodeVisits = ReadReg(InstancePtr, {node_visits});
+    Counters->BoxTests = ReadReg(InstancePtr, {box_tests});
+    Counters->MtTests = ReadReg(InstancePtr, {mt_tests});
+    Counters->BusyCycles = ReadReg(InstancePtr, {busy_cycles});
+}}
+
+void XRtfpga_unit_CountersSince(const XRtfpga_unit_Counters *Before,
+                                const XRtfpga_unit_Counters *After,
+                                XRtfpga_unit_Counters *Diff)
+{{
+    Diff->Rays = After->Rays - Before->Rays;
+    Diff->NodeVisits = After->NodeVisits - Before->NodeVisits;
+    Diff->BoxTests = After->BoxTests - Before->BoxTests;
+    Diff->MtTests = After->MtTests - Before->MtTests;
+    Diff->BusyCycles = After->BusyCycles - Before->BusyCycles;
+}}
+"#,
+        access = register_access("XRtfpga_unit"),
+        id = data_macro(map, unit::ID),
+        config = data_macro(map, unit::CONFIG),
+        memory = data_macro(map, unit::MEMORY),
+        error_word = data_macro(map, unit::SCENE_ERROR_WORD),
+        error_value = data_macro(map, unit::SCENE_ERROR_VALUE),
+        scene_words = data_macro(map, unit::SCENE_WORDS),
+        overflow_ray = data_macro(map, unit::OVERFLOW_RAY),
+        rays = data_macro(map, unit::RAYS),
+        node_visits = data_macro(map, unit::NODE_VISITS),
+        box_tests = data_macro(map, unit::BOX_TESTS),
+        mt_tests = data_macro(map, unit::MT_TESTS),
+        busy_cycles = data_macro(map, unit::BUSY_CYCLES),
+    );
+    (header, driver)
 }

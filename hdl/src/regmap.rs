@@ -1,9 +1,13 @@
-//! The accelerator's AXI4-Lite register map — the one source of truth.
+//! The AXI4-Lite register maps — the one source of truth.
 //!
-//! The offset constants are what the HDL decoder (`axil::slave`) and the simulation bus
-//! drivers use; [`REGISTERS`] is the table the C header/driver generator (`cgen`) and the
-//! documentation are produced from. The layout follows Vitis HLS' `s_axi_control` slave
-//! (`ap_ctrl_hs` block protocol) so the thesis' bare-metal driver style works unchanged.
+//! The accelerator's map is this module: the offset constants are what the HDL decoder
+//! (`axil::slave`) and the simulation bus drivers use; [`REGISTERS`] is the table the C
+//! header/driver generator (`cgen`) and the documentation are produced from. The layout
+//! follows Vitis HLS' `s_axi_control` slave (`ap_ctrl_hs` block protocol) so the thesis'
+//! bare-metal driver style works unchanged. The traversal unit's map is [`unit`], in the same
+//! machinery ([`Register`], [`Field`], [`RegisterMap`]).
+
+pub mod unit;
 
 /// Width of the byte address on the AXI4-Lite bus (0x00–0x7F, like a Vitis slave of this size).
 pub const ADDR_BITS: usize = 7;
@@ -90,6 +94,8 @@ pub enum Access {
     Cor,
     /// Readable; writing 1 to a bit toggles it.
     W1t,
+    /// Writing 1 triggers an action; reads 0.
+    Pulse,
 }
 
 /// One named bit (or bit group) of a register.
@@ -122,7 +128,13 @@ pub struct Register {
     pub fields: &'static [Field],
 }
 
-const fn field(name: &'static str, lsb: u32, access: Access, description: &'static str) -> Field {
+/// A one-bit field.
+pub const fn field(
+    name: &'static str,
+    lsb: u32,
+    access: Access,
+    description: &'static str,
+) -> Field {
     Field {
         name,
         lsb,
@@ -277,10 +289,50 @@ pub const REGISTERS: &[Register] = &[
     },
 ];
 
-/// The register at a byte offset, if any (the low two address bits are ignored, as the
-/// bus is word-addressed with byte strobes).
+/// One slave's register map: what `cgen` generates a C header and driver from.
+#[derive(Clone, Copy, Debug)]
+pub struct RegisterMap {
+    /// What the slave controls (the generated files' first comment).
+    pub title: &'static str,
+    /// The Rust source of the table (named in the generated files).
+    pub source: &'static str,
+    /// Prefix of the generated C identifiers, Vitis' `X<IP>_<BUS>`.
+    pub c_prefix: &'static str,
+    pub registers: &'static [Register],
+    /// Offsets of the block-control registers: their C names are bare, Vitis gives every
+    /// other register a `_DATA` suffix.
+    pub control: &'static [usize],
+    /// What the ID register reads.
+    pub id_value: u32,
+}
+
+impl RegisterMap {
+    /// The register at a byte offset, if any (the low two address bits are ignored, as the
+    /// bus is word-addressed with byte strobes).
+    pub fn register_at(&self, offset: usize) -> Option<&'static Register> {
+        self.registers.iter().find(|r| r.offset == offset & !3)
+    }
+
+    /// The register at `offset`, which the map's own constants name.
+    pub fn register(&self, offset: usize) -> &'static Register {
+        self.register_at(offset)
+            .unwrap_or_else(|| panic!("{}: no register at 0x{offset:02x}", self.title))
+    }
+}
+
+/// The accelerator's map.
+pub const MAP: RegisterMap = RegisterMap {
+    title: "ray/triangle accelerator",
+    source: "hdl/src/regmap.rs",
+    c_prefix: "XRTFPGA_CONTROL",
+    registers: REGISTERS,
+    control: &[CONTROL, GIE, IER, ISR],
+    id_value: ID_VALUE,
+};
+
+/// The accelerator's register at a byte offset, if any ([`RegisterMap::register_at`]).
 pub fn register_at(offset: usize) -> Option<&'static Register> {
-    REGISTERS.iter().find(|r| r.offset == offset & !3)
+    MAP.register_at(offset)
 }
 
 /// Contents of the [`CONFIG`] register: which core is attached.
@@ -312,9 +364,10 @@ impl ConfigWord {
 mod tests {
     use super::*;
 
-    #[test]
-    fn offsets_are_aligned_unique_sorted_and_fit_the_address() {
-        for pair in REGISTERS.windows(2) {
+    /// Both maps: offsets aligned, unique, sorted and within the bus' address; fields
+    /// within their register and not overlapping.
+    pub(super) fn check_map(map: &RegisterMap) {
+        for pair in map.registers.windows(2) {
             assert!(
                 pair[0].offset < pair[1].offset,
                 "{} / {}",
@@ -322,14 +375,25 @@ mod tests {
                 pair[1].name
             );
         }
-        for r in REGISTERS {
+        for r in map.registers {
             assert_eq!(r.offset % 4, 0, "{}", r.name);
             assert!(r.offset < 1 << ADDR_BITS, "{}", r.name);
             assert!(r.width >= 1 && r.width <= 32, "{}", r.name);
+            let mut used = 0;
             for f in r.fields {
                 assert!(f.lsb + f.width <= r.width, "{}.{}", r.name, f.name);
+                assert_eq!(used & f.mask(), 0, "{}.{} overlaps", r.name, f.name);
+                used |= f.mask();
             }
         }
+        for &c in map.control {
+            assert!(map.register_at(c).is_some(), "{}: 0x{c:02x}", map.title);
+        }
+    }
+
+    #[test]
+    fn offsets_are_aligned_unique_sorted_and_fit_the_address() {
+        check_map(&MAP);
     }
 
     #[test]

@@ -128,8 +128,9 @@ fn lint_target_uses_the_project_waivers() {
         .chain(hdl::verilog::TOP_VERILATOR_WAIVERS.iter().copied())
         .collect();
     assert_eq!(options, expected);
-    for config in present_files().keys() {
-        if config != "fp32_d1_l1" {
+    // Every folder with Verilog (the unit's holds only its C files and config.json).
+    for (config, files) in present_files() {
+        if config != "fp32_d1_l1" && files.iter().any(|f| f.ends_with(".v")) {
             let target = format!("lint_{config}:");
             assert!(
                 lines.iter().any(|l| l.trim() == target),

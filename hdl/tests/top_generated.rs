@@ -1,7 +1,10 @@
 //! The committed generated-verilog/ folders equal what the generator makes now (regenerate
 //! with `make verilog`), and the file set of a configuration is complete and consistent.
 
-use hdl::generate::{default_configs, generate, CONFIG_FILE, VERILOG_FILE};
+use hdl::generate::{
+    default_configs, default_unit_config, generate, unit_dir_name, unit_files, CONFIG_FILE,
+    VERILOG_FILE,
+};
 use hdl::top::TopConfig;
 use hw_model::HwFormat;
 use std::path::Path;
@@ -13,7 +16,9 @@ fn committed_root() -> &'static Path {
 #[test]
 fn committed_configurations_are_current() {
     let root = committed_root();
+    let unit = default_unit_config();
     let mut expected: Vec<String> = default_configs().iter().map(TopConfig::dir_name).collect();
+    expected.push(unit_dir_name(&unit));
     let mut present: Vec<String> = std::fs::read_dir(root)
         .unwrap_or_else(|e| panic!("{}: {e}", root.display()))
         .filter_map(|e| e.ok())
@@ -26,10 +31,15 @@ fn committed_configurations_are_current() {
         present, expected,
         "generated-verilog/ folders differ from the defaults: run `make verilog`"
     );
-    for config in default_configs() {
-        let generated = generate(&config).unwrap();
-        let dir = root.join(config.dir_name());
-        for (name, text) in &generated.files {
+    let mut sets: Vec<(String, Vec<(String, String)>)> = default_configs()
+        .iter()
+        .map(|c| (c.dir_name(), generate(c).unwrap().files))
+        .collect();
+    // The unit's C files and config.json (its Verilog is not committed).
+    sets.push((unit_dir_name(&unit), unit_files(&unit, false).unwrap()));
+    for (dir, files) in sets {
+        let dir = root.join(dir);
+        for (name, text) in &files {
             let path = dir.join(name);
             let committed = std::fs::read_to_string(&path)
                 .unwrap_or_else(|e| panic!("{}: {e}", path.display()));

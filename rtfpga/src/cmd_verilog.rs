@@ -1,15 +1,18 @@
 //! `rtfpga verilog`: the accelerator's Verilog (`rtfpga_top.v`), C header and driver and
-//! `config.json` for one configuration, or every committed default configuration; with
-//! `--unit traversal` the traversal unit's Verilog (`traversal_unit.v`) and `config.json`.
+//! `config.json` for one configuration, or every committed file set (`--defaults`); with
+//! `--unit traversal` the traversal unit under AXI4-Lite control (`traversal_unit.v`), its C
+//! header and driver and `config.json`.
 
 use anyhow::{bail, Context, Result};
 use clap::Args as ClapArgs;
 use std::path::PathBuf;
 
 use crate::engine::{HwConfig, UnitKind};
-use hdl::generate::{default_configs, generate, CONFIG_FILE};
+use hdl::generate::{
+    default_configs, default_unit_config, generate, unit_dir_name, unit_files, write_files,
+};
 use hdl::top::TopConfig;
-use hdl::traversal::unit::unit_verilog;
+use hdl::traversal::unit::UnitConfig;
 
 #[derive(ClapArgs)]
 pub struct Args {
@@ -21,7 +24,8 @@ pub struct Args {
     /// Output directory (created if missing).
     #[arg(long)]
     out: PathBuf,
-    /// Write every default configuration, one folder each (what generated-verilog/ holds).
+    /// Write every committed file set, one folder each (what generated-verilog/ holds): the
+    /// accelerator's default configurations and the traversal unit's C files and config.json.
     #[arg(long)]
     defaults: bool,
 }
@@ -29,9 +33,9 @@ pub struct Args {
 pub fn run(a: Args) -> Result<()> {
     if a.unit == UnitKind::Traversal {
         if a.defaults {
-            bail!("--defaults writes the accelerator's committed configurations; the traversal unit takes --format, --depth and --lanes");
+            bail!("--defaults writes every committed file set, the traversal unit's among them; with --unit traversal give --format, --depth and --lanes");
         }
-        return traversal_unit(&a.hw, &a.out);
+        return traversal_unit(&a.hw.unit_config()?, &a.out, true);
     }
     let jobs: Vec<(TopConfig, PathBuf)> = if a.defaults {
         default_configs()
@@ -58,55 +62,21 @@ pub fn run(a: Args) -> Result<()> {
             dir.display()
         );
     }
+    if a.defaults {
+        // The unit's Verilog is not committed (~6 MB): its C files and config.json are.
+        let config = default_unit_config();
+        traversal_unit(&config, &a.out.join(unit_dir_name(&config)), false)?;
+    }
     Ok(())
 }
 
-/// File name of the traversal unit's Verilog.
-const UNIT_VERILOG_FILE: &str = "traversal_unit.v";
-
-/// The traversal unit's Verilog (top module `top`, rust-hdl's port names,
-/// docs/traversal-unit.md) and a config.json of what it was built from: the configuration,
-/// its scene memory's capacity, the timing the schedule model takes and the port list.
-fn traversal_unit(hw: &HwConfig, out: &std::path::Path) -> Result<()> {
-    let config = hw.unit_config()?;
-    let verilog = unit_verilog(&config)?;
-    let ports = sim::verilator::parse_ports(&verilog, "top")?;
+/// The traversal unit under AXI4-Lite control: its Verilog if `verilog` (top module `top`,
+/// rust-hdl's port names, docs/traversal-unit.md), the C header and driver of its register
+/// map, and a config.json (configuration, scene memory capacity, timing, register words,
+/// ports).
+fn traversal_unit(config: &UnitConfig, out: &std::path::Path, verilog: bool) -> Result<()> {
+    write_files(&unit_files(config, verilog)?, out)?;
     let (nodes, triangles) = config.memory.capacity();
-    let timing = config.timing();
-    let summary = serde_json::json!({
-        "unit": "traversal",
-        "top": "top",
-        "format": config.format,
-        "depth": config.depth,
-        "lanes": config.lanes,
-        "slots": config.slots,
-        "stack_depth": config.stack_depth,
-        "memory": {
-            "node_address_bits": config.memory.node_bits,
-            "triangle_address_bits": config.memory.triangle_bits,
-            "nodes": nodes,
-            "triangles": triangles,
-        },
-        "timing": {
-            "setup_latency": timing.setup_latency,
-            "box_latency": timing.box_latency,
-            "mt_latency": timing.mt_latency,
-            "pop_latency": timing.pop_latency,
-        },
-        "ports": ports.iter().map(|p| serde_json::json!({
-            "name": p.name,
-            "direction": format!("{:?}", p.direction).to_lowercase(),
-            "width": p.width,
-        })).collect::<Vec<_>>(),
-    });
-    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
-    for (name, text) in [
-        (UNIT_VERILOG_FILE, verilog),
-        (CONFIG_FILE, serde_json::to_string_pretty(&summary)? + "\n"),
-    ] {
-        let path = out.join(name);
-        std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?;
-    }
     println!(
         "traversal unit {} depth {} lanes {}: {} slots, stack {}, scene memory {} nodes and {} triangles -> {}",
         config.format,

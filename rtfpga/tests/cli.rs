@@ -1374,8 +1374,8 @@ fn traversal_unit_options_refuse_what_the_rtl_does_not_build() {
         .stderr(predicate::str::contains("--unit"));
 }
 
-/// `verilog --unit traversal` writes the unit's Verilog and a config.json whose ports are the
-/// Verilog's, the streams as wide as the packets.
+/// `verilog --unit traversal` writes the unit's AXI4-Lite top, its C files and a config.json
+/// whose ports are the Verilog's, the streams as wide as the packets.
 #[test]
 fn verilog_of_the_traversal_unit_writes_its_verilog_and_config() {
     let dir = tempfile::tempdir().unwrap();
@@ -1411,7 +1411,14 @@ fn verilog_of_the_traversal_unit_writes_its_verilog_and_config() {
     use hw_model::traversal::packet::{HIT_WORDS, RAY_WORDS};
     assert_eq!(width("ray_tdata"), 32 * RAY_WORDS as u64);
     assert_eq!(width("hit_tdata"), 32 * HIT_WORDS as u64);
-    assert_eq!(width("overflow_ray"), 32);
+    assert_eq!(width("axi$awaddr"), hdl::regmap::ADDR_BITS as u64);
+    for name in [
+        hdl::cgen::UNIT_HEADER_FILE,
+        hdl::cgen::UNIT_DRIVER_HEADER_FILE,
+        hdl::cgen::UNIT_DRIVER_SOURCE_FILE,
+    ] {
+        assert!(out_dir.join(name).is_file(), "no {name}");
+    }
 }
 
 /// `cosim --unit traversal` renders through the Verilated unit: its counters per ray, the

@@ -1,6 +1,6 @@
 //! Vitis-HLS-compatible AXI4-Lite control slave (`s_axi_control` + `ap_ctrl_hs`).
 //!
-//! Bus behaviour:
+//! Bus behaviour ([`AxiLiteBus`], shared with the traversal unit's slave):
 //! - Write address and write data are captured independently (either order or together);
 //!   the register write happens once both are held and no response is pending, then `bvalid`
 //!   rises. One write and one read are outstanding at most; `awready`/`wready` are high
@@ -29,10 +29,8 @@
 //! - `reset_n` is a synchronous active-low reset (Vitis' `ap_rst_n`).
 use rust_hdl::prelude::*;
 
+use super::bus::{mask, word, AxiLiteBus, WORD_BITS};
 use crate::regmap::{self, ADDR_BITS, OPERAND_COUNT};
-
-/// Width of the word address (byte address without its two low bits).
-const WORD_BITS: usize = ADDR_BITS - 2;
 
 /// The AXI4-Lite port of the slave, named like Vitis' `s_axi_control_*` signals.
 #[derive(LogicInterface, Default)]
@@ -77,18 +75,7 @@ pub struct AxiLiteSlave {
     /// Constant inputs read through the ID and CONFIG registers.
     pub id: Signal<In, Bits<32>>,
     pub configuration: Signal<In, Bits<32>>,
-    // Write channel.
-    aw_full: DFF<Bit>,
-    aw_word: DFF<Bits<WORD_BITS>>,
-    w_full: DFF<Bit>,
-    w_data: DFF<Bits<32>>,
-    w_strb: DFF<Bits<4>>,
-    b_valid: DFF<Bit>,
-    b_resp: DFF<Bits<2>>,
-    // Read channel.
-    r_valid: DFF<Bit>,
-    r_data: DFF<Bits<32>>,
-    r_resp: DFF<Bits<2>>,
+    bus: AxiLiteBus,
     // Registers of the map.
     ap_start: DFF<Bit>,
     ap_done: DFF<Bit>,
@@ -106,12 +93,8 @@ pub struct AxiLiteSlave {
     u_q: DFF<Bits<32>>,
     v_q: DFF<Bits<32>>,
     // Combinational helpers.
-    write_now: Signal<Local, Bit>,
     w_mapped: Signal<Local, Bit>,
     w_readonly: Signal<Local, Bit>,
-    w_mask: Signal<Local, Bits<32>>,
-    read_now: Signal<Local, Bit>,
-    r_word: Signal<Local, Bits<WORD_BITS>>,
     r_mapped: Signal<Local, Bit>,
     r_mux: Signal<Local, Bits<32>>,
     launch: Signal<Local, Bit>,
@@ -129,10 +112,6 @@ pub struct AxiLiteSlave {
     word_v: Constant<Bits<WORD_BITS>>,
     word_id: Constant<Bits<WORD_BITS>>,
     word_config: Constant<Bits<WORD_BITS>>,
-    /// Bit mask of each byte lane, for `wstrb`.
-    lane_mask: [Constant<Bits<32>>; 4],
-    resp_okay: Constant<Bits<2>>,
-    resp_slverr: Constant<Bits<2>>,
     // Bits of the control, GIE, IER/ISR and RESULT registers, from the register map.
     mask_ap_start: Constant<Bits<32>>,
     mask_ap_done: Constant<Bits<32>>,
@@ -143,14 +122,6 @@ pub struct AxiLiteSlave {
     mask_hit: Constant<Bits<32>>,
     mask_interrupt: [Constant<Bits<32>>; 2],
     no_interrupts: Constant<Bits<2>>,
-}
-
-fn word(offset: usize) -> Constant<Bits<WORD_BITS>> {
-    Constant::new((offset as u64 >> 2).into())
-}
-
-fn mask(bits: u32) -> Constant<Bits<32>> {
-    Constant::new((bits as u64).into())
 }
 
 impl Default for AxiLiteSlave {
@@ -169,16 +140,7 @@ impl Default for AxiLiteSlave {
             v: Default::default(),
             id: Default::default(),
             configuration: Default::default(),
-            aw_full: Default::default(),
-            aw_word: Default::default(),
-            w_full: Default::default(),
-            w_data: Default::default(),
-            w_strb: Default::default(),
-            b_valid: Default::default(),
-            b_resp: Default::default(),
-            r_valid: Default::default(),
-            r_data: Default::default(),
-            r_resp: Default::default(),
+            bus: Default::default(),
             ap_start: Default::default(),
             ap_done: Default::default(),
             ap_ready: Default::default(),
@@ -194,12 +156,8 @@ impl Default for AxiLiteSlave {
             t_q: Default::default(),
             u_q: Default::default(),
             v_q: Default::default(),
-            write_now: Default::default(),
             w_mapped: Default::default(),
             w_readonly: Default::default(),
-            w_mask: Default::default(),
-            read_now: Default::default(),
-            r_word: Default::default(),
             r_mapped: Default::default(),
             r_mux: Default::default(),
             launch: Default::default(),
@@ -216,9 +174,6 @@ impl Default for AxiLiteSlave {
             word_v: word(regmap::V),
             word_id: word(regmap::ID),
             word_config: word(regmap::CONFIG),
-            lane_mask: [0, 1, 2, 3].map(|lane| Constant::new((0xFFu64 << (8 * lane)).into())),
-            resp_okay: Constant::new((regmap::RESP_OKAY as u64).into()),
-            resp_slverr: Constant::new((regmap::RESP_SLVERR as u64).into()),
             mask_ap_start: mask(regmap::AP_START),
             mask_ap_done: mask(regmap::AP_DONE),
             mask_ap_idle: mask(regmap::AP_IDLE),
@@ -238,16 +193,6 @@ impl Logic for AxiLiteSlave {
         dff_setup!(
             self,
             clock,
-            aw_full,
-            aw_word,
-            w_full,
-            w_data,
-            w_strb,
-            b_valid,
-            b_resp,
-            r_valid,
-            r_data,
-            r_resp,
             ap_start,
             ap_done,
             ap_ready,
@@ -269,29 +214,19 @@ impl Logic for AxiLiteSlave {
             self.held[i].d.next = self.held[i].q.val();
             self.operands[i].next = self.held[i].q.val();
         }
-        self.axi.awready.next = !self.aw_full.q.val();
-        self.axi.wready.next = !self.w_full.q.val();
-        self.axi.bvalid.next = self.b_valid.q.val();
-        self.axi.bresp.next = self.b_resp.q.val();
-        self.axi.arready.next = !self.r_valid.q.val();
-        self.axi.rvalid.next = self.r_valid.q.val();
-        self.axi.rdata.next = self.r_data.q.val();
-        self.axi.rresp.next = self.r_resp.q.val();
+        self.bus.clock.next = self.clock.val();
+        self.bus.reset_n.next = self.reset_n.val();
+        AxiLiteSlavePort::link(&mut self.axi, &mut self.bus.axi);
         self.interrupt.next = self.gie.q.val() & (self.isr.q.val() & self.ier.q.val()).any();
         // Launch copies the operands; `start` follows a cycle later, with them in place.
         self.launch.next = self.ap_start.q.val() & !self.busy.q.val();
         self.start.next = self.start_q.q.val();
         self.core_done.next = self.done.val() & self.busy.q.val();
 
-        // Read channel: decode the address on the handshake, answer the next cycle.
-        if self.r_valid.q.val() & self.axi.rready.val() {
-            self.r_valid.d.next = false;
-        }
-        self.read_now.next = self.axi.arvalid.val() & !self.r_valid.q.val();
-        self.r_word.next = self.axi.araddr.val().get_bits::<WORD_BITS>(2);
+        // Read channel: the bus answers `r_mux` the next cycle.
         self.r_mapped.next = false;
         self.r_mux.next = 0.into();
-        if self.r_word.val() == self.word_control.val() {
+        if self.bus.read_word.val() == self.word_control.val() {
             self.r_mapped.next = true;
             if self.ap_start.q.val() {
                 self.r_mux.next = self.r_mux.val() | self.mask_ap_start.val();
@@ -308,19 +243,19 @@ impl Logic for AxiLiteSlave {
             if self.auto_restart.q.val() {
                 self.r_mux.next = self.r_mux.val() | self.mask_auto_restart.val();
             }
-            if self.read_now.val() {
+            if self.bus.read.val() {
                 // Clear on read; a completion in this very cycle sets them again below.
                 self.ap_done.d.next = false;
                 self.ap_ready.d.next = false;
             }
         }
-        if self.r_word.val() == self.word_gie.val() {
+        if self.bus.read_word.val() == self.word_gie.val() {
             self.r_mapped.next = true;
             if self.gie.q.val() {
                 self.r_mux.next = self.mask_gie.val();
             }
         }
-        if self.r_word.val() == self.word_ier.val() {
+        if self.bus.read_word.val() == self.word_ier.val() {
             self.r_mapped.next = true;
             for i in 0..2 {
                 if self.ier.q.val().get_bit(i) {
@@ -328,7 +263,7 @@ impl Logic for AxiLiteSlave {
                 }
             }
         }
-        if self.r_word.val() == self.word_isr.val() {
+        if self.bus.read_word.val() == self.word_isr.val() {
             self.r_mapped.next = true;
             for i in 0..2 {
                 if self.isr.q.val().get_bit(i) {
@@ -337,67 +272,41 @@ impl Logic for AxiLiteSlave {
             }
         }
         for i in 0..OPERAND_COUNT {
-            if self.r_word.val() == self.word_operand[i].val() {
+            if self.bus.read_word.val() == self.word_operand[i].val() {
                 self.r_mapped.next = true;
                 self.r_mux.next = self.args[i].q.val();
             }
         }
-        if self.r_word.val() == self.word_result.val() {
+        if self.bus.read_word.val() == self.word_result.val() {
             self.r_mapped.next = true;
             if self.hit_q.q.val() {
                 self.r_mux.next = self.mask_hit.val();
             }
         }
-        if self.r_word.val() == self.word_t.val() {
+        if self.bus.read_word.val() == self.word_t.val() {
             self.r_mapped.next = true;
             self.r_mux.next = self.t_q.q.val();
         }
-        if self.r_word.val() == self.word_u.val() {
+        if self.bus.read_word.val() == self.word_u.val() {
             self.r_mapped.next = true;
             self.r_mux.next = self.u_q.q.val();
         }
-        if self.r_word.val() == self.word_v.val() {
+        if self.bus.read_word.val() == self.word_v.val() {
             self.r_mapped.next = true;
             self.r_mux.next = self.v_q.q.val();
         }
-        if self.r_word.val() == self.word_id.val() {
+        if self.bus.read_word.val() == self.word_id.val() {
             self.r_mapped.next = true;
             self.r_mux.next = self.id.val();
         }
-        if self.r_word.val() == self.word_config.val() {
+        if self.bus.read_word.val() == self.word_config.val() {
             self.r_mapped.next = true;
             self.r_mux.next = self.configuration.val();
         }
-        if self.read_now.val() {
-            self.r_valid.d.next = true;
-            self.r_data.d.next = self.r_mux.val();
-            if self.r_mapped.val() {
-                self.r_resp.d.next = self.resp_okay.val();
-            } else {
-                self.r_resp.d.next = self.resp_slverr.val();
-            }
-        }
+        self.bus.read_data.next = self.r_mux.val();
+        self.bus.read_ok.next = self.r_mapped.val();
 
-        // Write channel: hold address and data until both are there, then write.
-        if self.axi.awvalid.val() & !self.aw_full.q.val() {
-            self.aw_full.d.next = true;
-            self.aw_word.d.next = self.axi.awaddr.val().get_bits::<WORD_BITS>(2);
-        }
-        if self.axi.wvalid.val() & !self.w_full.q.val() {
-            self.w_full.d.next = true;
-            self.w_data.d.next = self.axi.wdata.val();
-            self.w_strb.d.next = self.axi.wstrb.val();
-        }
-        if self.b_valid.q.val() & self.axi.bready.val() {
-            self.b_valid.d.next = false;
-        }
-        self.write_now.next = self.aw_full.q.val() & self.w_full.q.val() & !self.b_valid.q.val();
-        self.w_mask.next = 0.into();
-        for i in 0..4 {
-            if self.w_strb.q.val().get_bit(i) {
-                self.w_mask.next = self.w_mask.val() | self.lane_mask[i].val();
-            }
-        }
+        // Write channel: the bus holds address and data until both are there.
         // The core's handshake clears ap_start; a write of ap_start = 1 below wins.
         if self.core_done.val() {
             self.ap_start.d.next = self.auto_restart.q.val();
@@ -405,62 +314,54 @@ impl Logic for AxiLiteSlave {
         self.isr_next.next = self.isr.q.val();
         self.w_mapped.next = false;
         self.w_readonly.next = false;
-        if self.aw_word.q.val() == self.word_control.val() {
+        if self.bus.write_word.val() == self.word_control.val() {
             self.w_mapped.next = true;
-            if self.write_now.val() & self.w_strb.q.val().get_bit(0) {
-                if self.w_data.q.val().get_bit(0) {
+            if self.bus.write.val() & self.bus.write_byte0.val() {
+                if self.bus.write_data.val().get_bit(0) {
                     self.ap_start.d.next = true;
                 }
-                self.auto_restart.d.next = self.w_data.q.val().get_bit(7);
+                self.auto_restart.d.next = self.bus.write_data.val().get_bit(7);
             }
         }
-        if self.aw_word.q.val() == self.word_gie.val() {
+        if self.bus.write_word.val() == self.word_gie.val() {
             self.w_mapped.next = true;
-            if self.write_now.val() & self.w_strb.q.val().get_bit(0) {
-                self.gie.d.next = self.w_data.q.val().get_bit(0);
+            if self.bus.write.val() & self.bus.write_byte0.val() {
+                self.gie.d.next = self.bus.write_data.val().get_bit(0);
             }
         }
-        if self.aw_word.q.val() == self.word_ier.val() {
+        if self.bus.write_word.val() == self.word_ier.val() {
             self.w_mapped.next = true;
-            if self.write_now.val() & self.w_strb.q.val().get_bit(0) {
-                self.ier.d.next = self.w_data.q.val().get_bits::<2>(0);
+            if self.bus.write.val() & self.bus.write_byte0.val() {
+                self.ier.d.next = self.bus.write_data.val().get_bits::<2>(0);
             }
         }
-        if self.aw_word.q.val() == self.word_isr.val() {
+        if self.bus.write_word.val() == self.word_isr.val() {
             self.w_mapped.next = true;
-            if self.write_now.val() & self.w_strb.q.val().get_bit(0) {
-                self.isr_next.next = self.isr_next.val() ^ self.w_data.q.val().get_bits::<2>(0);
+            if self.bus.write.val() & self.bus.write_byte0.val() {
+                self.isr_next.next =
+                    self.isr_next.val() ^ self.bus.write_data.val().get_bits::<2>(0);
             }
         }
         for i in 0..OPERAND_COUNT {
-            if self.aw_word.q.val() == self.word_operand[i].val() {
+            if self.bus.write_word.val() == self.word_operand[i].val() {
                 self.w_mapped.next = true;
-                if self.write_now.val() {
-                    self.args[i].d.next = (self.args[i].q.val() & !self.w_mask.val())
-                        | (self.w_data.q.val() & self.w_mask.val());
+                if self.bus.write.val() {
+                    self.args[i].d.next = (self.args[i].q.val() & !self.bus.write_mask.val())
+                        | (self.bus.write_data.val() & self.bus.write_mask.val());
                 }
             }
         }
-        if (self.aw_word.q.val() == self.word_result.val())
-            | (self.aw_word.q.val() == self.word_t.val())
-            | (self.aw_word.q.val() == self.word_u.val())
-            | (self.aw_word.q.val() == self.word_v.val())
-            | (self.aw_word.q.val() == self.word_id.val())
-            | (self.aw_word.q.val() == self.word_config.val())
+        if (self.bus.write_word.val() == self.word_result.val())
+            | (self.bus.write_word.val() == self.word_t.val())
+            | (self.bus.write_word.val() == self.word_u.val())
+            | (self.bus.write_word.val() == self.word_v.val())
+            | (self.bus.write_word.val() == self.word_id.val())
+            | (self.bus.write_word.val() == self.word_config.val())
         {
             self.w_mapped.next = true;
             self.w_readonly.next = true;
         }
-        if self.write_now.val() {
-            self.aw_full.d.next = false;
-            self.w_full.d.next = false;
-            self.b_valid.d.next = true;
-            if self.w_mapped.val() & !self.w_readonly.val() {
-                self.b_resp.d.next = self.resp_okay.val();
-            } else {
-                self.b_resp.d.next = self.resp_slverr.val();
-            }
-        }
+        self.bus.write_ok.next = self.w_mapped.val() & !self.w_readonly.val();
 
         // Core handshake.
         self.start_q.d.next = self.launch.val();
@@ -483,10 +384,6 @@ impl Logic for AxiLiteSlave {
         self.isr.d.next = self.isr_next.val();
 
         if !self.reset_n.val() {
-            self.aw_full.d.next = false;
-            self.w_full.d.next = false;
-            self.b_valid.d.next = false;
-            self.r_valid.d.next = false;
             self.ap_start.d.next = false;
             self.ap_done.d.next = false;
             self.ap_ready.d.next = false;

@@ -11,4 +11,5 @@ pub mod scene_memory_driver;
 pub mod stack;
 pub mod timing;
 pub mod unit;
+pub mod unit_axil;
 pub mod unit_top;

@@ -1,0 +1,457 @@
+//! The traversal unit under AXI4-Lite control: the unit's top (`unit_top`, unchanged)
+//! beside a register slave of the unit's map (`regmap::unit`, docs/traversal-unit.md
+//! "Control registers") on the shared bus logic (`axil::bus`). Rays, answers and the scene
+//! image stay on the unit's AXI4-Stream ports; the scene-start pulse, the reset and the
+//! status and counter ports become registers.
+
+use hw_model::traversal::schedule::UnitTiming;
+use rust_hdl::prelude::*;
+
+use super::scene_memory::ERROR_CODE_BITS;
+use super::unit::{UnitConfig, UnitConfigError};
+use crate::axil::bus::{mask, word, AxiLiteBus, WORD_BITS};
+use crate::axil::AxiLiteSlavePort;
+use crate::regmap::unit::{self as map, MemoryWord, COUNTERS};
+use crate::regmap::ConfigWord;
+use crate::top::with_build_stack;
+use crate::top::wrapper::TopPort;
+
+/// Number of counters (`regmap::unit::COUNTERS`).
+const COUNTER_COUNT: usize = COUNTERS.len();
+/// Bits of the reset counter, holding [`map::RESET_CYCLES`].
+const RESET_COUNT_BITS: usize = 8;
+const _: () = assert!(map::RESET_CYCLES < 1 << RESET_COUNT_BITS);
+
+/// What the CONFIG register reads: the lane's format, its effective depth (a depth beyond
+/// the format's maximum builds the same lane) and the lanes.
+pub fn config_word(config: &UnitConfig) -> ConfigWord {
+    let depth = config.depth.min(crate::mt::max_depth(config.format));
+    ConfigWord {
+        format_code: config.format.code(),
+        depth: depth as u8,
+        lanes: config.lanes as u8,
+    }
+}
+
+/// What the MEMORY register reads (of a checked configuration: every size fits a byte).
+pub fn memory_word(config: &UnitConfig) -> MemoryWord {
+    MemoryWord {
+        node_bits: config.memory.node_bits as u8,
+        triangle_bits: config.memory.triangle_bits as u8,
+        stack_depth: config.stack_depth as u8,
+        slots: config.slots as u8,
+    }
+}
+
+/// The longest step a reset must outlast (docs/traversal-unit.md "Ports": a step in flight
+/// finishes into its slot): a ray's setup, a box test, a leaf's last answer (the lane and
+/// the far end) or a pop.
+pub fn longest_step(timing: &UnitTiming) -> u64 {
+    [
+        timing.setup_latency,
+        timing.box_latency,
+        timing.mt_latency,
+        timing.pop_latency,
+    ]
+    .into_iter()
+    .max()
+    .unwrap_or(0)
+}
+
+/// The unit's register slave: decodes `regmap::unit` on the shared bus logic, turns
+/// LOAD_START into the unit's `scene_start` pulse and RESET into [`map::RESET_CYCLES`]
+/// cycles of `unit_reset_n` low, counts the scene stream's words and reads the unit's
+/// status and counter ports.
+#[derive(LogicBlock)]
+pub struct UnitControl {
+    pub clock: Signal<In, Clock>,
+    /// The bus reset (`ap_rst_n`), synchronous, active low; it resets the unit too.
+    pub reset_n: Signal<In, Bit>,
+    pub axi: AxiLiteSlavePort,
+    // Unit side.
+    pub scene_start: Signal<Out, Bit>,
+    pub unit_reset_n: Signal<Out, Bit>,
+    /// A scene word is taken this cycle (`scene_tvalid & scene_tready`).
+    pub scene_take: Signal<In, Bit>,
+    pub idle: Signal<In, Bit>,
+    pub scene_loaded: Signal<In, Bit>,
+    pub scene_error: Signal<In, Bit>,
+    pub scene_error_code: Signal<In, Bits<ERROR_CODE_BITS>>,
+    pub scene_error_word: Signal<In, Bits<32>>,
+    pub scene_error_value: Signal<In, Bits<32>>,
+    pub overflow: Signal<In, Bit>,
+    pub overflow_ray: Signal<In, Bits<32>>,
+    /// In [`COUNTERS`] order.
+    pub counters: [Signal<In, Bits<32>>; COUNTER_COUNT],
+    bus: AxiLiteBus,
+    start_q: DFF<Bit>,
+    reset_count: DFF<Bits<RESET_COUNT_BITS>>,
+    scene_words: DFF<Bits<32>>,
+    resetting: Signal<Local, Bit>,
+    r_mapped: Signal<Local, Bit>,
+    r_mux: Signal<Local, Bits<32>>,
+    w_writable: Signal<Local, Bit>,
+    word_control: Constant<Bits<WORD_BITS>>,
+    word_status: Constant<Bits<WORD_BITS>>,
+    word_id: Constant<Bits<WORD_BITS>>,
+    word_config: Constant<Bits<WORD_BITS>>,
+    word_memory: Constant<Bits<WORD_BITS>>,
+    word_scene_words: Constant<Bits<WORD_BITS>>,
+    word_error_word: Constant<Bits<WORD_BITS>>,
+    word_error_value: Constant<Bits<WORD_BITS>>,
+    word_overflow_ray: Constant<Bits<WORD_BITS>>,
+    word_counter: [Constant<Bits<WORD_BITS>>; COUNTER_COUNT],
+    id_value: Constant<Bits<32>>,
+    config_value: Constant<Bits<32>>,
+    memory_value: Constant<Bits<32>>,
+    mask_idle: Constant<Bits<32>>,
+    mask_loaded: Constant<Bits<32>>,
+    mask_error: Constant<Bits<32>>,
+    mask_overflow: Constant<Bits<32>>,
+    mask_resetting: Constant<Bits<32>>,
+    error_code_lsb: Constant<Bits<32>>,
+    reset_cycles: Constant<Bits<RESET_COUNT_BITS>>,
+}
+
+impl UnitControl {
+    /// The slave of a unit built from `config` (its ID, CONFIG and MEMORY words).
+    pub fn new(config: &UnitConfig) -> Self {
+        Self {
+            clock: Default::default(),
+            reset_n: Default::default(),
+            axi: Default::default(),
+            scene_start: Default::default(),
+            unit_reset_n: Default::default(),
+            scene_take: Default::default(),
+            idle: Default::default(),
+            scene_loaded: Default::default(),
+            scene_error: Default::default(),
+            scene_error_code: Default::default(),
+            scene_error_word: Default::default(),
+            scene_error_value: Default::default(),
+            overflow: Default::default(),
+            overflow_ray: Default::default(),
+            counters: Default::default(),
+            bus: Default::default(),
+            start_q: Default::default(),
+            reset_count: Default::default(),
+            scene_words: Default::default(),
+            resetting: Default::default(),
+            r_mapped: Default::default(),
+            r_mux: Default::default(),
+            w_writable: Default::default(),
+            word_control: word(map::CONTROL),
+            word_status: word(map::STATUS),
+            word_id: word(map::ID),
+            word_config: word(map::CONFIG),
+            word_memory: word(map::MEMORY),
+            word_scene_words: word(map::SCENE_WORDS),
+            word_error_word: word(map::SCENE_ERROR_WORD),
+            word_error_value: word(map::SCENE_ERROR_VALUE),
+            word_overflow_ray: word(map::OVERFLOW_RAY),
+            word_counter: COUNTERS.map(word),
+            id_value: mask(map::ID_VALUE),
+            config_value: mask(config_word(config).pack()),
+            memory_value: mask(memory_word(config).pack()),
+            mask_idle: mask(map::IDLE),
+            mask_loaded: mask(map::SCENE_LOADED),
+            mask_error: mask(map::SCENE_ERROR),
+            mask_overflow: mask(map::OVERFLOW),
+            mask_resetting: mask(map::RESETTING),
+            error_code_lsb: mask(map::ERROR_CODE_LSB),
+            reset_cycles: Constant::new(u64::from(map::RESET_CYCLES).into()),
+        }
+    }
+}
+
+impl Logic for UnitControl {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, start_q, reset_count, scene_words);
+        self.bus.clock.next = self.clock.val();
+        self.bus.reset_n.next = self.reset_n.val();
+        AxiLiteSlavePort::link(&mut self.axi, &mut self.bus.axi);
+        self.resetting.next = self.reset_count.q.val().any();
+        self.unit_reset_n.next = self.reset_n.val() & !self.resetting.val();
+        self.scene_start.next = self.start_q.q.val();
+
+        // Read: the bus answers `r_mux` the next cycle; CONTROL's pulse bits read 0.
+        self.r_mapped.next = false;
+        self.r_mux.next = 0.into();
+        if self.bus.read_word.val() == self.word_control.val() {
+            self.r_mapped.next = true;
+        }
+        if self.bus.read_word.val() == self.word_status.val() {
+            self.r_mapped.next = true;
+            self.r_mux.next = bit_cast::<32, ERROR_CODE_BITS>(self.scene_error_code.val())
+                << self.error_code_lsb.val();
+            if self.idle.val() {
+                self.r_mux.next = self.r_mux.val() | self.mask_idle.val();
+            }
+            if self.scene_loaded.val() {
+                self.r_mux.next = self.r_mux.val() | self.mask_loaded.val();
+            }
+            if self.scene_error.val() {
+                self.r_mux.next = self.r_mux.val() | self.mask_error.val();
+            }
+            if self.overflow.val() {
+                self.r_mux.next = self.r_mux.val() | self.mask_overflow.val();
+            }
+            if self.resetting.val() {
+                self.r_mux.next = self.r_mux.val() | self.mask_resetting.val();
+            }
+        }
+        if self.bus.read_word.val() == self.word_id.val() {
+            self.r_mapped.next = true;
+            self.r_mux.next = self.id_value.val();
+        }
+        if self.bus.read_word.val() == self.word_config.val() {
+            self.r_mapped.next = true;
+            self.r_mux.next = self.config_value.val();
+        }
+        if self.bus.read_word.val() == self.word_memory.val() {
+            self.r_mapped.next = true;
+            self.r_mux.next = self.memory_value.val();
+        }
+        if self.bus.read_word.val() == self.word_scene_words.val() {
+            self.r_mapped.next = true;
+            self.r_mux.next = self.scene_words.q.val();
+        }
+        if self.bus.read_word.val() == self.word_error_word.val() {
+            self.r_mapped.next = true;
+            self.r_mux.next = self.scene_error_word.val();
+        }
+        if self.bus.read_word.val() == self.word_error_value.val() {
+            self.r_mapped.next = true;
+            self.r_mux.next = self.scene_error_value.val();
+        }
+        if self.bus.read_word.val() == self.word_overflow_ray.val() {
+            self.r_mapped.next = true;
+            self.r_mux.next = self.overflow_ray.val();
+        }
+        for i in 0..COUNTER_COUNT {
+            if self.bus.read_word.val() == self.word_counter[i].val() {
+                self.r_mapped.next = true;
+                self.r_mux.next = self.counters[i].val();
+            }
+        }
+        self.bus.read_data.next = self.r_mux.val();
+        self.bus.read_ok.next = self.r_mapped.val();
+
+        // Write: CONTROL is the one writable register (byte lane 0); every other mapped
+        // register is read-only, so the bus answers SLVERR for it as for an unmapped one.
+        self.w_writable.next = self.bus.write_word.val() == self.word_control.val();
+        self.bus.write_ok.next = self.w_writable.val();
+        self.start_q.d.next = false;
+        if self.resetting.val() {
+            self.reset_count.d.next = self.reset_count.q.val() - 1;
+        }
+        // A RESET written during a reset starts it over.
+        if self.bus.write.val() & self.w_writable.val() & self.bus.write_byte0.val() {
+            if self.bus.write_data.val().get_bit(0) {
+                self.start_q.d.next = true;
+            }
+            if self.bus.write_data.val().get_bit(1) {
+                self.reset_count.d.next = self.reset_cycles.val();
+            }
+        }
+
+        // Scene words since the last load start.
+        if self.start_q.q.val() {
+            self.scene_words.d.next = 0.into();
+        } else if self.scene_take.val() {
+            self.scene_words.d.next = self.scene_words.q.val() + 1;
+        }
+
+        if !self.reset_n.val() {
+            self.start_q.d.next = false;
+            self.reset_count.d.next = 0.into();
+            self.scene_words.d.next = 0.into();
+        }
+    }
+}
+
+/// Defines the AXI4-Lite top `$name` around the unit top `$unit`.
+macro_rules! axil_top {
+    ($name:ident, $unit:ty) => {
+        /// The unit under AXI4-Lite control: `axi` (the unit's register map), the scene,
+        /// ray and answer streams of docs/traversal-unit.md.
+        #[derive(LogicBlock)]
+        pub struct $name {
+            pub clock: Signal<In, Clock>,
+            /// Synchronous, active low (`ap_rst_n`).
+            pub reset_n: Signal<In, Bit>,
+            pub axi: AxiLiteSlavePort,
+            pub scene_tdata: Signal<In, Bits<32>>,
+            pub scene_tvalid: Signal<In, Bit>,
+            pub scene_tlast: Signal<In, Bit>,
+            pub scene_tready: Signal<Out, Bit>,
+            pub ray_tdata: Signal<In, Bits<RAY_BITS>>,
+            pub ray_tvalid: Signal<In, Bit>,
+            pub ray_tready: Signal<Out, Bit>,
+            pub hit_tdata: Signal<Out, Bits<HIT_BITS>>,
+            pub hit_tvalid: Signal<Out, Bit>,
+            pub hit_tready: Signal<In, Bit>,
+            control: UnitControl,
+            unit: $unit,
+        }
+
+        impl $name {
+            /// The unit of `config` (its format, depth and stack; the memory size is the
+            /// type's).
+            pub fn new(config: &UnitConfig) -> Self {
+                Self {
+                    clock: Default::default(),
+                    reset_n: Default::default(),
+                    axi: Default::default(),
+                    scene_tdata: Default::default(),
+                    scene_tvalid: Default::default(),
+                    scene_tlast: Default::default(),
+                    scene_tready: Default::default(),
+                    ray_tdata: Default::default(),
+                    ray_tvalid: Default::default(),
+                    ray_tready: Default::default(),
+                    hit_tdata: Default::default(),
+                    hit_tvalid: Default::default(),
+                    hit_tready: Default::default(),
+                    control: UnitControl::new(config),
+                    unit: <$unit>::new(config.depth, config.stack_depth),
+                }
+            }
+        }
+
+        impl Logic for $name {
+            #[hdl_gen]
+            fn update(&mut self) {
+                self.control.clock.next = self.clock.val();
+                self.unit.clock.next = self.clock.val();
+                self.control.reset_n.next = self.reset_n.val();
+                AxiLiteSlavePort::link(&mut self.axi, &mut self.control.axi);
+                self.unit.reset_n.next = self.control.unit_reset_n.val();
+                self.unit.scene_start.next = self.control.scene_start.val();
+                self.unit.scene_tdata.next = self.scene_tdata.val();
+                self.unit.scene_tvalid.next = self.scene_tvalid.val();
+                self.unit.scene_tlast.next = self.scene_tlast.val();
+                self.scene_tready.next = self.unit.scene_tready.val();
+                self.control.scene_take.next =
+                    self.scene_tvalid.val() & self.unit.scene_tready.val();
+                self.unit.ray_tdata.next = self.ray_tdata.val();
+                self.unit.ray_tvalid.next = self.ray_tvalid.val();
+                self.ray_tready.next = self.unit.ray_tready.val();
+                self.hit_tdata.next = self.unit.hit_tdata.val();
+                self.hit_tvalid.next = self.unit.hit_tvalid.val();
+                self.unit.hit_tready.next = self.hit_tready.val();
+                self.control.idle.next = self.unit.idle.val();
+                self.control.scene_loaded.next = self.unit.scene_loaded.val();
+                self.control.scene_error.next = self.unit.scene_error.val();
+                self.control.scene_error_code.next = self.unit.scene_error_code.val();
+                self.control.scene_error_word.next = self.unit.scene_error_word.val();
+                self.control.scene_error_value.next = self.unit.scene_error_value.val();
+                self.control.overflow.next = self.unit.overflow.val();
+                self.control.overflow_ray.next = self.unit.overflow_ray.val();
+                // In `regmap::unit::COUNTERS` order.
+                self.control.counters[0].next = self.unit.count_rays.val();
+                self.control.counters[1].next = self.unit.count_node_visits.val();
+                self.control.counters[2].next = self.unit.count_box_tests.val();
+                self.control.counters[3].next = self.unit.count_mt_tests.val();
+                self.control.counters[4].next = self.unit.count_busy_cycles.val();
+            }
+        }
+    };
+}
+
+/// `per_format!` over the `hw_model::hw_formats!` list: a module `name` with the AXI4-Lite
+/// top at each scene memory size of `unit_top::name`, and [`verilog`] dispatching on it.
+macro_rules! per_format {
+    ($($name:ident: $kind:ident($($arg:tt),*), $description:literal;)*) => {
+        $(
+            pub mod $name {
+                use rust_hdl::prelude::*;
+                use super::{AxilTop, UnitControl};
+                use $crate::generate::block_ports;
+                use $crate::axil::AxiLiteSlavePort;
+                use $crate::traversal::unit::{UnitConfig, HIT_BITS, RAY_BITS};
+                use $crate::traversal::unit_top::$name as tops;
+
+                axil_top!(Axil4x5, tops::Unit4x5);
+                axil_top!(Axil9x10, tops::Unit9x10);
+                axil_top!(Axil11x12, tops::Unit11x12);
+                axil_top!(Axil12x13, tops::Unit12x13);
+
+                /// The top of a checked configuration at its memory size (the sizes of
+                /// `UnitConfig::check`): its ports and, with `verilog`, its Verilog.
+                pub fn build(config: &UnitConfig, verilog: bool) -> AxilTop {
+                    fn of<U: Block>(unit: U, verilog: bool) -> AxilTop {
+                        let mut unit = Box::new(unit);
+                        unit.connect_all();
+                        AxilTop {
+                            ports: block_ports(unit.as_ref()),
+                            verilog: verilog.then(|| generate_verilog(unit.as_ref())),
+                        }
+                    }
+                    match (config.memory.node_bits, config.memory.triangle_bits) {
+                        (4, 5) => of(Axil4x5::new(config), verilog),
+                        (9, 10) => of(Axil9x10::new(config), verilog),
+                        (11, 12) => of(Axil11x12::new(config), verilog),
+                        _ => of(Axil12x13::new(config), verilog),
+                    }
+                }
+            }
+        )*
+
+        /// The AXI4-Lite tops' builders, in catalogue order.
+        static UNITS: &[fn(&UnitConfig, bool) -> AxilTop] = &[$($name::build),*];
+    };
+}
+
+hw_model::hw_formats!(per_format);
+
+/// A built AXI4-Lite top of the unit (top module `top`, rust-hdl's port names: `axi$…`,
+/// `scene_…`, `ray_…`, `hit_…`).
+pub struct AxilTop {
+    pub ports: Vec<TopPort>,
+    /// Its Verilog, if asked for.
+    pub verilog: Option<String>,
+}
+
+/// The unit of `config` under AXI4-Lite control: its ports and, with `verilog`, its Verilog
+/// (`UnitConfig::check` first).
+pub fn unit_axil(config: &UnitConfig, verilog: bool) -> Result<AxilTop, UnitConfigError> {
+    config.check()?;
+    let config = *config;
+    Ok(with_build_stack(move || {
+        UNITS[usize::from(config.format.code())](&config, verilog)
+    }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hw_model::HwFormat;
+
+    #[test]
+    fn a_reset_outlasts_every_step_in_flight() {
+        for format in HwFormat::all() {
+            for depth in 0..=crate::mt::max_depth(format) {
+                let timing = UnitConfig::new(format, depth, 1).timing();
+                assert!(
+                    longest_step(&timing) < u64::from(map::RESET_CYCLES),
+                    "{format} depth {depth}: {timing:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn config_and_memory_words() {
+        let mut c = UnitConfig::new(HwFormat::FP32, 1000, 1);
+        let w = config_word(&c);
+        assert_eq!(w.depth as usize, crate::mt::max_depth(HwFormat::FP32));
+        assert_eq!((w.format_code, w.lanes), (HwFormat::FP32.code(), 1));
+        c.memory.node_bits = 4;
+        c.memory.triangle_bits = 5;
+        let m = memory_word(&c);
+        assert_eq!((m.node_bits, m.triangle_bits), (4, 5));
+        assert_eq!(m.slots as usize, super::super::unit::UNIT_SLOTS);
+    }
+}
