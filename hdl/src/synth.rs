@@ -77,7 +77,8 @@ pub struct SynthReport {
     pub muxf8: u64,
     /// LUTs used as shift registers (SRL16E, SRLC32E).
     pub srl: u64,
-    /// LUTs used as distributed RAM (RAM32X1D, RAM64M, …).
+    /// Distributed-RAM cells (RAM32M, RAM64X1D, …): each occupies 1–8 LUTs, which
+    /// `top::fit::Usage` counts.
     pub lutram: u64,
     /// Combinational cells on the longest register-to-register path (see the module docs).
     pub logic_depth: u64,

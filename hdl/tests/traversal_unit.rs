@@ -4,6 +4,7 @@
 //! the model's. The Verilated unit runs the larger tests (sim/tests/traversal_unit_verilator.rs).
 
 use hdl::top::with_build_stack;
+use hdl::traversal::scene_memory::zynq_address_bits;
 use hdl::traversal::scene_memory_driver::{check_before_load, status_result, LoadStatus};
 use hdl::traversal::unit::{unit_verilog, UnitConfig, UnitConfigError};
 use hdl::verilog::{verilator_lint_waiving, UNIT_VERILATOR_WAIVERS};
@@ -261,15 +262,12 @@ fn the_units_verilog_passes_verilator_lint() {
     }
 }
 
-/// yosys resources of the unit (fp32, depth 5, one lane) with the scene memory beside one
-/// lane on the XC7Z020 and with a small one:
-/// `cargo test --release -p hdl --test traversal_unit -- --ignored --nocapture unit_resources`.
-#[test]
-#[ignore]
-fn unit_resources() {
-    let designs: Vec<(String, String)> = [(12, 13), (9, 10)]
-        .into_iter()
-        .map(|(node_bits, triangle_bits)| {
+/// yosys resources of the unit (fp32, depth 5, one lane) with the scene memory of
+/// `(node_bits, triangle_bits)` address bits.
+fn unit_resources(memories: &[(usize, usize)]) {
+    let designs: Vec<(String, String)> = memories
+        .iter()
+        .map(|&(node_bits, triangle_bits)| {
             let mut c = UnitConfig::new(HwFormat::FP32, 5, 1);
             c.memory.node_bits = node_bits;
             c.memory.triangle_bits = triangle_bits;
@@ -280,4 +278,20 @@ fn unit_resources() {
         })
         .collect();
     println!("{}", hdl::synth::markdown_table(&designs).unwrap());
+}
+
+/// The scene memory beside one lane on the XC7Z020 (each design takes 35–60 min here):
+/// `cargo test --release -p hdl --test traversal_unit -- --ignored --nocapture
+/// unit_resources_zynq`.
+#[test]
+#[ignore]
+fn unit_resources_zynq() {
+    unit_resources(&[zynq_address_bits(1)]);
+}
+
+/// A small scene memory, to tell the logic from the block RAM: `… unit_resources_small`.
+#[test]
+#[ignore]
+fn unit_resources_small() {
+    unit_resources(&[(9, 10)]);
 }

@@ -48,9 +48,14 @@ pub struct Usage {
 impl Usage {
     pub fn of(report: &SynthReport) -> Self {
         let cells = |name: &str| report.cells.get(name).copied().unwrap_or(0);
+        let lut_ram: u64 = report
+            .cells
+            .iter()
+            .map(|(cell, n)| n * lut_ram_luts(cell))
+            .sum();
         Usage {
             // SRLs and LUT RAM occupy LUTs too.
-            lut: report.lut + report.srl + report.lutram,
+            lut: report.lut + report.srl + lut_ram,
             ff: report.ff,
             dsp48e1: report.dsp48e1,
             bram18: cells("RAMB18E1") + 2 * cells("RAMB36E1"),
@@ -75,6 +80,18 @@ impl Usage {
             dsp48e1: fixed.dsp48e1 + lanes * per_lane.dsp48e1,
             bram18: fixed.bram18 + lanes * per_lane.bram18,
         }
+    }
+}
+
+/// The LUTs a cell occupies as distributed RAM (UG474, UG574: a RAM32M or RAM64M is a
+/// SLICEM's four LUTs); 0 for other cells, and the largest, 8, for a RAM cell not listed.
+fn lut_ram_luts(cell: &str) -> u64 {
+    match cell {
+        "RAM32X1S" | "RAM64X1S" => 1,
+        "RAM32X1D" | "RAM64X1D" | "RAM128X1S" => 2,
+        "RAM32M" | "RAM64M" | "RAM128X1D" | "RAM256X1S" => 4,
+        c if c.starts_with("RAM") && !c.starts_with("RAMB") => 8,
+        _ => 0,
     }
 }
 
@@ -167,6 +184,18 @@ mod tests {
             bram18: full.bram18 + 1,
             ..full
         }));
+    }
+
+    #[test]
+    fn lut_ram_counts_the_luts_it_occupies() {
+        let cells = [("LUT6", 10), ("SRLC32E", 2), ("RAM32M", 3), ("RAM64X1D", 1)]
+            .into_iter()
+            .map(|(c, n)| (c.to_string(), n))
+            .collect();
+        let usage = Usage::of(&SynthReport::from_cells(cells, 1));
+        assert_eq!(usage.lut, 10 + 2 + 3 * 4 + 2);
+        assert_eq!((lut_ram_luts("RAMB36E1"), lut_ram_luts("FDRE")), (0, 0));
+        assert_eq!(lut_ram_luts("RAM64M8"), 8);
     }
 
     #[test]

@@ -22,8 +22,16 @@
 //! The lane's answers fold into the slot's nearest hit in issue order (`HitUpdate`); after a
 //! leaf a closest-hit ray whose hit got nearer has its far end recomputed from `next_up(t)`
 //! (`FarEnd`) before it pops, an any-hit ray with a hit is done. Every write-back targets a
-//! slot in a distinct state, so writers never collide, and a slot's per-ray words are
-//! flip-flops read through one-hot selects.
+//! slot in a distinct state, so writers never collide.
+//!
+//! A slot's wide words that have one writer live in synchronous slot RAMs (LUTRAM, 32 deep),
+//! read at a port's grant so that the word arrives the cycle after, as a register would
+//! bring it: the box-test words (written by the ray setup, read at the box grant), the lane
+//! words and excluded triangle (written at entry, read at the leaf grant), the pad (written
+//! by the setup, read at the leaf grant and carried beside the lane), the nearest hit (read
+//! one cycle before each lane answer, the previous cycle's write forwarded) and, for the hit
+//! output and the overflow report, copies of the nearest hit and of the ray id. Words with
+//! several writers in one cycle (the far end `t_hi`, the current link) stay flip-flops.
 
 use hw_model::traversal::packet::{hit_word, ray_word, ANY_HIT, HAS_EXCLUDE, HIT_WORDS, RAY_WORDS};
 use hw_model::traversal::schedule::UnitTiming;
@@ -54,6 +62,8 @@ pub const HIT_BITS: usize = 32 * HIT_WORDS;
 const BOX_WORDS_BITS: usize = 9 * 32;
 /// A slot's lane words: orig x y z, dir x y z, t_min, t_max.
 const LANE_WORDS_BITS: usize = 8 * 32;
+/// A slot's leaf-port words: the lane words, then the excluded triangle.
+const LEAF_WORDS_BITS: usize = LANE_WORDS_BITS + INDEX_BITS;
 /// A slot's nearest hit: t, u, v, triangle (zero-extended).
 const BEST_BITS: usize = 4 * 32;
 
@@ -136,17 +146,21 @@ pub struct TraversalCore<
     best_valid: DFF<Bits<S>>,
     /// The nearest hit changed during the current leaf.
     changed: DFF<Bits<S>>,
-    // The slots' words.
-    box_words: Vec<DFF<Bits<BOX_WORDS_BITS>>>,
-    lane_words: Vec<DFF<Bits<LANE_WORDS_BITS>>>,
-    exclude: Vec<DFF<Bits<INDEX_BITS>>>,
-    ray_id: Vec<DFF<Bits<32>>>,
-    pad: Vec<DFF<Bits<32>>>,
+    // The slots' words: one-writer words in slot RAMs (address: the slot) …
+    box_ram: RAM<Bits<BOX_WORDS_BITS>, SB>,
+    leaf_ram: RAM<Bits<LEAF_WORDS_BITS>, SB>,
+    pad_ram: RAM<Bits<32>, SB>,
+    /// The nearest hit, read for the lane's answers (`best_ram`) and for the hit output.
+    best_ram: RAM<Bits<BEST_BITS>, SB>,
+    best_out_ram: RAM<Bits<BEST_BITS>, SB>,
+    /// The ray id, read for the hit output and for the overflow report.
+    id_out_ram: RAM<Bits<32>, SB>,
+    id_overflow_ram: RAM<Bits<32>, SB>,
+    // … the rest in flip-flops.
     t_hi: Vec<DFF<Bits<32>>>,
     /// The current link: a node, or the leaf's next triangle and how many are left.
     link_first: Vec<DFF<Bits<LF>>>,
     link_count: Vec<DFF<Bits<LC>>>,
-    best: Vec<DFF<Bits<BEST_BITS>>>,
     slot_id: Vec<Constant<Bits<SB>>>,
     one: Constant<Bits<S>>,
     one_count: Constant<Bits<LC>>,
@@ -156,41 +170,49 @@ pub struct TraversalCore<
     /// Where a word enters a packed record: its top word.
     box_top: Constant<Bits<16>>,
     hit_top: Constant<Bits<16>>,
+    /// Where the excluded triangle sits in a leaf-port word.
+    exclude_at: Constant<Bits<16>>,
 
-    // The box port: the granted slot's words, registered beside the node read.
+    // The box port: the granted slot's state, registered beside the node and word reads.
     box_valid: DFF<Bit>,
     box_slot: DFF<Bits<SB>>,
     box_root: DFF<Bit>,
-    box_words_q: DFF<Bits<BOX_WORDS_BITS>>,
     box_t_hi: DFF<Bits<32>>,
     /// The node's child links travel beside the box test.
     child_first_at: [Delay<Bits<LF>>; 2],
     child_count_at: [Delay<Bits<LC>>; 2],
     root_at: Delay<Bit>,
-    // The leaf port: the slot's words, registered beside the triangle read.
+    // The leaf port: the slot's state, registered beside the triangle and word reads.
     leaf_valid: DFF<Bit>,
-    leaf_slot: DFF<Bits<SB>>,
     leaf_last: DFF<Bit>,
-    leaf_words: DFF<Bits<LANE_WORDS_BITS>>,
     leaf_any_hit: DFF<Bit>,
     leaf_has_exclude: DFF<Bit>,
-    leaf_exclude: DFF<Bits<INDEX_BITS>>,
     /// What travels beside the lane: issued (tested or skipped), tested, last of its leaf,
-    /// slot, triangle, the window.
+    /// triangle, the window, the pad.
     issued_at: Delay<Bit>,
     tested_at: Delay<Bit>,
     last_at: Delay<Bit>,
-    slot_at: Delay<Bits<SB>>,
     index_at: Delay<Bits<INDEX_BITS>>,
     t_min_at: Delay<Bits<32>>,
     t_max_at: Delay<Bits<32>>,
     any_hit_at: Delay<Bit>,
+    pad_at: Delay<Bits<32>>,
+    /// The answer's slot one cycle early (from the grant, the lane's latency): the address
+    /// of the nearest hit's read; then the answer's slot itself.
+    slot_at: Delay<Bits<SB>>,
+    answer_slot: DFF<Bits<SB>>,
+    /// The nearest hit written in the cycle of the read (the RAM reads the old word).
+    best_forward: DFF<Bit>,
+    best_written: DFF<Bits<BEST_BITS>>,
     // The stack port.
     pop_valid: DFF<Bit>,
     pop_slot: DFF<Bits<SB>>,
     pop_t_hi: DFF<Bits<32>>,
-    // The hit output.
+    // The hit output: the granted slot's words arrive from the RAMs the cycle after the
+    // grant (`out_fresh`), and `out_data` holds them while the output waits.
     out_valid: DFF<Bit>,
+    out_fresh: DFF<Bit>,
+    out_hit: DFF<Bit>,
     out_data: DFF<Bits<HIT_BITS>>,
     overflow_q: DFF<Bit>,
     overflow_ray_q: DFF<Bits<32>>,
@@ -210,6 +232,7 @@ pub struct TraversalCore<
     box_grant_slot: Signal<Local, Bits<SB>>,
     leaf_grant_slot: Signal<Local, Bits<SB>>,
     pop_grant_slot: Signal<Local, Bits<SB>>,
+    out_grant_slot: Signal<Local, Bits<SB>>,
     /// Write-backs: one-hot slot masks and what they write.
     setup_done: Signal<Local, Bits<S>>,
     setup_slot: Signal<Local, Bits<SB>>,
@@ -229,7 +252,8 @@ pub struct TraversalCore<
     lane_best_valid: Signal<Local, Bit>,
     lane_changed: Signal<Local, Bit>,
     lane_best: Signal<Local, Bits<BEST_BITS>>,
-    lane_pad: Signal<Local, Bits<32>>,
+    /// The nearest hit this answer writes.
+    lane_written: Signal<Local, Bits<BEST_BITS>>,
     /// This result becomes the slot's nearest hit (closest-hit), or its answer (any-hit).
     lane_take: Signal<Local, Bit>,
     lane_any_hit: Signal<Local, Bit>,
@@ -249,6 +273,8 @@ pub struct TraversalCore<
     leaf_link: Signal<Local, Bits<LF>>,
     ray_exclude: Signal<Local, Bits<INDEX_BITS>>,
     setup_words: Signal<Local, Bits<BOX_WORDS_BITS>>,
+    leaf_words: Signal<Local, Bits<LANE_WORDS_BITS>>,
+    leaf_exclude: Signal<Local, Bits<INDEX_BITS>>,
     out_word: Signal<Local, Bits<HIT_BITS>>,
     box_visit: Signal<Local, Bit>,
     next_busy: Signal<Local, Bits<S>>,
@@ -360,15 +386,16 @@ impl<
             has_exclude: Default::default(),
             best_valid: Default::default(),
             changed: Default::default(),
-            box_words: defaults(S),
-            lane_words: defaults(S),
-            exclude: defaults(S),
-            ray_id: defaults(S),
-            pad: defaults(S),
+            box_ram: Default::default(),
+            leaf_ram: Default::default(),
+            pad_ram: Default::default(),
+            best_ram: Default::default(),
+            best_out_ram: Default::default(),
+            id_out_ram: Default::default(),
+            id_overflow_ram: Default::default(),
             t_hi: defaults(S),
             link_first: defaults(S),
             link_count: defaults(S),
-            best: defaults(S),
             slot_id: (0..S).map(|s| Constant::new((s as u64).into())).collect(),
             one: Constant::new(1.into()),
             one_count: Constant::new(1.into()),
@@ -376,33 +403,36 @@ impl<
             abs_mask: Constant::new(0x7FFF_FFFFu64.into()),
             box_top: Constant::new(((BOX_WORDS_BITS - 32) as u64).into()),
             hit_top: Constant::new(((HIT_BITS - 32) as u64).into()),
+            exclude_at: Constant::new((LANE_WORDS_BITS as u64).into()),
             box_valid: Default::default(),
             box_slot: Default::default(),
             box_root: Default::default(),
-            box_words_q: Default::default(),
             box_t_hi: Default::default(),
             child_first_at: std::array::from_fn(|_| Delay::new(box_latency)),
             child_count_at: std::array::from_fn(|_| Delay::new(box_latency)),
             root_at: Delay::new(box_latency),
             leaf_valid: Default::default(),
-            leaf_slot: Default::default(),
             leaf_last: Default::default(),
-            leaf_words: Default::default(),
             leaf_any_hit: Default::default(),
             leaf_has_exclude: Default::default(),
-            leaf_exclude: Default::default(),
             issued_at: Delay::new(lane_latency),
             tested_at: Delay::new(lane_latency),
             last_at: Delay::new(lane_latency),
-            slot_at: Delay::new(lane_latency),
             index_at: Delay::new(lane_latency),
             t_min_at: Delay::new(lane_latency),
             t_max_at: Delay::new(lane_latency),
             any_hit_at: Delay::new(lane_latency),
+            pad_at: Delay::new(lane_latency),
+            slot_at: Delay::new(lane_latency),
+            answer_slot: Default::default(),
+            best_forward: Default::default(),
+            best_written: Default::default(),
             pop_valid: Default::default(),
             pop_slot: Default::default(),
             pop_t_hi: Default::default(),
             out_valid: Default::default(),
+            out_fresh: Default::default(),
+            out_hit: Default::default(),
             out_data: Default::default(),
             overflow_q: Default::default(),
             overflow_ray_q: Default::default(),
@@ -420,6 +450,7 @@ impl<
             box_grant_slot: Default::default(),
             leaf_grant_slot: Default::default(),
             pop_grant_slot: Default::default(),
+            out_grant_slot: Default::default(),
             setup_done: Default::default(),
             setup_slot: Default::default(),
             box_done: Default::default(),
@@ -437,7 +468,7 @@ impl<
             lane_best_valid: Default::default(),
             lane_changed: Default::default(),
             lane_best: Default::default(),
-            lane_pad: Default::default(),
+            lane_written: Default::default(),
             lane_take: Default::default(),
             lane_any_hit: Default::default(),
             far_done: Default::default(),
@@ -454,6 +485,8 @@ impl<
             leaf_link: Default::default(),
             ray_exclude: Default::default(),
             setup_words: Default::default(),
+            leaf_words: Default::default(),
+            leaf_exclude: Default::default(),
             out_word: Default::default(),
             box_visit: Default::default(),
             next_busy: Default::default(),
@@ -508,19 +541,20 @@ impl<
             box_valid,
             box_slot,
             box_root,
-            box_words_q,
             box_t_hi,
             leaf_valid,
-            leaf_slot,
             leaf_last,
-            leaf_words,
             leaf_any_hit,
             leaf_has_exclude,
-            leaf_exclude,
+            answer_slot,
+            best_forward,
+            best_written,
             pop_valid,
             pop_slot,
             pop_t_hi,
             out_valid,
+            out_fresh,
+            out_hit,
             out_data,
             overflow_q,
             overflow_ray_q,
@@ -530,25 +564,27 @@ impl<
             mt_tests,
             busy_cycles
         );
+        self.box_ram.read_clock.next = self.clock.val();
+        self.box_ram.write_clock.next = self.clock.val();
+        self.leaf_ram.read_clock.next = self.clock.val();
+        self.leaf_ram.write_clock.next = self.clock.val();
+        self.pad_ram.read_clock.next = self.clock.val();
+        self.pad_ram.write_clock.next = self.clock.val();
+        self.best_ram.read_clock.next = self.clock.val();
+        self.best_ram.write_clock.next = self.clock.val();
+        self.best_out_ram.read_clock.next = self.clock.val();
+        self.best_out_ram.write_clock.next = self.clock.val();
+        self.id_out_ram.read_clock.next = self.clock.val();
+        self.id_out_ram.write_clock.next = self.clock.val();
+        self.id_overflow_ram.read_clock.next = self.clock.val();
+        self.id_overflow_ram.write_clock.next = self.clock.val();
         for i in 0..S {
-            self.box_words[i].clock.next = self.clock.val();
-            self.box_words[i].d.next = self.box_words[i].q.val();
-            self.lane_words[i].clock.next = self.clock.val();
-            self.lane_words[i].d.next = self.lane_words[i].q.val();
-            self.exclude[i].clock.next = self.clock.val();
-            self.exclude[i].d.next = self.exclude[i].q.val();
-            self.ray_id[i].clock.next = self.clock.val();
-            self.ray_id[i].d.next = self.ray_id[i].q.val();
-            self.pad[i].clock.next = self.clock.val();
-            self.pad[i].d.next = self.pad[i].q.val();
             self.t_hi[i].clock.next = self.clock.val();
             self.t_hi[i].d.next = self.t_hi[i].q.val();
             self.link_first[i].clock.next = self.clock.val();
             self.link_first[i].d.next = self.link_first[i].q.val();
             self.link_count[i].clock.next = self.clock.val();
             self.link_count[i].d.next = self.link_count[i].q.val();
-            self.best[i].clock.next = self.clock.val();
-            self.best[i].d.next = self.best[i].q.val();
         }
         for c in 0..2 {
             self.child_first_at[c].clock.next = self.clock.val();
@@ -563,6 +599,7 @@ impl<
         self.t_min_at.clock.next = self.clock.val();
         self.t_max_at.clock.next = self.clock.val();
         self.any_hit_at.clock.next = self.clock.val();
+        self.pad_at.clock.next = self.clock.val();
 
         // ---- The scene memory and its stream.
         self.memory.start_load.next = self.scene_start.val();
@@ -627,22 +664,43 @@ impl<
             self.setup_words.next = (self.setup_words.val() >> 32)
                 | (bit_cast::<BOX_WORDS_BITS, 32>(self.packed_word.val()) << self.box_top.val());
         }
+        self.box_ram.write_enable.next = self.setup.valid_out.val();
+        self.box_ram.write_address.next = self.setup_slot.val();
+        self.box_ram.write_data.next = self.setup_words.val();
+        self.pad_ram.write_enable.next = self.setup.valid_out.val();
+        self.pad_ram.write_address.next = self.setup_slot.val();
+        self.pad_ram.write_data.next = self.setup.pad.val();
+        // The entering ray's words for the leaf port and its id.
+        self.packed_word.next = self.ray_words[9].val();
+        self.ray_exclude.next = bit_cast::<INDEX_BITS, 32>(self.packed_word.val());
+        self.leaf_ram.write_enable.next = self.accept.val();
+        self.leaf_ram.write_address.next = self.enter_slot.val();
+        self.leaf_ram.write_data.next =
+            bit_cast::<LEAF_WORDS_BITS, LANE_WORDS_BITS>(bit_cast::<LANE_WORDS_BITS, RAY_BITS>(
+                self.ray_tdata.val(),
+            )) | (bit_cast::<LEAF_WORDS_BITS, INDEX_BITS>(self.ray_exclude.val())
+                << self.exclude_at.val());
+        self.id_out_ram.write_enable.next = self.accept.val();
+        self.id_out_ram.write_address.next = self.enter_slot.val();
+        self.id_out_ram.write_data.next = self.ray_words[10].val();
+        self.id_overflow_ram.write_enable.next = self.accept.val();
+        self.id_overflow_ram.write_address.next = self.enter_slot.val();
+        self.id_overflow_ram.write_data.next = self.ray_words[10].val();
 
         // ---- The box port: the grant reads the slot's words and its node …
         self.box_arb.request.next = self.want_box.q.val();
         self.box_grant_slot.next = 0.into();
         self.box_link.next = 0.into();
-        self.box_words_q.d.next = 0.into();
         self.box_t_hi.d.next = 0.into();
         for i in 0..S {
             if self.box_arb.grant.val().get_bit(i) {
                 self.box_grant_slot.next = self.slot_id[i].val();
-                self.box_words_q.d.next = self.box_words[i].q.val();
                 self.box_t_hi.d.next = self.t_hi[i].q.val();
                 self.box_link.next = self.link_first[i].q.val();
             }
         }
         self.memory.node_address.next = bit_cast::<NB, LF>(self.box_link.val());
+        self.box_ram.read_address.next = self.box_grant_slot.val();
         self.box_valid.d.next = self.box_arb.grant.val().any();
         self.box_slot.d.next = self.box_grant_slot.val();
         self.box_root.d.next = (self.at_root.q.val() & self.box_arb.grant.val()).any();
@@ -650,9 +708,9 @@ impl<
         self.boxes.valid_in.next = self.box_valid.q.val();
         self.boxes.tag_in.next = bit_cast::<16, SB>(self.box_slot.q.val());
         for k in 0..3 {
-            self.boxes.orig_lo[k].next = self.box_words_q.q.val().get_bits::<32>(32 * k);
-            self.boxes.orig_hi[k].next = self.box_words_q.q.val().get_bits::<32>(32 * (3 + k));
-            self.boxes.inv_dir[k].next = self.box_words_q.q.val().get_bits::<32>(32 * (6 + k));
+            self.boxes.orig_lo[k].next = self.box_ram.read_data.val().get_bits::<32>(32 * k);
+            self.boxes.orig_hi[k].next = self.box_ram.read_data.val().get_bits::<32>(32 * (3 + k));
+            self.boxes.inv_dir[k].next = self.box_ram.read_data.val().get_bits::<32>(32 * (6 + k));
         }
         self.boxes.t_hi.next = self.box_t_hi.q.val();
         for j in 0..6 {
@@ -748,57 +806,59 @@ impl<
         self.leaf_grant_slot.next = 0.into();
         self.leaf_grant_last.next = false;
         self.leaf_link.next = 0.into();
-        self.leaf_words.d.next = 0.into();
-        self.leaf_exclude.d.next = 0.into();
         for i in 0..S {
             if self.leaf_grant.val().get_bit(i) {
                 self.leaf_grant_slot.next = self.slot_id[i].val();
                 self.leaf_link.next = self.link_first[i].q.val();
                 self.leaf_grant_last.next = self.link_count[i].q.val() == self.one_count.val();
-                self.leaf_words.d.next = self.lane_words[i].q.val();
-                self.leaf_exclude.d.next = self.exclude[i].q.val();
             }
         }
         self.memory.triangle_address.next = bit_cast::<TB, LF>(self.leaf_link.val());
+        self.leaf_ram.read_address.next = self.leaf_grant_slot.val();
+        self.pad_ram.read_address.next = self.leaf_grant_slot.val();
         self.leaf_valid.d.next = self.leaf_grant.val().any();
-        self.leaf_slot.d.next = self.leaf_grant_slot.val();
         self.leaf_last.d.next = self.leaf_grant_last.val();
         self.leaf_any_hit.d.next = (self.any_hit.q.val() & self.leaf_grant.val()).any();
         self.leaf_has_exclude.d.next = (self.has_exclude.q.val() & self.leaf_grant.val()).any();
-        // The cycle after: the triangle is read, then tested or skipped.
+        // The cycle after: the triangle and the slot's words are read, the triangle is
+        // tested or skipped.
+        self.leaf_words.next =
+            bit_cast::<LANE_WORDS_BITS, LEAF_WORDS_BITS>(self.leaf_ram.read_data.val());
+        self.leaf_exclude.next = bit_cast::<INDEX_BITS, LEAF_WORDS_BITS>(
+            self.leaf_ram.read_data.val() >> self.exclude_at.val(),
+        );
         self.skip.next = (self.leaf_any_hit.q.val() & !self.memory.casts_shadow.val())
             | (self.leaf_has_exclude.q.val()
-                & (self.leaf_exclude.q.val() == self.memory.global_index.val()));
+                & (self.leaf_exclude.val() == self.memory.global_index.val()));
         self.lane_valid.next = self.leaf_valid.q.val() & !self.skip.val();
         for k in 0..6 {
-            self.lane_query[k].next = self.leaf_words.q.val().get_bits::<32>(32 * k);
+            self.lane_query[k].next = self.leaf_words.val().get_bits::<32>(32 * k);
         }
         for k in 0..9 {
             self.lane_query[6 + k].next = self.memory.vert[k].val();
         }
-        self.lane_query[15].next = self.leaf_words.q.val().get_bits::<32>(224);
-        self.t_min_at.d.next = self.leaf_words.q.val().get_bits::<32>(224);
-        self.t_max_at.d.next = self.leaf_words.q.val().get_bits::<32>(192);
+        self.lane_query[15].next = self.leaf_words.val().get_bits::<32>(224);
+        self.t_min_at.d.next = self.leaf_words.val().get_bits::<32>(224);
+        self.t_max_at.d.next = self.leaf_words.val().get_bits::<32>(192);
         self.issued_at.d.next = self.leaf_valid.q.val();
         self.tested_at.d.next = self.leaf_valid.q.val() & !self.skip.val();
         self.last_at.d.next = self.leaf_last.q.val();
-        self.slot_at.d.next = self.leaf_slot.q.val();
         self.index_at.d.next = self.memory.global_index.val();
         self.any_hit_at.d.next = self.leaf_any_hit.q.val();
+        self.pad_at.d.next = self.pad_ram.read_data.val();
         // The lane's answer, folded into its slot's nearest hit (closest-hit) or kept as
-        // the first counting hit (any-hit).
-        self.lane_slot.next = self.slot_at.q.val();
+        // the first counting hit (any-hit). The nearest hit is read a cycle ahead.
+        self.slot_at.d.next = self.leaf_grant_slot.val();
+        self.best_ram.read_address.next = self.slot_at.q.val();
+        self.answer_slot.d.next = self.slot_at.q.val();
+        self.lane_slot.next = self.answer_slot.q.val();
         self.lane_done.next = 0.into();
         if self.issued_at.q.val() {
             self.lane_done.next = self.one.val() << self.lane_slot.val();
         }
-        self.lane_best.next = 0.into();
-        self.lane_pad.next = 0.into();
-        for i in 0..S {
-            if self.lane_slot.val() == self.slot_id[i].val() {
-                self.lane_best.next = self.best[i].q.val();
-                self.lane_pad.next = self.pad[i].q.val();
-            }
+        self.lane_best.next = self.best_ram.read_data.val();
+        if self.best_forward.q.val() {
+            self.lane_best.next = self.best_written.q.val();
         }
         self.update.hit.next = self.lane_hit.val() & self.tested_at.q.val();
         self.update.t.next = self.lane_t.val();
@@ -816,6 +876,20 @@ impl<
         self.lane_best_valid.next = self.update.best_valid.val() | self.lane_take.val();
         self.lane_changed.next =
             (self.changed.q.val() & self.lane_done.val()).any() | self.lane_take.val();
+        self.lane_written.next = bit_cast::<BEST_BITS, 32>(self.lane_t.val())
+            | (bit_cast::<BEST_BITS, 32>(self.lane_u.val()) << 32)
+            | (bit_cast::<BEST_BITS, 32>(self.lane_v.val()) << 64)
+            | (bit_cast::<BEST_BITS, INDEX_BITS>(self.index_at.q.val()) << 96);
+        self.best_ram.write_enable.next = self.lane_take.val() & self.issued_at.q.val();
+        self.best_ram.write_address.next = self.lane_slot.val();
+        self.best_ram.write_data.next = self.lane_written.val();
+        self.best_out_ram.write_enable.next = self.lane_take.val() & self.issued_at.q.val();
+        self.best_out_ram.write_address.next = self.lane_slot.val();
+        self.best_out_ram.write_data.next = self.lane_written.val();
+        self.best_forward.d.next = self.lane_take.val()
+            & self.issued_at.q.val()
+            & (self.lane_slot.val() == self.slot_at.q.val());
+        self.best_written.d.next = self.lane_written.val();
         // After a leaf with a nearer hit: the far end of next_up(t) (t is a counting hit's,
         // so finite and not NaN).
         self.new_t.next = self.lane_best.val().get_bits::<32>(0);
@@ -835,7 +909,7 @@ impl<
             & self.lane_changed.val();
         self.far.tag_in.next = bit_cast::<16, SB>(self.lane_slot.val());
         self.far.bound.next = self.next_up.val();
-        self.far.pad.next = self.lane_pad.val();
+        self.far.pad.next = self.pad_at.q.val();
         self.far_slot.next = bit_cast::<SB, 16>(self.far.tag_out.val());
         self.far_done.next = 0.into();
         if self.far.valid_out.val() {
@@ -848,20 +922,27 @@ impl<
             self.out_arb.request.next = self.want_out.q.val();
         }
         self.out_grant.next = self.out_arb.grant.val();
+        self.out_grant_slot.next = 0.into();
+        for i in 0..S {
+            if self.out_grant.val().get_bit(i) {
+                self.out_grant_slot.next = self.slot_id[i].val();
+            }
+        }
+        self.id_out_ram.read_address.next = self.out_grant_slot.val();
+        self.best_out_ram.read_address.next = self.out_grant_slot.val();
+        self.out_fresh.d.next = self.out_grant.val().any();
+        self.out_hit.d.next = (self.best_valid.q.val() & self.out_grant.val()).any();
+        // The cycle after the grant: the answer from the RAMs' words.
         for k in 0..HIT_WORDS {
             self.hit_words[k].next = 0.into();
         }
-        for i in 0..S {
-            if self.out_grant.val().get_bit(i) {
-                self.hit_words[0].next = self.ray_id[i].q.val();
-                if self.best_valid.q.val().get_bit(i) {
-                    self.hit_words[1].next = 1.into();
-                    self.hit_words[3].next = self.best[i].q.val().get_bits::<32>(0);
-                    self.hit_words[4].next = self.best[i].q.val().get_bits::<32>(32);
-                    self.hit_words[5].next = self.best[i].q.val().get_bits::<32>(64);
-                    self.hit_words[2].next = self.best[i].q.val().get_bits::<32>(96);
-                }
-            }
+        self.hit_words[0].next = self.id_out_ram.read_data.val();
+        if self.out_hit.q.val() {
+            self.hit_words[1].next = 1.into();
+            self.hit_words[3].next = self.best_out_ram.read_data.val().get_bits::<32>(0);
+            self.hit_words[4].next = self.best_out_ram.read_data.val().get_bits::<32>(32);
+            self.hit_words[5].next = self.best_out_ram.read_data.val().get_bits::<32>(64);
+            self.hit_words[2].next = self.best_out_ram.read_data.val().get_bits::<32>(96);
         }
         self.out_word.next = 0.into();
         for k in 0..HIT_WORDS {
@@ -874,10 +955,13 @@ impl<
         }
         if self.out_grant.val().any() {
             self.out_valid.d.next = true;
-            self.out_data.d.next = self.out_word.val();
         }
         self.hit_tvalid.next = self.out_valid.q.val();
         self.hit_tdata.next = self.out_data.q.val();
+        if self.out_fresh.q.val() {
+            self.hit_tdata.next = self.out_word.val();
+        }
+        self.out_data.d.next = self.hit_tdata.val();
 
         // ---- The slots' states: each writer targets slots in its own state.
         self.next_busy.next = (self.busy.q.val() & !self.out_grant.val()) | self.entering.val();
@@ -954,19 +1038,9 @@ impl<
             self.has_exclude.d.next = self.has_exclude.d.val() | self.entering.val();
         }
 
-        // ---- The slots' words.
-        self.packed_word.next = self.ray_words[9].val();
-        self.ray_exclude.next = bit_cast::<INDEX_BITS, 32>(self.packed_word.val());
+        // ---- The slots' flip-flop words.
         for i in 0..S {
-            if self.entering.val().get_bit(i) {
-                self.lane_words[i].d.next =
-                    bit_cast::<LANE_WORDS_BITS, RAY_BITS>(self.ray_tdata.val());
-                self.exclude[i].d.next = self.ray_exclude.val();
-                self.ray_id[i].d.next = self.ray_words[10].val();
-            }
             if self.setup_done.val().get_bit(i) {
-                self.box_words[i].d.next = self.setup_words.val();
-                self.pad[i].d.next = self.setup.pad.val();
                 self.t_hi[i].d.next = self.setup.t_hi.val();
             }
             if self.far_done.val().get_bit(i) {
@@ -984,24 +1058,16 @@ impl<
                 self.link_first[i].d.next = self.link_first[i].q.val() + 1;
                 self.link_count[i].d.next = self.link_count[i].q.val() - 1;
             }
-            if self.lane_take.val() & self.lane_done.val().get_bit(i) {
-                self.best[i].d.next = bit_cast::<BEST_BITS, 32>(self.lane_t.val())
-                    | (bit_cast::<BEST_BITS, 32>(self.lane_u.val()) << 32)
-                    | (bit_cast::<BEST_BITS, 32>(self.lane_v.val()) << 64)
-                    | (bit_cast::<BEST_BITS, INDEX_BITS>(self.index_at.q.val()) << 96);
-            }
         }
 
         // ---- Status and counters.
         self.overflow_q.d.next = self.overflow_q.q.val();
         self.overflow_ray_q.d.next = self.overflow_ray_q.q.val();
+        // The pushing slot's id is read with the push, ready when the stack reports the drop.
+        self.id_overflow_ram.read_address.next = self.box_done_slot.val();
         if self.stacks.dropped.val() & !self.overflow_q.q.val() {
             self.overflow_q.d.next = true;
-            for i in 0..S {
-                if self.stacks.dropped_slot.val() == self.slot_id[i].val() {
-                    self.overflow_ray_q.d.next = self.ray_id[i].q.val();
-                }
-            }
+            self.overflow_ray_q.d.next = self.id_overflow_ram.read_data.val();
         }
         if self.accept.val() {
             self.rays.d.next = self.rays.q.val() + 1;
