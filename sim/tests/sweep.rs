@@ -505,9 +505,12 @@ points = ["fx16_13_d0_l1"]
         .point_dir("fx16_13_d0_l1")
         .join("verilog/rtfpga_top.v")
         .is_file());
+    // One co-simulation per spawn policy, each equal to the model.
+    assert_eq!(point.cosim.len(), SpawnChoice::ALL.len());
     assert_eq!(point.cosim_identical(), Some(true));
-    let c = &point.cosim[0];
-    assert!(c.tests > 0 && c.cycles >= c.tests, "{c:?}");
+    for c in &point.cosim {
+        assert!(c.tests > 0 && c.cycles >= c.tests, "{c:?}");
+    }
 
     let row = &results.rows[0];
     assert_eq!(
@@ -518,7 +521,7 @@ points = ["fx16_13_d0_l1"]
             Some(synth.logic_depth)
         )
     );
-    assert!(row.cycles_measured && row.cycles_per_test == c.cycles_per_test);
+    assert!(row.cycles_measured && row.cycles_per_test == point.cycles_per_test());
     assert_eq!(row.lanes_fit, None, "a fit needs the 2-lane design too");
 
     // Same Verilog: the synthesis comes from the cache.
