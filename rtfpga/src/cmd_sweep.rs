@@ -86,9 +86,10 @@ pub fn run_merge(a: MergeArgs) -> Result<()> {
 
 fn summary(results: &Results, layout: &Layout) {
     println!(
-        "{} points merged: {}, {}, {}",
+        "{} rows (points × spawn policies) merged: {}, {}, {}, {}",
         results.rows.len(),
         layout.results("csv").display(),
+        layout.quality_csv().display(),
         layout.results("json").display(),
         layout.results("md").display()
     );
@@ -96,12 +97,26 @@ fn summary(results: &Results, layout: &Layout) {
         .quality
         .iter()
         .filter(|q| !results.model_formats.contains(&q.format))
-        .cloned()
         .collect();
-    if let Some(q) = sweep::table::smallest_format_above(&hardware, 40.0) {
+    for &policy in &results.policies {
+        match sweep::table::smallest_format_above(hardware.iter().copied(), policy, 40.0) {
+            Some(q) => println!(
+                "smallest format with PSNR >= 40 dB on every scene, {policy} policy: {} ({} bits)",
+                q.format, q.bits
+            ),
+            None if !hardware.is_empty() => {
+                println!("no format reaches PSNR >= 40 dB on every scene with the {policy} policy")
+            }
+            None => {}
+        }
+    }
+    for d in &results.dual {
         println!(
-            "smallest format with PSNR >= 40 dB on every scene: {} ({} bits)",
-            q.format, q.bits
+            "dual_precision pair={} policy={} forwarded_share={:.4} equals_fallback={}",
+            d.pair,
+            d.policy,
+            d.forwarded_share(),
+            d.exact()
         );
     }
 }

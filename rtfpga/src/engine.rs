@@ -2,6 +2,7 @@
 //! renderer's rays.
 
 use anyhow::{bail, Result};
+use clap::builder::TypedValueParser;
 use clap::{Args as ClapArgs, ValueEnum};
 use hdl::top::TopConfig;
 use hdl::traversal::scene_memory;
@@ -9,7 +10,7 @@ use hdl::traversal::unit::UnitConfig;
 use hw_model::dual::{
     BoundArith, DualIntersector, Filter, FilterKind, FormatChoice, DEFAULT_FILTER, HW_BOUND_BITS,
 };
-use hw_model::precision::{auto_scale_exp, spawn_policy, SceneRange};
+use hw_model::precision::{auto_scale_exp, SceneRange, SpawnChoice};
 use hw_model::traversal::{SceneCapacity, SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
 use hw_model::{Format, ModelIntersector};
 use sim::hw_intersector::{HwIntersector, Mode};
@@ -134,16 +135,6 @@ pub fn make_scaled(
     Ok(Made { engine, dual: None })
 }
 
-/// How spawned rays start (`--spawn`, docs/precision.md).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum SpawnKind {
-    /// The thesis: origin offset by the scene's bias, every hit counts.
-    Thesis,
-    /// Also a t_min from the format's rounding error at the spawn point, and the triangle
-    /// left excluded.
-    FormatAware,
-}
-
 /// Power-of-two scaling of the Möller-Trumbore queries (`--scale`, docs/precision.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum ScaleKind {
@@ -153,13 +144,20 @@ pub enum ScaleKind {
     None,
 }
 
+/// `--spawn`'s parser: the policies' names, listed in the help.
+fn spawn_choice() -> impl TypedValueParser<Value = SpawnChoice> {
+    clap::builder::PossibleValuesParser::new(SpawnChoice::ALL.map(SpawnChoice::name))
+        .try_map(|name| name.parse::<SpawnChoice>())
+}
+
 /// `--spawn` and `--scale`: reduced precision that renders (docs/precision.md).
 #[derive(ClapArgs, Clone, Debug)]
 pub struct PrecisionArgs {
-    /// Spawn policy of secondary and shadow rays [default: thesis for the f32 engine and for
-    /// fp32, else format-aware].
-    #[arg(long, value_enum)]
-    pub spawn: Option<SpawnKind>,
+    /// Spawn policy of secondary and shadow rays: thesis (origin offset by the scene's bias)
+    /// or format-aware (also a t_min from the format's rounding error, the triangle left
+    /// excluded) [default: thesis for the f32 engine and for fp32, else format-aware].
+    #[arg(long, value_parser = spawn_choice())]
+    pub spawn: Option<SpawnChoice>,
     /// Scaling of the queries into the format's range, model and traversal engines only
     /// [default: none].
     #[arg(long, value_enum)]
@@ -194,12 +192,12 @@ impl PrecisionArgs {
         };
         let answer_scale = if answers == scaled { scale_exp } else { 0 };
         let thesis = kind == EngineKind::F32 || fp32;
-        let spawn = match self.spawn {
-            Some(SpawnKind::Thesis) => SpawnPolicy::Thesis,
-            None if thesis => SpawnPolicy::Thesis,
-            Some(SpawnKind::FormatAware) | None => spawn_policy(&answers, answer_scale),
-        };
-        Ok((spawn, scale_exp))
+        let choice = self.spawn.unwrap_or(if thesis {
+            SpawnChoice::Thesis
+        } else {
+            SpawnChoice::FormatAware
+        });
+        Ok((choice.policy(&answers, answer_scale), scale_exp))
     }
 }
 

@@ -1,13 +1,17 @@
-//! The design-space sweep: a tiny configuration end to end (model engine, two formats, tiny
-//! images, projection), a job run on its own reproducing the local run's result, and bad
-//! configurations refused with the file, line and key before any work.
+//! The design-space sweep: a tiny configuration end to end (model engine, two formats under
+//! both spawn policies, one dual-precision pair, tiny images, projection), a job run on its
+//! own reproducing the local run's result, and bad configurations refused with the file, line
+//! and key before any work.
 //!
 //! Synthesis and co-simulation of the smallest accelerator take over a minute, so that test
 //! is ignored by default: `cargo test --release -p sim --test sweep -- --ignored`.
 
 use std::path::{Path, PathBuf};
 
+use hw_model::dual::{DualIntersector, FormatPair};
+use hw_model::precision::SpawnChoice;
 use hw_model::HwFormat;
+use sim::sweep::dual::DualResult;
 use sim::sweep::hardware::PointResult;
 use sim::sweep::layout::read_json;
 use sim::sweep::quality::QualityResult;
@@ -50,13 +54,15 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
         return;
     };
     let dir = tempfile::tempdir().unwrap();
+    // Both policies by default; one pair.
     let text = format!(
-        "{TINY}\n[projection]\nthesis_scenes = {:?}\n",
+        "{TINY}pairs = [\"fp16/fp32\"]\n\n[projection]\nthesis_scenes = {:?}\n",
         scenes.display().to_string()
     );
     let path = config_file(dir.path(), "tiny.toml", &text);
     let config = sweep::load(&path).unwrap();
     assert_eq!(config.points.len(), 4);
+    assert_eq!(config.policies, SpawnChoice::ALL);
     let out = dir.path().join("out");
     let results = sweep::run_local(&config, &out, &local(2)).unwrap();
     let layout = Layout::new(&out);
@@ -66,47 +72,113 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
         "jobs.txt",
         "sweep.json",
         "results.csv",
+        "quality.csv",
         "results.json",
         "results.md",
     ] {
         assert!(out.join(file).is_file(), "{file} missing");
     }
-    for ext in ["png", "svg"] {
-        assert!(layout.plot("psnr_vs_bits", ext).is_file());
-    }
-    for format in ["fp32", "fx16_10"] {
-        let grid = image::open(layout.grid(format)).unwrap();
-        // Two scenes stacked, render and heat-map side by side (4-pixel gaps).
-        assert_eq!(
-            (grid.width(), grid.height()),
-            (2 * 48 + 3 * 4, 2 * 27 + 3 * 4)
-        );
+    for policy in SpawnChoice::ALL {
+        for ext in ["png", "svg"] {
+            assert!(layout
+                .plot(&format!("psnr_vs_bits_{policy}"), ext)
+                .is_file());
+        }
+        for format in ["fp32", "fx16_10"] {
+            let grid = image::open(layout.grid(format, policy)).unwrap();
+            // Two scenes stacked, render and heat-map side by side (4-pixel gaps).
+            assert_eq!(
+                (grid.width(), grid.height()),
+                (2 * 48 + 3 * 4, 2 * 27 + 3 * 4)
+            );
+        }
     }
 
-    // The manifest: prepare, one quality job per format, one job per point, merge.
+    // The manifest: prepare, one quality job per format, one per pair, one per point, merge.
     let jobs = std::fs::read_to_string(layout.jobs_txt()).unwrap();
-    assert_eq!(jobs.lines().count(), 2 + 4);
+    assert_eq!(jobs.lines().count(), 2 + 1 + 4);
+    assert!(jobs.contains(" --job dual/fp16/fp32"));
     assert!(jobs
         .lines()
         .all(|l| l.starts_with("rtfpga sweep-job --config ") && l.contains(" --job ")));
 
-    // fp32 is the reference's arithmetic: identical; the 16-bit fixed format is not.
-    let q = |f: &str| results.quality.iter().find(|q| q.format == f).unwrap();
-    assert_eq!(q("fp32").min_psnr_db(), f64::INFINITY);
-    assert!(q("fp32").scenes.iter().all(|s| s.differing_pixels == 0));
-    let coarse = q("fx16_10").min_psnr_db();
-    assert!(
-        coarse.is_finite() && coarse < 40.0,
-        "fx16_10 min PSNR {coarse}"
-    );
-    assert!(q("fx16_10").max_differing_share() > 0.0);
+    // fp32 with the thesis' spawning is the reference's arithmetic: identical; the 16-bit
+    // fixed format is not, under either policy.
+    assert_eq!(results.quality.len(), 2 * 2);
+    let q = |f: &str, policy: SpawnChoice| {
+        results
+            .quality
+            .iter()
+            .find(|q| q.format == f && q.policy == policy)
+            .unwrap()
+    };
+    let thesis = SpawnChoice::Thesis;
+    assert_eq!(q("fp32", thesis).min_psnr_db(), f64::INFINITY);
+    assert!(q("fp32", thesis)
+        .scenes
+        .iter()
+        .all(|s| s.differing_pixels == 0));
+    for policy in SpawnChoice::ALL {
+        let coarse = q("fx16_10", policy).min_psnr_db();
+        assert!(
+            coarse.is_finite() && coarse < 40.0,
+            "fx16_10 {policy} min PSNR {coarse}"
+        );
+        assert!(q("fx16_10", policy).max_differing_share() > 0.0);
+    }
 
-    // Rows: quality comes from the format, cycles per test from the lanes, and the frame
-    // time from the projection (same workload, so every row's ARM-only time agrees).
-    assert_eq!(results.rows.len(), 4);
+    // The pair: one result per policy, every image equal to the fp32 model's (so identical
+    // to the reference under the thesis' spawning), a share of its tests forwarded, and the
+    // counts those of the pair's own intersector rendering the scene.
+    assert_eq!(results.dual.len(), 2);
+    let pair = FormatPair::parse("fp16/fp32").unwrap();
+    for d in &results.dual {
+        assert_eq!((d.pair.as_str(), d.filter_bits), ("fp16/fp32", 16));
+        assert!(d.exact(), "{d:?}");
+        for s in &d.scenes {
+            assert!(
+                s.tests > 0 && s.forwarded > 0 && s.forwarded < s.tests,
+                "{s:?}"
+            );
+            assert_eq!(s.forwarded_share, s.forwarded as f64 / s.tests as f64);
+        }
+        if d.policy == thesis {
+            assert_eq!(d.min_psnr_db(), f64::INFINITY);
+        }
+        let scene = &config.scenes[0];
+        let direct = DualIntersector::new(pair, 0);
+        sw_renderer::render::render(
+            &scene.load().unwrap(),
+            &direct,
+            &sw_renderer::render::RenderOptions {
+                width: Some(48),
+                height: Some(27),
+                spawn: d.policy.policy(&pair.fallback, 0),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let stats = direct.stats();
+        assert_eq!(
+            (stats.tests, stats.forwarded()),
+            (d.scenes[0].tests, d.scenes[0].forwarded)
+        );
+    }
+    let on_disk: DualResult =
+        read_json(&layout.dual_result("fp16/fp32", SpawnChoice::FormatAware)).unwrap();
+    assert_eq!(
+        Some(&on_disk),
+        results.dual.iter().find(|d| d.policy != thesis)
+    );
+
+    // Rows: one per point and policy; quality comes from the format and policy, cycles per
+    // test from the lanes, and the frame time from the projection (same workload, so every
+    // row's ARM-only time agrees).
+    assert_eq!(results.rows.len(), 4 * 2);
     let arm = results.arm_only_s.unwrap();
     for r in &results.rows {
-        assert_eq!(r.min_psnr_db.unwrap().0, q(&r.format).min_psnr_db());
+        let policy = r.policy.unwrap();
+        assert_eq!(r.min_psnr_db.unwrap().0, q(&r.format, policy).min_psnr_db());
         assert_eq!(r.cycles_per_test, 1.0 / r.lanes as f64);
         assert_eq!(
             r.latency,
@@ -132,17 +204,28 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
         // serde_json may round the last bit of a float.
         let close =
             |x: Option<f64>, y: Option<f64>| (x.unwrap() - y.unwrap()).abs() <= 1e-12 * y.unwrap();
-        assert!(a.id == b.id && a.min_psnr_db == b.min_psnr_db && a.lanes == b.lanes);
+        assert!(
+            a.id == b.id
+                && a.policy == b.policy
+                && a.min_psnr_db == b.min_psnr_db
+                && a.lanes == b.lanes
+        );
         assert!(
             close(a.projected_frame_s, b.projected_frame_s)
                 && close(a.speedup_vs_arm, b.speedup_vs_arm)
         );
     }
     let csv = std::fs::read_to_string(layout.results("csv")).unwrap();
-    assert_eq!(csv.lines().count(), 1 + 4);
+    assert_eq!(csv.lines().count(), 1 + 4 * 2);
     assert!(csv
         .lines()
-        .any(|l| l.starts_with("fp32_d1_l1,fp32,32,1,1,") && l.contains(",inf,")));
+        .any(|l| l.starts_with("fp32_d1_l1,fp32,32,1,1,thesis,") && l.contains(",inf,")));
+    // quality.csv: 2 formats and 1 pair, each × 2 policies × 2 scenes.
+    let quality_csv = std::fs::read_to_string(layout.quality_csv()).unwrap();
+    assert_eq!(quality_csv.lines().count(), 1 + 3 * 2 * 2);
+    assert!(quality_csv.lines().any(|l| l
+        .starts_with("fp16/fp32,pair,16,format-aware,simple_plane,")
+        && l.ends_with(",true")));
     let md = std::fs::read_to_string(layout.results("md")).unwrap();
     for r in &results.rows {
         assert!(
@@ -151,13 +234,17 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
             r.id
         );
     }
-    assert!(md.contains("Smallest hardware format with PSNR ≥ 40 dB on every scene: **fp32**"));
+    assert!(md.contains(
+        "Smallest hardware format with PSNR ≥ 40 dB on every scene (thesis policy): **fp32**"
+    ));
+    assert!(md.contains("| fp16/fp32 | format-aware |"));
 
     // A job run on its own (as a manifest line does) writes the same result.
-    let before: QualityResult = read_json(&layout.quality_result("fx16_10")).unwrap();
+    let fa = SpawnChoice::FormatAware;
+    let before: QualityResult = read_json(&layout.quality_result("fx16_10", fa)).unwrap();
     let job = Job::parse("quality/fx16_10", &config).unwrap();
     sweep::run_job(&config, &layout, &job).unwrap();
-    let again: QualityResult = read_json(&layout.quality_result("fx16_10")).unwrap();
+    let again: QualityResult = read_json(&layout.quality_result("fx16_10", fa)).unwrap();
     assert_eq!(
         before
             .scenes
@@ -175,6 +262,14 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
         "fp16 is not in this sweep"
     );
     assert!(Job::parse("point/fp32_d9_l1", &config).is_err());
+    assert_eq!(
+        Job::parse("dual/fp16/fp32", &config).unwrap(),
+        Job::Dual("fp16/fp32".into())
+    );
+    assert!(
+        Job::parse("dual/bf16/fp32", &config).is_err(),
+        "bf16/fp32 is not in this sweep"
+    );
 
     // The merge refuses to run with a result missing, naming it.
     std::fs::remove_file(layout.point_result("fx16_10_d1_l2")).unwrap();
@@ -254,6 +349,42 @@ fn bad_configurations_are_rejected_with_file_line_and_key() {
     );
     let e = rejection(&with(r#"formats = ["fp32/fp16"]"#));
     assert!(e.message.contains("not narrower"), "{e}");
+
+    // Spawn policies and dual-precision pairs (appended after TINY's 9 lines: line 10).
+    let after = |line: &str| rejection(&format!("{TINY}\n{line}\n"));
+    for (line, expected) in [
+        (
+            r#"policies = ["thesis", "fast"]"#,
+            "unknown spawn policy `fast`: expected thesis or format-aware",
+        ),
+        (
+            r#"policies = ["format-aware", "format-aware"]"#,
+            "listed twice",
+        ),
+        ("policies = []", "empty list"),
+        (r#"pairs = ["fp32/fp16"]"#, "not narrower"),
+        (r#"pairs = ["fp16/fp33"]"#, "fallback half"),
+        (r#"pairs = ["fx16_10/fp32"]"#, "fixed point"),
+        (r#"pairs = ["fp16"]"#, "expected FILTER/FALLBACK"),
+        (r#"pairs = ["fp16/fp32", " fp16/fp32"]"#, "listed twice"),
+        ("pairs = []", "empty list"),
+    ] {
+        let e = after(line);
+        let key = line.split(' ').next().unwrap();
+        assert_eq!(
+            (e.file.as_str(), e.line, e.key.as_str()),
+            (bad_path().to_str().unwrap(), 10, key),
+            "{line}: {e}"
+        );
+        assert!(e.message.contains(expected), "{line}: {e}");
+    }
+    let chosen = sweep::parse(
+        &format!("{TINY}policies = [\"format-aware\"]\npairs = [\"bf16/fp32\"]\n"),
+        &bad_path(),
+    )
+    .unwrap();
+    assert_eq!(chosen.policies, [SpawnChoice::FormatAware]);
+    assert_eq!(chosen.pairs, ["bf16/fp32"]);
 
     let e = rejection(&with("lanes = [1, 0]"));
     assert_eq!((e.line, e.key.as_str()), (4, "lanes"));
@@ -374,9 +505,12 @@ points = ["fx16_13_d0_l1"]
         .point_dir("fx16_13_d0_l1")
         .join("verilog/rtfpga_top.v")
         .is_file());
+    // One co-simulation per spawn policy, each equal to the model.
+    assert_eq!(point.cosim.len(), SpawnChoice::ALL.len());
     assert_eq!(point.cosim_identical(), Some(true));
-    let c = &point.cosim[0];
-    assert!(c.tests > 0 && c.cycles >= c.tests, "{c:?}");
+    for c in &point.cosim {
+        assert!(c.tests > 0 && c.cycles >= c.tests, "{c:?}");
+    }
 
     let row = &results.rows[0];
     assert_eq!(
@@ -387,7 +521,7 @@ points = ["fx16_13_d0_l1"]
             Some(synth.logic_depth)
         )
     );
-    assert!(row.cycles_measured && row.cycles_per_test == c.cycles_per_test);
+    assert!(row.cycles_measured && row.cycles_per_test == point.cycles_per_test());
     assert_eq!(row.lanes_fit, None, "a fit needs the 2-lane design too");
 
     // Same Verilog: the synthesis comes from the cache.

@@ -1,13 +1,18 @@
 //! Reduced precision that renders: what a format needs from the renderer (`docs/precision.md`).
 //!
 //! - [`spawn_policy`]: the format-aware spawn policy, carrying the format's rounding error in
-//!   scene units (the renderer knows no formats).
+//!   scene units (the renderer knows no formats); [`SpawnChoice`]: a policy by name, as
+//!   `rtfpga --spawn` and the sweep's `policies` spell it.
 //! - [`auto_scale_exp`]: the power of two the model engines multiply every query coordinate
 //!   by so that Möller-Trumbore's intermediates fit the format's range. Scaling origin,
 //!   direction and vertices by the same 2^k leaves t, u, v unchanged, and in a float format
 //!   every intermediate is scaled exactly unless it over- or underflows; in a fixed format it
 //!   moves the values against the fixed quantisation step.
 
+use std::fmt;
+use std::str::FromStr;
+
+use serde::{Deserialize, Serialize};
 use sw_renderer::math::{mult_point, V3};
 use sw_renderer::scene::Scene;
 use sw_renderer::spawn::{RoundingError, SpawnPolicy};
@@ -41,6 +46,58 @@ pub fn rounding_error(format: &Format, scale_exp: i32) -> RoundingError {
 /// The format-aware spawn policy of `format` for a scene scaled by 2^`scale_exp`.
 pub fn spawn_policy(format: &Format, scale_exp: i32) -> SpawnPolicy {
     SpawnPolicy::FormatAware(rounding_error(format, scale_exp))
+}
+
+/// A spawn policy by name, before it meets a format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SpawnChoice {
+    /// The thesis: origin offset by the scene's bias, every hit counts.
+    Thesis,
+    /// Also a t_min from the format's rounding error at the spawn point, and the triangle
+    /// left excluded.
+    FormatAware,
+}
+
+impl SpawnChoice {
+    pub const ALL: [SpawnChoice; 2] = [SpawnChoice::Thesis, SpawnChoice::FormatAware];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            SpawnChoice::Thesis => "thesis",
+            SpawnChoice::FormatAware => "format-aware",
+        }
+    }
+
+    /// The policy of a datapath answering in `format` on queries scaled by 2^`scale_exp`.
+    pub fn policy(self, format: &Format, scale_exp: i32) -> SpawnPolicy {
+        match self {
+            SpawnChoice::Thesis => SpawnPolicy::Thesis,
+            SpawnChoice::FormatAware => spawn_policy(format, scale_exp),
+        }
+    }
+}
+
+impl fmt::Display for SpawnChoice {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for SpawnChoice {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        SpawnChoice::ALL
+            .into_iter()
+            .find(|c| c.name() == s)
+            .ok_or_else(|| {
+                let names: Vec<&str> = SpawnChoice::ALL.iter().map(|c| c.name()).collect();
+                format!(
+                    "unknown spawn policy `{s}`: expected {}",
+                    names.join(" or ")
+                )
+            })
+    }
 }
 
 /// The sizes that bound Möller-Trumbore's intermediates in a scene.
@@ -116,6 +173,24 @@ mod tests {
         assert_eq!((trn.unit_roundoff, trn.absolute), (0.0, 2f64.powi(-18)));
         let rnd = rounding_error(&lookup("fx32_16_rnd_sat").unwrap(), -1);
         assert_eq!(rnd.absolute, 2f64.powi(-16));
+    }
+
+    #[test]
+    fn spawn_choices_parse_their_names_and_give_their_policies() {
+        for c in SpawnChoice::ALL {
+            assert_eq!(c.name().parse::<SpawnChoice>(), Ok(c));
+        }
+        let e = "format_aware".parse::<SpawnChoice>().unwrap_err();
+        assert!(
+            e.contains("`format_aware`") && e.contains("format-aware"),
+            "{e}"
+        );
+        let fp16 = lookup("fp16").unwrap();
+        assert_eq!(SpawnChoice::Thesis.policy(&fp16, 0), SpawnPolicy::Thesis);
+        assert_eq!(
+            SpawnChoice::FormatAware.policy(&fp16, 3),
+            spawn_policy(&fp16, 3)
+        );
     }
 
     #[test]

@@ -4,6 +4,8 @@
 use std::path::{Path, PathBuf};
 
 use hdl::top::{TopConfig, TopError};
+use hw_model::dual::FormatPair;
+use hw_model::precision::SpawnChoice;
 use hw_model::HwFormat;
 use serde::{Deserialize, Serialize};
 use sw_renderer::scene::{builtin, Scene};
@@ -20,7 +22,8 @@ pub enum Stage {
     Verilog,
     /// yosys resources and logic depth of the points `[synth]` selects.
     Synth,
-    /// Model-engine renders of every scene in every format against the f32 reference.
+    /// Model-engine renders of every scene in every format and spawn policy, and of every
+    /// dual-precision pair, against the f32 reference.
     Quality,
     /// Verilated renders of the `[cosim]` points, compared with the model engine.
     Cosim,
@@ -77,6 +80,11 @@ pub struct SweepConfig {
     /// Formats only the model engine renders (any `hw_model::lookup` spelling, e.g. `e8m19`):
     /// quality without hardware, to see where the quality threshold lies between catalogue formats.
     pub model_formats: Vec<String>,
+    /// Spawn policies the quality stage renders each format with.
+    pub policies: Vec<SpawnChoice>,
+    /// Dual-precision pairs (`FILTER/FALLBACK`, as `FormatPair` prints them): model only, no
+    /// hardware yet, so quality and the forwarded share but no points.
+    pub pairs: Vec<String>,
     /// Write every point's generated files to its directory (else only their size is kept).
     pub keep_verilog: bool,
     /// Depths per format ("max" already replaced by the format's maximum).
@@ -145,6 +153,8 @@ type List<T> = Spanned<Vec<Spanned<T>>>;
 struct RawConfig {
     formats: List<String>,
     model_formats: Option<List<String>>,
+    policies: Option<List<String>>,
+    pairs: Option<List<String>>,
     #[serde(default)]
     keep_verilog: bool,
     depths: List<DepthSpec>,
@@ -264,6 +274,14 @@ pub fn parse(text: &str, path: &Path) -> Result<SweepConfig, ConfigError> {
         Some(list) => check_model_formats(&src, list, &formats)?,
         None => Vec::new(),
     };
+    let policies = match &raw.policies {
+        Some(list) => check_policies(&src, list)?,
+        None => SpawnChoice::ALL.to_vec(),
+    };
+    let pairs = match &raw.pairs {
+        Some(list) => check_pairs(&src, list)?,
+        None => Vec::new(),
+    };
     let lanes = check_lanes(&src, &raw.lanes, "lanes")?;
     let depths = src.non_empty(&raw.depths, "depths")?;
     let mut points = Vec::new();
@@ -318,6 +336,8 @@ pub fn parse(text: &str, path: &Path) -> Result<SweepConfig, ConfigError> {
         path: std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf()),
         formats,
         model_formats,
+        policies,
+        pairs,
         keep_verilog: raw.keep_verilog,
         points,
         scenes,
@@ -339,11 +359,11 @@ fn check_formats(
     let mut out = Vec::new();
     for f in src.non_empty(list, key)? {
         if f.get_ref().contains('/') {
-            // A valid pair is still refused: no sweep stage takes one yet.
-            let why = match hw_model::dual::FormatPair::parse(f.get_ref()) {
+            // A valid pair is still refused here: it has no hardware, only the model.
+            let why = match FormatPair::parse(f.get_ref()) {
                 Ok(pair) => format!(
-                    "`{pair}` is a dual-precision pair, which only the model engine takes so far \
-                     (`rtfpga render --engine model --format {pair}`); a sweep lists single formats"
+                    "`{pair}` is a dual-precision pair, which has no hardware yet (model only): \
+                     list it under `pairs`, which gives its quality and forwarded share"
                 ),
                 Err(e) => e.to_string(),
             };
@@ -383,6 +403,40 @@ fn check_model_formats(
             ));
         }
         out.push(name.clone());
+    }
+    Ok(out)
+}
+
+fn check_policies(src: &Source, list: &List<String>) -> Result<Vec<SpawnChoice>, ConfigError> {
+    let mut out = Vec::new();
+    for p in src.non_empty(list, "policies")? {
+        let choice: SpawnChoice = p
+            .get_ref()
+            .parse()
+            .map_err(|e: String| src.err(p, "policies", e))?;
+        if out.contains(&choice) {
+            return Err(src.err(
+                p,
+                "policies",
+                format!("spawn policy `{choice}` is listed twice"),
+            ));
+        }
+        out.push(choice);
+    }
+    Ok(out)
+}
+
+/// The pairs as `FormatPair` prints them, each checked by `FormatPair::parse`.
+fn check_pairs(src: &Source, list: &List<String>) -> Result<Vec<String>, ConfigError> {
+    let mut out: Vec<String> = Vec::new();
+    for p in src.non_empty(list, "pairs")? {
+        let pair =
+            FormatPair::parse(p.get_ref()).map_err(|e| src.err(p, "pairs", e.to_string()))?;
+        let name = pair.to_string();
+        if out.contains(&name) {
+            return Err(src.err(p, "pairs", format!("pair `{name}` is listed twice")));
+        }
+        out.push(name);
     }
     Ok(out)
 }

@@ -6,6 +6,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use hdl::generate::{generate, VERILOG_FILE};
+use hw_model::precision::SpawnChoice;
 use hw_model::ModelIntersector;
 use serde::{Deserialize, Serialize};
 use sw_renderer::compare::compare;
@@ -19,10 +20,11 @@ use super::point::Point;
 use super::render_job::render_scene;
 use super::synth_cache::{synthesize_cached, SynthRecord};
 
-/// Co-simulation of one scene.
+/// Co-simulation of one scene under one spawn policy.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CosimRecord {
     pub scene: String,
+    pub policy: SpawnChoice,
     pub tests: u64,
     /// Simulated clock cycles (stream mode).
     pub cycles: u64,
@@ -112,32 +114,42 @@ pub fn run(config: &SweepConfig, layout: &Layout, point: &Point) -> Result<Point
     Ok(result)
 }
 
+/// Every co-simulated scene under every policy of the sweep (the format-aware policy's
+/// t_min and excluded triangle travel in the stream packet).
 fn cosimulate(config: &SweepConfig, layout: &Layout, point: &Point) -> Result<Vec<CosimRecord>> {
     let hw = HwIntersector::new(&point.top_config(), Mode::Stream)
         .with_context(|| format!("building the Verilated model of {}", point.id()))?;
-    let model = ModelIntersector::new(point.format.format());
+    let format = point.format.format();
+    let model = ModelIntersector::new(format);
     let mut records = Vec::new();
-    for scene in &config.cosim_scenes {
-        let before = hw.stats();
-        let out = render_scene(config, scene, &hw)
-            .with_context(|| format!("co-simulating {} on {}", point.id(), scene.label))?;
-        let after = hw.stats();
-        let png = layout
-            .point_dir(&point.id())
-            .join(format!("cosim_{}.png", scene.label));
-        parent_dir(&png)?;
-        save_png(&out.image, &png)?;
-        let expected = render_scene(config, scene, &model)?;
-        let diff = compare(&out.image, &expected.image)?;
-        let tests = after.tests - before.tests;
-        let cycles = after.cycles - before.cycles;
-        records.push(CosimRecord {
-            scene: scene.label.clone(),
-            tests,
-            cycles,
-            cycles_per_test: cycles as f64 / tests.max(1) as f64,
-            differing_from_model: diff.differing_pixels,
-        });
+    for &policy in &config.policies {
+        let spawn = policy.policy(&format, 0);
+        for scene in &config.cosim_scenes {
+            let before = hw.stats();
+            let out = render_scene(config, scene, &hw, spawn).with_context(|| {
+                format!("co-simulating {} on {} ({policy})", point.id(), scene.label)
+            })?;
+            let after = hw.stats();
+            let png = layout.point_dir(&point.id()).join(format!(
+                "cosim_{}_{}.png",
+                scene.label,
+                policy.name()
+            ));
+            parent_dir(&png)?;
+            save_png(&out.image, &png)?;
+            let expected = render_scene(config, scene, &model, spawn)?;
+            let diff = compare(&out.image, &expected.image)?;
+            let tests = after.tests - before.tests;
+            let cycles = after.cycles - before.cycles;
+            records.push(CosimRecord {
+                scene: scene.label.clone(),
+                policy,
+                tests,
+                cycles,
+                cycles_per_test: cycles as f64 / tests.max(1) as f64,
+                differing_from_model: diff.differing_pixels,
+            });
+        }
     }
     Ok(records)
 }

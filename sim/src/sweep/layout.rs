@@ -3,6 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
+use hw_model::precision::SpawnChoice;
 use serde::{de::DeserializeOwned, Serialize};
 
 #[derive(Clone, Debug)]
@@ -38,12 +39,24 @@ impl Layout {
         self.root.join("reference").join(format!("{scene}.png"))
     }
 
-    pub fn quality_dir(&self, format: &str) -> PathBuf {
-        self.root.join("quality").join(format)
+    pub fn quality_dir(&self, format: &str, policy: SpawnChoice) -> PathBuf {
+        self.root.join("quality").join(format).join(policy.name())
     }
 
-    pub fn quality_result(&self, format: &str) -> PathBuf {
-        self.quality_dir(format).join("result.json")
+    pub fn quality_result(&self, format: &str, policy: SpawnChoice) -> PathBuf {
+        self.quality_dir(format, policy).join("result.json")
+    }
+
+    /// A dual-precision pair's renders (`fp16/fp32` in the folder `fp16_fp32`).
+    pub fn dual_dir(&self, pair: &str, policy: SpawnChoice) -> PathBuf {
+        self.root
+            .join("dual")
+            .join(pair.replace('/', "_"))
+            .join(policy.name())
+    }
+
+    pub fn dual_result(&self, pair: &str, policy: SpawnChoice) -> PathBuf {
+        self.dual_dir(pair, policy).join("result.json")
     }
 
     pub fn point_dir(&self, id: &str) -> PathBuf {
@@ -59,8 +72,10 @@ impl Layout {
         self.root.join("synth-cache").join(format!("{id}.json"))
     }
 
-    pub fn grid(&self, format: &str) -> PathBuf {
-        self.root.join("grids").join(format!("{format}.png"))
+    pub fn grid(&self, format: &str, policy: SpawnChoice) -> PathBuf {
+        self.root
+            .join("grids")
+            .join(format!("{format}_{}.png", policy.name()))
     }
 
     pub fn plot(&self, name: &str, ext: &str) -> PathBuf {
@@ -69,6 +84,11 @@ impl Layout {
 
     pub fn results(&self, ext: &str) -> PathBuf {
         self.root.join(format!("results.{ext}"))
+    }
+
+    /// One line per format or dual-precision pair, policy and scene.
+    pub fn quality_csv(&self) -> PathBuf {
+        self.root.join("quality.csv")
     }
 }
 

@@ -1,5 +1,6 @@
 //! The sweep as independent jobs: `prepare` (the f32 reference renders), then one job per
-//! format (model-engine quality) and one per point (hardware), in any order or on any machine
+//! format (model-engine quality), one per dual-precision pair (model only) and one per point
+//! (hardware), in any order or on any machine
 //! sharing the output directory, then `merge`. The manifest lists each as a command line, and
 //! `jobs.txt` holds the middle stage one per line for `parallel < jobs.txt` or a Slurm array.
 
@@ -18,16 +19,20 @@ pub enum Job {
     Prepare,
     /// Model-engine renders of every scene in one format.
     Quality(String),
+    /// Model renders of every scene through one dual-precision pair (`fp16/fp32`).
+    Dual(String),
     /// Verilog, synthesis, latency and co-simulation of one point (by id).
     Point(String),
 }
 
 impl Job {
-    /// How the job is named on the command line: `prepare`, `quality/fp16`, `point/fp16_d1_l2`.
+    /// How the job is named on the command line: `prepare`, `quality/fp16`, `dual/fp16/fp32`,
+    /// `point/fp16_d1_l2`.
     pub fn id(&self) -> String {
         match self {
             Job::Prepare => "prepare".into(),
             Job::Quality(f) => format!("quality/{f}"),
+            Job::Dual(p) => format!("dual/{p}"),
             Job::Point(p) => format!("point/{p}"),
         }
     }
@@ -37,9 +42,10 @@ impl Job {
         let job = match id.split_once('/') {
             None if id == "prepare" => Job::Prepare,
             Some(("quality", f)) if config.quality_formats().iter().any(|x| x == f) => Job::Quality(f.into()),
+            Some(("dual", p)) if config.pairs.iter().any(|x| x == p) => Job::Dual(p.into()),
             Some(("point", p)) if config.point(p).is_some() => Job::Point(p.into()),
             _ => bail!(
-                "job `{id}` is not a job of sweep {}: expected `prepare`, `quality/FORMAT` or `point/ID` (see manifest.json)",
+                "job `{id}` is not a job of sweep {}: expected `prepare`, `quality/FORMAT`, `dual/FILTER/FALLBACK` or `point/ID` (see manifest.json)",
                 config.path.display()
             ),
         };
@@ -68,7 +74,8 @@ pub struct Manifest {
 
 /// The jobs of a configuration after `prepare`, the longest first so that a queue of
 /// workers finishes together: syntheses (wide formats and more lanes first), co-simulations,
-/// quality renders, then the points that only need their latency.
+/// dual-precision renders (two per scene and policy), quality renders, then the points that
+/// only need their latency.
 pub fn jobs(config: &SweepConfig) -> Vec<Job> {
     let mut points: Vec<_> = config.points.iter().collect();
     points.sort_by_key(|p| {
@@ -90,6 +97,7 @@ pub fn jobs(config: &SweepConfig) -> Vec<Job> {
         .partition(|p| config.synthesises(p) || config.cosimulates(p));
     let mut jobs: Vec<Job> = slow.into_iter().map(|p| Job::Point(p.id())).collect();
     if config.runs(Stage::Quality) {
+        jobs.extend(config.pairs.iter().cloned().map(Job::Dual));
         jobs.extend(config.quality_formats().into_iter().map(Job::Quality));
     }
     jobs.extend(fast.into_iter().map(|p| Job::Point(p.id())));

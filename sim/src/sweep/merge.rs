@@ -1,5 +1,5 @@
-//! `sweep-merge`: gathers every job's result file into results.csv, results.json,
-//! results.md and the plots, adding what needs several points at once: lanes that fit an
+//! `sweep-merge`: gathers every job's result file into results.csv, quality.csv,
+//! results.json, results.md and the plots, adding what needs several points at once: lanes that fit an
 //! XC7Z020 (from the 1- and 2-lane synthesis), estimated resources of the other lane counts,
 //! and the projected ZedBoard frame time (one calibration for all points).
 //!
@@ -10,9 +10,11 @@
 
 use anyhow::{bail, Result};
 use hdl::top::fit::{fit_from, fit_with_fixed, LaneFit, Usage, XC7Z020};
+use hw_model::precision::SpawnChoice;
 use hw_model::HwFormat;
 
 use super::config::{Stage, SweepConfig};
+use super::dual::DualResult;
 use super::hardware::PointResult;
 use super::layout::{read_json, write_json, Layout};
 use super::plots;
@@ -24,15 +26,27 @@ use super::table::{self, ResourceSource, Results, Row};
 pub fn merge(layout: &Layout) -> Result<Results> {
     let config: SweepConfig = read_json(&layout.config())?;
     let mut missing = Vec::new();
-    let quality: Vec<QualityResult> = if config.runs(Stage::Quality) {
-        config
-            .quality_formats()
-            .iter()
-            .filter_map(|f| read_or_note(&layout.quality_result(f), &mut missing))
-            .collect()
-    } else {
-        Vec::new()
-    };
+    let runs_quality = config.runs(Stage::Quality);
+    let mut quality: Vec<QualityResult> = Vec::new();
+    let mut dual: Vec<DualResult> = Vec::new();
+    if runs_quality {
+        for f in config.quality_formats() {
+            for &policy in &config.policies {
+                quality.extend(read_or_note(
+                    &layout.quality_result(&f, policy),
+                    &mut missing,
+                ));
+            }
+        }
+        for pair in &config.pairs {
+            for &policy in &config.policies {
+                dual.extend(read_or_note(
+                    &layout.dual_result(pair, policy),
+                    &mut missing,
+                ));
+            }
+        }
+    }
     let points: Vec<PointResult> = config
         .points
         .iter()
@@ -51,10 +65,15 @@ pub fn merge(layout: &Layout) -> Result<Results> {
         None
     };
 
+    // One row per point and policy, or per point without quality.
+    let policies: Vec<Option<SpawnChoice>> = if runs_quality {
+        config.policies.iter().copied().map(Some).collect()
+    } else {
+        vec![None]
+    };
     let mut rows = Vec::new();
     for p in &points {
         let (fit, fixed_part_from) = lane_fit(&points, p).unzip();
-        let q = quality.iter().find(|q| q.format == p.point.format.name());
         let cycles_per_test = p.cycles_per_test();
         let projected = match &projector {
             Some(pr) => Some(pr.project(&p.point, p.latency, cycles_per_test)?),
@@ -68,35 +87,43 @@ pub fn merge(layout: &Layout) -> Result<Results> {
             ),
             (None, None) => (None, None),
         };
-        rows.push(Row {
-            id: p.point.id(),
-            format: p.point.format.to_string(),
-            bits: p.bits,
-            depth: p.point.depth,
-            lanes: p.point.lanes,
-            latency: p.latency,
-            cycles_per_test,
-            cycles_measured: !p.cosim.is_empty(),
-            lut: usage.map(|u| u.lut),
-            ff: usage.map(|u| u.ff),
-            dsp48e1: usage.map(|u| u.dsp48e1),
-            bram18: usage.map(|u| u.bram18),
-            carry4: p.synth.as_ref().map(|s| s.carry4),
-            logic_depth: p.synth.as_ref().map(|s| s.logic_depth),
-            resources: source,
-            lanes_fit: fit.map(|f| f.lanes),
-            fit_limit: fit.map(|f| f.limit.to_string()),
-            fixed_part_from: fixed_part_from.flatten(),
-            min_psnr_db: q.map(|q| Psnr(q.min_psnr_db())),
-            max_differing_share: q.map(QualityResult::max_differing_share),
-            cosim_identical: p.cosim_identical(),
-            projected_frame_s: projected.map(|x| x.frame_s),
-            speedup_vs_arm: projected.map(|x| x.speedup_vs_arm),
-        });
+        for &policy in &policies {
+            let q = quality
+                .iter()
+                .find(|q| q.format == p.point.format.name() && Some(q.policy) == policy);
+            rows.push(Row {
+                id: p.point.id(),
+                format: p.point.format.to_string(),
+                bits: p.bits,
+                depth: p.point.depth,
+                lanes: p.point.lanes,
+                policy,
+                latency: p.latency,
+                cycles_per_test,
+                cycles_measured: !p.cosim.is_empty(),
+                lut: usage.map(|u| u.lut),
+                ff: usage.map(|u| u.ff),
+                dsp48e1: usage.map(|u| u.dsp48e1),
+                bram18: usage.map(|u| u.bram18),
+                carry4: p.synth.as_ref().map(|s| s.carry4),
+                logic_depth: p.synth.as_ref().map(|s| s.logic_depth),
+                resources: source,
+                lanes_fit: fit.map(|f| f.lanes),
+                fit_limit: fit.map(|f| f.limit.to_string()),
+                fixed_part_from: fixed_part_from.clone().flatten(),
+                min_psnr_db: q.map(|q| Psnr(q.min_psnr_db())),
+                max_differing_share: q.map(QualityResult::max_differing_share),
+                cosim_identical: p.cosim_identical(),
+                projected_frame_s: projected.map(|x| x.frame_s),
+                speedup_vs_arm: projected.map(|x| x.speedup_vs_arm),
+            });
+        }
     }
     let results = Results {
         rows,
+        policies: config.policies.clone(),
         quality,
+        dual,
         model_formats: config.model_formats.clone(),
         arm_only_s: projector.as_ref().map(Projector::arm_only_s),
         projected_frame: projector.as_ref().map(|_| {
@@ -110,6 +137,7 @@ pub fn merge(layout: &Layout) -> Result<Results> {
         image_size: format!("{}x{}", config.width, config.height),
     };
     table::write_csv(&results.rows, &layout.results("csv"))?;
+    table::write_quality_csv(&table::quality_rows(&results), &layout.quality_csv())?;
     write_json(&layout.results("json"), &results)?;
     std::fs::write(layout.results("md"), table::markdown(&results)?)?;
     plots::write_all(&results, layout)?;

@@ -1,16 +1,18 @@
 //! Design-space sweeps: formats × depths × lanes, each point's hardware (Verilog, yosys
-//! resources and logic depth, latency, co-simulation) and each format's image quality,
+//! resources and logic depth, latency, co-simulation), each format's image quality per spawn
+//! policy and each dual-precision pair's exactness and forwarded share,
 //! merged into tables, plots and image grids with the projected ZedBoard frame time.
 //!
 //! - [`config`]: SWEEP.toml, checked before any work;
 //! - [`manifest`]: the sweep as independent jobs and their command lines;
-//! - [`render_job`], [`quality`], [`hardware`], [`synth_cache`]: what the jobs do;
+//! - [`render_job`], [`quality`], [`dual`], [`hardware`], [`synth_cache`]: what the jobs do;
 //! - [`merge`], [`table`], [`plots`], [`grid`], [`projection`]: the merged results;
 //! - [`run`]: one job, or the whole sweep locally.
 //!
 //! docs/sweep.md describes the files and reports the default sweep.
 
 pub mod config;
+pub mod dual;
 pub mod grid;
 pub mod hardware;
 pub mod layout;

@@ -1,5 +1,6 @@
-//! The sweep's plots (plotters, PNG and SVG): worst-scene PSNR against the format's bits,
-//! LUT and DSP48E1 against lanes, and the Pareto front of quality against DSP48E1.
+//! The sweep's plots (plotters, PNG and SVG): per spawn policy the worst-scene PSNR against
+//! the format's bits and the Pareto front of quality against DSP48E1; LUT and DSP48E1
+//! against lanes.
 
 use std::collections::BTreeMap;
 
@@ -7,7 +8,10 @@ use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use hw_model::precision::SpawnChoice;
+
 use super::layout::{parent_dir, Layout};
+use super::quality::QualityResult;
 use super::table::{Results, Row};
 
 const SIZE: (u32, u32) = (900, 600);
@@ -27,13 +31,36 @@ fn capped(v: f64, ceiling: f64) -> f64 {
 }
 
 pub fn write_all(results: &Results, layout: &Layout) -> Result<()> {
-    if !results.quality.is_empty() {
-        save(
-            layout,
-            "psnr_vs_bits",
-            |a| psnr_vs_bits(a, results),
-            |a| psnr_vs_bits(a, results),
-        )?;
+    for &policy in &results.policies {
+        let quality: Vec<&QualityResult> = results
+            .quality
+            .iter()
+            .filter(|q| q.policy == policy)
+            .collect();
+        if !quality.is_empty() {
+            save(
+                layout,
+                &format!("psnr_vs_bits_{}", policy.name()),
+                |a| psnr_vs_bits(a, results, &quality, policy),
+                |a| psnr_vs_bits(a, results, &quality, policy),
+            )?;
+        }
+        let rows: Vec<&Row> = results
+            .rows
+            .iter()
+            .filter(|r| r.policy == Some(policy))
+            .collect();
+        if rows
+            .iter()
+            .any(|r| r.min_psnr_db.is_some() && r.dsp48e1.is_some())
+        {
+            save(
+                layout,
+                &format!("pareto_psnr_dsp_{}", policy.name()),
+                |a| pareto(a, &rows, policy),
+                |a| pareto(a, &rows, policy),
+            )?;
+        }
     }
     if results.rows.iter().any(|r| r.lut.is_some()) {
         save(
@@ -42,18 +69,6 @@ pub fn write_all(results: &Results, layout: &Layout) -> Result<()> {
             |a| resources_vs_lanes(a, &results.rows),
             |a| resources_vs_lanes(a, &results.rows),
         )?;
-        if results
-            .rows
-            .iter()
-            .any(|r| r.min_psnr_db.is_some() && r.dsp48e1.is_some())
-        {
-            save(
-                layout,
-                "pareto_psnr_dsp",
-                |a| pareto(a, &results.rows),
-                |a| pareto(a, &results.rows),
-            )?;
-        }
     }
     Ok(())
 }
@@ -80,16 +95,21 @@ fn save(
     Ok(())
 }
 
-fn psnr_vs_bits<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, r: &Results) -> Result<()>
+fn psnr_vs_bits<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    r: &Results,
+    quality: &[&QualityResult],
+    policy: SpawnChoice,
+) -> Result<()>
 where
     DB::ErrorType: 'static,
 {
-    let ceiling = psnr_ceiling(r.quality.iter().map(|q| q.min_psnr_db()));
-    let max_bits = r.quality.iter().map(|q| q.bits).max().unwrap_or(32) + 2;
+    let ceiling = psnr_ceiling(quality.iter().map(|q| q.min_psnr_db()));
+    let max_bits = quality.iter().map(|q| q.bits).max().unwrap_or(32) + 2;
     let mut chart = ChartBuilder::on(area)
         .caption(
             format!(
-                "Worst-scene PSNR vs format width ({} scenes, {}); top row = identical",
+                "Worst-scene PSNR vs format width, {policy} policy ({} scenes, {}); top = identical",
                 r.scenes.len(),
                 r.image_size
             ),
@@ -114,7 +134,7 @@ where
         .legend(|(x, y)| PathElement::new([(x, y), (x + 15, y)], RED.mix(0.5)));
     // Formats of equal width get staggered labels.
     let mut seen: BTreeMap<u32, i32> = BTreeMap::new();
-    for q in &r.quality {
+    for q in quality {
         let y = capped(q.min_psnr_db(), ceiling);
         let n = seen.entry(q.bits).or_insert(0);
         // Fixed point blue, floating point green; model-only formats hollow.
@@ -178,10 +198,13 @@ where
 {
     let mut series: BTreeMap<String, Vec<&Row>> = BTreeMap::new();
     for row in rows.iter().filter(|r| r.lut.is_some()) {
-        series
+        // Rows repeat per spawn policy with the same hardware: one point each.
+        let points = series
             .entry(format!("{} d{}", row.format, row.depth))
-            .or_default()
-            .push(row);
+            .or_default();
+        if !points.iter().any(|p| p.id == row.id) {
+            points.push(row);
+        }
     }
     let max_lanes = rows.iter().map(|r| r.lanes).max().unwrap_or(1) as u32;
     let (left, right) = area.split_horizontally(SIZE.0 / 2);
@@ -254,9 +277,10 @@ where
 
 /// Points with both quality and DSP48E1, and the front: no other point has at least the
 /// PSNR for fewer DSP48E1 (ties in DSP: the better PSNR).
-pub fn pareto_front(rows: &[Row]) -> Vec<&Row> {
+pub fn pareto_front<'r>(rows: &[&'r Row]) -> Vec<&'r Row> {
     let mut candidates: Vec<&Row> = rows
         .iter()
+        .copied()
         .filter(|r| r.min_psnr_db.is_some() && r.dsp48e1.is_some())
         .collect();
     candidates.sort_by(|a, b| {
@@ -275,12 +299,17 @@ pub fn pareto_front(rows: &[Row]) -> Vec<&Row> {
     front
 }
 
-fn pareto<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, rows: &[Row]) -> Result<()>
+fn pareto<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    rows: &[&Row],
+    policy: SpawnChoice,
+) -> Result<()>
 where
     DB::ErrorType: 'static,
 {
     let with: Vec<&Row> = rows
         .iter()
+        .copied()
         .filter(|r| r.min_psnr_db.is_some() && r.dsp48e1.is_some())
         .collect();
     let psnr = |r: &Row| r.min_psnr_db.map_or(0.0, |p| p.0);
@@ -288,7 +317,7 @@ where
     let max_dsp = with.iter().filter_map(|r| r.dsp48e1).max().unwrap_or(1);
     let mut chart = ChartBuilder::on(area)
         .caption(
-            "Quality vs DSP48E1: every point, Pareto front in red; top row = identical",
+            format!("Quality vs DSP48E1, {policy} policy: Pareto front in red; top = identical"),
             ("sans-serif", 20),
         )
         .margin(15)

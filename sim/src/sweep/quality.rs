@@ -1,11 +1,13 @@
-//! The `quality/FORMAT` job: every scene through the model engine in one format, against
-//! the f32 reference: PSNR, share of differing pixels, the renders, error heat-maps and the
-//! format's image grid. The model is bit-accurate to the hardware at every depth and lane
-//! count, so quality is a property of the format alone and is computed once per format.
+//! The `quality/FORMAT` job: every scene through the model engine in one format under each
+//! spawn policy, against the f32 reference: PSNR, share of differing pixels, the renders,
+//! error heat-maps and an image grid per policy. The model is bit-accurate to the hardware at
+//! every depth and lane count, so quality is a property of the format and the policy alone and
+//! is computed once per pair of them.
 
 use std::time::Instant;
 
 use anyhow::Result;
+use hw_model::precision::SpawnChoice;
 use hw_model::ModelIntersector;
 use serde::{Deserialize, Serialize};
 use sw_renderer::compare::{compare, diff_heatmap};
@@ -35,6 +37,7 @@ pub struct SceneQuality {
 pub struct QualityResult {
     pub format: String,
     pub bits: u32,
+    pub policy: SpawnChoice,
     pub scenes: Vec<SceneQuality>,
 }
 
@@ -55,41 +58,49 @@ impl QualityResult {
     }
 }
 
-pub fn run(config: &SweepConfig, layout: &Layout, format: &str) -> Result<QualityResult> {
-    let isect = ModelIntersector::new(hw_model::lookup(format)?);
-    let mut scenes = Vec::new();
-    let mut grid_rows = Vec::new();
-    for scene in &config.scenes {
-        let reference = reference(layout, scene)?;
-        let start = Instant::now();
-        let out = render_scene(config, scene, &isect)?;
-        let render_s = start.elapsed().as_secs_f64();
-        let diff = compare(&out.image, &reference)?;
-        let heatmap = diff_heatmap(&out.image, &reference)?;
-        let dir = layout.quality_dir(format);
-        let render_path = dir.join(format!("{}.png", scene.label));
-        parent_dir(&render_path)?;
-        save_png(&out.image, &render_path)?;
-        save_png(&heatmap, &dir.join(format!("{}_diff.png", scene.label)))?;
-        grid_rows.push([out.image, heatmap]);
-        scenes.push(SceneQuality {
-            scene: scene.label.clone(),
-            psnr_db: Psnr(diff.psnr_db),
-            differing_pixels: diff.differing_pixels,
-            differing_share: diff.differing_share,
-            max_abs_error: diff.max_abs_error,
-            mt_queries: out.stats.trace.cast.mt_tests,
-            render_s,
-        });
+/// Every policy of the sweep in `format`, each written to its result file.
+pub fn run(config: &SweepConfig, layout: &Layout, format: &str) -> Result<Vec<QualityResult>> {
+    let parsed = hw_model::lookup(format)?;
+    let isect = ModelIntersector::new(parsed);
+    let mut results = Vec::new();
+    for &policy in &config.policies {
+        let spawn = policy.policy(&parsed, 0);
+        let mut scenes = Vec::new();
+        let mut grid_rows = Vec::new();
+        let dir = layout.quality_dir(format, policy);
+        for scene in &config.scenes {
+            let reference = reference(layout, scene)?;
+            let start = Instant::now();
+            let out = render_scene(config, scene, &isect, spawn)?;
+            let render_s = start.elapsed().as_secs_f64();
+            let diff = compare(&out.image, &reference)?;
+            let heatmap = diff_heatmap(&out.image, &reference)?;
+            let render_path = dir.join(format!("{}.png", scene.label));
+            parent_dir(&render_path)?;
+            save_png(&out.image, &render_path)?;
+            save_png(&heatmap, &dir.join(format!("{}_diff.png", scene.label)))?;
+            grid_rows.push([out.image, heatmap]);
+            scenes.push(SceneQuality {
+                scene: scene.label.clone(),
+                psnr_db: Psnr(diff.psnr_db),
+                differing_pixels: diff.differing_pixels,
+                differing_share: diff.differing_share,
+                max_abs_error: diff.max_abs_error,
+                mt_queries: out.stats.trace.cast.mt_tests,
+                render_s,
+            });
+        }
+        write_grid(&grid_rows, &layout.grid(format, policy))?;
+        let result = QualityResult {
+            format: format.to_string(),
+            bits: format_bits(format),
+            policy,
+            scenes,
+        };
+        write_json(&layout.quality_result(format, policy), &result)?;
+        results.push(result);
     }
-    write_grid(&grid_rows, &layout.grid(format))?;
-    let result = QualityResult {
-        format: format.to_string(),
-        bits: format_bits(format),
-        scenes,
-    };
-    write_json(&layout.quality_result(format), &result)?;
-    Ok(result)
+    Ok(results)
 }
 
 /// A PSNR in dB that serialises infinity (identical images) as the string "inf", which JSON

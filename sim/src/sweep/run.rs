@@ -13,7 +13,7 @@ use super::layout::Layout;
 use super::manifest::{self, Job};
 use super::merge::merge;
 use super::table::Results;
-use super::{hardware, quality, render_job};
+use super::{dual, hardware, quality, render_job};
 
 pub fn run_job(config: &SweepConfig, layout: &Layout, job: &Job) -> Result<()> {
     match job {
@@ -24,6 +24,9 @@ pub fn run_job(config: &SweepConfig, layout: &Layout, job: &Job) -> Result<()> {
         }
         Job::Quality(format) => {
             quality::run(config, layout, format)?;
+        }
+        Job::Dual(pair) => {
+            dual::run(config, layout, pair)?;
         }
         Job::Point(id) => {
             let point = config.point(id).with_context(|| format!("no point {id}"))?;

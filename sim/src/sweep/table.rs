@@ -1,11 +1,15 @@
-//! The merged results: one row per point, written as CSV, JSON and a Markdown table.
+//! The merged results: one row per point and spawn policy (results.csv), one row per format
+//! or dual-precision pair, policy and scene (quality.csv), all of it in results.json and as
+//! Markdown tables in results.md.
 
 use std::fmt::Write as _;
 use std::path::Path;
 
 use anyhow::{Context, Result};
+use hw_model::precision::SpawnChoice;
 use serde::{Deserialize, Serialize};
 
+use super::dual::DualResult;
 use super::layout::parent_dir;
 use super::quality::{Psnr, QualityResult};
 
@@ -27,6 +31,9 @@ pub struct Row {
     pub bits: u32,
     pub depth: usize,
     pub lanes: usize,
+    /// The spawn policy of the quality columns (none without the quality stage: one row per
+    /// point).
+    pub policy: Option<SpawnChoice>,
     /// Lane latency in cycles.
     pub latency: usize,
     /// Stream-mode cycles per test of the whole accelerator.
@@ -45,7 +52,7 @@ pub struct Row {
     /// The format and depth (`fp16_d1`) whose 1- and 2-lane synthesis lent the fixed part of
     /// `lanes_fit` (`merge`'s docs); none when this row's own pair gave it.
     pub fixed_part_from: Option<String>,
-    /// Worst scene's PSNR against the f32 reference.
+    /// Worst scene's PSNR against the f32 reference, under `policy`.
     pub min_psnr_db: Option<Psnr>,
     /// Largest share of differing pixels over the scenes.
     pub max_differing_share: Option<f64>,
@@ -59,7 +66,11 @@ pub struct Row {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Results {
     pub rows: Vec<Row>,
+    pub policies: Vec<SpawnChoice>,
+    /// One per format and policy.
     pub quality: Vec<QualityResult>,
+    /// One per dual-precision pair and policy (model only).
+    pub dual: Vec<DualResult>,
     /// Formats of `quality` that have no hardware (model engine only).
     pub model_formats: Vec<String>,
     /// Modelled ARM-only time of the projected frame (None without the projection stage).
@@ -80,15 +91,86 @@ pub fn write_csv(rows: &[Row], path: &Path) -> Result<()> {
     Ok(())
 }
 
+/// One line of quality.csv: a format or pair on one scene under one policy.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct QualityRow {
+    /// A format, or a dual-precision pair (`fp16/fp32`).
+    pub format: String,
+    /// `hardware`, `model` (model-only format) or `pair`.
+    pub kind: String,
+    /// The format's width; a pair's filter width.
+    pub bits: u32,
+    pub policy: SpawnChoice,
+    pub scene: String,
+    pub psnr_db: Psnr,
+    /// Formats only.
+    pub differing_share: Option<f64>,
+    /// Pairs only: the share of tests forwarded to the fallback.
+    pub forwarded_share: Option<f64>,
+    /// Pairs only: the image equals the fallback's.
+    pub equals_fallback: Option<bool>,
+}
+
+/// quality.csv's lines: every format's scenes, then every pair's.
+pub fn quality_rows(results: &Results) -> Vec<QualityRow> {
+    let formats = results.quality.iter().flat_map(|q| {
+        let kind = if results.model_formats.contains(&q.format) {
+            "model"
+        } else {
+            "hardware"
+        };
+        q.scenes.iter().map(move |s| QualityRow {
+            format: q.format.clone(),
+            kind: kind.into(),
+            bits: q.bits,
+            policy: q.policy,
+            scene: s.scene.clone(),
+            psnr_db: s.psnr_db,
+            differing_share: Some(s.differing_share),
+            forwarded_share: None,
+            equals_fallback: None,
+        })
+    });
+    let pairs = results.dual.iter().flat_map(|d| {
+        d.scenes.iter().map(move |s| QualityRow {
+            format: d.pair.clone(),
+            kind: "pair".into(),
+            bits: d.filter_bits,
+            policy: d.policy,
+            scene: s.scene.clone(),
+            psnr_db: s.psnr_db,
+            differing_share: None,
+            forwarded_share: Some(s.forwarded_share),
+            equals_fallback: Some(s.differing_from_fallback == 0),
+        })
+    });
+    formats.chain(pairs).collect()
+}
+
+pub fn write_quality_csv(rows: &[QualityRow], path: &Path) -> Result<()> {
+    parent_dir(path)?;
+    let mut w =
+        csv::Writer::from_path(path).with_context(|| format!("writing {}", path.display()))?;
+    for r in rows {
+        w.serialize(r)?;
+    }
+    w.flush()?;
+    Ok(())
+}
+
 fn opt<T: std::fmt::Display>(v: &Option<T>) -> String {
     v.as_ref().map_or_else(|| "—".to_string(), T::to_string)
 }
 
-/// The smallest format (fewest bits) whose worst scene reaches `db`.
-pub fn smallest_format_above(quality: &[QualityResult], db: f64) -> Option<&QualityResult> {
+/// The smallest format (fewest bits) whose worst scene reaches `db` under `policy`.
+pub fn smallest_format_above<'q>(
+    quality: impl IntoIterator<Item = &'q QualityResult>,
+    policy: SpawnChoice,
+    db: f64,
+) -> Option<&'q QualityResult> {
     quality
-        .iter()
-        .filter(|q| q.min_psnr_db() >= db)
+        .into_iter()
+        .filter(|q| q.policy == policy && q.min_psnr_db() >= db)
         .min_by(|a, b| (a.bits, &a.format).cmp(&(b.bits, &b.format)))
 }
 
@@ -110,8 +192,8 @@ pub fn markdown(results: &Results) -> Result<String> {
     }
     writeln!(s, "## Points\n")?;
     writeln!(s, "Resources: `yosys` synthesised, `estimate` = fixed + lanes × per-lane from the 1- and 2-lane synthesis; lanes fit = lanes of the format and depth that fit an XC7Z020 (limit; †fp16_d1 = this point's 1-lane synthesis with the fixed part (AXI-Lite slave, stream front end) of that 1- and 2-lane pair). Cycles/test: `*` measured in co-simulation.\n")?;
-    writeln!(s, "| point | bits | depth | lanes | latency | cycles/test | LUT | FF | DSP | BRAM18 | CARRY4 | logic depth | resources | lanes fit | min PSNR dB | max diff px | cosim = model | frame s | × ARM |")?;
-    writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---:|---|---:|---:|")?;
+    writeln!(s, "| point | bits | depth | lanes | latency | cycles/test | LUT | FF | DSP | BRAM18 | CARRY4 | logic depth | resources | lanes fit | policy | min PSNR dB | max diff px | cosim = model | frame s | × ARM |")?;
+    writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---:|---:|---|---:|---:|")?;
     for r in &results.rows {
         let res = match r.resources {
             Some(ResourceSource::Yosys) => "yosys",
@@ -128,7 +210,7 @@ pub fn markdown(results: &Results) -> Result<String> {
         };
         writeln!(
             s,
-            "| {} | {} | {} | {} | {} | {:.3}{} | {} | {} | {} | {} | {} | {} | {res} | {fit} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {:.3}{} | {} | {} | {} | {} | {} | {} | {res} | {fit} | {} | {} | {} | {} | {} | {} |",
             r.id,
             r.bits,
             r.depth,
@@ -142,6 +224,7 @@ pub fn markdown(results: &Results) -> Result<String> {
             opt(&r.bram18),
             opt(&r.carry4),
             opt(&r.logic_depth),
+            opt(&r.policy),
             opt(&r.min_psnr_db),
             opt(&r.max_differing_share.map(|x| format!("{:.2} %", 100.0 * x))),
             opt(&r.cosim_identical.map(|b| if b { "yes" } else { "NO" })),
@@ -154,40 +237,76 @@ pub fn markdown(results: &Results) -> Result<String> {
             s,
             "\n## Quality per scene (model engine vs f32; PSNR dB / differing pixels)\n"
         )?;
-        write!(s, "| format | bits |")?;
+        write!(s, "| format | policy | bits |")?;
         for scene in &results.scenes {
             write!(s, " {scene} |")?;
         }
         writeln!(s, " min PSNR |")?;
-        writeln!(s, "|---|---:|{}---:|", "---|".repeat(results.scenes.len()))?;
+        writeln!(
+            s,
+            "|---|---|---:|{}---:|",
+            "---|".repeat(results.scenes.len())
+        )?;
         for q in &results.quality {
             let tag = if results.model_formats.contains(&q.format) {
                 " (model only)"
             } else {
                 ""
             };
-            write!(s, "| {}{tag} | {} |", q.format, q.bits)?;
+            write!(s, "| {}{tag} | {} | {} |", q.format, q.policy, q.bits)?;
             for sq in &q.scenes {
                 write!(s, " {} / {:.2} % |", sq.psnr_db, 100.0 * sq.differing_share)?;
             }
             writeln!(s, " {} |", Psnr(q.min_psnr_db()))?;
         }
-        let (hardware, model): (Vec<QualityResult>, Vec<QualityResult>) = results
+        writeln!(s)?;
+        let (hardware, model): (Vec<&QualityResult>, Vec<&QualityResult>) = results
             .quality
             .iter()
-            .cloned()
             .partition(|q| !results.model_formats.contains(&q.format));
-        for (what, list) in [
-            ("hardware format", &hardware),
-            ("model-only format", &model),
-        ] {
-            if list.is_empty() {
-                continue;
+        for &policy in &results.policies {
+            for (what, list) in [
+                ("hardware format", &hardware),
+                ("model-only format", &model),
+            ] {
+                if list.is_empty() {
+                    continue;
+                }
+                match smallest_format_above(list.iter().copied(), policy, 40.0) {
+                    Some(q) => writeln!(s, "- Smallest {what} with PSNR ≥ 40 dB on every scene ({policy} policy): **{}** ({} bits, worst {} dB).", q.format, q.bits, Psnr(q.min_psnr_db()))?,
+                    None => writeln!(s, "- No {what} reaches PSNR ≥ 40 dB on every scene ({policy} policy).")?,
+                }
             }
-            match smallest_format_above(list, 40.0) {
-                Some(q) => writeln!(s, "\nSmallest {what} with PSNR ≥ 40 dB on every scene: **{}** ({} bits, worst {} dB).", q.format, q.bits, Psnr(q.min_psnr_db()))?,
-                None => writeln!(s, "\nNo {what} reaches PSNR ≥ 40 dB on every scene.")?,
+        }
+    }
+    if !results.dual.is_empty() {
+        writeln!(
+            s,
+            "\n## Dual precision (model only: no hardware, so no points or resources)\n"
+        )?;
+        writeln!(s, "Share of each scene's Möller-Trumbore tests the filter forwards to the fallback; all = over every scene's tests; = fallback: every image equals the fallback format's model render under the same policy; min PSNR against f32.\n")?;
+        write!(s, "| pair | policy |")?;
+        for scene in &results.scenes {
+            write!(s, " {scene} |")?;
+        }
+        writeln!(s, " all | = fallback | min PSNR |")?;
+        writeln!(
+            s,
+            "|---|---|{}---:|---|---:|",
+            "---:|".repeat(results.scenes.len())
+        )?;
+        for d in &results.dual {
+            write!(s, "| {} | {} |", d.pair, d.policy)?;
+            for sc in &d.scenes {
+                write!(s, " {:.4} |", sc.forwarded_share)?;
             }
+            writeln!(
+                s,
+                " {:.4} | {} | {} |",
+                d.forwarded_share(),
+                if d.exact() { "yes" } else { "NO" },
+                Psnr(d.min_psnr_db())
+            )?;
         }
     }
     Ok(s)
