@@ -1029,13 +1029,17 @@ impl<
         self.changed.d.next = self.next_changed.val();
         self.best_valid.d.next = self.next_best_valid.val();
         self.at_root.d.next = (self.at_root.q.val() & !self.box_done.val()) | self.entering.val();
-        self.any_hit.d.next = self.any_hit.q.val() & !self.entering.val();
-        self.has_exclude.d.next = self.has_exclude.q.val() & !self.entering.val();
+        // The entering slot takes the ray's flag; the others keep theirs. (Written without
+        // reading `.d` back: rust-hdl's simulator returns its previous settled value there.)
         if self.ray_words[8].val().get_bit(0) {
-            self.any_hit.d.next = self.any_hit.d.val() | self.entering.val();
+            self.any_hit.d.next = self.any_hit.q.val() | self.entering.val();
+        } else {
+            self.any_hit.d.next = self.any_hit.q.val() & !self.entering.val();
         }
         if self.ray_words[8].val().get_bit(1) {
-            self.has_exclude.d.next = self.has_exclude.d.val() | self.entering.val();
+            self.has_exclude.d.next = self.has_exclude.q.val() | self.entering.val();
+        } else {
+            self.has_exclude.d.next = self.has_exclude.q.val() & !self.entering.val();
         }
 
         // ---- The slots' flip-flop words.
