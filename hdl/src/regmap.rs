@@ -81,7 +81,12 @@ pub const ACCEL_ID: u16 = 0x5246;
 /// gets 1.0's t > 0).
 pub const VERSION: (u8, u8) = (1, 1);
 /// The value the id register reads.
-pub const ID_VALUE: u32 = (ACCEL_ID as u32) << 16 | (VERSION.0 as u32) << 8 | VERSION.1 as u32;
+pub const ID_VALUE: u32 = id_word(ACCEL_ID, VERSION);
+
+/// An id register: the block's id in bits 31:16, version major 15:8, minor 7:0.
+pub const fn id_word(id: u16, version: (u8, u8)) -> u32 {
+    (id as u32) << 16 | (version.0 as u32) << 8 | version.1 as u32
+}
 
 /// How software may access a register (or a bit of one).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

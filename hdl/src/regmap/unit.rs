@@ -56,7 +56,7 @@ pub const RESET_CYCLES: u32 = 255;
 /// "RU" (ray unit) in the upper half of the id register.
 pub const UNIT_ID: u16 = 0x5255;
 pub const VERSION: (u8, u8) = (1, 0);
-pub const ID_VALUE: u32 = (UNIT_ID as u32) << 16 | (VERSION.0 as u32) << 8 | VERSION.1 as u32;
+pub const ID_VALUE: u32 = super::id_word(UNIT_ID, VERSION);
 
 /// Contents of the [`MEMORY`] register: the unit's sizes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
