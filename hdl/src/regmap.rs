@@ -149,7 +149,8 @@ pub const fn field(
     }
 }
 
-const fn fp32(
+/// A 32-bit register without fields, reset 0 (an fp32 operand, a counter, a status word).
+const fn word(
     name: &'static str,
     offset: usize,
     access: Access,
@@ -241,22 +242,22 @@ pub const REGISTERS: &[Register] = &[
             field("READY", 1, Access::W1t, "ap_ready happened"),
         ],
     },
-    fp32("ORIG_X", ORIG_X, Access::Rw, "ray origin x (fp32 bits)"),
-    fp32("ORIG_Y", ORIG_Y, Access::Rw, "ray origin y (fp32 bits)"),
-    fp32("ORIG_Z", ORIG_Z, Access::Rw, "ray origin z (fp32 bits)"),
-    fp32("DIR_X", DIR_X, Access::Rw, "ray direction x (fp32 bits)"),
-    fp32("DIR_Y", DIR_Y, Access::Rw, "ray direction y (fp32 bits)"),
-    fp32("DIR_Z", DIR_Z, Access::Rw, "ray direction z (fp32 bits)"),
-    fp32("V0_X", V0_X, Access::Rw, "triangle vertex 0 x (fp32 bits)"),
-    fp32("V0_Y", V0_Y, Access::Rw, "triangle vertex 0 y (fp32 bits)"),
-    fp32("V0_Z", V0_Z, Access::Rw, "triangle vertex 0 z (fp32 bits)"),
-    fp32("V1_X", V1_X, Access::Rw, "triangle vertex 1 x (fp32 bits)"),
-    fp32("V1_Y", V1_Y, Access::Rw, "triangle vertex 1 y (fp32 bits)"),
-    fp32("V1_Z", V1_Z, Access::Rw, "triangle vertex 1 z (fp32 bits)"),
-    fp32("V2_X", V2_X, Access::Rw, "triangle vertex 2 x (fp32 bits)"),
-    fp32("V2_Y", V2_Y, Access::Rw, "triangle vertex 2 y (fp32 bits)"),
-    fp32("V2_Z", V2_Z, Access::Rw, "triangle vertex 2 z (fp32 bits)"),
-    fp32(
+    word("ORIG_X", ORIG_X, Access::Rw, "ray origin x (fp32 bits)"),
+    word("ORIG_Y", ORIG_Y, Access::Rw, "ray origin y (fp32 bits)"),
+    word("ORIG_Z", ORIG_Z, Access::Rw, "ray origin z (fp32 bits)"),
+    word("DIR_X", DIR_X, Access::Rw, "ray direction x (fp32 bits)"),
+    word("DIR_Y", DIR_Y, Access::Rw, "ray direction y (fp32 bits)"),
+    word("DIR_Z", DIR_Z, Access::Rw, "ray direction z (fp32 bits)"),
+    word("V0_X", V0_X, Access::Rw, "triangle vertex 0 x (fp32 bits)"),
+    word("V0_Y", V0_Y, Access::Rw, "triangle vertex 0 y (fp32 bits)"),
+    word("V0_Z", V0_Z, Access::Rw, "triangle vertex 0 z (fp32 bits)"),
+    word("V1_X", V1_X, Access::Rw, "triangle vertex 1 x (fp32 bits)"),
+    word("V1_Y", V1_Y, Access::Rw, "triangle vertex 1 y (fp32 bits)"),
+    word("V1_Z", V1_Z, Access::Rw, "triangle vertex 1 z (fp32 bits)"),
+    word("V2_X", V2_X, Access::Rw, "triangle vertex 2 x (fp32 bits)"),
+    word("V2_Y", V2_Y, Access::Rw, "triangle vertex 2 y (fp32 bits)"),
+    word("V2_Z", V2_Z, Access::Rw, "triangle vertex 2 z (fp32 bits)"),
+    word(
         "T_MIN",
         T_MIN,
         Access::Rw,
@@ -271,9 +272,9 @@ pub const REGISTERS: &[Register] = &[
         description: "result flags of the last completed test",
         fields: &[field("HIT", 0, Access::Ro, "the ray hits the triangle")],
     },
-    fp32("T", T, Access::Ro, "distance along the ray (fp32 bits)"),
-    fp32("U", U, Access::Ro, "barycentric u (fp32 bits)"),
-    fp32("V", V, Access::Ro, "barycentric v (fp32 bits)"),
+    word("T", T, Access::Ro, "distance along the ray (fp32 bits)"),
+    word("U", U, Access::Ro, "barycentric u (fp32 bits)"),
+    word("V", V, Access::Ro, "barycentric v (fp32 bits)"),
     Register {
         name: "ID",
         offset: ID,

@@ -7,7 +7,7 @@
 //! consistent, as nothing counts in an idle unit (busy cycles count only with a ray in it),
 //! so no snapshot register is needed. RESET clears them.
 
-use super::{field, Access, Field, Register, RegisterMap};
+use super::{field, word, Access, Field, Register, RegisterMap};
 use crate::traversal::scene_memory::ERROR_CODE_BITS;
 
 /// Control: LOAD_START, RESET (pulses).
@@ -87,23 +87,6 @@ impl MemoryWord {
             stack_depth,
             slots,
         }
-    }
-}
-
-const fn word(
-    name: &'static str,
-    offset: usize,
-    access: Access,
-    description: &'static str,
-) -> Register {
-    Register {
-        name,
-        offset,
-        access,
-        width: 32,
-        reset: 0,
-        description,
-        fields: &[],
     }
 }
 
