@@ -8,7 +8,7 @@ use hdl::top::TopConfig;
 use hdl::traversal::scene_memory;
 use hdl::traversal::unit::UnitConfig;
 use hw_model::dual::{
-    BoundArith, DualIntersector, Filter, FilterKind, FormatChoice, DEFAULT_FILTER, HW_BOUND_BITS,
+    BoundArith, DualIntersector, Filter, FilterFormat, FilterKind, FormatChoice, HW_BOUND_BITS,
 };
 use hw_model::precision::{auto_scale_exp, SceneRange, SpawnChoice};
 use hw_model::traversal::{SceneCapacity, SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
@@ -60,9 +60,10 @@ pub struct HwConfig {
     #[arg(long, default_value_t = hdl::traversal::timing::DEFAULT_SLOTS as u32,
           value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub slots: u32,
-    /// The filter of a dual-precision pair (docs/precision.md, "Dual precision").
-    #[arg(long, value_enum, default_value_t = DualFilter::default_choice())]
-    pub dual_filter: DualFilter,
+    /// The filter of a dual-precision pair (docs/precision.md, "Dual precision") [default:
+    /// bfp for a bfpW/fp32 pair, else linear].
+    #[arg(long, value_enum)]
+    pub dual_filter: Option<DualFilter>,
 }
 
 /// `--dual-filter`: what a pair's filter computes and how it evaluates its bound.
@@ -75,22 +76,17 @@ pub enum DualFilter {
     LinearExact,
     /// A whole lane in the filter format (quotients), its bound exact.
     Quotient,
+    /// Block floating point, for a bfpW/FALLBACK pair: exact integers, margins per width.
+    Bfp,
 }
 
 impl DualFilter {
-    /// The name of the engines' [`DEFAULT_FILTER`].
-    fn default_choice() -> DualFilter {
-        *DualFilter::value_variants()
-            .iter()
-            .find(|f| f.kind() == DEFAULT_FILTER)
-            .expect("DEFAULT_FILTER has a --dual-filter name")
-    }
-
     pub fn kind(self) -> FilterKind {
         match self {
             DualFilter::Linear => FilterKind::Linear(BoundArith::Coarse(HW_BOUND_BITS)),
             DualFilter::LinearExact => FilterKind::Linear(BoundArith::Exact),
             DualFilter::Quotient => FilterKind::Quotient,
+            DualFilter::Bfp => FilterKind::Bfp,
         }
     }
 }
@@ -116,8 +112,10 @@ pub fn make_scaled(
     memory: SceneMemory,
 ) -> Result<Made> {
     if let (EngineKind::Model, FormatChoice::Pair(pair)) = (kind, hw.format) {
-        let dual =
-            DualIntersector::with_filter(Filter::new(pair, scale_exp, hw.dual_filter.kind()));
+        let kind = hw
+            .dual_filter
+            .map_or_else(|| FilterKind::default_for(&pair), DualFilter::kind);
+        let dual = DualIntersector::with_filter(Filter::new(pair, scale_exp, kind)?);
         return Ok(Made {
             engine: Box::new(dual.clone()),
             dual: Some(dual),
@@ -176,7 +174,13 @@ impl PrecisionArgs {
         // A pair answers as its fallback (unscaled); only its filter is scaled.
         let (answers, scaled) = match hw.format {
             FormatChoice::Single(f) => (f, f),
-            FormatChoice::Pair(p) => (p.fallback, p.filter),
+            FormatChoice::Pair(p) => match p.filter {
+                FilterFormat::Float(filter) => (p.fallback, filter),
+                FilterFormat::Bfp(_) if self.scale == Some(ScaleKind::Auto) => {
+                    bail!("--format {p} --scale auto: a block-floating-point filter is not scaled (its exponents are per vector)")
+                }
+                FilterFormat::Bfp(_) => (p.fallback, p.fallback),
+            },
         };
         let fp32 = answers == Format::Float { exp: 8, man: 23 };
         let model = matches!(kind, EngineKind::Model | EngineKind::Traversal);

@@ -146,7 +146,7 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
             assert_eq!(d.min_psnr_db(), f64::INFINITY);
         }
         let scene = &config.scenes[0];
-        let direct = DualIntersector::new(pair, 0);
+        let direct = DualIntersector::new(pair, 0).unwrap();
         sw_renderer::render::render(
             &scene.load().unwrap(),
             &direct,

@@ -16,6 +16,7 @@ use thiserror::Error;
 
 use crate::mt::{mt_model, mt_traced, scale_query, DET_EPSILON};
 
+pub mod bfp;
 mod linear;
 use crate::{catalogue, lookup, Format, FormatError};
 
@@ -47,19 +48,71 @@ pub enum DualError {
         half: &'static str,
         format: String,
     },
+    #[error(
+        "format pair `{pair}`: block floating point `{filter}` needs a mantissa width of {min} to {max} bits, as in bfp18"
+    )]
+    BfpWidth {
+        pair: String,
+        filter: String,
+        min: u32,
+        max: u32,
+    },
+    #[error(
+        "format pair `{pair}`: a block-floating-point filter needs a fallback that holds fp32 exactly (8 exponent and 23 fraction bits or more), not {fallback}"
+    )]
+    BfpFallback { pair: String, fallback: String },
+    #[error("format pair `{pair}`: the {kind} filter needs {needs}")]
+    Kind {
+        pair: String,
+        kind: FilterKind,
+        needs: &'static str,
+    },
+    #[error(
+        "format pair `{pair}`: a block-floating-point filter is not scaled (its exponents are per vector); scale 2^{scale_exp} asked"
+    )]
+    BfpScaled { pair: String, scale_exp: i32 },
+}
+
+/// What a pair's filter computes in: a float format, or block floating point with W-bit
+/// mantissas (`bfpW`, [`bfp`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FilterFormat {
+    Float(Format),
+    Bfp(u32),
+}
+
+impl FilterFormat {
+    /// Bits per value: a float's width, a block's mantissa width (its exponent is shared by
+    /// three components).
+    pub fn width(&self) -> u32 {
+        match self {
+            FilterFormat::Float(format) => format.width(),
+            FilterFormat::Bfp(width) => *width,
+        }
+    }
+}
+
+impl fmt::Display for FilterFormat {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            FilterFormat::Float(format) => f.write_str(&label(format)),
+            FilterFormat::Bfp(width) => write!(f, "bfp{width}"),
+        }
+    }
 }
 
 /// A filter format and the fallback whose answers it must reproduce.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FormatPair {
-    pub filter: Format,
+    pub filter: FilterFormat,
     pub fallback: Format,
 }
 
 impl FormatPair {
-    /// `FILTER/FALLBACK`, each half anything [`lookup`] takes. Both must be float formats
-    /// (the bound is a float analysis), different, and the filter no wider than the fallback
-    /// in exponent and fraction bits.
+    /// `FILTER/FALLBACK`, each half anything [`lookup`] takes, or the filter `bfpW`. Both
+    /// must be float formats (the bound is a float analysis), different, and the filter no
+    /// wider than the fallback in exponent and fraction bits; a `bfpW` filter needs W in
+    /// [`bfp::WIDTHS`] and a fallback that holds fp32.
     pub fn parse(s: &str) -> Result<FormatPair, DualError> {
         let pair = s.trim().to_string();
         let halves: Vec<&str> = pair.split('/').map(str::trim).collect();
@@ -84,8 +137,30 @@ impl FormatPair {
                 }),
             }
         };
-        let (filter, fe, fm) = half("filter", filter)?;
         let (fallback, be, bm) = half("fallback", fallback)?;
+        if let Some(width) = filter.to_ascii_lowercase().strip_prefix("bfp") {
+            let width = width
+                .parse()
+                .ok()
+                .filter(|w| bfp::WIDTHS.contains(w))
+                .ok_or_else(|| DualError::BfpWidth {
+                    pair: pair.clone(),
+                    filter: filter.to_string(),
+                    min: *bfp::WIDTHS.start(),
+                    max: *bfp::WIDTHS.end(),
+                })?;
+            if !holds_fp32(&fallback) {
+                return Err(DualError::BfpFallback {
+                    pair,
+                    fallback: label(&fallback),
+                });
+            }
+            return Ok(FormatPair {
+                filter: FilterFormat::Bfp(width),
+                fallback,
+            });
+        }
+        let (filter, fe, fm) = half("filter", filter)?;
         if filter == fallback {
             return Err(DualError::Equal(pair));
         }
@@ -96,7 +171,10 @@ impl FormatPair {
                 fallback: label(&fallback),
             });
         }
-        Ok(FormatPair { filter, fallback })
+        Ok(FormatPair {
+            filter: FilterFormat::Float(filter),
+            fallback,
+        })
     }
 }
 
@@ -110,7 +188,7 @@ fn label(format: &Format) -> String {
 
 impl fmt::Display for FormatPair {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}/{}", label(&self.filter), label(&self.fallback))
+        write!(f, "{}/{}", self.filter, label(&self.fallback))
     }
 }
 
@@ -506,6 +584,20 @@ pub enum FilterKind {
     /// No reciprocal: the numerators compared with det ([`linear`]); the bound in the given
     /// arithmetic (coarse: from the fp32 subtractors' rounding bound, as hardware knows it).
     Linear(BoundArith),
+    /// Block floating point ([`bfp`]): the pair's `bfpW` filter, exact integer products and
+    /// decisions, margins a constant per width shifted by block exponents.
+    Bfp,
+}
+
+impl FilterKind {
+    /// The engines' filter for `pair`: [`FilterKind::Bfp`] for a `bfpW` filter, else
+    /// [`DEFAULT_FILTER`].
+    pub fn default_for(pair: &FormatPair) -> FilterKind {
+        match pair.filter {
+            FilterFormat::Bfp(_) => FilterKind::Bfp,
+            FilterFormat::Float(_) => DEFAULT_FILTER,
+        }
+    }
 }
 
 impl fmt::Display for FilterKind {
@@ -516,12 +608,14 @@ impl fmt::Display for FilterKind {
             FilterKind::Linear(BoundArith::Exact) => f.write_str("linear-exact"),
             FilterKind::Linear(BoundArith::Coarse(HW_BOUND_BITS)) => f.write_str("linear"),
             FilterKind::Linear(BoundArith::Coarse(bits)) => write!(f, "linear-coarse{bits}"),
+            FilterKind::Bfp => f.write_str("bfp"),
         }
     }
 }
 
 /// The filter: `pair.filter` on the query moved to v0 = 0 in fp32 and scaled by
-/// 2^`scale_exp` ([`filter_input`]). Moving first is what makes a narrow filter useful:
+/// 2^`scale_exp` ([`filter_input`]), or for a `bfpW` filter moved exactly in integers
+/// ([`bfp`]). Moving first is what makes a narrow filter useful:
 /// converted as given, coordinates of 10–50 scene units carry a rounding error of the
 /// format's precision times 50 into every edge, which dwarfs small triangles; the
 /// differences carry it relative to their own size.
@@ -530,24 +624,51 @@ pub struct Filter {
     pub pair: FormatPair,
     pub scale_exp: i32,
     pub kind: FilterKind,
-    a: Rounding,
     b: Rounding,
     /// The fallback's parallel-ray threshold, as it compares it.
     eps_b: f64,
 }
 
 impl Filter {
-    pub fn new(pair: FormatPair, scale_exp: i32, kind: FilterKind) -> Filter {
-        let rounding = |f: &Format| Rounding::of(f).expect("FormatPair::parse admits floats only");
+    /// `kind` must fit the pair's filter: [`FilterKind::Bfp`] for a `bfpW` filter (unscaled),
+    /// a float kind for a float filter.
+    pub fn new(pair: FormatPair, scale_exp: i32, kind: FilterKind) -> Result<Filter, DualError> {
+        let mismatch = |needs| DualError::Kind {
+            pair: pair.to_string(),
+            kind,
+            needs,
+        };
+        match (pair.filter, kind) {
+            (FilterFormat::Bfp(_), FilterKind::Bfp) if scale_exp != 0 => {
+                return Err(DualError::BfpScaled {
+                    pair: pair.to_string(),
+                    scale_exp,
+                })
+            }
+            (FilterFormat::Bfp(_), FilterKind::Bfp) => {}
+            (FilterFormat::Bfp(_), _) => return Err(mismatch("a float filter such as fp16")),
+            (FilterFormat::Float(_), FilterKind::Bfp) => {
+                return Err(mismatch("a block-floating-point filter such as bfp18"))
+            }
+            (FilterFormat::Float(_), _) => {}
+        }
         let fb = pair.fallback;
-        Filter {
+        Ok(Filter {
             pair,
             scale_exp,
             kind,
-            a: rounding(&pair.filter),
-            b: rounding(&fb),
+            b: Rounding::of(&fb).expect("FormatPair::parse admits float fallbacks only"),
             eps_b: fb.to_f64(fb.from_f32(DET_EPSILON)),
-        }
+        })
+    }
+
+    /// A float filter's format and rounding (the float kinds' decisions).
+    fn float_filter(&self) -> (Format, Rounding) {
+        let FilterFormat::Float(format) = self.pair.filter else {
+            unreachable!("Filter::new pairs float kinds with float filters")
+        };
+        let rounding = Rounding::of(&format).expect("FormatPair::parse admits floats only");
+        (format, rounding)
     }
 
     /// Whether the fallback certainly answers "miss": one of its tests (|det| < eps,
@@ -565,21 +686,23 @@ impl Filter {
         match self.kind {
             FilterKind::Quotient => self.decide_quotient(q, margin_scale),
             FilterKind::Linear(arith) => self.decide_linear(q, margin_scale, arith),
+            FilterKind::Bfp => self.decide_bfp(q, margin_scale),
         }
     }
 
     /// [`Filter::decide`] for [`FilterKind::Quotient`].
     fn decide_quotient(&self, q: &MtQuery, margin_scale: f64) -> Option<MtResult> {
-        let (a, b) = (&self.a, &self.b);
+        let (filter, a) = self.float_filter();
+        let (a, b) = (&a, &self.b);
         let exact = coords(q);
         if exact.iter().flatten().any(|x| !x.is_finite()) {
             return None;
         }
         let (fed_query, fed_a) = filter_input(q, self.scale_exp, true)?;
         let fed_b = exact.map(|v| v.map(|value| Fed { value, off: 0.0 }));
-        let (det_a, num_a) = datapath_bounds(&fed_a, a, holds_fp32(&self.pair.filter))?;
+        let (det_a, num_a) = datapath_bounds(&fed_a, a, holds_fp32(&filter))?;
         let (det_b, num_b) = datapath_bounds(&fed_b, b, holds_fp32(&self.pair.fallback))?;
-        let (result, x) = mt_traced(&self.pair.filter, &fed_query);
+        let (result, x) = mt_traced(&filter, &fed_query);
         let c = 2f64.powi(self.scale_exp);
         // det and the numerators are of degree 3 in lengths: back to scene units.
         let unscale = c.powi(-3);
@@ -668,10 +791,15 @@ pub struct DualIntersector {
 }
 
 impl DualIntersector {
-    /// `pair.filter` on queries scaled by 2^`filter_scale_exp`, a [`DEFAULT_FILTER`]; the
-    /// fallback unscaled.
-    pub fn new(pair: FormatPair, filter_scale_exp: i32) -> DualIntersector {
-        DualIntersector::with_filter(Filter::new(pair, filter_scale_exp, DEFAULT_FILTER))
+    /// `pair.filter` on queries scaled by 2^`filter_scale_exp`, the engines' filter for the
+    /// pair ([`FilterKind::default_for`]); the fallback unscaled.
+    pub fn new(pair: FormatPair, filter_scale_exp: i32) -> Result<DualIntersector, DualError> {
+        let kind = FilterKind::default_for(&pair);
+        Ok(DualIntersector::with_filter(Filter::new(
+            pair,
+            filter_scale_exp,
+            kind,
+        )?))
     }
 
     pub fn with_filter(filter: Filter) -> DualIntersector {

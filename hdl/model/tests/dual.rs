@@ -4,8 +4,8 @@
 //! pairs are clear errors.
 
 use hw_model::dual::{
-    BoundArith, DualError, DualIntersector, Filter, FilterKind, FormatChoice, FormatPair,
-    DEFAULT_FILTER,
+    BoundArith, DualError, DualIntersector, Filter, FilterFormat, FilterKind, FormatChoice,
+    FormatPair, DEFAULT_FILTER,
 };
 use hw_model::{lookup, mt_model, FormatError, ModelIntersector, MtQuery, MtResult};
 use rand::rngs::StdRng;
@@ -138,13 +138,54 @@ fn fallback_hits(pair: &FormatPair, qs: &[MtQuery]) -> Vec<(MtQuery, MtResult)> 
         .collect()
 }
 
-/// The filters under test: the quotient filter, the division-free one with an exact bound
-/// and with the hardware's coarse bound.
-const KINDS: [FilterKind; 3] = [
-    DEFAULT_FILTER,
-    FilterKind::Quotient,
-    FilterKind::Linear(BoundArith::Exact),
+/// A filter under test and its pairs: `main` takes the long random run, `extra` (scaled by
+/// 2^k) 10^5 of its queries, `margin` the margin and render tests, `largest` the ignored
+/// report.
+struct Case {
+    kind: FilterKind,
+    main: &'static str,
+    extra: &'static [(&'static str, i32)],
+    margin: &'static [&'static str],
+    largest: &'static [&'static str],
+}
+
+const FLOAT_EXTRA: &[(&str, i32)] = &[("fp16/fp32", -2), ("e6m13/fp32", 0), ("bf16/fp24", 0)];
+const FLOAT_MARGIN: &[&str] = &["fp16/fp32", "e6m13/fp32"];
+const FLOAT_LARGEST: &[&str] = &["fp16/fp32", "e6m13/fp32", "fp24/fp32"];
+
+const fn float_case(kind: FilterKind) -> Case {
+    Case {
+        kind,
+        main: "fp16/fp32",
+        extra: FLOAT_EXTRA,
+        margin: FLOAT_MARGIN,
+        largest: FLOAT_LARGEST,
+    }
+}
+
+/// The filters under test: the division-free one with the hardware's coarse bound, the
+/// quotient filter, the division-free one with an exact bound, block floating point.
+const CASES: [Case; 4] = [
+    float_case(DEFAULT_FILTER),
+    float_case(FilterKind::Quotient),
+    float_case(FilterKind::Linear(BoundArith::Exact)),
+    Case {
+        kind: FilterKind::Bfp,
+        main: "bfp18/fp32",
+        extra: &[("bfp14/fp32", 0), ("bfp8/fp32", 0), ("bfp24/fp32", 0)],
+        margin: &["bfp18/fp32", "bfp14/fp32"],
+        largest: &["bfp14/fp32", "bfp16/fp32", "bfp18/fp32", "bfp20/fp32"],
+    },
 ];
+
+/// The engines' filters take the million queries; the others a fifth of them.
+fn long_run(kind: FilterKind) -> bool {
+    kind == DEFAULT_FILTER || kind == FilterKind::Bfp
+}
+
+fn filter(p: &str, scale_exp: i32, kind: FilterKind) -> Filter {
+    Filter::new(pair(p), scale_exp, kind).unwrap()
+}
 
 /// Dual == fallback on every query: `hit` always, t, u, v bits on every fallback hit.
 /// Returns the share the filter decided alone.
@@ -171,21 +212,21 @@ fn check_equal(filter: Filter, qs: &[MtQuery]) -> f64 {
 #[test]
 fn filter_and_fallback_equal_the_fallback_on_a_million_queries() {
     let qs = queries(17, 1_000_000);
-    for kind in KINDS {
-        // A million through the engines' filter, a fifth of them through the others.
-        let n = if kind == DEFAULT_FILTER {
-            qs.len()
-        } else {
-            200_000
-        };
-        let decided = check_equal(Filter::new(pair("fp16/fp32"), 0, kind), &qs[..n]);
+    for case in &CASES {
+        let kind = case.kind;
+        let n = if long_run(kind) { qs.len() } else { 200_000 };
+        let decided = check_equal(filter(case.main, 0, kind), &qs[..n]);
         // Not vacuous: the filter decides a share alone (most queries are built to be close
         // calls).
-        assert!(decided > 0.02, "fp16 {kind:?} decided only {decided:.3}");
-        println!("fp16/fp32 {kind:?}: {decided:.3} decided by the filter");
+        assert!(
+            decided > 0.02,
+            "{} {kind:?} decided only {decided:.3}",
+            case.main
+        );
+        println!("{} {kind:?}: {decided:.3} decided by the filter", case.main);
         let some = &qs[..100_000];
-        for (p, k) in [("fp16/fp32", -2), ("e6m13/fp32", 0), ("bf16/fp24", 0)] {
-            let decided = check_equal(Filter::new(pair(p), k, kind), some);
+        for &(p, k) in case.extra {
+            let decided = check_equal(filter(p, k, kind), some);
             assert!(decided > 0.02, "{p} {kind:?} decided only {decided:.3}");
             println!("{p} scaled by 2^{k}, {kind:?}: {decided:.3} decided by the filter");
         }
@@ -197,9 +238,9 @@ fn filter_and_fallback_equal_the_fallback_on_a_million_queries() {
 #[test]
 fn a_quarter_of_the_margin_rejects_hits() {
     let qs = queries(17, 300_000);
-    for kind in KINDS {
-        for p in ["fp16/fp32", "e6m13/fp32"] {
-            let filter = Filter::new(pair(p), 0, kind);
+    for case in &CASES {
+        for &p in case.margin {
+            let filter = filter(p, 0, case.kind);
             let hits = fallback_hits(&filter.pair, &qs);
             let wrong = hits
                 .iter()
@@ -207,7 +248,8 @@ fn a_quarter_of_the_margin_rejects_hits() {
                 .count();
             assert!(
                 wrong > 0,
-                "{p} {kind:?}: no hit rejected with a quarter of the margin"
+                "{p} {:?}: no hit rejected with a quarter of the margin",
+                case.kind
             );
             assert!(hits.iter().all(|(q, _)| !filter.certain_miss(q, 1.0)));
         }
@@ -215,23 +257,27 @@ fn a_quarter_of_the_margin_rejects_hits() {
 }
 
 /// How much of the bound the worst of these queries needs: the largest margin scale (on a
-/// grid of 1/100) at which some fallback hit is rejected. `--ignored`: it prints the numbers
-/// docs/precision.md reports.
+/// grid of 1/100, then 1/1000 below 0.01) at which some fallback hit is rejected.
+/// `--ignored`: it prints the numbers docs/precision.md reports.
 #[test]
 #[ignore]
 fn largest_margin_scale_that_rejects_a_hit() {
     let qs = queries(17, 100_000);
-    for kind in KINDS {
-        for p in ["fp16/fp32", "e6m13/fp32", "fp24/fp32"] {
-            let filter = Filter::new(pair(p), 0, kind);
+    for case in &CASES {
+        for &p in case.largest {
+            let filter = filter(p, 0, case.kind);
             let hits = fallback_hits(&filter.pair, &qs);
             let rejects = |scale: f64| hits.iter().any(|(q, _)| filter.certain_miss(q, scale));
-            assert!(!rejects(1.0), "{p} {kind:?} rejects a hit");
-            let largest = (1..100)
+            assert!(!rejects(1.0), "{p} {:?} rejects a hit", case.kind);
+            let grid = (1..100)
                 .rev()
                 .map(|k| k as f64 / 100.0)
-                .find(|&s| rejects(s));
-            println!("{p} {kind:?}: largest rejecting margin scale {largest:?}");
+                .chain((1..10).rev().map(|k| k as f64 / 1000.0));
+            let largest = grid.into_iter().find(|&s| rejects(s));
+            println!(
+                "{p} {:?}: largest rejecting margin scale {largest:?}",
+                case.kind
+            );
         }
     }
 }
@@ -257,9 +303,10 @@ fn dual_renders_of_the_thesis_scenes_equal_the_fallbacks() {
     for name in thesis_scenes::SCENE_DIRS {
         let scene = Scene::load(root.join(name).to_str().unwrap()).unwrap();
         let want = render_small(&scene, &fp32);
-        for p in ["fp16/fp32", "e6m13/fp32"] {
-            for kind in KINDS {
-                let dual = DualIntersector::with_filter(Filter::new(pair(p), 0, kind));
+        for case in &CASES {
+            for &p in case.margin {
+                let kind = case.kind;
+                let dual = DualIntersector::with_filter(filter(p, 0, kind));
                 let got = render_small(&scene, &dual);
                 assert!(
                     got.as_raw() == want.as_raw(),
@@ -312,7 +359,59 @@ fn bad_pairs_are_clear_errors() {
         FormatChoice::Single(lookup("fp16").unwrap())
     );
     assert_eq!(
-        Intersector::name(&DualIntersector::new(pair(" FP16 / fp32 "), 0)),
+        Intersector::name(&DualIntersector::new(pair(" FP16 / fp32 "), 0).unwrap()),
         "model fp16/fp32"
     );
+}
+
+#[test]
+fn bad_bfp_spellings_are_clear_errors() {
+    let err = |s: &str| FormatPair::parse(s).unwrap_err();
+    for bad in [
+        "bfp7/fp32",
+        "bfp25/fp32",
+        "bfp/fp32",
+        "bfpx/fp32",
+        "bfp-18/fp32",
+    ] {
+        let e = err(bad);
+        assert!(matches!(e, DualError::BfpWidth { .. }), "{bad}: {e:?}");
+        assert!(e.to_string().contains("8 to 24 bits"), "{e}");
+    }
+    for bad in ["bfp18/fp16", "bfp18/fp24"] {
+        let e = err(bad);
+        assert!(matches!(e, DualError::BfpFallback { .. }), "{bad}: {e:?}");
+        assert!(e.to_string().contains("holds fp32"), "{e}");
+    }
+    assert!(matches!(
+        err("bfp18/xyz"),
+        DualError::Half {
+            half: "fallback",
+            ..
+        }
+    ));
+    // Spelled as a format; the engines pick the bfp filter for it.
+    let choice: FormatChoice = " BFP18 / fp32 ".parse().unwrap();
+    assert_eq!(choice.to_string(), "bfp18/fp32");
+    let p = pair("bfp18/fp32");
+    assert_eq!(p.filter, FilterFormat::Bfp(18));
+    assert_eq!(FilterKind::default_for(&p), FilterKind::Bfp);
+    assert_eq!(
+        DualIntersector::new(p, 0).unwrap().filter.kind,
+        FilterKind::Bfp
+    );
+    // The kind must fit the filter, and block floating point is not scaled.
+    let kind_err = |p: &str, k: i32, kind| Filter::new(pair(p), k, kind).unwrap_err();
+    let e = kind_err("bfp18/fp32", 0, DEFAULT_FILTER);
+    assert!(e.to_string().contains("needs a float filter"), "{e}");
+    let e = kind_err("fp16/fp32", 0, FilterKind::Bfp);
+    assert!(
+        e.to_string()
+            .contains("needs a block-floating-point filter"),
+        "{e}"
+    );
+    assert!(matches!(
+        kind_err("bfp18/fp32", -2, FilterKind::Bfp),
+        DualError::BfpScaled { scale_exp: -2, .. }
+    ));
 }

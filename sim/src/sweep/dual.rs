@@ -75,7 +75,7 @@ pub fn run(config: &SweepConfig, layout: &Layout, pair: &str) -> Result<Vec<Dual
         let mut scenes = Vec::new();
         for scene in &config.scenes {
             // One intersector per scene: its counters are the scene's.
-            let dual = DualIntersector::new(parsed, 0);
+            let dual = DualIntersector::new(parsed, 0)?;
             let out = render_scene(config, scene, &dual, spawn)?;
             let stats = dual.stats();
             let expected = render_scene(config, scene, &fallback, spawn)?;

@@ -79,19 +79,17 @@ impl Filter {
                 off: f.off / c,
             })
         });
-        let ca = Ctx { r: self.a, arith };
+        let (filter, a) = self.float_filter();
+        let ca = Ctx { r: a, arith };
         let cb = Ctx { r: self.b, arith };
-        let (det_a, num_a) = product_bounds(
-            filter_inputs(&fed, &ca, holds_fp32(&self.pair.filter)),
-            &[],
-            &ca,
-        )?;
+        let (det_a, num_a) =
+            product_bounds(filter_inputs(&fed, &ca, holds_fp32(&filter)), &[], &ca)?;
         let (det_b, num_b) = product_bounds(
             fallback_inputs(&given, &fed_b, &cb, holds_fp32(&self.pair.fallback)),
             &[],
             &cb,
         )?;
-        let (_, x) = mt_traced(&self.pair.filter, &fed_query);
+        let (_, x) = mt_traced(&filter, &fed_query);
         // The filter computes no t, u, v: a certain miss answers zeros.
         let miss = Some(MtResult::default());
         // det and the numerators are of degree 3 in lengths: back to scene units.
