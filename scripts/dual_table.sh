@@ -10,7 +10,7 @@
 # Environment: RTFPGA (the binary, default target/release/rtfpga), RTFPGA_THESIS_SCENES
 # (default ../shared/scenes/thesis), SIZE (default 320x180), OUT (work directory, default a
 # temporary one), SCALES (default "none auto"), FILTERS (`--dual-filter` values, default
-# "linear").
+# "linear bfp"; `bfp` runs with the bfpW pairs only, the others with the float pairs only).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bin=${RTFPGA:-$root/target/release/rtfpga}
@@ -19,12 +19,12 @@ size=${SIZE:-320x180}
 out=${OUT:-$(mktemp -d)}
 mkdir -p "$out"
 read -r -a scales <<< "${SCALES:-none auto}"
-read -r -a filters <<< "${FILTERS:-linear}"
+read -r -a filters <<< "${FILTERS:-linear bfp}"
 w=${size%x*}
 h=${size#*x}
 pairs=("$@")
 if [ ${#pairs[@]} -eq 0 ]; then
-    pairs=(fp16/fp32 bf16/fp32 e6m13/fp32 fp24/fp32)
+    pairs=(fp16/fp32 bf16/fp32 e6m13/fp32 fp24/fp32 bfp16/fp32 bfp18/fp32)
 fi
 scenes=(Glass_pen_scene Simple_plane_scene Glasses_scene Glasses_point_scene
     Simple_plane2_scene Utah_teapot_scene All_materials_scene)
@@ -41,7 +41,11 @@ for _ in "${scenes[@]}"; do printf -- '---|'; done
 printf -- '---|---|\n'
 for p in "${pairs[@]}"; do
     for filter in "${filters[@]}"; do
+        # A bfpW filter is block floating point, any other half a float format.
+        [[ ($p == bfp* && $filter == bfp) || ($p != bfp* && $filter != bfp) ]] || continue
         for scale in "${scales[@]}"; do
+            # Block floating point is not scaled (its exponents are per vector).
+            [[ $p == bfp* && $scale != none ]] && continue
             printf '| %s | %s | %s |' "$p" "$filter" "$scale"
             tests=0 forwarded=0 same=yes
             for s in "${scenes[@]}"; do

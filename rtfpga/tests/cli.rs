@@ -329,10 +329,15 @@ fn render_model_with_a_format_pair_writes_the_fallbacks_image() {
     let out_png = dir.path().join("dual.png");
     let fp32 = ModelIntersector::new(hw_model::lookup("fp32").unwrap());
     let want = library_render("utah_teapot", 32, 18, &fp32);
-    for (args, filter) in [
-        (&[][..], "linear"),
-        (&["--dual-filter", "quotient"][..], "quotient"),
-        (&["--dual-filter", "linear-exact"][..], "linear-exact"),
+    for (pair, args, filter) in [
+        ("fp16/fp32", &[][..], "linear"),
+        ("fp16/fp32", &["--dual-filter", "quotient"][..], "quotient"),
+        (
+            "fp16/fp32",
+            &["--dual-filter", "linear-exact"][..],
+            "linear-exact",
+        ),
+        ("bfp18/fp32", &[][..], "bfp"),
     ] {
         let mut cmd = vec![
             "render",
@@ -345,14 +350,17 @@ fn render_model_with_a_format_pair_writes_the_fallbacks_image() {
             "--engine",
             "model",
             "--format",
-            "fp16/fp32",
+            pair,
             "--out",
             s(&out_png),
             "--quiet",
         ];
         cmd.extend(args);
         let out = ok(&cmd);
-        assert!(out.contains("engine=model fp16/fp32 spawn=thesis"), "{out}");
+        assert!(
+            out.contains(&format!("engine=model {pair} spawn=thesis")),
+            "{out}"
+        );
         let line = out
             .lines()
             .find(|l| l.starts_with("dual_precision "))
@@ -371,7 +379,7 @@ fn render_model_with_a_format_pair_writes_the_fallbacks_image() {
         assert_eq!(
             read_png(&out_png),
             want,
-            "the fp16/fp32 render with the {filter} filter differs from the fp32 model's"
+            "the {pair} render with the {filter} filter differs from the fp32 model's"
         );
     }
 }
@@ -407,10 +415,22 @@ fn format_pairs_are_checked_and_model_only() {
         ("fp16/", "FILTER/FALLBACK"),
         ("a/b/c", "FILTER/FALLBACK"),
         ("fx32_16/fp32", "float formats only"),
+        ("bfp7/fp32", "8 to 24 bits"),
+        ("bfp18/fp16", "holds fp32"),
     ] {
         let args = render(format, "model");
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
         fails(&args, 2, &[format, needle]);
+    }
+    // A filter kind that does not fit the pair's filter, and a scaled bfp filter.
+    for (extra, needle) in [
+        (["--dual-filter", "linear"], "needs a float filter"),
+        (["--scale", "auto"], "not scaled"),
+    ] {
+        let args = render("bfp18/fp32", "model");
+        let mut args: Vec<&str> = args.iter().map(String::as_str).collect();
+        args.extend(extra);
+        fails(&args, 1, &["bfp18/fp32", needle]);
     }
     let model_only = "dual precision is model-only";
     for engine in ["hw", "traversal"] {
