@@ -26,6 +26,9 @@ pub mod top;
 // The traversal unit's parts (issue 16).
 pub mod traversal;
 
+// The block-floating-point dual-precision filter (issue 17).
+pub mod dual;
+
 /// `n` default values: the blocks or signals of a `Vec` field, one per lane or slot.
 pub(crate) fn defaults<T: Default>(n: usize) -> Vec<T> {
     (0..n).map(|_| T::default()).collect()
