@@ -1311,8 +1311,8 @@ fn traversal_unit_options_refuse_what_the_rtl_does_not_build() {
     };
     for (extra, needles) in [
         (
-            &["--lanes", "2"][..],
-            &["one Möller-Trumbore lane so far, not 2"][..],
+            &["--lanes", "4"][..],
+            &["4 Möller-Trumbore lanes", "built with 1 to 3"][..],
         ),
         (&["--slots", "16"], &["32 ray slots, not 16"]),
         (&["--format", "fp16/fp32"], &["model-only"]),
@@ -1341,12 +1341,12 @@ fn traversal_unit_options_refuse_what_the_rtl_does_not_build() {
             "--unit",
             "traversal",
             "--lanes",
-            "3",
+            "4",
             "--out",
             s(&out_dir),
         ],
         1,
-        &["not 3"],
+        &["4 Möller-Trumbore lanes"],
     );
     assert!(!out_dir.exists());
     fails(
@@ -1357,7 +1357,7 @@ fn traversal_unit_options_refuse_what_the_rtl_does_not_build() {
     fails(
         &["synth", "--unit", "traversal", "--lanes", "4"],
         1,
-        &["not 4"],
+        &["4 Möller-Trumbore lanes", "1 to 3"],
     );
     rtfpga()
         .args([
