@@ -1,6 +1,6 @@
 //! The traversal unit's core: the scene in block RAM, rays in, answers out — the blocks of
-//! this module assembled around the port of one Möller-Trumbore lane, which `unit_top` puts
-//! beside it in the configured format. The whole unit is bit for bit
+//! this module assembled around the ports of 1 to [`MAX_LANES`] Möller-Trumbore lanes, which
+//! `unit_top` puts beside it in the configured format. The whole unit is bit for bit
 //! `hw_model::traversal::TraversalModel` (answers and counters). Ports and packets:
 //! docs/traversal-unit.md.
 //!
@@ -12,17 +12,20 @@
 //! - the **box port**: the slot's node is read (or the root's box for a new ray), then the box
 //!   test of both children; its answer picks the next link (both entered: the farther is
 //!   pushed on the slot's stack with its entry distance, the nearer taken), or a pop;
-//! - the **leaf port**: one triangle of the slot's leaf a cycle is read and issued to the lane
-//!   (an excluded triangle, and a non-shadow-caster for an any-hit ray, is skipped: no test);
-//!   the slot waits after its last triangle;
+//! - the **leaf ports**, one per lane over that lane's slots (slot s: lane s mod lanes, the
+//!   schedule model's partition): one triangle of the slot's leaf a cycle is read from the
+//!   lane's copy of the triangles and issued to the lane (an excluded triangle, and a
+//!   non-shadow-caster for an any-hit ray, is skipped: no test); the slot waits after its
+//!   last triangle;
 //! - the **stack port**: a pop, whose entry is skipped if it was entered beyond the slot's far
 //!   end `t_hi` (then it pops again), or ends the walk when the stack is empty;
 //! - the **hit output**: the slot's answer leaves, and the slot is free.
 //!
-//! The lane's answers fold into the slot's nearest hit in issue order (`HitUpdate`); after a
-//! leaf a closest-hit ray whose hit got nearer has its far end recomputed from `next_up(t)`
-//! (`FarEnd`) before it pops, an any-hit ray with a hit is done. Every write-back targets a
-//! slot in a distinct state, so writers never collide.
+//! A lane's answers fold into the slot's nearest hit in issue order (`HitUpdate`, one per
+//! lane); after a leaf a closest-hit ray whose hit got nearer has its far end recomputed from
+//! `next_up(t)` (`FarEnd`, one per lane) before it pops, an any-hit ray with a hit is done.
+//! Every write-back targets a slot in a distinct state, and the lanes' write-backs target
+//! slots of distinct lanes, so writers never collide.
 //!
 //! A slot's wide words that have one writer live in synchronous slot RAMs (LUTRAM, 32 deep),
 //! read at a port's grant so that the word arrives the cycle after, as a register would
@@ -30,8 +33,10 @@
 //! words and excluded triangle (written at entry, read at the leaf grant), the pad (written
 //! by the setup, read at the leaf grant and carried beside the lane), the nearest hit (read
 //! one cycle before each lane answer, the previous cycle's write forwarded) and, for the hit
-//! output and the overflow report, copies of the nearest hit and of the ray id. Words with
-//! several writers in one cycle (the far end `t_hi`, the current link) stay flip-flops.
+//! output and the overflow report, copies of the nearest hit and of the ray id. The RAMs a
+//! leaf port reads or a lane writes have one copy per lane (lane l writes only its nearest-hit
+//! copy, so each RAM keeps one writer). Words with several writers in one cycle (the far end
+//! `t_hi`, the current link) stay flip-flops.
 
 use hw_model::traversal::packet::{hit_word, ray_word, ANY_HIT, HAS_EXCLUDE, HIT_WORDS, RAY_WORDS};
 use hw_model::traversal::schedule::UnitTiming;
