@@ -1315,6 +1315,10 @@ fn traversal_unit_options_refuse_what_the_rtl_does_not_build() {
             &["4 Möller-Trumbore lanes", "built with 1 to 3"][..],
         ),
         (&["--slots", "16"], &["32 ray slots, not 16"]),
+        (
+            &["--unit-memory", "100,100"],
+            &["7 node and 7 triangle address bits"],
+        ),
         (&["--format", "fp16/fp32"], &["model-only"]),
         (&["--mode", "register"], &["options of --unit mt"]),
     ] {
