@@ -37,7 +37,7 @@ struct Bench {
 
 impl Bench {
     fn new(seed: u64, gap: f64) -> Self {
-        let mut uut = SceneMemory4x5::new();
+        let mut uut = SceneMemory4x5::new(1);
         uut.connect_all();
         let mut bench = Bench {
             uut,
@@ -136,12 +136,12 @@ impl Bench {
             assert_eq!(got, words[at..at + NODE_WORDS], "node {k}");
         }
         for k in 0..t {
-            self.uut.triangle_address.next = (k as u64).into();
+            self.uut.triangle_address[0].next = (k as u64).into();
             self.sample_after_edge();
             let at = HEADER_WORDS + NODE_WORDS * n + TRIANGLE_WORDS * k;
             let mut got: Vec<u32> = (0..9).map(|i| u(self.uut.vert[i].val())).collect();
-            got.push(self.uut.global_index.val().to_u64() as u32);
-            got.push(u32::from(self.uut.casts_shadow.val()));
+            got.push(self.uut.global_index[0].val().to_u64() as u32);
+            got.push(u32::from(self.uut.casts_shadow[0].val()));
             assert_eq!(got, words[at..at + 11], "triangle record {k}");
         }
     }
@@ -519,7 +519,7 @@ fn the_driver_rejects_what_the_memory_cannot_see_and_what_does_not_fit() {
 
 #[test]
 fn the_memory_passes_verilator_lint() {
-    let mut uut = SceneMemory4x5::new();
+    let mut uut = SceneMemory4x5::new(1);
     uut.connect_all();
     let v = generate_verilog(&uut);
     assert!(v.contains("s_tready") && v.contains("error_code"));
@@ -539,9 +539,9 @@ fn scene_memory_resources() {
         generate_verilog(&uut)
     }
     let designs = [
-        ((9, 10), verilog(SceneMemory9x10::new())),
-        ((11, 12), verilog(SceneMemory11x12::new())),
-        ((12, 13), verilog(SceneMemory12x13::new())),
+        ((9, 10), verilog(SceneMemory9x10::new(1))),
+        ((11, 12), verilog(SceneMemory11x12::new(1))),
+        ((12, 13), verilog(SceneMemory12x13::new(1))),
     ];
     println!(
         "| address bits | nodes | triangles | RAMB36 | RAMB18 | LUT | LUTRAM | FF | logic depth |"

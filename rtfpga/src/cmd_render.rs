@@ -54,7 +54,12 @@ pub fn run(a: Args) -> Result<()> {
     }
     let scene = Scene::load(&a.scene)?;
     let (spawn, scale_exp) = a.precision.resolve(a.engine, &a.hw, &scene)?;
-    let made = engine::make_scaled(a.engine, &a.hw, scale_exp, a.memory.memory(a.hw.lanes))?;
+    // The model's memory is the RTL's when --unit-memory names it.
+    let memory = MemoryArgs {
+        scene_capacity: a.memory.scene_capacity.or(a.hw.unit_memory),
+        ..a.memory.clone()
+    };
+    let made = engine::make_scaled(a.engine, &a.hw, scale_exp, memory.memory(a.hw.lanes))?;
     let engine = made.engine;
     let opts = RenderOptions {
         width: a.width,

@@ -60,6 +60,11 @@ pub struct HwConfig {
     #[arg(long, default_value_t = hdl::traversal::timing::DEFAULT_SLOTS as u32,
           value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub slots: u32,
+    /// `--unit traversal`: the RTL scene memory as NODES,TRIANGLES (built: 16,32, 512,1024,
+    /// 2048,4096, 4096,8192) [default: the one that fits the XC7Z020 beside the lanes:
+    /// 4096,8192 beside one, 2048,4096 beside more].
+    #[arg(long, value_name = "NODES,TRIANGLES", value_parser = parse_capacity)]
+    pub unit_memory: Option<SceneCapacity>,
     /// The filter of a dual-precision pair (docs/precision.md, "Dual precision") [default:
     /// bfp for a bfpW/fp32 pair, else linear].
     #[arg(long, value_enum)]
@@ -290,6 +295,12 @@ impl HwConfig {
     pub fn unit_config(&self) -> Result<UnitConfig> {
         let mut config = UnitConfig::new(self.single_format()?.try_into()?, self.depth, self.lanes);
         config.slots = self.slots as usize;
+        if let Some(c) = self.unit_memory {
+            let (node_bits, triangle_bits) =
+                scene_memory::address_bits_for(c.nodes as usize, c.triangles as usize);
+            config.memory.node_bits = node_bits;
+            config.memory.triangle_bits = triangle_bits;
+        }
         config.check()?;
         Ok(config)
     }

@@ -1331,10 +1331,14 @@ fn traversal_unit_options_refuse_what_the_rtl_does_not_build() {
     };
     for (extra, needles) in [
         (
-            &["--lanes", "2"][..],
-            &["one Möller-Trumbore lane so far, not 2"][..],
+            &["--lanes", "4"][..],
+            &["4 Möller-Trumbore lanes", "built with 1 to 3"][..],
         ),
         (&["--slots", "16"], &["32 ray slots, not 16"]),
+        (
+            &["--unit-memory", "100,100"],
+            &["7 node and 7 triangle address bits"],
+        ),
         (&["--format", "fp16/fp32"], &["model-only"]),
         (&["--mode", "register"], &["options of --unit mt"]),
     ] {
@@ -1361,12 +1365,12 @@ fn traversal_unit_options_refuse_what_the_rtl_does_not_build() {
             "--unit",
             "traversal",
             "--lanes",
-            "3",
+            "4",
             "--out",
             s(&out_dir),
         ],
         1,
-        &["not 3"],
+        &["4 Möller-Trumbore lanes"],
     );
     assert!(!out_dir.exists());
     fails(
@@ -1377,7 +1381,7 @@ fn traversal_unit_options_refuse_what_the_rtl_does_not_build() {
     fails(
         &["synth", "--unit", "traversal", "--lanes", "4"],
         1,
-        &["not 4"],
+        &["4 Möller-Trumbore lanes", "1 to 3"],
     );
     rtfpga()
         .args([

@@ -119,7 +119,7 @@ fn load(run: &mut Run, words: &[u32], rng: &mut StdRng) -> LoadStatus {
 fn read_back(run: &mut Run, words: &[u32]) {
     let (n, t) = (words[2] as usize, words[3] as usize);
     for k in 0..=n.max(t) {
-        run.push(&[("node_address", k as u64), ("triangle_address", k as u64)]);
+        run.push(&[("node_address", k as u64), ("triangle_address$0", k as u64)]);
     }
     let out = run.run();
     let port = |name: &str, i: usize| run.out(&format!("{name}${i}"));
@@ -137,8 +137,8 @@ fn read_back(run: &mut Run, words: &[u32]) {
     for k in 0..t {
         let o = &out[k + 1];
         let mut got: Vec<u32> = (0..9).map(|i| o[port("vert", i)] as u32).collect();
-        got.push(o[run.out("global_index")] as u32);
-        got.push(o[run.out("casts_shadow")] as u32);
+        got.push(o[run.out("global_index$0")] as u32);
+        got.push(o[run.out("casts_shadow$0")] as u32);
         let at = HEADER_WORDS + NODE_WORDS * n + TRIANGLE_WORDS * k;
         assert_eq!(got, words[at..at + 11], "triangle record {k}");
     }
@@ -195,7 +195,7 @@ fn glasses_loads_with_gaps_and_reads_back_word_for_word() {
         node_bits: 9,
         triangle_bits: 10,
     };
-    load_and_read_back(SceneMemory9x10::new(), config, "Glasses_scene", 61_824);
+    load_and_read_back(SceneMemory9x10::new(1), config, "Glasses_scene", 61_824);
 }
 
 /// 4,096 nodes and 8,192 triangles:
@@ -208,7 +208,7 @@ fn utah_teapot_loads_with_gaps_and_reads_back_word_for_word() {
         triangle_bits: 13,
     };
     load_and_read_back(
-        SceneMemory12x13::new(),
+        SceneMemory12x13::new(1),
         config,
         "Utah_teapot_scene",
         551_584,

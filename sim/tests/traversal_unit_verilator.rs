@@ -5,8 +5,10 @@
 //! stack overflow) as errors; the 7 thesis scenes rendered through it identical to the
 //! software. One Verilated build of the CLI's default configuration (fp32, depth 1, one
 //! lane, 4,096 nodes and 8,192 triangles) serves every test but the ignored one of chunked
-//! passes through the smallest memory. 131 s with a warm model cache (the thesis scenes
-//! 110 s of it); a cold build adds about 2 minutes.
+//! passes through the smallest memory and the multi-lane ones: 2 and 3 lanes (each with
+//! its XC7Z020 memory, 2,048 nodes and 4,096 triangles) on random meshes, and 2 lanes on
+//! two thesis scenes. 131 s with a warm model cache (the thesis scenes 110 s of it); a cold
+//! build adds about 2 minutes per configuration.
 
 use hdl::traversal::unit::UnitConfig;
 use hw_model::traversal::strategies::{mesh, ray};
@@ -99,22 +101,53 @@ fn numbered(mut rays: Vec<UnitRay>) -> Vec<UnitRay> {
     rays
 }
 
+/// The unit of fp32, depth 1, `lanes` lanes (its XC7Z020 scene memory) answers every ray as the model does, bit for
+/// bit, and counts the same work.
+fn equals_the_model(
+    lanes: usize,
+    tris: &[WorldTriangle],
+    rays: Vec<UnitRay>,
+) -> Result<(), TestCaseError> {
+    let rays = numbered(rays);
+    let img = image(tris);
+    let (want, counters) = model(&img, &rays).unwrap();
+    let mut d = unit_of(UnitConfig::new(HwFormat::FP32, 1, lanes));
+    let (got, run) = on_unit(&mut d, &img, &rays, Traffic::FULL_SPEED).unwrap();
+    prop_assert_eq!(bits(&got), bits(&want));
+    prop_assert_eq!(run.counters, counters);
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
 
-    /// The unit answers every ray as the model does, bit for bit, and counts the same work.
     #[test]
     fn the_unit_equals_the_model_on_random_meshes_and_rays(
         tris in mesh(),
         rays in prop::collection::vec(ray(), 1..40),
     ) {
-        let rays = numbered(rays);
-        let img = image(&tris);
-        let (want, counters) = model(&img, &rays).unwrap();
-        let mut d = unit();
-        let (got, run) = on_unit(&mut d, &img, &rays, Traffic::FULL_SPEED).unwrap();
-        prop_assert_eq!(bits(&got), bits(&want));
-        prop_assert_eq!(run.counters, counters);
+        equals_the_model(1, &tris, rays)?;
+    }
+}
+
+// More lanes: fewer cases, each lane count one more Verilated build.
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
+
+    #[test]
+    fn the_two_lane_unit_equals_the_model_on_random_meshes_and_rays(
+        tris in mesh(),
+        rays in prop::collection::vec(ray(), 1..40),
+    ) {
+        equals_the_model(2, &tris, rays)?;
+    }
+
+    #[test]
+    fn the_three_lane_unit_equals_the_model_on_random_meshes_and_rays(
+        tris in mesh(),
+        rays in prop::collection::vec(ray(), 1..40),
+    ) {
+        equals_the_model(3, &tris, rays)?;
     }
 }
 
@@ -362,27 +395,45 @@ fn a_stack_overflow_is_reported_not_hung() {
     assert_eq!((bits(&got), run.counters), (bits(&want), counters));
 }
 
-#[test]
-fn thesis_scenes_render_identical_to_the_software() {
-    let Some(root) =
-        thesis_scenes::for_test("traversal_unit_verilator::thesis_scenes_render_identical")
-    else {
+/// The thesis scenes `names` rendered through the unit of `config` at 48×27 equal the
+/// software's images.
+fn thesis_scenes_equal_the_software(test: &str, config: &UnitConfig, names: &[&str]) {
+    let Some(root) = thesis_scenes::for_test(&format!("traversal_unit_verilator::{test}")) else {
         return;
     };
-    let engine = UnitEngine::new(&config(), Traffic::FULL_SPEED, true).unwrap();
+    let engine = UnitEngine::new(config, Traffic::FULL_SPEED, true).unwrap();
     let opts = RenderOptions {
         width: Some(48),
         height: Some(27),
         progress: false,
         ..Default::default()
     };
-    for name in thesis_scenes::SCENE_DIRS {
+    for name in names {
         let scene = Scene::load(root.join(name).to_str().unwrap()).unwrap();
         let hw = render(&scene, &engine, &opts).unwrap();
         let sw = render(&scene, &F32Intersector, &opts).unwrap();
         let diff = compare(&hw.image, &sw.image).unwrap();
         assert_eq!(diff.differing_pixels, 0, "{name}: {diff:?}");
     }
+}
+
+#[test]
+fn thesis_scenes_render_identical_to_the_software() {
+    thesis_scenes_equal_the_software(
+        "thesis_scenes_render_identical",
+        &config(),
+        &thesis_scenes::SCENE_DIRS,
+    );
+}
+
+/// Two lanes (the random-mesh test's build).
+#[test]
+fn thesis_scenes_through_two_lanes_render_identical_to_the_software() {
+    thesis_scenes_equal_the_software(
+        "thesis_scenes_through_two_lanes",
+        &UnitConfig::new(HwFormat::FP32, 1, 2),
+        &["Simple_plane_scene", "Glasses_scene"],
+    );
 }
 
 /// A unit with the smallest scene memory (16 nodes, 32 triangles) renders the built-in

@@ -37,6 +37,8 @@
 //! by [`SceneMemory::new`]; the aliases below fix them per configuration.
 
 use rust_hdl::prelude::*;
+
+use crate::defaults;
 use sw_renderer::scene_image::{HEADER_WORDS, MAGIC, NODE_WORDS, TRIANGLE_WORDS, VERSION};
 
 /// Bits of the boxes in a node record (12 fp32 words).
@@ -221,14 +223,17 @@ pub struct SceneMemory<
     pub max: [Signal<Out, Bits<32>>; 6],
     pub child_first: [Signal<Out, Bits<LF>>; 2],
     pub child_count: [Signal<Out, Bits<LC>>; 2],
-    /// Triangle read port: the record at `triangle_address`, one cycle later.
-    pub triangle_address: Signal<In, Bits<TB>>,
-    /// v0 x y z, v1 x y z, v2 x y z.
-    pub vert: [Signal<Out, Bits<32>>; 9],
-    pub global_index: Signal<Out, Bits<INDEX_BITS>>,
-    pub casts_shadow: Signal<Out, Bit>,
+    /// Triangle read ports (one per MT lane): port p's record at `triangle_address[p]`,
+    /// one cycle later.
+    pub triangle_address: Vec<Signal<In, Bits<TB>>>,
+    /// Port p's v0 x y z, v1 x y z, v2 x y z at `vert[9·p ..]`.
+    pub vert: Vec<Signal<Out, Bits<32>>>,
+    pub global_index: Vec<Signal<Out, Bits<INDEX_BITS>>>,
+    pub casts_shadow: Vec<Signal<Out, Bit>>,
     node_ram: RAM<Bits<NW>, NB>,
-    triangle_ram: RAM<Bits<TW>, TB>,
+    /// One copy of the triangles per read port, all written by the loader: rust-hdl's `RAM`
+    /// has one read port, so a second reader cannot use the block RAM's second port.
+    triangle_ram: Vec<RAM<Bits<TW>, TB>>,
     state: DFF<Bits<STATE_BITS>>,
     /// Stream index of the next word, and of the image's last word (from the header).
     word: DFF<Bits<32>>,
@@ -302,6 +307,10 @@ pub struct SceneMemory<
     next_record: Signal<Local, Bits<32>>,
     node_read: Signal<Local, Bits<NW>>,
     triangle_read: Signal<Local, Bits<TW>>,
+    vertex_read: Signal<Local, Bits<VERTEX_BITS>>,
+    /// The loader writes a triangle record (into every copy).
+    triangle_write: Signal<Local, Bit>,
+    triangle_record: Signal<Local, Bits<TW>>,
 }
 
 /// A memory for the small test images (16 nodes, 32 triangles).
@@ -323,7 +332,7 @@ impl<
     > Default for SceneMemory<NB, TB, LF, LC, NW, TW>
 {
     fn default() -> Self {
-        Self::new()
+        Self::new(1)
     }
 }
 
@@ -336,8 +345,13 @@ impl<
         const TW: usize,
     > SceneMemory<NB, TB, LF, LC, NW, TW>
 {
-    /// Panics when a width parameter is not the one derived from `NB` and `TB`.
-    pub fn new() -> Self {
+    /// A memory with `triangle_ports` triangle read ports (at least one). Panics when a width
+    /// parameter is not the one derived from `NB` and `TB`.
+    pub fn new(triangle_ports: usize) -> Self {
+        assert!(
+            triangle_ports >= 1,
+            "a scene memory needs a triangle read port"
+        );
         let (nodes, triangles) = capacity_for(NB, TB);
         // N and T are compared as 32-bit words.
         assert!(NB < 32 && TB < 32, "{NB}/{TB} address bits: at most 31");
@@ -380,12 +394,12 @@ impl<
             max: Default::default(),
             child_first: Default::default(),
             child_count: Default::default(),
-            triangle_address: Default::default(),
-            vert: Default::default(),
-            global_index: Default::default(),
-            casts_shadow: Default::default(),
+            triangle_address: defaults(triangle_ports),
+            vert: defaults(9 * triangle_ports),
+            global_index: defaults(triangle_ports),
+            casts_shadow: defaults(triangle_ports),
             node_ram: Default::default(),
-            triangle_ram: Default::default(),
+            triangle_ram: defaults(triangle_ports),
             state: Default::default(),
             word: Default::default(),
             last: Default::default(),
@@ -446,6 +460,9 @@ impl<
             next_record: Default::default(),
             node_read: Default::default(),
             triangle_read: Default::default(),
+            vertex_read: Default::default(),
+            triangle_write: Default::default(),
+            triangle_record: Default::default(),
         }
     }
 }
@@ -487,8 +504,10 @@ impl<
         );
         self.node_ram.read_clock.next = self.clock.val();
         self.node_ram.write_clock.next = self.clock.val();
-        self.triangle_ram.read_clock.next = self.clock.val();
-        self.triangle_ram.write_clock.next = self.clock.val();
+        for p in 0..self.triangle_ram.len() {
+            self.triangle_ram[p].read_clock.next = self.clock.val();
+            self.triangle_ram[p].write_clock.next = self.clock.val();
+        }
 
         self.s_tready.next = ((self.state.q.val() == self.s_header.val())
             | (self.state.q.val() == self.s_nodes.val())
@@ -512,9 +531,8 @@ impl<
             | (bit_cast::<NW, LC>(self.count0.q.val()) << self.at_count0.val())
             | (bit_cast::<NW, LF>(bit_cast::<LF, 32>(self.prev.q.val())) << self.at_first1.val())
             | (bit_cast::<NW, LC>(bit_cast::<LC, 32>(self.s_tdata.val())) << self.at_count1.val());
-        self.triangle_ram.write_enable.next = false;
-        self.triangle_ram.write_address.next = bit_cast::<TB, 32>(self.record.q.val());
-        self.triangle_ram.write_data.next = bit_cast::<TW, VERTEX_BITS>(self.verts.q.val())
+        self.triangle_write.next = false;
+        self.triangle_record.next = bit_cast::<TW, VERTEX_BITS>(self.verts.q.val())
             | (bit_cast::<TW, 1>(bit_cast::<1, 32>(self.prev.q.val())) << self.at_flag.val())
             | (bit_cast::<TW, INDEX_BITS>(self.index.q.val()) << self.at_index.val());
 
@@ -614,7 +632,7 @@ impl<
                     if self.s_tdata.val().any() {
                         self.check.next = self.e_reserved.val();
                     }
-                    self.triangle_ram.write_enable.next = true;
+                    self.triangle_write.next = true;
                     self.k.d.next = 0.into();
                     self.record.d.next = self.next_record.val();
                 }
@@ -709,20 +727,21 @@ impl<
         self.child_first[1].next = bit_cast::<LF, NW>(self.node_read.val() >> self.at_first1.val());
         self.child_count[1].next = bit_cast::<LC, NW>(self.node_read.val() >> self.at_count1.val());
 
-        self.triangle_ram.read_address.next = self.triangle_address.val();
-        self.triangle_read.next = self.triangle_ram.read_data.val();
-        self.vert[0].next = self.triangle_read.val().get_bits::<32>(0);
-        self.vert[1].next = self.triangle_read.val().get_bits::<32>(32);
-        self.vert[2].next = self.triangle_read.val().get_bits::<32>(64);
-        self.vert[3].next = self.triangle_read.val().get_bits::<32>(96);
-        self.vert[4].next = self.triangle_read.val().get_bits::<32>(128);
-        self.vert[5].next = self.triangle_read.val().get_bits::<32>(160);
-        self.vert[6].next = self.triangle_read.val().get_bits::<32>(192);
-        self.vert[7].next = self.triangle_read.val().get_bits::<32>(224);
-        self.vert[8].next = self.triangle_read.val().get_bits::<32>(256);
-        self.casts_shadow.next =
-            bit_cast::<1, TW>(self.triangle_read.val() >> self.at_flag.val()).any();
-        self.global_index.next =
-            bit_cast::<INDEX_BITS, TW>(self.triangle_read.val() >> self.at_index.val());
+        for p in 0..self.triangle_ram.len() {
+            self.triangle_ram[p].write_enable.next = self.triangle_write.val();
+            self.triangle_ram[p].write_address.next = bit_cast::<TB, 32>(self.record.q.val());
+            self.triangle_ram[p].write_data.next = self.triangle_record.val();
+            self.triangle_ram[p].read_address.next = self.triangle_address[p].val();
+            // Through unindexed locals: hdl_gen's `bit_cast` loses a loop index.
+            self.triangle_read.next = self.triangle_ram[p].read_data.val();
+            self.vertex_read.next = bit_cast::<VERTEX_BITS, TW>(self.triangle_read.val());
+            for k in 0..9 {
+                self.vert[9 * p + k].next = self.vertex_read.val().get_bits::<32>(32 * k);
+            }
+            self.casts_shadow[p].next =
+                bit_cast::<1, TW>(self.triangle_read.val() >> self.at_flag.val()).any();
+            self.global_index[p].next =
+                bit_cast::<INDEX_BITS, TW>(self.triangle_read.val() >> self.at_index.val());
+        }
     }
 }

@@ -1,6 +1,6 @@
 //! The traversal unit's core: the scene in block RAM, rays in, answers out — the blocks of
-//! this module assembled around the port of one Möller-Trumbore lane, which `unit_top` puts
-//! beside it in the configured format. The whole unit is bit for bit
+//! this module assembled around the ports of 1 to [`MAX_LANES`] Möller-Trumbore lanes, which
+//! `unit_top` puts beside it in the configured format. The whole unit is bit for bit
 //! `hw_model::traversal::TraversalModel` (answers and counters). Ports and packets:
 //! docs/traversal-unit.md.
 //!
@@ -12,17 +12,20 @@
 //! - the **box port**: the slot's node is read (or the root's box for a new ray), then the box
 //!   test of both children; its answer picks the next link (both entered: the farther is
 //!   pushed on the slot's stack with its entry distance, the nearer taken), or a pop;
-//! - the **leaf port**: one triangle of the slot's leaf a cycle is read and issued to the lane
-//!   (an excluded triangle, and a non-shadow-caster for an any-hit ray, is skipped: no test);
-//!   the slot waits after its last triangle;
+//! - the **leaf ports**, one per lane over that lane's slots (slot s: lane s mod lanes, the
+//!   schedule model's partition): one triangle of the slot's leaf a cycle is read from the
+//!   lane's copy of the triangles and issued to the lane (an excluded triangle, and a
+//!   non-shadow-caster for an any-hit ray, is skipped: no test); the slot waits after its
+//!   last triangle;
 //! - the **stack port**: a pop, whose entry is skipped if it was entered beyond the slot's far
 //!   end `t_hi` (then it pops again), or ends the walk when the stack is empty;
 //! - the **hit output**: the slot's answer leaves, and the slot is free.
 //!
-//! The lane's answers fold into the slot's nearest hit in issue order (`HitUpdate`); after a
-//! leaf a closest-hit ray whose hit got nearer has its far end recomputed from `next_up(t)`
-//! (`FarEnd`) before it pops, an any-hit ray with a hit is done. Every write-back targets a
-//! slot in a distinct state, so writers never collide.
+//! A lane's answers fold into the slot's nearest hit in issue order (`HitUpdate`, one per
+//! lane); after a leaf a closest-hit ray whose hit got nearer has its far end recomputed from
+//! `next_up(t)` (`FarEnd`, one per lane) before it pops, an any-hit ray with a hit is done.
+//! Every write-back targets a slot in a distinct state, and the lanes' write-backs target
+//! slots of distinct lanes, so writers never collide.
 //!
 //! A slot's wide words that have one writer live in synchronous slot RAMs (LUTRAM, 32 deep),
 //! read at a port's grant so that the word arrives the cycle after, as a register would
@@ -30,8 +33,10 @@
 //! words and excluded triangle (written at entry, read at the leaf grant), the pad (written
 //! by the setup, read at the leaf grant and carried beside the lane), the nearest hit (read
 //! one cycle before each lane answer, the previous cycle's write forwarded) and, for the hit
-//! output and the overflow report, copies of the nearest hit and of the ray id. Words with
-//! several writers in one cycle (the far end `t_hi`, the current link) stay flip-flops.
+//! output and the overflow report, copies of the nearest hit and of the ray id. The RAMs a
+//! leaf port reads or a lane writes have one copy per lane (lane l writes only its nearest-hit
+//! copy, so each RAM keeps one writer). Words with several writers in one cycle (the far end
+//! `t_hi`, the current link) stay flip-flops.
 
 use hw_model::traversal::packet::{hit_word, ray_word, ANY_HIT, HAS_EXCLUDE, HIT_WORDS, RAY_WORDS};
 use hw_model::traversal::schedule::UnitTiming;
@@ -52,7 +57,7 @@ use super::stack::SlotStacks;
 use super::timing::unit_timing;
 use crate::defaults;
 use crate::mt::delay::Delay;
-use crate::regmap::OPERAND_COUNT;
+use crate::top::stream::QUERY_BITS;
 use crate::top::with_build_stack;
 
 /// Bits of a ray packet and of an answer packet.
@@ -111,25 +116,30 @@ pub struct TraversalCore<
     pub count_box_tests: Signal<Out, Bits<32>>,
     pub count_mt_tests: Signal<Out, Bits<32>>,
     pub count_busy_cycles: Signal<Out, Bits<32>>,
-    /// The Möller-Trumbore lane, outside the core so that one core serves every format
-    /// (`unit_top`): a query a cycle out, its answer `lane_latency` cycles later in.
-    pub lane_valid: Signal<Out, Bit>,
-    pub lane_query: [Signal<Out, Bits<32>>; OPERAND_COUNT],
-    pub lane_hit: Signal<In, Bit>,
-    pub lane_t: Signal<In, Bits<32>>,
-    pub lane_u: Signal<In, Bits<32>>,
-    pub lane_v: Signal<In, Bits<32>>,
+    /// The Möller-Trumbore lanes, outside the core so that one core serves every format
+    /// (`unit_top`): per lane a query a cycle out (the operands packed as the accelerator's
+    /// stream packs them), its answer `lane_latency` cycles later in.
+    pub lane_valid: Vec<Signal<Out, Bit>>,
+    pub lane_query: Vec<Signal<Out, Bits<QUERY_BITS>>>,
+    pub lane_hit: Vec<Signal<In, Bit>>,
+    pub lane_t: Vec<Signal<In, Bits<32>>>,
+    pub lane_u: Vec<Signal<In, Bits<32>>>,
+    pub lane_v: Vec<Signal<In, Bits<32>>>,
 
     memory: SceneMemory<NB, TB, LF, LC, NW, TW>,
     setup: RaySetupUnit,
     boxes: BoxTest,
-    far: FarEnd,
     stacks: SlotStacks<S, SB, PB, AB, W>,
-    update: HitUpdate,
+    // Per lane (index l; slot s belongs to lane s mod lanes): the far end, the hit update,
+    // the leaf port's arbiter.
+    far: Vec<FarEnd>,
+    update: Vec<HitUpdate>,
     /// lt(t_hi, entry distance) of a popped entry: entered beyond the far end.
     beyond: F32Order,
     box_arb: RoundRobin<S>,
-    leaf_arb: RoundRobin<S>,
+    leaf_arb: Vec<RoundRobin<S>>,
+    /// The slots of each lane.
+    lane_slots: Vec<Constant<Bits<S>>>,
     pop_arb: RoundRobin<S>,
     out_arb: RoundRobin<S>,
 
@@ -148,11 +158,14 @@ pub struct TraversalCore<
     changed: DFF<Bits<S>>,
     // The slots' words: one-writer words in slot RAMs (address: the slot) …
     box_ram: RAM<Bits<BOX_WORDS_BITS>, SB>,
-    leaf_ram: RAM<Bits<LEAF_WORDS_BITS>, SB>,
-    pad_ram: RAM<Bits<32>, SB>,
-    /// The nearest hit, read for the lane's answers (`best_ram`) and for the hit output.
-    best_ram: RAM<Bits<BEST_BITS>, SB>,
-    best_out_ram: RAM<Bits<BEST_BITS>, SB>,
+    /// Per lane: its leaf port's copy of the lane words and the pad (every copy written at
+    /// entry, each read by its own port).
+    leaf_ram: Vec<RAM<Bits<LEAF_WORDS_BITS>, SB>>,
+    pad_ram: Vec<RAM<Bits<32>, SB>>,
+    /// Per lane, the nearest hit of its slots, read for the lane's answers (`best_ram`) and
+    /// for the hit output: only lane l writes copy l, so each RAM keeps one writer.
+    best_ram: Vec<RAM<Bits<BEST_BITS>, SB>>,
+    best_out_ram: Vec<RAM<Bits<BEST_BITS>, SB>>,
     /// The ray id, read for the hit output and for the overflow report.
     id_out_ram: RAM<Bits<32>, SB>,
     id_overflow_ram: RAM<Bits<32>, SB>,
@@ -170,6 +183,8 @@ pub struct TraversalCore<
     /// Where a word enters a packed record: its top word.
     box_top: Constant<Bits<16>>,
     hit_top: Constant<Bits<16>>,
+    best_top: Constant<Bits<16>>,
+    query_top: Constant<Bits<16>>,
     /// Where the excluded triangle sits in a leaf-port word.
     exclude_at: Constant<Bits<16>>,
 
@@ -182,28 +197,29 @@ pub struct TraversalCore<
     child_first_at: [Delay<Bits<LF>>; 2],
     child_count_at: [Delay<Bits<LC>>; 2],
     root_at: Delay<Bit>,
-    // The leaf port: the slot's state, registered beside the triangle and word reads.
-    leaf_valid: DFF<Bit>,
-    leaf_last: DFF<Bit>,
-    leaf_any_hit: DFF<Bit>,
-    leaf_has_exclude: DFF<Bit>,
-    /// What travels beside the lane: issued (tested or skipped), tested, last of its leaf,
+    // The leaf ports, per lane: the slot's state, registered beside the triangle and word
+    // reads.
+    leaf_valid: Vec<DFF<Bit>>,
+    leaf_last: Vec<DFF<Bit>>,
+    leaf_any_hit: Vec<DFF<Bit>>,
+    leaf_has_exclude: Vec<DFF<Bit>>,
+    /// What travels beside each lane: issued (tested or skipped), tested, last of its leaf,
     /// triangle, the window, the pad.
-    issued_at: Delay<Bit>,
-    tested_at: Delay<Bit>,
-    last_at: Delay<Bit>,
-    index_at: Delay<Bits<INDEX_BITS>>,
-    t_min_at: Delay<Bits<32>>,
-    t_max_at: Delay<Bits<32>>,
-    any_hit_at: Delay<Bit>,
-    pad_at: Delay<Bits<32>>,
+    issued_at: Vec<Delay<Bit>>,
+    tested_at: Vec<Delay<Bit>>,
+    last_at: Vec<Delay<Bit>>,
+    index_at: Vec<Delay<Bits<INDEX_BITS>>>,
+    t_min_at: Vec<Delay<Bits<32>>>,
+    t_max_at: Vec<Delay<Bits<32>>>,
+    any_hit_at: Vec<Delay<Bit>>,
+    pad_at: Vec<Delay<Bits<32>>>,
     /// The answer's slot one cycle early (from the grant, the lane's latency): the address
     /// of the nearest hit's read; then the answer's slot itself.
-    slot_at: Delay<Bits<SB>>,
-    answer_slot: DFF<Bits<SB>>,
+    slot_at: Vec<Delay<Bits<SB>>>,
+    answer_slot: Vec<DFF<Bits<SB>>>,
     /// The nearest hit written in the cycle of the read (the RAM reads the old word).
-    best_forward: DFF<Bit>,
-    best_written: DFF<Bits<BEST_BITS>>,
+    best_forward: Vec<DFF<Bit>>,
+    best_written: Vec<DFF<Bits<BEST_BITS>>>,
     // The stack port.
     pop_valid: DFF<Bit>,
     pop_slot: DFF<Bits<SB>>,
@@ -214,6 +230,8 @@ pub struct TraversalCore<
     out_fresh: DFF<Bit>,
     out_hit: DFF<Bit>,
     out_data: DFF<Bits<HIT_BITS>>,
+    /// The granted slot's lane: which copy of the nearest hit the answer takes.
+    out_lane: Vec<DFF<Bit>>,
     overflow_q: DFF<Bit>,
     overflow_ray_q: DFF<Bits<32>>,
     rays: DFF<Bits<32>>,
@@ -230,7 +248,6 @@ pub struct TraversalCore<
     enter_slot: Signal<Local, Bits<SB>>,
     accept: Signal<Local, Bit>,
     box_grant_slot: Signal<Local, Bits<SB>>,
-    leaf_grant_slot: Signal<Local, Bits<SB>>,
     pop_grant_slot: Signal<Local, Bits<SB>>,
     out_grant_slot: Signal<Local, Bits<SB>>,
     /// Write-backs: one-hot slot masks and what they write.
@@ -247,34 +264,48 @@ pub struct TraversalCore<
     pop_link_count: Signal<Local, Bits<LC>>,
     pop_enters: Signal<Local, Bit>,
     pop_again: Signal<Local, Bit>,
+    // Per lane, what the slots' state update reads.
+    lane_done: Vec<Signal<Local, Bits<S>>>,
+    lane_best_valid: Vec<Signal<Local, Bit>>,
+    lane_changed: Vec<Signal<Local, Bit>>,
+    /// This result becomes the slot's nearest hit (closest-hit), or its answer (any-hit).
+    lane_take: Vec<Signal<Local, Bit>>,
+    lane_any_hit: Vec<Signal<Local, Bit>>,
+    far_done: Vec<Signal<Local, Bits<S>>>,
+    leaf_grant: Vec<Signal<Local, Bits<S>>>,
+    leaf_grant_last: Vec<Signal<Local, Bit>>,
+    /// Every lane's far-end answers.
+    far_done_all: Signal<Local, Bits<S>>,
+    // One lane's values within its iteration of the kernel's lane loops (a lane's port
+    // logic is written once, for lane l).
+    leaf_grant_slot: Signal<Local, Bits<SB>>,
     lane_slot: Signal<Local, Bits<SB>>,
-    lane_done: Signal<Local, Bits<S>>,
-    lane_best_valid: Signal<Local, Bit>,
-    lane_changed: Signal<Local, Bit>,
     lane_best: Signal<Local, Bits<BEST_BITS>>,
     /// The nearest hit this answer writes.
     lane_written: Signal<Local, Bits<BEST_BITS>>,
-    /// This result becomes the slot's nearest hit (closest-hit), or its answer (any-hit).
-    lane_take: Signal<Local, Bit>,
-    lane_any_hit: Signal<Local, Bit>,
-    far_done: Signal<Local, Bits<S>>,
     far_slot: Signal<Local, Bits<SB>>,
-    leaf_grant: Signal<Local, Bits<S>>,
-    leaf_grant_last: Signal<Local, Bit>,
-    out_grant: Signal<Local, Bits<S>>,
+    far_tag: Signal<Local, Bits<16>>,
     skip: Signal<Local, Bit>,
     next_up: Signal<Local, Bits<32>>,
     new_t: Signal<Local, Bits<32>>,
+    leaf_link: Signal<Local, Bits<LF>>,
+    leaf_read: Signal<Local, Bits<LEAF_WORDS_BITS>>,
+    /// An entering ray's leaf-port words.
+    entry_words: Signal<Local, Bits<LEAF_WORDS_BITS>>,
+    leaf_words: Signal<Local, Bits<LANE_WORDS_BITS>>,
+    leaf_exclude: Signal<Local, Bits<INDEX_BITS>>,
+    lane_index: Signal<Local, Bits<INDEX_BITS>>,
+    query: Signal<Local, Bits<QUERY_BITS>>,
+    out_best: Signal<Local, Bits<BEST_BITS>>,
+    mt_count: Signal<Local, Bits<32>>,
+    out_grant: Signal<Local, Bits<S>>,
     entering: Signal<Local, Bits<S>>,
     /// A word on its way into a packed record (an indexed word cannot go into `bit_cast`
     /// directly: hdl_gen loses the index).
     packed_word: Signal<Local, Bits<32>>,
     box_link: Signal<Local, Bits<LF>>,
-    leaf_link: Signal<Local, Bits<LF>>,
     ray_exclude: Signal<Local, Bits<INDEX_BITS>>,
     setup_words: Signal<Local, Bits<BOX_WORDS_BITS>>,
-    leaf_words: Signal<Local, Bits<LANE_WORDS_BITS>>,
-    leaf_exclude: Signal<Local, Bits<INDEX_BITS>>,
     out_word: Signal<Local, Bits<HIT_BITS>>,
     box_visit: Signal<Local, Bit>,
     next_busy: Signal<Local, Bits<S>>,
@@ -324,14 +355,23 @@ impl<
     > TraversalCore<NB, TB, LF, LC, NW, TW, S, SB, PB, AB, W>
 {
     /// A core whose operators have `depth` pipeline registers each (at most their maximum),
-    /// whose slots have stacks of `stack_depth` entries, for a lane of `lane_latency` cycles.
-    pub fn new(depth: usize, stack_depth: usize, lane_latency: usize) -> Self {
+    /// whose slots have stacks of `stack_depth` entries, for `lanes` lanes of `lane_latency`
+    /// cycles.
+    pub fn new(depth: usize, stack_depth: usize, lanes: usize, lane_latency: usize) -> Self {
         assert_eq!(W, LF + LC + 32, "a stack entry is a link and a distance");
         assert!(
             S <= 1 << SB && S <= 1 << 16,
             "{S} slots need more than {SB} bits"
         );
+        assert!(
+            (1..=S).contains(&lanes),
+            "{lanes} lanes for {S} slots: 1 to {S}"
+        );
         let box_latency = super::box_test::latency(depth);
+        fn beside_lane<T: Synth>(lanes: usize, latency: usize) -> Vec<Delay<T>> {
+            (0..lanes).map(|_| Delay::new(latency)).collect()
+        }
+        let lane_mask = |l: usize| (l..S).step_by(lanes).fold(0u64, |m, s| m | 1 << s);
         Self {
             clock: Default::default(),
             reset_n: Default::default(),
@@ -359,21 +399,24 @@ impl<
             count_box_tests: Default::default(),
             count_mt_tests: Default::default(),
             count_busy_cycles: Default::default(),
-            lane_valid: Default::default(),
-            lane_query: Default::default(),
-            lane_hit: Default::default(),
-            lane_t: Default::default(),
-            lane_u: Default::default(),
-            lane_v: Default::default(),
-            memory: SceneMemory::new(),
+            lane_valid: defaults(lanes),
+            lane_query: defaults(lanes),
+            lane_hit: defaults(lanes),
+            lane_t: defaults(lanes),
+            lane_u: defaults(lanes),
+            lane_v: defaults(lanes),
+            memory: SceneMemory::new(lanes),
             setup: RaySetupUnit::new(depth),
             boxes: BoxTest::new(depth),
-            far: FarEnd::new(depth),
+            far: (0..lanes).map(|_| FarEnd::new(depth)).collect(),
             stacks: SlotStacks::new(stack_depth),
-            update: Default::default(),
+            update: defaults(lanes),
             beyond: Default::default(),
             box_arb: Default::default(),
-            leaf_arb: Default::default(),
+            leaf_arb: defaults(lanes),
+            lane_slots: (0..lanes)
+                .map(|l| Constant::new(lane_mask(l).into()))
+                .collect(),
             pop_arb: Default::default(),
             out_arb: Default::default(),
             busy: Default::default(),
@@ -387,10 +430,10 @@ impl<
             best_valid: Default::default(),
             changed: Default::default(),
             box_ram: Default::default(),
-            leaf_ram: Default::default(),
-            pad_ram: Default::default(),
-            best_ram: Default::default(),
-            best_out_ram: Default::default(),
+            leaf_ram: defaults(lanes),
+            pad_ram: defaults(lanes),
+            best_ram: defaults(lanes),
+            best_out_ram: defaults(lanes),
             id_out_ram: Default::default(),
             id_overflow_ram: Default::default(),
             t_hi: defaults(S),
@@ -403,6 +446,8 @@ impl<
             abs_mask: Constant::new(0x7FFF_FFFFu64.into()),
             box_top: Constant::new(((BOX_WORDS_BITS - 32) as u64).into()),
             hit_top: Constant::new(((HIT_BITS - 32) as u64).into()),
+            best_top: Constant::new(((BEST_BITS - 32) as u64).into()),
+            query_top: Constant::new(((QUERY_BITS - 32) as u64).into()),
             exclude_at: Constant::new((LANE_WORDS_BITS as u64).into()),
             box_valid: Default::default(),
             box_slot: Default::default(),
@@ -411,22 +456,22 @@ impl<
             child_first_at: std::array::from_fn(|_| Delay::new(box_latency)),
             child_count_at: std::array::from_fn(|_| Delay::new(box_latency)),
             root_at: Delay::new(box_latency),
-            leaf_valid: Default::default(),
-            leaf_last: Default::default(),
-            leaf_any_hit: Default::default(),
-            leaf_has_exclude: Default::default(),
-            issued_at: Delay::new(lane_latency),
-            tested_at: Delay::new(lane_latency),
-            last_at: Delay::new(lane_latency),
-            index_at: Delay::new(lane_latency),
-            t_min_at: Delay::new(lane_latency),
-            t_max_at: Delay::new(lane_latency),
-            any_hit_at: Delay::new(lane_latency),
-            pad_at: Delay::new(lane_latency),
-            slot_at: Delay::new(lane_latency),
-            answer_slot: Default::default(),
-            best_forward: Default::default(),
-            best_written: Default::default(),
+            leaf_valid: defaults(lanes),
+            leaf_last: defaults(lanes),
+            leaf_any_hit: defaults(lanes),
+            leaf_has_exclude: defaults(lanes),
+            issued_at: beside_lane(lanes, lane_latency),
+            tested_at: beside_lane(lanes, lane_latency),
+            last_at: beside_lane(lanes, lane_latency),
+            index_at: beside_lane(lanes, lane_latency),
+            t_min_at: beside_lane(lanes, lane_latency),
+            t_max_at: beside_lane(lanes, lane_latency),
+            any_hit_at: beside_lane(lanes, lane_latency),
+            pad_at: beside_lane(lanes, lane_latency),
+            slot_at: beside_lane(lanes, lane_latency),
+            answer_slot: defaults(lanes),
+            best_forward: defaults(lanes),
+            best_written: defaults(lanes),
             pop_valid: Default::default(),
             pop_slot: Default::default(),
             pop_t_hi: Default::default(),
@@ -434,6 +479,7 @@ impl<
             out_fresh: Default::default(),
             out_hit: Default::default(),
             out_data: Default::default(),
+            out_lane: defaults(lanes),
             overflow_q: Default::default(),
             overflow_ray_q: Default::default(),
             rays: Default::default(),
@@ -448,7 +494,6 @@ impl<
             enter_slot: Default::default(),
             accept: Default::default(),
             box_grant_slot: Default::default(),
-            leaf_grant_slot: Default::default(),
             pop_grant_slot: Default::default(),
             out_grant_slot: Default::default(),
             setup_done: Default::default(),
@@ -463,30 +508,39 @@ impl<
             pop_link_count: Default::default(),
             pop_enters: Default::default(),
             pop_again: Default::default(),
+            lane_done: defaults(lanes),
+            lane_best_valid: defaults(lanes),
+            lane_changed: defaults(lanes),
+            lane_take: defaults(lanes),
+            lane_any_hit: defaults(lanes),
+            far_done: defaults(lanes),
+            leaf_grant: defaults(lanes),
+            leaf_grant_last: defaults(lanes),
+            far_done_all: Default::default(),
+            leaf_grant_slot: Default::default(),
             lane_slot: Default::default(),
-            lane_done: Default::default(),
-            lane_best_valid: Default::default(),
-            lane_changed: Default::default(),
             lane_best: Default::default(),
             lane_written: Default::default(),
-            lane_take: Default::default(),
-            lane_any_hit: Default::default(),
-            far_done: Default::default(),
             far_slot: Default::default(),
-            leaf_grant: Default::default(),
-            leaf_grant_last: Default::default(),
-            out_grant: Default::default(),
+            far_tag: Default::default(),
             skip: Default::default(),
             next_up: Default::default(),
             new_t: Default::default(),
+            leaf_link: Default::default(),
+            leaf_read: Default::default(),
+            entry_words: Default::default(),
+            leaf_words: Default::default(),
+            leaf_exclude: Default::default(),
+            lane_index: Default::default(),
+            query: Default::default(),
+            out_best: Default::default(),
+            mt_count: Default::default(),
+            out_grant: Default::default(),
             entering: Default::default(),
             packed_word: Default::default(),
             box_link: Default::default(),
-            leaf_link: Default::default(),
             ray_exclude: Default::default(),
             setup_words: Default::default(),
-            leaf_words: Default::default(),
-            leaf_exclude: Default::default(),
             out_word: Default::default(),
             box_visit: Default::default(),
             next_busy: Default::default(),
@@ -519,10 +573,8 @@ impl<
         self.memory.clock.next = self.clock.val();
         self.setup.clock.next = self.clock.val();
         self.boxes.clock.next = self.clock.val();
-        self.far.clock.next = self.clock.val();
         self.stacks.clock.next = self.clock.val();
         self.box_arb.clock.next = self.clock.val();
-        self.leaf_arb.clock.next = self.clock.val();
         self.pop_arb.clock.next = self.clock.val();
         self.out_arb.clock.next = self.clock.val();
         dff_setup!(
@@ -542,13 +594,6 @@ impl<
             box_slot,
             box_root,
             box_t_hi,
-            leaf_valid,
-            leaf_last,
-            leaf_any_hit,
-            leaf_has_exclude,
-            answer_slot,
-            best_forward,
-            best_written,
             pop_valid,
             pop_slot,
             pop_t_hi,
@@ -566,14 +611,6 @@ impl<
         );
         self.box_ram.read_clock.next = self.clock.val();
         self.box_ram.write_clock.next = self.clock.val();
-        self.leaf_ram.read_clock.next = self.clock.val();
-        self.leaf_ram.write_clock.next = self.clock.val();
-        self.pad_ram.read_clock.next = self.clock.val();
-        self.pad_ram.write_clock.next = self.clock.val();
-        self.best_ram.read_clock.next = self.clock.val();
-        self.best_ram.write_clock.next = self.clock.val();
-        self.best_out_ram.read_clock.next = self.clock.val();
-        self.best_out_ram.write_clock.next = self.clock.val();
         self.id_out_ram.read_clock.next = self.clock.val();
         self.id_out_ram.write_clock.next = self.clock.val();
         self.id_overflow_ram.read_clock.next = self.clock.val();
@@ -591,15 +628,43 @@ impl<
             self.child_count_at[c].clock.next = self.clock.val();
         }
         self.root_at.clock.next = self.clock.val();
-        self.issued_at.clock.next = self.clock.val();
-        self.tested_at.clock.next = self.clock.val();
-        self.last_at.clock.next = self.clock.val();
-        self.slot_at.clock.next = self.clock.val();
-        self.index_at.clock.next = self.clock.val();
-        self.t_min_at.clock.next = self.clock.val();
-        self.t_max_at.clock.next = self.clock.val();
-        self.any_hit_at.clock.next = self.clock.val();
-        self.pad_at.clock.next = self.clock.val();
+        for l in 0..self.leaf_arb.len() {
+            self.far[l].clock.next = self.clock.val();
+            self.leaf_arb[l].clock.next = self.clock.val();
+            self.leaf_ram[l].read_clock.next = self.clock.val();
+            self.leaf_ram[l].write_clock.next = self.clock.val();
+            self.pad_ram[l].read_clock.next = self.clock.val();
+            self.pad_ram[l].write_clock.next = self.clock.val();
+            self.best_ram[l].read_clock.next = self.clock.val();
+            self.best_ram[l].write_clock.next = self.clock.val();
+            self.best_out_ram[l].read_clock.next = self.clock.val();
+            self.best_out_ram[l].write_clock.next = self.clock.val();
+            self.issued_at[l].clock.next = self.clock.val();
+            self.tested_at[l].clock.next = self.clock.val();
+            self.last_at[l].clock.next = self.clock.val();
+            self.slot_at[l].clock.next = self.clock.val();
+            self.index_at[l].clock.next = self.clock.val();
+            self.t_min_at[l].clock.next = self.clock.val();
+            self.t_max_at[l].clock.next = self.clock.val();
+            self.any_hit_at[l].clock.next = self.clock.val();
+            self.pad_at[l].clock.next = self.clock.val();
+            self.leaf_valid[l].clock.next = self.clock.val();
+            self.leaf_valid[l].d.next = self.leaf_valid[l].q.val();
+            self.leaf_last[l].clock.next = self.clock.val();
+            self.leaf_last[l].d.next = self.leaf_last[l].q.val();
+            self.leaf_any_hit[l].clock.next = self.clock.val();
+            self.leaf_any_hit[l].d.next = self.leaf_any_hit[l].q.val();
+            self.leaf_has_exclude[l].clock.next = self.clock.val();
+            self.leaf_has_exclude[l].d.next = self.leaf_has_exclude[l].q.val();
+            self.answer_slot[l].clock.next = self.clock.val();
+            self.answer_slot[l].d.next = self.answer_slot[l].q.val();
+            self.best_forward[l].clock.next = self.clock.val();
+            self.best_forward[l].d.next = self.best_forward[l].q.val();
+            self.best_written[l].clock.next = self.clock.val();
+            self.best_written[l].d.next = self.best_written[l].q.val();
+            self.out_lane[l].clock.next = self.clock.val();
+            self.out_lane[l].d.next = self.out_lane[l].q.val();
+        }
 
         // ---- The scene memory and its stream.
         self.memory.start_load.next = self.scene_start.val();
@@ -667,19 +732,24 @@ impl<
         self.box_ram.write_enable.next = self.setup.valid_out.val();
         self.box_ram.write_address.next = self.setup_slot.val();
         self.box_ram.write_data.next = self.setup_words.val();
-        self.pad_ram.write_enable.next = self.setup.valid_out.val();
-        self.pad_ram.write_address.next = self.setup_slot.val();
-        self.pad_ram.write_data.next = self.setup.pad.val();
+        for l in 0..self.leaf_arb.len() {
+            self.pad_ram[l].write_enable.next = self.setup.valid_out.val();
+            self.pad_ram[l].write_address.next = self.setup_slot.val();
+            self.pad_ram[l].write_data.next = self.setup.pad.val();
+        }
         // The entering ray's words for the leaf port and its id.
         self.packed_word.next = self.ray_words[9].val();
         self.ray_exclude.next = bit_cast::<INDEX_BITS, 32>(self.packed_word.val());
-        self.leaf_ram.write_enable.next = self.accept.val();
-        self.leaf_ram.write_address.next = self.enter_slot.val();
-        self.leaf_ram.write_data.next =
+        self.entry_words.next =
             bit_cast::<LEAF_WORDS_BITS, LANE_WORDS_BITS>(bit_cast::<LANE_WORDS_BITS, RAY_BITS>(
                 self.ray_tdata.val(),
             )) | (bit_cast::<LEAF_WORDS_BITS, INDEX_BITS>(self.ray_exclude.val())
                 << self.exclude_at.val());
+        for l in 0..self.leaf_arb.len() {
+            self.leaf_ram[l].write_enable.next = self.accept.val();
+            self.leaf_ram[l].write_address.next = self.enter_slot.val();
+            self.leaf_ram[l].write_data.next = self.entry_words.val();
+        }
         self.id_out_ram.write_enable.next = self.accept.val();
         self.id_out_ram.write_address.next = self.enter_slot.val();
         self.id_out_ram.write_data.next = self.ray_words[10].val();
@@ -800,120 +870,155 @@ impl<
         self.pop_again.next = self.stacks.popped.val() & self.beyond.lt.val();
         self.pop_enters.next = self.stacks.popped.val() & !self.beyond.lt.val();
 
-        // ---- The leaf port: one triangle a cycle; the slot waits after its last.
-        self.leaf_arb.request.next = self.want_leaf.q.val();
-        self.leaf_grant.next = self.leaf_arb.grant.val();
-        self.leaf_grant_slot.next = 0.into();
-        self.leaf_grant_last.next = false;
-        self.leaf_link.next = 0.into();
-        for i in 0..S {
-            if self.leaf_grant.val().get_bit(i) {
-                self.leaf_grant_slot.next = self.slot_id[i].val();
-                self.leaf_link.next = self.link_first[i].q.val();
-                self.leaf_grant_last.next = self.link_count[i].q.val() == self.one_count.val();
+        // ---- The leaf ports, one per lane, each over its own slots (s mod lanes = l): one
+        // triangle a cycle; the slot waits after its last.
+        self.far_done_all.next = 0.into();
+        for l in 0..self.leaf_arb.len() {
+            self.leaf_arb[l].request.next = self.want_leaf.q.val() & self.lane_slots[l].val();
+            self.leaf_grant[l].next = self.leaf_arb[l].grant.val();
+            self.leaf_grant_slot.next = 0.into();
+            self.leaf_grant_last[l].next = false;
+            self.leaf_link.next = 0.into();
+            for i in 0..S {
+                if self.leaf_grant[l].val().get_bit(i) {
+                    self.leaf_grant_slot.next = self.slot_id[i].val();
+                    self.leaf_link.next = self.link_first[i].q.val();
+                    self.leaf_grant_last[l].next =
+                        self.link_count[i].q.val() == self.one_count.val();
+                }
             }
-        }
-        self.memory.triangle_address.next = bit_cast::<TB, LF>(self.leaf_link.val());
-        self.leaf_ram.read_address.next = self.leaf_grant_slot.val();
-        self.pad_ram.read_address.next = self.leaf_grant_slot.val();
-        self.leaf_valid.d.next = self.leaf_grant.val().any();
-        self.leaf_last.d.next = self.leaf_grant_last.val();
-        self.leaf_any_hit.d.next = (self.any_hit.q.val() & self.leaf_grant.val()).any();
-        self.leaf_has_exclude.d.next = (self.has_exclude.q.val() & self.leaf_grant.val()).any();
-        // The cycle after: the triangle and the slot's words are read, the triangle is
-        // tested or skipped.
-        self.leaf_words.next =
-            bit_cast::<LANE_WORDS_BITS, LEAF_WORDS_BITS>(self.leaf_ram.read_data.val());
-        self.leaf_exclude.next = bit_cast::<INDEX_BITS, LEAF_WORDS_BITS>(
-            self.leaf_ram.read_data.val() >> self.exclude_at.val(),
-        );
-        self.skip.next = (self.leaf_any_hit.q.val() & !self.memory.casts_shadow.val())
-            | (self.leaf_has_exclude.q.val()
-                & (self.leaf_exclude.val() == self.memory.global_index.val()));
-        self.lane_valid.next = self.leaf_valid.q.val() & !self.skip.val();
-        for k in 0..6 {
-            self.lane_query[k].next = self.leaf_words.val().get_bits::<32>(32 * k);
-        }
-        for k in 0..9 {
-            self.lane_query[6 + k].next = self.memory.vert[k].val();
-        }
-        self.lane_query[15].next = self.leaf_words.val().get_bits::<32>(224);
-        self.t_min_at.d.next = self.leaf_words.val().get_bits::<32>(224);
-        self.t_max_at.d.next = self.leaf_words.val().get_bits::<32>(192);
-        self.issued_at.d.next = self.leaf_valid.q.val();
-        self.tested_at.d.next = self.leaf_valid.q.val() & !self.skip.val();
-        self.last_at.d.next = self.leaf_last.q.val();
-        self.index_at.d.next = self.memory.global_index.val();
-        self.any_hit_at.d.next = self.leaf_any_hit.q.val();
-        self.pad_at.d.next = self.pad_ram.read_data.val();
-        // The lane's answer, folded into its slot's nearest hit (closest-hit) or kept as
-        // the first counting hit (any-hit). The nearest hit is read a cycle ahead.
-        self.slot_at.d.next = self.leaf_grant_slot.val();
-        self.best_ram.read_address.next = self.slot_at.q.val();
-        self.answer_slot.d.next = self.slot_at.q.val();
-        self.lane_slot.next = self.answer_slot.q.val();
-        self.lane_done.next = 0.into();
-        if self.issued_at.q.val() {
-            self.lane_done.next = self.one.val() << self.lane_slot.val();
-        }
-        self.lane_best.next = self.best_ram.read_data.val();
-        if self.best_forward.q.val() {
-            self.lane_best.next = self.best_written.q.val();
-        }
-        self.update.hit.next = self.lane_hit.val() & self.tested_at.q.val();
-        self.update.t.next = self.lane_t.val();
-        self.update.triangle.next = bit_cast::<32, INDEX_BITS>(self.index_at.q.val());
-        self.update.t_min.next = self.t_min_at.q.val();
-        self.update.bound.next = self.t_max_at.q.val();
-        self.update.best_valid.next = (self.best_valid.q.val() & self.lane_done.val()).any();
-        self.update.best_t.next = self.lane_best.val().get_bits::<32>(0);
-        self.update.best_triangle.next = self.lane_best.val().get_bits::<32>(96);
-        self.lane_any_hit.next = self.any_hit_at.q.val();
-        self.lane_take.next = self.update.closer.val();
-        if self.lane_any_hit.val() {
-            self.lane_take.next = self.update.counts.val() & !self.update.best_valid.val();
-        }
-        self.lane_best_valid.next = self.update.best_valid.val() | self.lane_take.val();
-        self.lane_changed.next =
-            (self.changed.q.val() & self.lane_done.val()).any() | self.lane_take.val();
-        self.lane_written.next = bit_cast::<BEST_BITS, 32>(self.lane_t.val())
-            | (bit_cast::<BEST_BITS, 32>(self.lane_u.val()) << 32)
-            | (bit_cast::<BEST_BITS, 32>(self.lane_v.val()) << 64)
-            | (bit_cast::<BEST_BITS, INDEX_BITS>(self.index_at.q.val()) << 96);
-        self.best_ram.write_enable.next = self.lane_take.val() & self.issued_at.q.val();
-        self.best_ram.write_address.next = self.lane_slot.val();
-        self.best_ram.write_data.next = self.lane_written.val();
-        self.best_out_ram.write_enable.next = self.lane_take.val() & self.issued_at.q.val();
-        self.best_out_ram.write_address.next = self.lane_slot.val();
-        self.best_out_ram.write_data.next = self.lane_written.val();
-        self.best_forward.d.next = self.lane_take.val()
-            & self.issued_at.q.val()
-            & (self.lane_slot.val() == self.slot_at.q.val());
-        self.best_written.d.next = self.lane_written.val();
-        // After a leaf with a nearer hit: the far end of next_up(t) (t is a counting hit's,
-        // so finite and not NaN).
-        self.new_t.next = self.lane_best.val().get_bits::<32>(0);
-        if self.lane_take.val() {
-            self.new_t.next = self.lane_t.val();
-        }
-        if !(self.new_t.val() & self.abs_mask.val()).any() {
-            self.next_up.next = 1.into();
-        } else if self.new_t.val().get_bit(31) {
-            self.next_up.next = self.new_t.val() - 1;
-        } else {
-            self.next_up.next = self.new_t.val() + 1;
-        }
-        self.far.valid_in.next = self.issued_at.q.val()
-            & self.last_at.q.val()
-            & !self.lane_any_hit.val()
-            & self.lane_changed.val();
-        self.far.tag_in.next = bit_cast::<16, SB>(self.lane_slot.val());
-        self.far.bound.next = self.next_up.val();
-        self.far.pad.next = self.pad_at.q.val();
-        self.far_slot.next = bit_cast::<SB, 16>(self.far.tag_out.val());
-        self.far_done.next = 0.into();
-        if self.far.valid_out.val() {
-            self.far_done.next = self.one.val() << self.far_slot.val();
+            self.memory.triangle_address[l].next = bit_cast::<TB, LF>(self.leaf_link.val());
+            self.leaf_ram[l].read_address.next = self.leaf_grant_slot.val();
+            self.pad_ram[l].read_address.next = self.leaf_grant_slot.val();
+            self.leaf_valid[l].d.next = self.leaf_grant[l].val().any();
+            self.leaf_last[l].d.next = self.leaf_grant_last[l].val();
+            self.leaf_any_hit[l].d.next = (self.any_hit.q.val() & self.leaf_grant[l].val()).any();
+            self.leaf_has_exclude[l].d.next =
+                (self.has_exclude.q.val() & self.leaf_grant[l].val()).any();
+            // The cycle after: the triangle and the slot's words are read, the triangle is
+            // tested or skipped.
+            self.leaf_read.next = self.leaf_ram[l].read_data.val();
+            self.leaf_words.next =
+                bit_cast::<LANE_WORDS_BITS, LEAF_WORDS_BITS>(self.leaf_read.val());
+            self.leaf_exclude.next = bit_cast::<INDEX_BITS, LEAF_WORDS_BITS>(
+                self.leaf_read.val() >> self.exclude_at.val(),
+            );
+            self.skip.next = (self.leaf_any_hit[l].q.val() & !self.memory.casts_shadow[l].val())
+                | (self.leaf_has_exclude[l].q.val()
+                    & (self.leaf_exclude.val() == self.memory.global_index[l].val()));
+            self.lane_valid[l].next = self.leaf_valid[l].q.val() & !self.skip.val();
+            // The query in the lane's operand order (docs/stream.md), packed by shifting each
+            // word in from the top: orig, dir, v0, v1, v2, t_min.
+            self.query.next = 0.into();
+            for k in 0..6 {
+                self.packed_word.next = self.leaf_words.val().get_bits::<32>(32 * k);
+                self.query.next = (self.query.val() >> 32)
+                    | (bit_cast::<QUERY_BITS, 32>(self.packed_word.val()) << self.query_top.val());
+            }
+            for k in 0..9 {
+                self.packed_word.next = self.memory.vert[9 * l + k].val();
+                self.query.next = (self.query.val() >> 32)
+                    | (bit_cast::<QUERY_BITS, 32>(self.packed_word.val()) << self.query_top.val());
+            }
+            self.packed_word.next = self.leaf_words.val().get_bits::<32>(224);
+            self.query.next = (self.query.val() >> 32)
+                | (bit_cast::<QUERY_BITS, 32>(self.packed_word.val()) << self.query_top.val());
+            self.lane_query[l].next = self.query.val();
+            self.t_min_at[l].d.next = self.leaf_words.val().get_bits::<32>(224);
+            self.t_max_at[l].d.next = self.leaf_words.val().get_bits::<32>(192);
+            self.issued_at[l].d.next = self.leaf_valid[l].q.val();
+            self.tested_at[l].d.next = self.leaf_valid[l].q.val() & !self.skip.val();
+            self.last_at[l].d.next = self.leaf_last[l].q.val();
+            self.index_at[l].d.next = self.memory.global_index[l].val();
+            self.any_hit_at[l].d.next = self.leaf_any_hit[l].q.val();
+            self.pad_at[l].d.next = self.pad_ram[l].read_data.val();
+            // The lane's answer, folded into its slot's nearest hit (closest-hit) or kept as
+            // the first counting hit (any-hit). The nearest hit is read a cycle ahead.
+            self.slot_at[l].d.next = self.leaf_grant_slot.val();
+            self.best_ram[l].read_address.next = self.slot_at[l].q.val();
+            self.answer_slot[l].d.next = self.slot_at[l].q.val();
+            self.lane_slot.next = self.answer_slot[l].q.val();
+            self.lane_done[l].next = 0.into();
+            if self.issued_at[l].q.val() {
+                self.lane_done[l].next = self.one.val() << self.lane_slot.val();
+            }
+            self.lane_best.next = self.best_ram[l].read_data.val();
+            if self.best_forward[l].q.val() {
+                self.lane_best.next = self.best_written[l].q.val();
+            }
+            self.lane_index.next = self.index_at[l].q.val();
+            self.update[l].hit.next = self.lane_hit[l].val() & self.tested_at[l].q.val();
+            self.update[l].t.next = self.lane_t[l].val();
+            self.update[l].triangle.next = bit_cast::<32, INDEX_BITS>(self.lane_index.val());
+            self.update[l].t_min.next = self.t_min_at[l].q.val();
+            self.update[l].bound.next = self.t_max_at[l].q.val();
+            self.update[l].best_valid.next =
+                (self.best_valid.q.val() & self.lane_done[l].val()).any();
+            self.update[l].best_t.next = self.lane_best.val().get_bits::<32>(0);
+            self.update[l].best_triangle.next = self.lane_best.val().get_bits::<32>(96);
+            self.lane_any_hit[l].next = self.any_hit_at[l].q.val();
+            self.lane_take[l].next = self.update[l].closer.val();
+            if self.lane_any_hit[l].val() {
+                self.lane_take[l].next =
+                    self.update[l].counts.val() & !self.update[l].best_valid.val();
+            }
+            self.lane_best_valid[l].next =
+                self.update[l].best_valid.val() | self.lane_take[l].val();
+            self.lane_changed[l].next =
+                (self.changed.q.val() & self.lane_done[l].val()).any() | self.lane_take[l].val();
+            // The nearest hit written: t, u, v, triangle (shifted in from the top).
+            self.lane_written.next = 0.into();
+            self.packed_word.next = self.lane_t[l].val();
+            self.lane_written.next = (self.lane_written.val() >> 32)
+                | (bit_cast::<BEST_BITS, 32>(self.packed_word.val()) << self.best_top.val());
+            self.packed_word.next = self.lane_u[l].val();
+            self.lane_written.next = (self.lane_written.val() >> 32)
+                | (bit_cast::<BEST_BITS, 32>(self.packed_word.val()) << self.best_top.val());
+            self.packed_word.next = self.lane_v[l].val();
+            self.lane_written.next = (self.lane_written.val() >> 32)
+                | (bit_cast::<BEST_BITS, 32>(self.packed_word.val()) << self.best_top.val());
+            self.packed_word.next = bit_cast::<32, INDEX_BITS>(self.lane_index.val());
+            self.lane_written.next = (self.lane_written.val() >> 32)
+                | (bit_cast::<BEST_BITS, 32>(self.packed_word.val()) << self.best_top.val());
+            self.best_ram[l].write_enable.next =
+                self.lane_take[l].val() & self.issued_at[l].q.val();
+            self.best_ram[l].write_address.next = self.lane_slot.val();
+            self.best_ram[l].write_data.next = self.lane_written.val();
+            self.best_out_ram[l].write_enable.next =
+                self.lane_take[l].val() & self.issued_at[l].q.val();
+            self.best_out_ram[l].write_address.next = self.lane_slot.val();
+            self.best_out_ram[l].write_data.next = self.lane_written.val();
+            self.best_forward[l].d.next = self.lane_take[l].val()
+                & self.issued_at[l].q.val()
+                & (self.lane_slot.val() == self.slot_at[l].q.val());
+            self.best_written[l].d.next = self.lane_written.val();
+            // After a leaf with a nearer hit: the far end of next_up(t) (t is a counting
+            // hit's, so finite and not NaN).
+            self.new_t.next = self.lane_best.val().get_bits::<32>(0);
+            if self.lane_take[l].val() {
+                self.new_t.next = self.lane_t[l].val();
+            }
+            if !(self.new_t.val() & self.abs_mask.val()).any() {
+                self.next_up.next = 1.into();
+            } else if self.new_t.val().get_bit(31) {
+                self.next_up.next = self.new_t.val() - 1;
+            } else {
+                self.next_up.next = self.new_t.val() + 1;
+            }
+            self.far[l].valid_in.next = self.issued_at[l].q.val()
+                & self.last_at[l].q.val()
+                & !self.lane_any_hit[l].val()
+                & self.lane_changed[l].val();
+            self.far[l].tag_in.next = bit_cast::<16, SB>(self.lane_slot.val());
+            self.far[l].bound.next = self.next_up.val();
+            self.far[l].pad.next = self.pad_at[l].q.val();
+            self.far_tag.next = self.far[l].tag_out.val();
+            self.far_slot.next = bit_cast::<SB, 16>(self.far_tag.val());
+            self.far_done[l].next = 0.into();
+            if self.far[l].valid_out.val() {
+                self.far_done[l].next = self.one.val() << self.far_slot.val();
+            }
+            self.far_done_all.next = self.far_done_all.val() | self.far_done[l].val();
         }
 
         // ---- The hit output: one register, refilled in the cycle it drains.
@@ -929,7 +1034,15 @@ impl<
             }
         }
         self.id_out_ram.read_address.next = self.out_grant_slot.val();
-        self.best_out_ram.read_address.next = self.out_grant_slot.val();
+        self.out_best.next = 0.into();
+        for l in 0..self.leaf_arb.len() {
+            self.best_out_ram[l].read_address.next = self.out_grant_slot.val();
+            self.out_lane[l].d.next = (self.out_grant.val() & self.lane_slots[l].val()).any();
+            // The cycle after the grant: the granted slot's lane's copy.
+            if self.out_lane[l].q.val() {
+                self.out_best.next = self.best_out_ram[l].read_data.val();
+            }
+        }
         self.out_fresh.d.next = self.out_grant.val().any();
         self.out_hit.d.next = (self.best_valid.q.val() & self.out_grant.val()).any();
         // The cycle after the grant: the answer from the RAMs' words.
@@ -939,10 +1052,10 @@ impl<
         self.hit_words[0].next = self.id_out_ram.read_data.val();
         if self.out_hit.q.val() {
             self.hit_words[1].next = 1.into();
-            self.hit_words[3].next = self.best_out_ram.read_data.val().get_bits::<32>(0);
-            self.hit_words[4].next = self.best_out_ram.read_data.val().get_bits::<32>(32);
-            self.hit_words[5].next = self.best_out_ram.read_data.val().get_bits::<32>(64);
-            self.hit_words[2].next = self.best_out_ram.read_data.val().get_bits::<32>(96);
+            self.hit_words[3].next = self.out_best.val().get_bits::<32>(0);
+            self.hit_words[4].next = self.out_best.val().get_bits::<32>(32);
+            self.hit_words[5].next = self.out_best.val().get_bits::<32>(64);
+            self.hit_words[2].next = self.out_best.val().get_bits::<32>(96);
         }
         self.out_word.next = 0.into();
         for k in 0..HIT_WORDS {
@@ -967,11 +1080,13 @@ impl<
         self.next_busy.next = (self.busy.q.val() & !self.out_grant.val()) | self.entering.val();
         self.next_box.next = self.want_box.q.val() & !self.box_arb.grant.val();
         self.next_leaf.next = self.want_leaf.q.val();
-        if self.leaf_grant_last.val() {
-            self.next_leaf.next = self.want_leaf.q.val() & !self.leaf_grant.val();
+        for l in 0..self.leaf_arb.len() {
+            if self.leaf_grant_last[l].val() {
+                self.next_leaf.next = self.next_leaf.val() & !self.leaf_grant[l].val();
+            }
         }
         self.next_pop.next =
-            (self.want_pop.q.val() & !self.pop_arb.grant.val()) | self.far_done.val();
+            (self.want_pop.q.val() & !self.pop_arb.grant.val()) | self.far_done_all.val();
         self.next_out.next = self.want_out.q.val() & !self.out_grant.val();
         self.next_changed.next = self.changed.q.val() & !self.entering.val();
         self.next_best_valid.next = self.best_valid.q.val() & !self.entering.val();
@@ -1005,20 +1120,22 @@ impl<
         } else {
             self.next_out.next = self.next_out.val() | self.pop_done.val();
         }
-        // The lane's answer; after a leaf's last: out (an any-hit ray with a hit), the far
-        // end (a nearer hit; it then pops), else a pop.
-        if self.lane_take.val() {
-            self.next_best_valid.next = self.next_best_valid.val() | self.lane_done.val();
-            if !self.lane_any_hit.val() {
-                self.next_changed.next = self.next_changed.val() | self.lane_done.val();
+        // The lanes' answers (each for a slot of its own); after a leaf's last: out (an
+        // any-hit ray with a hit), the far end (a nearer hit; it then pops), else a pop.
+        for l in 0..self.leaf_arb.len() {
+            if self.lane_take[l].val() {
+                self.next_best_valid.next = self.next_best_valid.val() | self.lane_done[l].val();
+                if !self.lane_any_hit[l].val() {
+                    self.next_changed.next = self.next_changed.val() | self.lane_done[l].val();
+                }
             }
-        }
-        if self.issued_at.q.val() & self.last_at.q.val() {
-            self.next_changed.next = self.next_changed.val() & !self.lane_done.val();
-            if self.lane_any_hit.val() & self.lane_best_valid.val() {
-                self.next_out.next = self.next_out.val() | self.lane_done.val();
-            } else if self.lane_any_hit.val() | !self.lane_changed.val() {
-                self.next_pop.next = self.next_pop.val() | self.lane_done.val();
+            if self.issued_at[l].q.val() & self.last_at[l].q.val() {
+                self.next_changed.next = self.next_changed.val() & !self.lane_done[l].val();
+                if self.lane_any_hit[l].val() & self.lane_best_valid[l].val() {
+                    self.next_out.next = self.next_out.val() | self.lane_done[l].val();
+                } else if self.lane_any_hit[l].val() | !self.lane_changed[l].val() {
+                    self.next_pop.next = self.next_pop.val() | self.lane_done[l].val();
+                }
             }
         }
         self.busy.d.next = self.next_busy.val();
@@ -1047,8 +1164,10 @@ impl<
             if self.setup_done.val().get_bit(i) {
                 self.t_hi[i].d.next = self.setup.t_hi.val();
             }
-            if self.far_done.val().get_bit(i) {
-                self.t_hi[i].d.next = self.far.t_hi.val();
+            for l in 0..self.leaf_arb.len() {
+                if self.far_done[l].val().get_bit(i) {
+                    self.t_hi[i].d.next = self.far[l].t_hi.val();
+                }
             }
             if self.box_visit.val() & self.box_done.val().get_bit(i) {
                 self.link_first[i].d.next = self.box_link_first.val();
@@ -1058,9 +1177,11 @@ impl<
                 self.link_first[i].d.next = self.pop_link_first.val();
                 self.link_count[i].d.next = self.pop_link_count.val();
             }
-            if self.leaf_grant.val().get_bit(i) {
-                self.link_first[i].d.next = self.link_first[i].q.val() + 1;
-                self.link_count[i].d.next = self.link_count[i].q.val() - 1;
+            for l in 0..self.leaf_arb.len() {
+                if self.leaf_grant[l].val().get_bit(i) {
+                    self.link_first[i].d.next = self.link_first[i].q.val() + 1;
+                    self.link_count[i].d.next = self.link_count[i].q.val() - 1;
+                }
             }
         }
 
@@ -1079,9 +1200,13 @@ impl<
         if self.box_arb.grant.val().any() {
             self.box_tests.d.next = self.box_tests.q.val() + 1;
         }
-        if self.lane_valid.val() {
-            self.mt_tests.d.next = self.mt_tests.q.val() + 1;
+        self.mt_count.next = self.mt_tests.q.val();
+        for l in 0..self.leaf_arb.len() {
+            if self.lane_valid[l].val() {
+                self.mt_count.next = self.mt_count.val() + 1;
+            }
         }
+        self.mt_tests.d.next = self.mt_count.val();
         if self.box_visit.val() & self.pop_enters.val() {
             self.node_visits.d.next = self.node_visits.q.val() + 2;
         } else if self.box_visit.val() | self.pop_enters.val() {
@@ -1132,6 +1257,9 @@ pub const UNIT_SLOTS: usize = super::timing::DEFAULT_SLOTS;
 // The aliases (here and in `unit_top`) spell S = 32, SB = 5 as numbers.
 const _: () = assert!(UNIT_SLOTS == 32);
 pub const MAX_STACK_DEPTH: usize = 32;
+/// Lanes a unit is built with at most: the box port is the unit's bottleneck (87–99 % busy
+/// with one lane), so more lanes add area and no speed.
+pub const MAX_LANES: usize = 3;
 
 /// What a unit is built from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -1147,7 +1275,7 @@ pub struct UnitConfig {
 /// A configuration the RTL does not build.
 #[derive(Clone, Debug, Error, PartialEq, Eq)]
 pub enum UnitConfigError {
-    #[error("the traversal unit's RTL has one Möller-Trumbore lane so far, not {0}")]
+    #[error("{0} Möller-Trumbore lanes: the traversal unit is built with 1 to {MAX_LANES}")]
     Lanes(usize),
     #[error("the traversal unit's RTL has {UNIT_SLOTS} ray slots, not {0}")]
     Slots(usize),
@@ -1185,7 +1313,7 @@ impl UnitConfig {
 
     /// Whether the RTL builds this configuration.
     pub fn check(&self) -> Result<(), UnitConfigError> {
-        if self.lanes != 1 {
+        if !(1..=MAX_LANES).contains(&self.lanes) {
             return Err(UnitConfigError::Lanes(self.lanes));
         }
         if self.slots != UNIT_SLOTS {

@@ -315,7 +315,7 @@ macro_rules! axil_top {
                     hit_tvalid: Default::default(),
                     hit_tready: Default::default(),
                     control: UnitControl::new(config),
-                    unit: <$unit>::new(config.depth, config.stack_depth),
+                    unit: <$unit>::new(config.depth, config.stack_depth, config.lanes),
                 }
             }
         }

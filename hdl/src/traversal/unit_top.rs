@@ -5,12 +5,12 @@
 
 use super::unit::UnitConfig;
 
-/// Defines `UnitTop` over the lane type `$lane` (the MT lane's ports and
-/// `new(depth)` / `latency(depth)`), its aliases per scene memory size and `verilog`.
+/// Defines `UnitTop` over the lane type `$lane` (the accelerator's `LaneSlot` of a format:
+/// the MT lane behind a packed query port) and its latency `$latency(depth)`, its aliases per
+/// scene memory size and `verilog`.
 macro_rules! unit_top {
-    ($lane:ty) => {
+    ($lane:ty, $latency:path) => {
         use rust_hdl::prelude::*;
-        use $crate::regmap::OPERAND_COUNT;
         use $crate::traversal::scene_memory::{triangle_record_bits, ERROR_CODE_BITS};
         use $crate::traversal::unit::{TraversalCore, HIT_BITS, RAY_BITS};
 
@@ -55,7 +55,7 @@ macro_rules! unit_top {
             pub count_mt_tests: Signal<Out, Bits<32>>,
             pub count_busy_cycles: Signal<Out, Bits<32>>,
             core: TraversalCore<NB, TB, LF, LC, NW, TW, S, SB, PB, AB, W>,
-            lane: $lane,
+            lanes: Vec<$lane>,
         }
 
         impl<
@@ -72,8 +72,9 @@ macro_rules! unit_top {
                 const W: usize,
             > UnitTop<NB, TB, LF, LC, NW, TW, S, SB, PB, AB, W>
         {
-            /// Operators with `depth` pipeline registers each, stacks of `stack_depth`.
-            pub fn new(depth: usize, stack_depth: usize) -> Self {
+            /// Operators with `depth` pipeline registers each, stacks of `stack_depth`, `lanes`
+            /// MT lanes.
+            pub fn new(depth: usize, stack_depth: usize, lanes: usize) -> Self {
                 Self {
                     clock: Default::default(),
                     reset_n: Default::default(),
@@ -101,8 +102,8 @@ macro_rules! unit_top {
                     count_box_tests: Default::default(),
                     count_mt_tests: Default::default(),
                     count_busy_cycles: Default::default(),
-                    core: TraversalCore::new(depth, stack_depth, <$lane>::latency(depth)),
-                    lane: <$lane>::new(depth),
+                    core: TraversalCore::new(depth, stack_depth, lanes, $latency(depth)),
+                    lanes: (0..lanes).map(|_| <$lane>::new(depth)).collect(),
                 }
             }
         }
@@ -124,7 +125,6 @@ macro_rules! unit_top {
             #[hdl_gen]
             fn update(&mut self) {
                 self.core.clock.next = self.clock.val();
-                self.lane.clock.next = self.clock.val();
                 self.core.reset_n.next = self.reset_n.val();
                 self.core.scene_start.next = self.scene_start.val();
                 self.core.scene_tdata.next = self.scene_tdata.val();
@@ -150,14 +150,15 @@ macro_rules! unit_top {
                 self.count_box_tests.next = self.core.count_box_tests.val();
                 self.count_mt_tests.next = self.core.count_mt_tests.val();
                 self.count_busy_cycles.next = self.core.count_busy_cycles.val();
-                self.lane.valid_in.next = self.core.lane_valid.val();
-                for k in 0..OPERAND_COUNT {
-                    self.lane.query[k].next = self.core.lane_query[k].val();
+                for l in 0..self.lanes.len() {
+                    self.lanes[l].clock.next = self.clock.val();
+                    self.lanes[l].valid_in.next = self.core.lane_valid[l].val();
+                    self.lanes[l].query.next = self.core.lane_query[l].val();
+                    self.core.lane_hit[l].next = self.lanes[l].hit.val();
+                    self.core.lane_t[l].next = self.lanes[l].t.val();
+                    self.core.lane_u[l].next = self.lanes[l].u.val();
+                    self.core.lane_v[l].next = self.lanes[l].v.val();
                 }
-                self.core.lane_hit.next = self.lane.hit.val();
-                self.core.lane_t.next = self.lane.t.val();
-                self.core.lane_u.next = self.lane.u.val();
-                self.core.lane_v.next = self.lane.v.val();
             }
         }
 
@@ -172,17 +173,22 @@ macro_rules! unit_top {
 
         /// The unit's Verilog with a scene memory of `(node bits, triangle bits)`, one of
         /// the aliases' (checked by `UnitConfig::check`).
-        pub fn verilog(depth: usize, stack_depth: usize, memory: (usize, usize)) -> String {
+        pub fn verilog(
+            depth: usize,
+            stack_depth: usize,
+            lanes: usize,
+            memory: (usize, usize),
+        ) -> String {
             fn generate<U: Block>(unit: U) -> String {
                 let mut unit = Box::new(unit);
                 unit.connect_all();
                 generate_verilog(unit.as_ref())
             }
             match memory {
-                (4, 5) => generate(Unit4x5::new(depth, stack_depth)),
-                (9, 10) => generate(Unit9x10::new(depth, stack_depth)),
-                (11, 12) => generate(Unit11x12::new(depth, stack_depth)),
-                _ => generate(Unit12x13::new(depth, stack_depth)),
+                (4, 5) => generate(Unit4x5::new(depth, stack_depth, lanes)),
+                (9, 10) => generate(Unit9x10::new(depth, stack_depth, lanes)),
+                (11, 12) => generate(Unit11x12::new(depth, stack_depth, lanes)),
+                _ => generate(Unit12x13::new(depth, stack_depth, lanes)),
             }
         }
     };
@@ -194,12 +200,16 @@ macro_rules! per_format {
     ($($name:ident: $kind:ident($($arg:tt),*), $description:literal;)*) => {
         $(
             pub mod $name {
-                unit_top!($crate::formats::$name::MtLane);
+                unit_top!(
+                    $crate::top::accelerator::$name::LaneSlot,
+                    $crate::top::accelerator::$name::Accelerator::latency
+                );
             }
         )*
 
         /// Verilog generators of the units, in catalogue order.
-        static UNITS: &[fn(usize, usize, (usize, usize)) -> String] = &[$($name::verilog),*];
+        static UNITS: &[fn(usize, usize, usize, (usize, usize)) -> String] =
+            &[$($name::verilog),*];
     };
 }
 
@@ -208,5 +218,5 @@ hw_model::hw_formats!(per_format);
 /// The Verilog of a checked configuration (`unit::unit_verilog` checks and calls this).
 pub(super) fn verilog(config: &UnitConfig) -> String {
     let memory = (config.memory.node_bits, config.memory.triangle_bits);
-    UNITS[usize::from(config.format.code())](config.depth, config.stack_depth, memory)
+    UNITS[usize::from(config.format.code())](config.depth, config.stack_depth, config.lanes, memory)
 }
