@@ -130,7 +130,9 @@ proptest! {
     }
 }
 
-// More lanes: fewer cases, each lane count one more Verilated build.
+// More lanes: fewer cases, each lane count one more Verilated build (about 2 min cold). Three
+// lanes only adds a third copy of what two exercise, so it is ignored to keep `make test`
+// inside its budget: `cargo test --release -p sim --test traversal_unit_verilator -- --ignored`.
 proptest! {
     #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
 
@@ -143,6 +145,7 @@ proptest! {
     }
 
     #[test]
+    #[ignore]
     fn the_three_lane_unit_equals_the_model_on_random_meshes_and_rays(
         tris in mesh(),
         rays in prop::collection::vec(ray(), 1..40),
