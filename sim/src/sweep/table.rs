@@ -174,6 +174,29 @@ pub fn smallest_format_above<'q>(
         .min_by(|a, b| (a.bits, &a.format).cmp(&(b.bits, &b.format)))
 }
 
+/// The header and alignment rows of a table with a column per scene: the leading and trailing
+/// columns (header cells, alignment cells) around one `scene_align` cell per scene.
+fn scene_table_head(
+    s: &mut String,
+    lead: (&str, &str),
+    scenes: &[String],
+    scene_align: &str,
+    tail: (&str, &str),
+) -> std::fmt::Result {
+    write!(s, "{}", lead.0)?;
+    for scene in scenes {
+        write!(s, " {scene} |")?;
+    }
+    writeln!(s, "{}", tail.0)?;
+    writeln!(
+        s,
+        "{}{}{}",
+        lead.1,
+        scene_align.repeat(scenes.len()),
+        tail.1
+    )
+}
+
 pub fn markdown(results: &Results) -> Result<String> {
     let mut s = String::new();
     writeln!(s, "# Sweep results\n")?;
@@ -237,15 +260,12 @@ pub fn markdown(results: &Results) -> Result<String> {
             s,
             "\n## Quality per scene (model engine vs f32; PSNR dB / differing pixels)\n"
         )?;
-        write!(s, "| format | policy | bits |")?;
-        for scene in &results.scenes {
-            write!(s, " {scene} |")?;
-        }
-        writeln!(s, " min PSNR |")?;
-        writeln!(
-            s,
-            "|---|---|---:|{}---:|",
-            "---|".repeat(results.scenes.len())
+        scene_table_head(
+            &mut s,
+            ("| format | policy | bits |", "|---|---|---:|"),
+            &results.scenes,
+            "---|",
+            (" min PSNR |", "---:|"),
         )?;
         for q in &results.quality {
             let tag = if results.model_formats.contains(&q.format) {
@@ -285,15 +305,12 @@ pub fn markdown(results: &Results) -> Result<String> {
             "\n## Dual precision (model only: no hardware, so no points or resources)\n"
         )?;
         writeln!(s, "Share of each scene's Möller-Trumbore tests the filter forwards to the fallback; all = over every scene's tests; = fallback: every image equals the fallback format's model render under the same policy; min PSNR against f32.\n")?;
-        write!(s, "| pair | policy |")?;
-        for scene in &results.scenes {
-            write!(s, " {scene} |")?;
-        }
-        writeln!(s, " all | = fallback | min PSNR |")?;
-        writeln!(
-            s,
-            "|---|---|{}---:|---|---:|",
-            "---:|".repeat(results.scenes.len())
+        scene_table_head(
+            &mut s,
+            ("| pair | policy |", "|---|---|"),
+            &results.scenes,
+            "---:|",
+            (" all | = fallback | min PSNR |", "---:|---|---:|"),
         )?;
         for d in &results.dual {
             write!(s, "| {} | {} |", d.pair, d.policy)?;
