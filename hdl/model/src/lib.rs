@@ -9,6 +9,7 @@
 
 pub mod catalogue;
 pub mod dual;
+pub mod edges;
 pub mod engine;
 mod fixed;
 mod float;
@@ -19,6 +20,7 @@ pub mod traversal;
 
 pub use catalogue::{catalogue, lookup, HwFormat, NamedFormat};
 pub use dual::{DualIntersector, FormatChoice, FormatPair};
+pub use edges::Edges;
 pub use engine::ModelIntersector;
 pub use format::{Format, FormatError, Overflow, Quant};
-pub use mt::{mt_model, mt_model_scaled, scale_query, MtQuery, MtResult};
+pub use mt::{mt_model, mt_model_edges, mt_model_scaled, scale_query, MtQuery, MtResult};

@@ -1,5 +1,7 @@
 //! The Möller-Trumbore test in any format, in exactly the hardware's operation order.
 
+use crate::edges::{tolerances, Edges, LaneValues, Rounding};
+use crate::float::FloatFormat;
 use crate::format::{with_arith, Arith, Format};
 
 // The query and result types belong to the renderer's seam; the model answers them.
@@ -60,13 +62,14 @@ pub fn scale_query(q: &MtQuery, scale_exp: i32) -> MtQuery {
     }
 }
 
-/// The test in `format` on `q` scaled by 2^`scale_exp` ([`scale_query`]; 0: as given).
+/// The test in `format` with the edge test `edges` on `q` scaled by 2^`scale_exp`
+/// ([`scale_query`]; 0: as given).
 #[inline]
-pub fn mt_model_scaled(format: &Format, scale_exp: i32, q: &MtQuery) -> MtResult {
+pub fn mt_model_scaled(format: &Format, scale_exp: i32, edges: Edges, q: &MtQuery) -> MtResult {
     if scale_exp == 0 {
-        mt_model(format, q)
+        mt_model_edges(format, edges, q)
     } else {
-        mt_model(format, &scale_query(q, scale_exp))
+        mt_model_edges(format, edges, &scale_query(q, scale_exp))
     }
 }
 
@@ -80,11 +83,26 @@ pub fn mt_model_scaled(format: &Format, scale_exp: i32, q: &MtQuery) -> MtResult
 /// format converts NaN to 0 and ±Inf to its largest/smallest value (the SPEC's conversion).
 #[inline]
 pub fn mt_model(format: &Format, q: &MtQuery) -> MtResult {
-    with_arith!(format, f => mt_in(f, q))
+    mt_model_edges(format, Edges::Exact, q)
+}
+
+/// [`mt_model`] with the edge test `edges` (`crate::edges`; the hardware lanes are
+/// [`Edges::Exact`]).
+#[inline]
+pub fn mt_model_edges(format: &Format, edges: Edges, q: &MtQuery) -> MtResult {
+    let rounding = (edges == Edges::Conservative).then(|| Rounding::of(format));
+    with_arith!(format, f => tests(f, &datapath(f, q), rounding.as_ref()))
 }
 
 /// The datapath's values before the tests, as raw bits of the format.
 struct Datapath {
+    dir: V,
+    e1: V,
+    e2: V,
+    s: V,
+    p: V,
+    q: V,
+    inv: u64,
     det: u64,
     /// The numerators s·p, dir·q, e2·q of u, v, t.
     num: [u64; 3],
@@ -113,6 +131,13 @@ fn datapath<A: Arith>(f: A, q: &MtQuery) -> Datapath {
     let eq = dot(f, &e2, &qv);
     let t = f.mul(eq, inv);
     Datapath {
+        dir,
+        e1,
+        e2,
+        s,
+        p,
+        q: qv,
+        inv,
         det,
         num: [su, dq, eq],
         u,
@@ -123,30 +148,59 @@ fn datapath<A: Arith>(f: A, q: &MtQuery) -> Datapath {
     }
 }
 
-fn mt_in<A: Arith>(f: A, q: &MtQuery) -> MtResult {
-    tests(f, &datapath(f, q))
-}
-
-/// The tests on the datapath's values, and the result converted back to fp32.
-fn tests<A: Arith>(f: A, d: &Datapath) -> MtResult {
+/// The tests on the datapath's values, and the result converted back to fp32; with a
+/// `rounding`, the conservative edge test of that rounding ([`Edges::Conservative`]).
+fn tests<A: Arith>(f: A, d: &Datapath, rounding: Option<&Rounding>) -> MtResult {
     let (zero, one, eps) = (
         f.convert_in_f32(0.0),
         f.convert_in_f32(1.0),
         f.convert_in_f32(DET_EPSILON),
     );
     let parallel = f.lt(d.det, eps) && f.lt(f.neg(eps), d.det);
-    let hit = !parallel
-        && !f.lt(d.u, zero)
-        && !f.lt(one, d.u)
-        && !f.lt(d.v, zero)
-        && !f.lt(one, d.uv)
-        && f.lt(d.t_min, d.t);
+    let inside = !f.lt(d.u, zero) && !f.lt(one, d.u) && !f.lt(d.v, zero) && !f.lt(one, d.uv);
+    // The widened test accepts a superset of the exact one: its bound is evaluated only for
+    // the queries the exact comparisons reject.
+    let widened = || {
+        rounding.is_some_and(|r| {
+            let x = lane_values(f, d);
+            tolerances(r, &x).is_some_and(|w| w.accept(&x))
+        })
+    };
+    let hit = !parallel && f.lt(d.t_min, d.t) && (inside || widened());
     MtResult {
         hit,
         t: f.convert_out_f32(d.t),
         u: f.convert_out_f32(d.u),
         v: f.convert_out_f32(d.v),
     }
+}
+
+/// The datapath's values the edge bound reads, exactly.
+fn lane_values<A: Arith>(f: A, d: &Datapath) -> LaneValues {
+    let x = |bits: u64| f64::from_bits(f.convert_out(FloatFormat::F64, bits));
+    let v = |b: V| b.map(x);
+    LaneValues {
+        dir: v(d.dir),
+        e1: v(d.e1),
+        e2: v(d.e2),
+        s: v(d.s),
+        p: v(d.p),
+        q: v(d.q),
+        det: x(d.det),
+        su: x(d.num[0]),
+        dq: x(d.num[1]),
+        inv: x(d.inv),
+        u: x(d.u),
+        v: x(d.v),
+        uv: x(d.uv),
+    }
+}
+
+/// [`mt_model`]'s datapath values in `format` and the tolerances of its conservative edge
+/// test (`None`: the bound decides nothing and the lane keeps the exact comparisons).
+pub fn edge_bound(format: &Format, q: &MtQuery) -> (LaneValues, Option<crate::edges::Tolerances>) {
+    let x = with_arith!(format, f => lane_values(f, &datapath(f, q)));
+    (x, tolerances(&Rounding::of(format), &x))
 }
 
 /// The values the tests compare, exactly (every valid format's values are f64 values).
@@ -166,7 +220,7 @@ pub struct MtValues {
 pub fn mt_traced(format: &Format, q: &MtQuery) -> (MtResult, MtValues) {
     let (result, d) = with_arith!(format, f => {
         let d = datapath(f, q);
-        (tests(f, &d), d)
+        (tests(f, &d, None), d)
     });
     let x = |bits| format.to_f64(bits);
     let values = MtValues {

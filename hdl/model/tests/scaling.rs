@@ -4,7 +4,7 @@
 //! parallel-ray threshold (which is not scaled: docs/precision.md).
 
 use hw_model::mt::DET_EPSILON;
-use hw_model::{lookup, mt_model, mt_model_scaled, MtQuery};
+use hw_model::{lookup, mt_model, mt_model_scaled, Edges, MtQuery};
 use proptest::prelude::*;
 
 /// A coordinate on the grid j·2^-8, |x| ≤ 64: every nonzero intermediate of the test is at
@@ -49,7 +49,7 @@ proptest! {
         prop_assume!(det > 2.0 * eps && det * 2f64.powi(3 * k) > 2.0 * eps);
         let fp32 = lookup("fp32").unwrap();
         let want = mt_model(&fp32, &q);
-        let got = mt_model_scaled(&fp32, k, &q);
+        let got = mt_model_scaled(&fp32, k, Edges::Exact, &q);
         prop_assert_eq!(got.hit, want.hit);
         prop_assert_eq!(got.t.to_bits(), want.t.to_bits(), "t {} vs {}", got.t, want.t);
         prop_assert_eq!(got.u.to_bits(), want.u.to_bits());
@@ -69,9 +69,9 @@ fn scaling_beyond_the_range_changes_results() {
         t_min: 0.0,
     };
     let fp16 = lookup("fp16").unwrap();
-    assert_eq!(mt_model_scaled(&fp16, 3, &q).t, 2.0);
+    assert_eq!(mt_model_scaled(&fp16, 3, Edges::Exact, &q).t, 2.0);
     assert!(
-        !mt_model_scaled(&fp16, 8, &q).hit,
+        !mt_model_scaled(&fp16, 8, Edges::Exact, &q).hit,
         "det = 2^24 overflows fp16"
     );
 }

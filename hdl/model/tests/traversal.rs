@@ -308,8 +308,8 @@ fn format_aware_renders_equal_the_bvh_path_in_a_narrow_scaled_format() {
             memory: SceneMemory::Unbounded,
         };
         let bvh = ModelIntersector {
-            format: fp16,
             scale_exp,
+            ..ModelIntersector::new(fp16)
         };
         let a = render(&scene, &unit, &opts).unwrap().image;
         let b = render(&scene, &bvh, &opts).unwrap().image;

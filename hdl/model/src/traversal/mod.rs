@@ -38,6 +38,7 @@ use thiserror::Error;
 
 use crate::format::Format;
 use crate::mt::mt_model_scaled;
+use crate::Edges;
 use box_test::{box_test, ray_setup, t_hi, BoxResult};
 
 /// Entries of a ray's traversal stack unless configured otherwise: a walk pushes at most one
@@ -275,9 +276,11 @@ impl TraversalModel {
                 continue;
             }
             counters.mt_tests += 1;
+            // The unit's lanes are the hardware's: exact edges.
             let r = mt_model_scaled(
                 &self.format,
                 self.scale_exp,
+                Edges::Exact,
                 &MtQuery {
                     orig: ray.orig,
                     dir: ray.dir,
