@@ -4,25 +4,28 @@ use sw_renderer::intersect::{Intersector, MtQuery, MtResult};
 use sw_renderer::rays::EngineError;
 
 use crate::mt::mt_model_scaled;
-use crate::{catalogue, Edges, Format};
+use crate::{catalogue, Advance, Edges, Format};
 
 /// Answers every query with [`crate::mt_model_edges`] in `format` with the edge test `edges`,
-/// on the query scaled by 2^`scale_exp` (`crate::precision::auto_scale_exp`; 0: unscaled).
-/// The port stays fp32.
+/// on the query's ray started where `advance` says, scaled by 2^`scale_exp`
+/// (`crate::precision::auto_scale_exp`; 0: unscaled). The port stays fp32.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ModelIntersector {
     pub format: Format,
     pub scale_exp: i32,
     pub edges: Edges,
+    pub advance: Advance,
 }
 
 impl ModelIntersector {
-    /// The unscaled model of `format` with the hardware's exact edge test.
+    /// The unscaled model of `format` as the hardware lanes compute: exact edges, the ray
+    /// from its origin.
     pub fn new(format: Format) -> ModelIntersector {
         ModelIntersector {
             format,
             scale_exp: 0,
             edges: Edges::Exact,
+            advance: Advance::None,
         }
     }
 }
@@ -44,7 +47,9 @@ impl Intersector for ModelIntersector {
     ) -> Result<(), EngineError> {
         assert_eq!(queries.len(), results.len(), "one result slot per query");
         for (q, r) in queries.iter().zip(results.iter_mut()) {
-            *r = mt_model_scaled(&self.format, self.scale_exp, self.edges, q);
+            *r = self.advance.run(q, |q| {
+                mt_model_scaled(&self.format, self.scale_exp, self.edges, q)
+            });
         }
         Ok(())
     }

@@ -7,6 +7,7 @@
 //! `sw_renderer::rays`): the model as an intersector ([`engine`]) and the traversal unit's
 //! model ([`traversal`]); the renderer itself depends on no hardware crate.
 
+pub mod advance;
 pub mod catalogue;
 pub mod dual;
 pub mod edges;
@@ -18,6 +19,7 @@ pub mod mt;
 pub mod precision;
 pub mod traversal;
 
+pub use advance::Advance;
 pub use catalogue::{catalogue, lookup, HwFormat, NamedFormat};
 pub use dual::{DualIntersector, FormatChoice, FormatPair};
 pub use edges::Edges;
