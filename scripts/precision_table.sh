@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # PSNR of model-engine renders of the thesis' scenes against their f32 renders, per format,
-# spawn policy and scaling (docs/precision.md). Prints a Markdown table; one row per
-# format × policy × scaling, one column per scene and the worst.
+# spawn policy, scaling, edge test and origin advance (docs/precision.md). Prints a Markdown
+# table; one row per combination, one column per scene and the worst.
 #
 #   scripts/precision_table.sh [FORMATS...]
 #
 # Environment: RTFPGA (the binary, default target/release/rtfpga), RTFPGA_THESIS_SCENES
 # (default ../shared/scenes/thesis), SIZE (default 320x180), OUT (work directory, default a
-# temporary one), ENGINE (model or traversal, default model).
+# temporary one), ENGINE (model or traversal, default model); the lists to combine: SPAWNS
+# (default "thesis format-aware"), SCALES (default "none auto"), EDGES (default "exact") and
+# ADVANCES (default "none"; the model engine's lane options, `rtfpga render --edges`,
+# `--advance`).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bin=${RTFPGA:-$root/target/release/rtfpga}
@@ -21,6 +24,10 @@ formats=("$@")
 if [ ${#formats[@]} -eq 0 ]; then
     formats=(fp32 fp24 e8m14 e8m12 bf16 fp16 e5m14 e6m13 fx32_16 'fx<24,12>')
 fi
+read -r -a spawns <<<"${SPAWNS:-thesis format-aware}"
+read -r -a scales <<<"${SCALES:-none auto}"
+read -r -a edges_list <<<"${EDGES:-exact}"
+read -r -a advances <<<"${ADVANCES:-none}"
 scenes=(Glass_pen_scene Simple_plane_scene Glasses_scene Glasses_point_scene
     Simple_plane2_scene Utah_teapot_scene All_materials_scene)
 psnr() { "$bin" compare "$1" "$2" | tail -1 | sed 's/psnr_db=//'; }
@@ -29,26 +36,31 @@ render() { "$bin" render --scene "$scenes_dir/$1" --width "$w" --height "$h" --q
 for s in "${scenes[@]}"; do
     [ -f "$out/ref_$s.png" ] || render "$s" "$out/ref_$s.png" --engine f32
 done
-printf '| format | spawn | scale |'
+printf '| format | spawn | scale | edges | advance |'
 for s in "${scenes[@]}"; do printf ' %s |' "${s%_scene}"; done
-printf ' worst |\n|---|---|---|'
+printf ' worst |\n|---|---|---|---|---|'
 for _ in "${scenes[@]}"; do printf -- '---|'; done
 printf -- '---|\n'
 for f in "${formats[@]}"; do
-    for spawn in thesis format-aware; do
-        for scale in none auto; do
-            printf '| %s | %s | %s |' "$f" "$spawn" "$scale"
-            worst=inf
-            for s in "${scenes[@]}"; do
-                img="$out/${f}_${spawn}_${scale}_$s.png"
-                # A format (fx<24,12>) may be spelled with characters a file name avoids.
-                img=${img//[<>,]/_}
-                render "$s" "$img" --engine "$engine" --format "$f" --spawn "$spawn" --scale "$scale"
-                p=$(psnr "$out/ref_$s.png" "$img")
-                printf ' %s |' "$p"
-                worst=$(awk -v a="$worst" -v b="$p" 'BEGIN { if (a == "inf") print b; else if (b == "inf") print a; else print (b + 0 < a + 0) ? b : a }')
+    for spawn in "${spawns[@]}"; do
+        for scale in "${scales[@]}"; do
+            for edges in "${edges_list[@]}"; do
+                for advance in "${advances[@]}"; do
+                    printf '| %s | %s | %s | %s | %s |' "$f" "$spawn" "$scale" "$edges" "$advance"
+                    worst=inf
+                    for s in "${scenes[@]}"; do
+                        img="$out/${f}_${spawn}_${scale}_${edges}_${advance}_$s.png"
+                        # A format (fx<24,12>) may be spelled with characters a file name avoids.
+                        img=${img//[<>,]/_}
+                        render "$s" "$img" --engine "$engine" --format "$f" --spawn "$spawn" \
+                            --scale "$scale" --edges "$edges" --advance "$advance"
+                        p=$(psnr "$out/ref_$s.png" "$img")
+                        printf ' %s |' "$p"
+                        worst=$(awk -v a="$worst" -v b="$p" 'BEGIN { if (a == "inf") print b; else if (b == "inf") print a; else print (b + 0 < a + 0) ? b : a }')
+                    done
+                    printf ' %s |\n' "$worst"
+                done
             done
-            printf ' %s |\n' "$worst"
         done
     done
 done

@@ -53,13 +53,14 @@ pub fn run(a: Args) -> Result<()> {
         bail!("--scene-capacity and --no-chunks describe the traversal unit: use them with --engine traversal");
     }
     let scene = Scene::load(&a.scene)?;
-    let (spawn, scale_exp) = a.precision.resolve(a.engine, &a.hw, &scene)?;
+    let precision = a.precision.resolve(a.engine, &a.hw, &scene)?;
+    let (spawn, scale_exp, lane) = (precision.spawn, precision.scale_exp, precision.lane);
     // The model's memory is the RTL's when --unit-memory names it.
     let memory = MemoryArgs {
         scene_capacity: a.memory.scene_capacity.or(a.hw.unit_memory),
         ..a.memory.clone()
     };
-    let made = engine::make_scaled(a.engine, &a.hw, scale_exp, memory.memory(a.hw.lanes))?;
+    let made = engine::make_scaled(a.engine, &a.hw, scale_exp, lane, memory.memory(a.hw.lanes))?;
     let engine = made.engine;
     let opts = RenderOptions {
         width: a.width,
@@ -73,7 +74,7 @@ pub fn run(a: Args) -> Result<()> {
     let s = &out.stats;
     let secs = s.render_time.as_secs_f64();
     println!(
-        "scene={} engine={} spawn={} scale_exp={} size={}x{} triangles={} rays={} mt_queries={} box_tests={} node_visits={} prepare_s={:.3} render_s={:.3} mrays_per_s={:.2}",
+        "scene={} engine={} spawn={} scale_exp={} edges={} advance={} size={}x{} triangles={} rays={} mt_queries={} box_tests={} node_visits={} prepare_s={:.3} render_s={:.3} mrays_per_s={:.2}",
         scene.name,
         engine.name(),
         match spawn {
@@ -81,6 +82,8 @@ pub fn run(a: Args) -> Result<()> {
             SpawnPolicy::FormatAware(_) => "format-aware",
         },
         scale_exp,
+        lane.edges,
+        lane.advance,
         out.image.width(),
         out.image.height(),
         scene.triangle_count(),

@@ -12,7 +12,7 @@ use hw_model::dual::{
 };
 use hw_model::precision::{auto_scale_exp, SceneRange, SpawnChoice};
 use hw_model::traversal::{SceneCapacity, SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
-use hw_model::{Format, ModelIntersector};
+use hw_model::{Advance, Edges, Format, ModelIntersector};
 use sim::hw_intersector::{HwIntersector, Mode};
 use sw_renderer::intersect::F32Intersector;
 use sw_renderer::rays::RayEngine;
@@ -97,7 +97,8 @@ impl DualFilter {
 }
 
 pub fn make(kind: EngineKind, hw: &HwConfig) -> Result<Box<dyn RayEngine>> {
-    Ok(make_scaled(kind, hw, 0, MemoryArgs::default().memory(hw.lanes))?.engine)
+    let memory = MemoryArgs::default().memory(hw.lanes);
+    Ok(make_scaled(kind, hw, 0, Lane::default(), memory)?.engine)
 }
 
 /// An engine, and for a dual-precision pair a handle on its counters.
@@ -108,12 +109,14 @@ pub struct Made {
 }
 
 /// The engine, its Möller-Trumbore queries scaled by 2^`scale_exp` (model engines only; a
-/// pair scales its filter, its fallback answers the queries as given), a traversal unit with
-/// the scene `memory`.
+/// pair scales its filter, its fallback answers the queries as given), the model engine's
+/// lane options `lane` ([`PrecisionArgs::resolve`] checks that only it gets others than the
+/// hardware's), a traversal unit with the scene `memory`.
 pub fn make_scaled(
     kind: EngineKind,
     hw: &HwConfig,
     scale_exp: i32,
+    lane: Lane,
     memory: SceneMemory,
 ) -> Result<Made> {
     if let (EngineKind::Model, FormatChoice::Pair(pair)) = (kind, hw.format) {
@@ -131,6 +134,8 @@ pub fn make_scaled(
         EngineKind::Model => Box::new(ModelIntersector {
             format: hw.single_format()?,
             scale_exp,
+            edges: lane.edges,
+            advance: lane.advance,
         }),
         EngineKind::Hw => Box::new(HwIntersector::new(&hw.top_config()?, Mode::Stream)?),
         EngineKind::Traversal => Box::new(hw.traversal_engine(scale_exp, memory)?),
@@ -153,7 +158,36 @@ fn spawn_choice() -> impl TypedValueParser<Value = SpawnChoice> {
         .try_map(|name| name.parse::<SpawnChoice>())
 }
 
-/// `--spawn` and `--scale`: reduced precision that renders (docs/precision.md).
+/// `--edges`'s parser: the edge tests' names, listed in the help.
+fn edges_choice() -> impl TypedValueParser<Value = Edges> {
+    clap::builder::PossibleValuesParser::new(Edges::ALL.map(Edges::name))
+        .try_map(|name| name.parse::<Edges>())
+}
+
+/// `--advance`'s parser: the choices' names, listed in the help.
+fn advance_choice() -> impl TypedValueParser<Value = Advance> {
+    clap::builder::PossibleValuesParser::new(Advance::ALL.map(Advance::name))
+        .try_map(|name| name.parse::<Advance>())
+}
+
+/// The model lane's options beyond its format (docs/precision.md): the hardware lanes' are
+/// the defaults.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Lane {
+    pub edges: Edges,
+    pub advance: Advance,
+}
+
+/// What `PrecisionArgs` resolve to for one render.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Precision {
+    pub spawn: SpawnPolicy,
+    pub scale_exp: i32,
+    pub lane: Lane,
+}
+
+/// `--spawn`, `--scale`, `--edges` and `--advance`: reduced precision that renders
+/// (docs/precision.md).
 #[derive(ClapArgs, Clone, Debug)]
 pub struct PrecisionArgs {
     /// Spawn policy of secondary and shadow rays: thesis (origin offset by the scene's bias)
@@ -165,17 +199,22 @@ pub struct PrecisionArgs {
     /// [default: none].
     #[arg(long, value_enum)]
     pub scale: Option<ScaleKind>,
+    /// The model lane's edge test: exact (the hardware's) or conservative (widened by its
+    /// running error bound), model engine with one format only [default: exact].
+    #[arg(long, value_parser = edges_choice())]
+    pub edges: Option<Edges>,
+    /// Where the model lane starts a query's ray: none (at its origin, the hardware's) or
+    /// triangle-box (moved in fp32 to where it enters the triangle's bounding box), model
+    /// engine with one format only [default: triangle-box for a format-aware model render,
+    /// else none].
+    #[arg(long, value_parser = advance_choice())]
+    pub advance: Option<Advance>,
 }
 
 impl PrecisionArgs {
-    /// The spawn policy and the scale exponent for rendering `scene` with `kind` in `hw`'s
-    /// format.
-    pub fn resolve(
-        &self,
-        kind: EngineKind,
-        hw: &HwConfig,
-        scene: &Scene,
-    ) -> Result<(SpawnPolicy, i32)> {
+    /// The spawn policy, the scale exponent and the lane options for rendering `scene` with
+    /// `kind` in `hw`'s format.
+    pub fn resolve(&self, kind: EngineKind, hw: &HwConfig, scene: &Scene) -> Result<Precision> {
         // A pair answers as its fallback (unscaled); only its filter is scaled.
         let (answers, scaled) = match hw.format {
             FormatChoice::Single(f) => (f, f),
@@ -206,7 +245,41 @@ impl PrecisionArgs {
         } else {
             SpawnChoice::FormatAware
         });
-        Ok((choice.policy(&answers, answer_scale), scale_exp))
+        // The lane options exist in the model of one format only; elsewhere only the
+        // hardware's are accepted.
+        let single_model =
+            kind == EngineKind::Model && matches!(hw.format, FormatChoice::Single(_));
+        let lane = if single_model {
+            let format_aware = choice == SpawnChoice::FormatAware;
+            Lane {
+                edges: self.edges.unwrap_or_default(),
+                // Measured: the moved origin is what takes e5m14 past 40 dB
+                // (docs/precision.md).
+                advance: self.advance.unwrap_or(if format_aware {
+                    Advance::TriangleBox
+                } else {
+                    Advance::None
+                }),
+            }
+        } else {
+            let asked = Lane {
+                edges: self.edges.unwrap_or_default(),
+                advance: self.advance.unwrap_or_default(),
+            };
+            if asked.edges != Edges::Exact || asked.advance != Advance::None {
+                bail!(
+                    "--edges {} --advance {}: model-only so far (--engine model with one format); the hardware lanes, the traversal unit and dual-precision pairs test exact edges from the query's origin",
+                    asked.edges,
+                    asked.advance
+                )
+            }
+            asked
+        };
+        Ok(Precision {
+            spawn: choice.policy(&answers, answer_scale),
+            scale_exp,
+            lane,
+        })
     }
 }
 

@@ -11,6 +11,7 @@ use std::time::Duration;
 use assert_cmd::Command;
 use hw_model::precision::{auto_scale_exp, spawn_policy, SceneRange};
 use hw_model::ModelIntersector;
+use hw_model::{Advance, Edges};
 use image::{Rgb, RgbImage};
 use predicates::prelude::*;
 use sw_renderer::intersect::F32Intersector;
@@ -483,7 +484,10 @@ fn render_model_fp16_is_format_aware_by_default_and_scales_on_request() {
         "--out",
     ];
     let out = ok(&[&args[..], &[s(&out_png)]].concat());
-    assert!(out.contains("spawn=format-aware scale_exp=0 "), "{out}");
+    assert!(
+        out.contains("spawn=format-aware scale_exp=0 edges=exact advance=triangle-box "),
+        "{out}"
+    );
     let out = ok(&[&args[..1], &["--scale", "auto"], &args[1..], &[s(&out_png)]].concat());
     let fp16 = hw_model::lookup("fp16").unwrap();
     let scene = Scene::load("simple_plane").unwrap();
@@ -499,8 +503,9 @@ fn render_model_fp16_is_format_aware_by_default_and_scales_on_request() {
         ..Default::default()
     };
     let engine = ModelIntersector {
-        format: fp16,
         scale_exp,
+        advance: Advance::TriangleBox,
+        ..ModelIntersector::new(fp16)
     };
     assert_eq!(
         read_png(&out_png),
@@ -521,7 +526,55 @@ fn render_model_fp16_is_format_aware_by_default_and_scales_on_request() {
         "--out",
         s(&out_png),
     ]);
-    assert!(out.contains("spawn=thesis scale_exp=0 "), "{out}");
+    assert!(
+        out.contains("spawn=thesis scale_exp=0 edges=exact advance=none "),
+        "{out}"
+    );
+}
+
+/// `--edges` and `--advance` reach the model lane: the CLI's image is the library's with the
+/// same options.
+#[test]
+fn render_model_takes_the_lane_options() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_png = dir.path().join("teapot.png");
+    let out = ok(&[
+        "render",
+        "--scene",
+        "utah_teapot",
+        "--width",
+        "32",
+        "--height",
+        "18",
+        "--engine",
+        "model",
+        "--format",
+        "e5m14",
+        "--edges",
+        "conservative",
+        "--advance",
+        "none",
+        "--quiet",
+        "--out",
+        s(&out_png),
+    ]);
+    assert!(out.contains("edges=conservative advance=none "), "{out}");
+    let e5m14 = hw_model::lookup("e5m14").unwrap();
+    let scene = Scene::load("utah_teapot").unwrap();
+    let opts = RenderOptions {
+        width: Some(32),
+        height: Some(18),
+        spawn: spawn_policy(&e5m14, 0),
+        ..Default::default()
+    };
+    let engine = ModelIntersector {
+        edges: Edges::Conservative,
+        ..ModelIntersector::new(e5m14)
+    };
+    assert_eq!(
+        read_png(&out_png),
+        render(&scene, &engine, &opts).unwrap().image
+    );
 }
 
 #[test]
@@ -552,6 +605,31 @@ fn bad_spawn_and_scale_arguments_are_errors() {
         1,
         &["--scale auto needs the model or traversal engine"],
     );
+    fails(
+        &[&base[..], &["--edges", "loose", "--out", s(&out_png)]].concat(),
+        2,
+        &["loose", "exact", "conservative"],
+    );
+    fails(
+        &[&base[..], &["--advance", "far", "--out", s(&out_png)]].concat(),
+        2,
+        &["far", "none", "triangle-box"],
+    );
+    // The lane options are the model's: other engines and pairs refuse them.
+    for (engine, format, option) in [
+        ("hw", "fp16", ["--edges", "conservative"]),
+        ("traversal", "fp16", ["--advance", "triangle-box"]),
+        ("f32", "fp32", ["--edges", "conservative"]),
+        ("model", "fp16/fp32", ["--advance", "triangle-box"]),
+    ] {
+        let args = ["--engine", engine, "--format", format, option[0], option[1]];
+        fails(
+            &[&base[..], &args[..], &["--out", s(&out_png)]].concat(),
+            1,
+            &["model-only so far"],
+        );
+    }
+    assert!(!out_png.exists());
 }
 
 // ---- formats, verilog ------------------------------------------------------------------
