@@ -266,7 +266,7 @@ impl PrecisionArgs {
                 edges: self.edges.unwrap_or_default(),
                 advance: self.advance.unwrap_or_default(),
             };
-            if asked.edges != Edges::Exact || asked.advance != Advance::None {
+            if asked != Lane::default() {
                 bail!(
                     "--edges {} --advance {}: model-only so far (--engine model with one format); the hardware lanes, the traversal unit and dual-precision pairs test exact edges from the query's origin",
                     asked.edges,

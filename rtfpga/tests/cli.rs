@@ -279,6 +279,22 @@ fn render_of_simple_plane_at_the_golden_size_equals_the_golden_image() {
         read_png(&out_png) == golden,
         "rtfpga render --scene simple_plane differs from golden/simple_plane.png"
     );
+    // The fp32 model with its defaults (thesis policy: exact edges, the query's origin).
+    let out = ok(&[
+        "render",
+        "--scene",
+        "simple_plane",
+        "--engine",
+        "model",
+        "--out",
+        s(&out_png),
+        "--quiet",
+    ]);
+    assert!(out.contains("edges=exact advance=none "), "{out}");
+    assert!(
+        read_png(&out_png) == golden,
+        "rtfpga render --engine model --scene simple_plane differs from golden/simple_plane.png"
+    );
 }
 
 #[test]
