@@ -9,9 +9,6 @@
 //! of the box. u and v do not change in exact arithmetic (they do not depend on where on the
 //! ray the origin is), t changes by the distance moved, which the lane adds back in fp32.
 
-use std::fmt;
-use std::str::FromStr;
-
 use serde::{Deserialize, Serialize};
 
 use crate::mt::{MtQuery, MtResult};
@@ -56,27 +53,7 @@ impl Advance {
     }
 }
 
-impl fmt::Display for Advance {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Advance {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        Advance::ALL
-            .into_iter()
-            .find(|a| a.name() == s)
-            .ok_or_else(|| {
-                let names: Vec<&str> = Advance::ALL.iter().map(|a| a.name()).collect();
-                format!(
-                    "unknown origin advance `{s}`: expected {}",
-                    names.join(" or ")
-                )
-            })
-    }
-}
+named_choice!(Advance, "origin advance");
 
 /// The hardware's fp32 (its operators: round to nearest even, subnormals flushed).
 const FP32: Format = Format::Float { exp: 8, man: 23 };

@@ -13,9 +13,6 @@
 //! datapath's own values, in a short float of [`HW_BOUND_BITS`] fraction bits with every
 //! result rounded up (small multipliers and adders, no division).
 
-use std::fmt;
-use std::str::FromStr;
-
 use serde::{Deserialize, Serialize};
 
 use crate::dual::HW_BOUND_BITS;
@@ -45,24 +42,7 @@ impl Edges {
     }
 }
 
-impl fmt::Display for Edges {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Edges {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        Edges::ALL
-            .into_iter()
-            .find(|e| e.name() == s)
-            .ok_or_else(|| {
-                let names: Vec<&str> = Edges::ALL.iter().map(|e| e.name()).collect();
-                format!("unknown edge test `{s}`: expected {}", names.join(" or "))
-            })
-    }
-}
+named_choice!(Edges, "edge test");
 
 /// The largest error of one rounding in a format.
 #[derive(Clone, Copy, Debug, PartialEq)]

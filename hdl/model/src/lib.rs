@@ -7,6 +7,35 @@
 //! `sw_renderer::rays`): the model as an intersector ([`engine`]) and the traversal unit's
 //! model ([`traversal`]); the renderer itself depends on no hardware crate.
 
+/// `Display` and `FromStr` of a closed list of named choices (a CLI value, a config value)
+/// from its `ALL` and `name()`: the error names `$what`, the bad value and the list.
+macro_rules! named_choice {
+    ($ty:ty, $what:literal) => {
+        impl std::fmt::Display for $ty {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str(self.name())
+            }
+        }
+
+        impl std::str::FromStr for $ty {
+            type Err = String;
+            fn from_str(s: &str) -> Result<Self, String> {
+                <$ty>::ALL
+                    .into_iter()
+                    .find(|c| c.name() == s)
+                    .ok_or_else(|| {
+                        let names: Vec<&str> = <$ty>::ALL.iter().map(|c| c.name()).collect();
+                        format!(
+                            concat!("unknown ", $what, " `{}`: expected {}"),
+                            s,
+                            names.join(" or ")
+                        )
+                    })
+            }
+        }
+    };
+}
+
 pub mod advance;
 pub mod catalogue;
 pub mod dual;

@@ -9,9 +9,6 @@
 //!   every intermediate is scaled exactly unless it over- or underflows; in a fixed format it
 //!   moves the values against the fixed quantisation step.
 
-use std::fmt;
-use std::str::FromStr;
-
 use serde::{Deserialize, Serialize};
 use sw_renderer::math::{mult_point, V3};
 use sw_renderer::scene::Scene;
@@ -78,27 +75,7 @@ impl SpawnChoice {
     }
 }
 
-impl fmt::Display for SpawnChoice {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for SpawnChoice {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        SpawnChoice::ALL
-            .into_iter()
-            .find(|c| c.name() == s)
-            .ok_or_else(|| {
-                let names: Vec<&str> = SpawnChoice::ALL.iter().map(|c| c.name()).collect();
-                format!(
-                    "unknown spawn policy `{s}`: expected {}",
-                    names.join(" or ")
-                )
-            })
-    }
-}
+named_choice!(SpawnChoice, "spawn policy");
 
 /// The sizes that bound Möller-Trumbore's intermediates in a scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
