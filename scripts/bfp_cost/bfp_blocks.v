@@ -23,13 +23,16 @@ module bfp_translate #(parameter G = 3) (
     end
 endmodule
 
-// Step 2: one block exponent for three components (x_k * 2^e_k), W-bit mantissas by an
-// arithmetic shift (truncation towards -inf).
+// Step 2 (and the truncated cross products of step 3): one block exponent for three
+// components (x_k * 2^e_k), W-bit mantissas by an arithmetic shift (truncation towards
+// -inf), and the exponent of the largest dropped part (the leading one of each component's
+// dropped bits, a 3-way max; dz when nothing was dropped).
 module bfp_block #(parameter IW = 29, W = 18) (
     input clk,
     input signed [IW-1:0] x0, x1, x2, input signed [9:0] e0, e1, e2,
-    output reg signed [W-1:0] m0, m1, m2, output reg signed [9:0] be);
-    function [5:0] bits(input [IW-1:0] x);  // position of the leading bit of x ^ sign
+    output reg signed [W-1:0] m0, m1, m2, output reg signed [9:0] be,
+    output reg signed [9:0] de, output reg dz);
+    function [6:0] bits(input [IW-1:0] x);  // position of the leading bit of x ^ sign
         integer i;
         reg [IW-1:0] y;
         begin
@@ -39,9 +42,17 @@ module bfp_block #(parameter IW = 29, W = 18) (
                 if (y[i]) bits = i + 1;
         end
     endfunction
-    wire signed [9:0] t0 = e0 + $signed({4'b0, bits(x0)});
-    wire signed [9:0] t1 = e1 + $signed({4'b0, bits(x1)});
-    wire signed [9:0] t2 = e2 + $signed({4'b0, bits(x2)});
+    function [6:0] ones(input [IW-1:0] x);  // position of the leading one of x, plus one
+        integer i;
+        begin
+            ones = 0;
+            for (i = 0; i < IW; i = i + 1)
+                if (x[i]) ones = i + 1;
+        end
+    endfunction
+    wire signed [9:0] t0 = e0 + $signed({3'b0, bits(x0)});
+    wire signed [9:0] t1 = e1 + $signed({3'b0, bits(x1)});
+    wire signed [9:0] t2 = e2 + $signed({3'b0, bits(x2)});
     wire signed [9:0] t01 = t0 > t1 ? t0 : t1;
     wire signed [9:0] top = t01 > t2 ? t01 : t2;
     wire signed [9:0] lsb = top - (W - 1);
@@ -56,11 +67,30 @@ module bfp_block #(parameter IW = 29, W = 18) (
             place = ext >>> s;
         end
     endfunction
+    // The bits below lsb: x masked to its low (lsb - e) bits.
+    function [IW-1:0] rest(input [IW-1:0] x, input signed [9:0] e, input signed [9:0] l);
+        reg signed [9:0] s;
+        begin
+            s = l - e;
+            if (s <= 0) rest = 0;
+            else if (s >= IW) rest = x;
+            else rest = x & ~({IW{1'b1}} << s);
+        end
+    endfunction
+    wire [IW-1:0] r0 = rest(x0, e0, lsb), r1 = rest(x1, e1, lsb), r2 = rest(x2, e2, lsb);
+    wire signed [9:0] d0 = e0 + $signed({3'b0, ones(r0)});
+    wire signed [9:0] d1 = e1 + $signed({3'b0, ones(r1)});
+    wire signed [9:0] d2 = e2 + $signed({3'b0, ones(r2)});
+    wire signed [9:0] a0 = r0 != 0 ? d0 : -10'sd512, a1 = r1 != 0 ? d1 : -10'sd512;
+    wire signed [9:0] a2 = r2 != 0 ? d2 : -10'sd512;
+    wire signed [9:0] d01 = a0 > a1 ? a0 : a1;
     always @(posedge clk) begin
         m0 <= place(x0, e0, lsb);
         m1 <= place(x1, e1, lsb);
         m2 <= place(x2, e2, lsb);
         be <= top;
+        de <= d01 > a2 ? d01 : a2;
+        dz <= (r0 | r1 | r2) == 0;
     end
 endmodule
 
@@ -92,4 +122,93 @@ module bfp_cmp #(parameter N = 96) (
     wire signed [2*N-1:0] aa = a_up ? shifted : a;
     wire signed [2*N-1:0] bb = a_up ? b : shifted;
     always @(posedge clk) lt <= aa < bb;
+endmodule
+
+// Step 4: a value's margin in its own integer frame (F fraction bits below its last bit):
+// the fixed constant at offset sf and the four dropped-part terms (three of constant CD,
+// the truncated cross product's of constant CP) each at its offset (an exponent sum less
+// the value's last bit, computed by small exponent adders; a zero enable for a vector with
+// nothing dropped), summed. Out: value + margin and value - margin.
+module bfp_margin #(parameter N = 48, F = 16, CF = 16'hf1a5, CD = 16'ha646, CP = 16'hc000) (
+    input clk, input signed [N-1:0] v,
+    input [6:0] sf, s0, s1, s2, s3, input z0, z1, z2, z3,
+    output reg signed [N+F:0] hi, lo);
+    function [N+F-1:0] place(input [15:0] c, input [6:0] sh, input z);
+        place = z ? 0 : ({{(N+F-16){1'b0}}, c} << sh);
+    endfunction
+    wire [N+F-1:0] e = place(CF, sf, 1'b0) + place(CD, s0, z0) + place(CD, s1, z1)
+        + place(CD, s2, z2) + place(CP, s3, z3);
+    wire signed [N+F:0] vf = {v, {F{1'b0}}};
+    always @(posedge clk) begin
+        hi <= vf + $signed({1'b0, e});
+        lo <= vf - $signed({1'b0, e});
+    end
+endmodule
+
+// Step 5: x rounded to an M-bit two's-complement mantissa at its leading bit, outward:
+// down (the arithmetic shift alone) or up (plus one if a dropped bit was set; UP = 1).
+module bfp_round #(parameter IW = 65, M = 16, UP = 1) (
+    input clk, input signed [IW-1:0] x,
+    output reg signed [M:0] m, output reg [6:0] sh);
+    function [6:0] bits(input [IW-1:0] x);
+        integer i;
+        reg [IW-1:0] y;
+        begin
+            y = x ^ {IW{x[IW-1]}};
+            bits = 0;
+            for (i = 0; i < IW; i = i + 1)
+                if (y[i]) bits = i + 1;
+        end
+    endfunction
+    wire [6:0] t = bits(x);
+    // Right shift that leaves M bits (sign included): t + 1 - M, at least 0.
+    wire [6:0] r = t + 1 > M ? t + 1 - M : 0;
+    wire signed [IW-1:0] fl = x >>> r;
+    wire sticky = UP && ((x & ~({IW{1'b1}} << r)) != 0);
+    always @(posedge clk) begin
+        m <= fl[M-1:0] + sticky;
+        sh <= r;
+    end
+endmodule
+
+// Step 5: a < b for short floats (M-bit two's-complement mantissas at their leading bit):
+// the signs, then the exponents, then the mantissas.
+module bfp_scmp #(parameter M = 17) (
+    input clk, input signed [M-1:0] a, b, input signed [9:0] ea, eb, output reg lt);
+    wire sa = a[M-1], sb = b[M-1];
+    wire za = a == 0, zb = b == 0;
+    wire elt = ea < eb, egt = ea > eb;
+    // Same sign, non-zero: the larger exponent is the larger magnitude.
+    wire mag = elt ? !sa : egt ? sa : a < b;
+    always @(posedge clk)
+        lt <= (sa != sb) ? sa : za ? !zb && !sb : zb ? sa : mag;
+endmodule
+
+// Step 5: down(a + b) for short floats (u + v > 1): align the smaller-exponent operand
+// (its dropped bits floored away), add, round down to M bits.
+module bfp_sadd #(parameter M = 17) (
+    input clk, input signed [M-1:0] a, b, input signed [9:0] ea, eb,
+    output reg signed [M-1:0] s, output reg signed [9:0] es);
+    wire a_up = ea >= eb;
+    wire [9:0] d = a_up ? ea - eb : eb - ea;
+    wire [4:0] sh = d > M + 1 ? M + 1 : d[4:0];
+    wire signed [M+2:0] big = a_up ? {a, 2'b0} : {b, 2'b0};
+    wire signed [M+2:0] small = (a_up ? {b, 2'b0} : {a, 2'b0}) >>> sh;
+    wire signed [M+3:0] sum = big + small;
+    function [4:0] bits(input [M+3:0] x);
+        integer i;
+        reg [M+3:0] y;
+        begin
+            y = x ^ {(M+4){x[M+3]}};
+            bits = 0;
+            for (i = 0; i < M + 4; i = i + 1)
+                if (y[i]) bits = i + 1;
+        end
+    endfunction
+    wire [4:0] t = bits(sum);
+    wire [4:0] r = t + 1 > M ? t + 1 - M : 0;
+    always @(posedge clk) begin
+        s <= sum >>> r;
+        es <= (a_up ? ea : eb) - 2 + r;
+    end
 endmodule
