@@ -124,24 +124,37 @@ module bfp_cmp #(parameter N = 96) (
     always @(posedge clk) lt <= aa < bb;
 endmodule
 
-// Step 4: a value's margin in its own integer frame (F fraction bits below its last bit):
-// the fixed constant at offset sf and the four dropped-part terms (three of constant CD,
-// the truncated cross product's of constant CP) each at its offset (an exponent sum less
-// the value's last bit, computed by small exponent adders; a zero enable for a vector with
-// nothing dropped), summed. Out: value + margin and value - margin.
-module bfp_margin #(parameter N = 48, F = 16, CF = 16'hf1a5, CD = 16'ha646, CP = 16'hc000) (
+// Step 4: a value's margin in units of its last bit (2^l), plus and minus the value:
+// the fixed constant CF at 2^(ea + eb + ec), the dropped-part constant CD at
+// 2^(da + eb + ec), 2^(ea + db + ec), 2^(ea + eb + dc) and CP at 2^(ea + dx) (za..zx: that
+// vector dropped nothing), each shifted to the value's last bit and rounded up (a term
+// below it: its shift plus a sticky bit), summed. Constants of 5 significant bits
+// (CONSTANT_BITS in the model): 3√3(1 + τ)² → 21·2^-2, 3, the fixed one at its own scale.
+module bfp_margin #(parameter N = 45, CF = 5'd31, CD = 5'd21, CP = 5'd3,
+                    SF = -23, SD = -2, SP = 0) (
     input clk, input signed [N-1:0] v,
-    input [6:0] sf, s0, s1, s2, s3, input z0, z1, z2, z3,
-    output reg signed [N+F:0] hi, lo);
-    function [N+F-1:0] place(input [15:0] c, input [6:0] sh, input z);
-        place = z ? 0 : ({{(N+F-16){1'b0}}, c} << sh);
+    input signed [9:0] ea, eb, ec, da, db, dc, dx, l, input za, zb, zc, zx,
+    output reg signed [N+1:0] hi, lo);
+    function [N-1:0] place(input [4:0] c, input signed [9:0] off, input z);
+        reg [N+4:0] wide;
+        begin
+            if (z) place = 0;
+            else if (off >= N) place = {N{1'b1}};  // saturate: the query is forwarded
+            else if (off >= 0) place = {{N{1'b0}}, c} << off;
+            else if (off <= -5) place = 1;         // below the last bit: one unit
+            else begin
+                wide = {{N{1'b0}}, c} >> (-off);
+                place = wide[N-1:0] + (({{N{1'b0}}, c} & ~({(N+5){1'b1}} << (-off))) != 0);
+            end
+        end
     endfunction
-    wire [N+F-1:0] e = place(CF, sf, 1'b0) + place(CD, s0, z0) + place(CD, s1, z1)
-        + place(CD, s2, z2) + place(CP, s3, z3);
-    wire signed [N+F:0] vf = {v, {F{1'b0}}};
+    wire signed [9:0] sum = ea + eb + ec;
+    wire [N+1:0] e = place(CF, sum + SF - l, 1'b0) + place(CD, da + eb + ec + SD - l, za)
+        + place(CD, ea + db + ec + SD - l, zb) + place(CD, ea + eb + dc + SD - l, zc)
+        + place(CP, ea + dx + SP - l, zx);
     always @(posedge clk) begin
-        hi <= vf + $signed({1'b0, e});
-        lo <= vf - $signed({1'b0, e});
+        hi <= v + $signed(e);
+        lo <= v - $signed(e);
     end
 endmodule
 

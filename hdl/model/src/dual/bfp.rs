@@ -322,7 +322,7 @@ fn margin(blocks: &[Block; 6], value: [Vector; 4], lsb: i32, margin_scale: f64) 
 }
 
 /// Significant bits (with the sign) of the short floats the decisions compare.
-pub const SHORT_BITS: u32 = 16;
+pub const SHORT_BITS: u32 = 10;
 
 /// Step 5's normalisation: x rounded to a [`SHORT_BITS`]-bit two's-complement mantissa at
 /// the exponent of its leading bit, **outward**: down (towards −∞, the arithmetic shift
