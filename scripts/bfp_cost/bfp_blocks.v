@@ -124,37 +124,35 @@ module bfp_cmp #(parameter N = 96) (
     always @(posedge clk) lt <= aa < bb;
 endmodule
 
-// Step 4: a value's margin in units of its last bit (2^l), plus and minus the value:
-// the fixed constant CF at 2^(ea + eb + ec), the dropped-part constant CD at
-// 2^(da + eb + ec), 2^(ea + db + ec), 2^(ea + eb + dc) and CP at 2^(ea + dx) (za..zx: that
-// vector dropped nothing), each shifted to the value's last bit and rounded up (a term
-// below it: its shift plus a sticky bit), summed. Constants of 5 significant bits
-// (CONSTANT_BITS in the model): 3√3(1 + τ)² → 21·2^-2, 3, the fixed one at its own scale.
-module bfp_margin #(parameter N = 45, CF = 5'd31, CD = 5'd21, CP = 5'd3,
-                    SF = -23, SD = -2, SP = 0) (
+// Step 4: a value's margin in units of its last bit, plus and minus the value. With the
+// cross products cut at a fixed exponent, a value's last bit is 2^(E_a + E_b + E_c - K)
+// for a wired K, so the fixed term CF is a wired constant and each dropped-part term CD
+// sits at the vector's relative dropped exponent ra, rb, rc (D - E, in [-64, 1 - W]; za..zc:
+// nothing dropped) and the cut's CP at rx (the leading one in the cut's low bits), each
+// plus a wired offset; a term below the last bit counts one unit (rounded up). Constants
+// of 5 significant bits (CONSTANT_BITS in the model): 3√3(1 + τ)² → 21·2^-2 and 3.
+module bfp_margin #(parameter N = 45, MW = 36, K = 33, KX = 19, CF = 36'd31, CD = 5'd21, CP = 5'd3) (
     input clk, input signed [N-1:0] v,
-    input signed [9:0] ea, eb, ec, da, db, dc, dx, l, input za, zb, zc, zx,
+    input signed [7:0] ra, rb, rc, input [5:0] rx, input za, zb, zc, zx,
     output reg signed [N+1:0] hi, lo);
-    function [N-1:0] place(input [4:0] c, input signed [9:0] off, input z);
-        reg [N+4:0] wide;
+    function [MW-1:0] place(input [4:0] c, input signed [8:0] off, input z);
+        reg [MW+4:0] wide;
         begin
             if (z) place = 0;
-            else if (off >= N) place = {N{1'b1}};  // saturate: the query is forwarded
-            else if (off >= 0) place = {{N{1'b0}}, c} << off;
-            else if (off <= -5) place = 1;         // below the last bit: one unit
+            else if (off >= 0) place = {{MW{1'b0}}, c} << off;
+            else if (off <= -5) place = 1;
             else begin
-                wide = {{N{1'b0}}, c} >> (-off);
-                place = wide[N-1:0] + (({{N{1'b0}}, c} & ~({(N+5){1'b1}} << (-off))) != 0);
+                wide = {{MW{1'b0}}, c} >> (-off);
+                place = wide[MW-1:0] + (({{MW{1'b0}}, c} & ~({(MW+5){1'b1}} << (-off))) != 0);
             end
         end
     endfunction
-    wire signed [9:0] sum = ea + eb + ec;
-    wire [N+1:0] e = place(CF, sum + SF - l, 1'b0) + place(CD, da + eb + ec + SD - l, za)
-        + place(CD, ea + db + ec + SD - l, zb) + place(CD, ea + eb + dc + SD - l, zc)
-        + place(CP, ea + dx + SP - l, zx);
+    // CD·2^(D - E)·2^(E_a + E_b + E_c) at the last bit 2^(sum - K): offset r + K - 2.
+    wire [MW+1:0] e = CF + place(CD, ra + K - 2, za) + place(CD, rb + K - 2, zb)
+        + place(CD, rc + K - 2, zc) + place(CP, $signed({3'b0, rx}) - KX, zx);
     always @(posedge clk) begin
-        hi <= v + $signed(e);
-        lo <= v - $signed(e);
+        hi <= v + $signed({1'b0, e});
+        lo <= v - $signed({1'b0, e});
     end
 endmodule
 
@@ -223,5 +221,40 @@ module bfp_sadd #(parameter M = 17) (
     always @(posedge clk) begin
         s <= sum >>> r;
         es <= (a_up ? ea : eb) - 2 + r;
+    end
+endmodule
+
+// Step 3: a cross product (three components at one exponent) truncated to a W-bit block:
+// bfp_block with its three exponents tied, as the hardware would build it.
+module bfp_block_same #(parameter IW = 37, W = 18) (
+    input clk, input signed [IW-1:0] x0, x1, x2, input signed [9:0] e,
+    output signed [W-1:0] m0, m1, m2, output signed [9:0] be, de, output dz);
+    bfp_block #(.IW(IW), .W(W)) b (.clk(clk), .x0(x0), .x1(x1), .x2(x2), .e0(e), .e1(e), .e2(e),
+        .m0(m0), .m1(m1), .m2(m2), .be(be), .de(de), .dz(dz));
+endmodule
+
+// Step 3: a cross product cut at its fixed block exponent (the top W of IW bits: wires)
+// and the exponent of its largest dropped part (the leading one of each component's low
+// IW - W bits, a 3-way max; dz when nothing was dropped).
+module bfp_cut #(parameter IW = 37, W = 18) (
+    input clk, input signed [IW-1:0] x0, x1, x2,
+    output reg signed [W-1:0] m0, m1, m2, output reg [5:0] de, output reg dz);
+    localparam L = IW - W;
+    function [5:0] ones(input [L-1:0] x);
+        integer i;
+        begin
+            ones = 0;
+            for (i = 0; i < L; i = i + 1)
+                if (x[i]) ones = i + 1;
+        end
+    endfunction
+    wire [5:0] d0 = ones(x0[L-1:0]), d1 = ones(x1[L-1:0]), d2 = ones(x2[L-1:0]);
+    wire [5:0] d01 = d0 > d1 ? d0 : d1;
+    always @(posedge clk) begin
+        m0 <= x0[IW-1:L];
+        m1 <= x1[IW-1:L];
+        m2 <= x2[IW-1:L];
+        de <= d01 > d2 ? d01 : d2;
+        dz <= (x0[L-1:0] | x1[L-1:0] | x2[L-1:0]) == 0;
     end
 endmodule

@@ -170,6 +170,23 @@ fn top(x: Fx) -> i32 {
 /// logic again) is what the margin charges (step 4). `None` for the zero vector.
 pub fn to_block(v: [Fx; 3], width: u32) -> Option<Block> {
     let e = v.iter().filter(|x| x.m != 0).map(|&x| top(x)).max()?;
+    Some(place(v, e, width))
+}
+
+/// Step 3's truncated cross product x × y of two blocks: its components lie in
+/// (−2^(E_x + E_y + 1), 2^(E_x + E_y + 1)) (each a difference of two products of mantissas
+/// below 2^(W−1) in magnitude), so it is cut at that fixed block exponent: the top bits of
+/// the exact product, no leading-bit search and no shifter. The dropped parts' exponent
+/// (the leading one of the low bits, a 3-way max) is still what the margin charges.
+pub fn cross_block(x: &Block, y: &Block, width: u32) -> Block {
+    let v = cross(&x.m, &y.m).map(|m| Fx::new(m, x.lsb + y.lsb));
+    place(v, x.e + y.e + 1, width)
+}
+
+/// The W-bit block of `v` at block exponent e (every component in [−2^e, 2^e)): each
+/// component shifted to the block's last bit by an arithmetic shift, and the exponent of
+/// the largest dropped part.
+fn place(v: [Fx; 3], e: i32, width: u32) -> Block {
     let lsb = e - (width as i32 - 1);
     let parts = v.map(|x| match x.e - lsb {
         up @ 0.. => (x.m << up, None),
@@ -179,19 +196,22 @@ pub fn to_block(v: [Fx; 3], width: u32) -> Option<Block> {
             let m = x.m >> -down;
             // The dropped bits x − m·2^lsb, in [0, 2^lsb), at x's exponent.
             let rest = x.m - (m << -down);
-            (m, (rest != 0).then(|| x.e + (128 - rest.leading_zeros()) as i32))
+            (
+                m,
+                (rest != 0).then(|| x.e + (128 - rest.leading_zeros()) as i32),
+            )
         }
     });
     let dropped = parts
         .iter()
         .filter_map(|(_, d)| d.map(|d| d.max(e - DROP_WINDOW)))
         .max();
-    Some(Block {
+    Block {
         m: parts.map(|(m, _)| m),
         e,
         lsb,
         dropped,
-    })
+    }
 }
 
 fn cross(a: &[i128; 3], b: &[i128; 3]) -> [i128; 3] {
@@ -249,10 +269,10 @@ fn tau() -> f64 {
 
 /// The margin's three constants (docs/precision.md, "The block-floating-point filter",
 /// step 4), each for a term of the bound of a value a·trunc(b × c):
-/// - `dropped`: 3√3(1 + τ)², per vector times 2^(its dropped part's exponent + the other two
+/// - `dropped` (C_D): 3√3(1 + τ)², per vector times 2^(its dropped part's exponent + the other two
 ///   block exponents) (Hadamard's inequality on the telescoped trilinear error);
-/// - `product`: 3, times 2^(E_a + the truncated cross product's dropped exponent);
-/// - `fixed`: times 2^(E_a + E_b + E_c): the translations' error 3·3√3·τ(1 + τ)², the fp32
+/// - `product` (C_P): 3, times 2^(E_a + the cut cross product's dropped exponent);
+/// - `fixed` (C_F): times 2^(E_a + E_b + E_c): the translations' error 3·3√3·τ(1 + τ)², the fp32
 ///   fallback's 6γ₇(1 + τ)³ (seven roundings on each of the six terms) and 2^-39 (its flushes
 ///   inside the exponent range), and the fallback's quotient roundings folded in as
 ///   3u·6 (3u times a bound of 6·2^(E_a+E_b+E_c) on |value| + margin).
@@ -278,21 +298,24 @@ fn constants() -> Constants {
 }
 
 /// A bound on |value| + margin in units of 2^(E_a + E_b + E_c) (the Hadamard bound 3√3 of
-/// the filter's value with a truncated cross product's slack, plus a margin below 1 at
-/// every W ≥ 8; checked by `values_and_margins_stay_in_their_range`): the fallback's
+/// the filter's value with the cut cross product's slack, plus a margin below 1 at every
+/// W ≥ 8; checked by `filter_values_are_within_their_margin_terms`): the fallback's
 /// quotient roundings (3u of it) are folded into the margin with it.
 const QUOTIENT_RANGE: f64 = 6.0;
 
 /// Step 4: the margin of a value a·trunc(b × c) (det = e1·trunc(dir × e2),
 /// N_u = s·trunc(dir × e2), N_v = dir·trunc(s × e1), N_t = e2·trunc(s × e1)), the filter's
 /// and the fallback's errors together:
-/// 3√3(1 + τ)²·(2^(D_a + E_b + E_c) + 2^(E_a + D_b + E_c) + 2^(E_a + E_b + D_c))
-/// + 3·2^(E_a + D_x) + K·2^(E_a + E_b + E_c), D the dropped parts' exponents ([`Block`];
-/// a vector with nothing dropped has no term), x the truncated cross product, K the fixed
-/// constant ([`constants`]). Each constant is wired, rounded up to [`CONSTANT_BITS`]; each
-/// term is rounded up to the value's last bit 2^`lsb` (so the rounding after adding it is
-/// bit for bit what an exact sum would give only up to that, and always outward) and the
-/// result is in units of 2^`lsb`: in hardware a sum of five shifted constants.
+///
+/// ```text
+/// C_D·(2^(D_a + E_b + E_c) + 2^(E_a + D_b + E_c) + 2^(E_a + E_b + D_c))
+///     + C_P·2^(E_a + D_x) + C_F·2^(E_a + E_b + E_c)
+/// ```
+///
+/// with D the dropped parts' exponents ([`Block`]; a vector with nothing dropped has no
+/// term), x the cut cross product and the constants of [`constants`], each wired and
+/// rounded up to [`CONSTANT_BITS`]. Each term is rounded up to the value's last bit
+/// 2^`lsb`, and the result is in units of it: in hardware five shifted constants summed.
 /// `margin_scale` = 1 is the derived bound (tests shrink it). `None` if a term overflows.
 fn margin(blocks: &[Block; 6], value: [Vector; 4], lsb: i32, margin_scale: f64) -> Option<i128> {
     let c = constants();
@@ -390,13 +413,9 @@ impl Filter {
         if ranged.iter().any(|b| !(EXP_MIN..=EXP_MAX).contains(&b.e)) {
             return None;
         }
-        // Step 3: p = dir × e2 and q = s × e1 exactly, truncated to blocks (a zero cross
-        // product: the ray is parallel to an edge; forwarded), then the dots exactly.
-        let product = |a: &Block, b: &Block, width: u32| {
-            to_block(cross(&a.m, &b.m).map(|m| Fx::new(m, a.lsb + b.lsb)), width)
-        };
-        let p = product(&dir, &e2, w[Vector::P as usize])?;
-        let qv = product(&s, &e1, w[Vector::Q as usize])?;
+        // Step 3: p = dir × e2 and q = s × e1 exactly, cut to blocks, then the dots exactly.
+        let p = cross_block(&dir, &e2, w[Vector::P as usize]);
+        let qv = cross_block(&s, &e1, w[Vector::Q as usize]);
         let blocks = [dir, e1, e2, s, p, qv];
         use Vector::{Dir, E1, E2, P, Q, S};
         // Each value with its margin; a triple below SUM_MIN is forwarded.
@@ -580,7 +599,6 @@ mod tests {
             .unwrap()
     }
 
-
     proptest! {
         /// Outward rounding never moves a value inward: down ≤ x ≤ up, both within one
         /// unit of the short mantissa's last bit, both SHORT_BITS wide (up may carry into
@@ -650,8 +668,12 @@ mod tests {
                 to_block(exact(b), ws[0]),
                 to_block(exact(c), ws[2]),
             ) else { return Ok(()); };
-            let cross_fx = cross(&bb.m, &cb.m).map(|m| Fx::new(m, bb.lsb + cb.lsb));
-            let Some(xb) = to_block(cross_fx, ws[4]) else { return Ok(()); };
+            let xb = cross_block(&bb, &cb, ws[4]);
+            // The cut is a valid block: every exact component in [−2^e, 2^e).
+            for m in cross(&bb.m, &cb.m) {
+                let x = Fx::new(m, bb.lsb + cb.lsb);
+                prop_assert!(top(x) <= xb.e || m == 0);
+            }
             // As det = e1·trunc(dir × e2): a in E1's place, b in Dir's, c in E2's.
             let blocks = [bb, ab, cb, bb, xb, xb];
             let value = [Vector::E1, Vector::Dir, Vector::E2, Vector::P];
@@ -698,7 +720,14 @@ mod tests {
                 dropped: Some(e - (width as i32 - 1)),
             };
             let ws = widths(w);
-            let blocks = [b(0, ws[0]), b(0, ws[1]), b(0, ws[2]), b(0, ws[3]), b(1, ws[4]), b(1, ws[5])];
+            let blocks = [
+                b(0, ws[0]),
+                b(0, ws[1]),
+                b(0, ws[2]),
+                b(0, ws[3]),
+                b(1, ws[4]),
+                b(1, ws[5]),
+            ];
             let det = [Vector::E1, Vector::Dir, Vector::E2, Vector::P];
             Fx::new(margin(&blocks, det, -80, 1.0).unwrap(), -80).to_f64()
         };
@@ -709,7 +738,12 @@ mod tests {
         // part ≈ 3.6e-6.
         assert!((1.66e-4..1.72e-4).contains(&full(18)), "{}", full(18));
         // Nothing dropped anywhere: the fixed part alone.
-        let exact = Block { m: [0; 3], e: 0, lsb: -17, dropped: None };
+        let exact = Block {
+            m: [0; 3],
+            e: 0,
+            lsb: -17,
+            dropped: None,
+        };
         let det = [Vector::E1, Vector::Dir, Vector::E2, Vector::P];
         let units = |scale: f64| margin(&[exact; 6], det, -80, scale).unwrap();
         let m = Fx::new(units(1.0), -80).to_f64();
