@@ -1,11 +1,13 @@
 //! The block-floating-point filter (docs/precision.md, "The block-floating-point filter"):
 //! the bit-exact specification of a filter built from integer adders, DSP multipliers and
 //! exponent adders. Step 1 ([`translate`]) moves the query to v0 = 0 in integers; step 2
-//! ([`to_block`]) gives each of dir, e1, e2, s one block exponent and W-bit mantissas; step 3
-//! computes det and the numerators exactly in integers; step 4 ([`margin`]) bounds the
-//! filter's and the fp32 fallback's errors by a constant per width shifted by the three
-//! block exponents; step 5 ([`Filter::decide_bfp`]) decides the fallback's tests by exact
-//! integer comparisons, every rounding in the direction that keeps a decision certain.
+//! ([`to_block`]) gives each of dir, e1, e2, s one block exponent, W-bit mantissas and the
+//! exponent of its largest dropped part; step 3 computes the cross products exactly, cuts
+//! them to blocks at a fixed exponent ([`cross_block`]) and the dots exactly; step 4
+//! ([`margin`]) bounds the filter's and the fp32 fallback's errors by a few constants
+//! shifted by block and dropped-part exponents; step 5 ([`Filter::decide_bfp`]) decides the
+//! fallback's tests on short floats rounded outward ([`round`]), every rounding in the
+//! direction that keeps a decision certain.
 
 use std::ops::RangeInclusive;
 
