@@ -584,8 +584,8 @@ pub enum FilterKind {
     /// No reciprocal: the numerators compared with det ([`linear`]); the bound in the given
     /// arithmetic (coarse: from the fp32 subtractors' rounding bound, as hardware knows it).
     Linear(BoundArith),
-    /// Block floating point ([`bfp`]): the pair's `bfpW` filter, exact integer products and
-    /// decisions, margins a constant per width shifted by block exponents.
+    /// Block floating point ([`bfp`]): the pair's `bfpW` filter, integer products, margins
+    /// from the bits actually dropped, decisions on short floats rounded outward.
     Bfp,
 }
 

@@ -141,7 +141,7 @@ fn fallback_hits(pair: &FormatPair, qs: &[MtQuery]) -> Vec<(MtQuery, MtResult)> 
 /// A filter under test and its pairs: `main` takes the long random run, `extra` (scaled by
 /// 2^k) 10^5 of its queries, `margin` the margin and render tests, `largest` the ignored
 /// report; `rejects_at` a margin scale shown to reject fallback hits (the largest such
-/// scale is 0.18–0.29 for every filter and pair: the ignored report).
+/// scale is 0.18–0.30 for every filter and pair: the ignored report).
 struct Case {
     kind: FilterKind,
     main: &'static str,

@@ -1,11 +1,13 @@
 //! The block-floating-point filter (docs/precision.md, "The block-floating-point filter"):
 //! the bit-exact specification of a filter built from integer adders, DSP multipliers and
 //! exponent adders. Step 1 ([`translate`]) moves the query to v0 = 0 in integers; step 2
-//! ([`to_block`]) gives each of dir, e1, e2, s one block exponent and W-bit mantissas; step 3
-//! computes det and the numerators exactly in integers; step 4 ([`margin`]) bounds the
-//! filter's and the fp32 fallback's errors by a constant per width shifted by the three
-//! block exponents; step 5 ([`Filter::decide_bfp`]) decides the fallback's tests by exact
-//! integer comparisons, every rounding in the direction that keeps a decision certain.
+//! ([`to_block`]) gives each of dir, e1, e2, s one block exponent, W-bit mantissas and the
+//! exponent of its largest dropped part; step 3 computes the cross products exactly, cuts
+//! them to blocks at a fixed exponent ([`cross_block`]) and the dots exactly; step 4
+//! ([`margin`]) bounds the filter's and the fp32 fallback's errors by a few constants
+//! shifted by block and dropped-part exponents; step 5 ([`Filter::decide_bfp`]) decides the
+//! fallback's tests on short floats rounded outward ([`round`]), every rounding in the
+//! direction that keeps a decision certain.
 
 use std::ops::RangeInclusive;
 
@@ -63,7 +65,14 @@ impl Fx {
         Some((self.mantissa_at(e)?, other.mantissa_at(e)?, e))
     }
 
+    /// The exact sum; `None` if aligning would overflow (a zero's exponent never counts).
     fn add(self, other: Fx) -> Option<Fx> {
+        if other.m == 0 {
+            return Some(self);
+        }
+        if self.m == 0 {
+            return Some(other);
+        }
         let (a, b, e) = self.aligned(other)?;
         Some(Fx::new(a.checked_add(b)?, e))
     }
@@ -132,12 +141,25 @@ pub fn translate(a: f32, b: f32) -> Option<Fx> {
     Some(Fx::new(at(a) - at(b), e))
 }
 
-/// Step 2: a vector in block floating point: component k is `m[k]`·2^(e − W + 1), and
-/// every component of the value it came from lies in [−2^e, 2^e).
+/// Step 2: a vector in block floating point: component k is `m[k]`·2^`lsb`, every
+/// component of the value it came from lies in [−2^e, 2^e), and its truncation error is
+/// below 2^`dropped` (`None`: nothing was dropped).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Block {
     pub m: [i128; 3],
     pub e: i32,
+    pub lsb: i32,
+    pub dropped: Option<i32>,
+}
+
+/// How far below its block exponent a dropped part is tracked: a smaller one is charged
+/// as 2^(e − [`DROP_WINDOW`]) (a larger bound, so sound), which keeps the margin's terms
+/// within a bounded window of bits.
+pub const DROP_WINDOW: i32 = 64;
+
+/// The exponent of x's leading bit (of x XOR its sign) plus one: x lies in [−2^t, 2^t).
+fn top(x: Fx) -> i32 {
+    x.e + (128 - (x.m ^ (x.m >> 127)).leading_zeros()) as i32
 }
 
 /// Step 2: the smallest block exponent e with every component in [−2^e, 2^e) (in hardware
@@ -145,19 +167,53 @@ pub struct Block {
 /// shifted to W-bit two's-complement mantissas by an arithmetic right shift: truncation
 /// towards −∞, error in [0, 2^(e − W + 1)). Truncation rather than rounding: no incrementer
 /// and no carry out of the W bits (a rounded 2^e − ε would need W + 1); it doubles the
-/// quantisation error, which the margin carries. `None` for the zero vector.
+/// worst quantisation error, which the margin carries. The dropped parts' own bound
+/// (`dropped`: the leading one of each component's dropped bits, a 3-way max, the same
+/// logic again) is what the margin charges (step 4). `None` for the zero vector.
 pub fn to_block(v: [Fx; 3], width: u32) -> Option<Block> {
-    let e = v
-        .iter()
-        .filter(|x| x.m != 0)
-        .map(|x| x.e + (128 - (x.m ^ (x.m >> 127)).leading_zeros()) as i32)
-        .max()?;
+    let e = v.iter().filter(|x| x.m != 0).map(|&x| top(x)).max()?;
+    Some(place(v, e, width))
+}
+
+/// Step 3's truncated cross product x × y of two blocks: its components lie in
+/// (−2^(E_x + E_y + 1), 2^(E_x + E_y + 1)) (each a difference of two products of mantissas
+/// below 2^(W−1) in magnitude), so it is cut at that fixed block exponent: the top bits of
+/// the exact product, no leading-bit search and no shifter. The dropped parts' exponent
+/// (the leading one of the low bits, a 3-way max) is still what the margin charges.
+pub fn cross_block(x: &Block, y: &Block, width: u32) -> Block {
+    let v = cross(&x.m, &y.m).map(|m| Fx::new(m, x.lsb + y.lsb));
+    place(v, x.e + y.e + 1, width)
+}
+
+/// The W-bit block of `v` at block exponent e (every component in [−2^e, 2^e)): each
+/// component shifted to the block's last bit by an arithmetic shift, and the exponent of
+/// the largest dropped part.
+fn place(v: [Fx; 3], e: i32, width: u32) -> Block {
     let lsb = e - (width as i32 - 1);
-    let m = v.map(|x| match x.e - lsb {
-        up @ 0.. => x.m << up,
-        down => x.m >> (-down).min(127),
+    let parts = v.map(|x| match x.e - lsb {
+        up @ 0.. => (x.m << up, None),
+        // Far below the block the whole component is dropped, and 2^lsb bounds it.
+        down if -down >= 127 => (x.m >> 127, if x.m == 0 { None } else { Some(lsb) }),
+        down => {
+            let m = x.m >> -down;
+            // The dropped bits x − m·2^lsb, in [0, 2^lsb), at x's exponent.
+            let rest = x.m - (m << -down);
+            (
+                m,
+                (rest != 0).then(|| x.e + (128 - rest.leading_zeros()) as i32),
+            )
+        }
     });
-    Some(Block { m, e })
+    let dropped = parts
+        .iter()
+        .filter_map(|(_, d)| d.map(|d| d.max(e - DROP_WINDOW)))
+        .max();
+    Block {
+        m: parts.map(|(m, _)| m),
+        e,
+        lsb,
+        dropped,
+    }
 }
 
 fn cross(a: &[i128; 3], b: &[i128; 3]) -> [i128; 3] {
@@ -172,47 +228,142 @@ fn dot(a: &[i128; 3], b: &[i128; 3]) -> i128 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// Extra mantissa bits of s = orig − v0: it spans the ray's whole distance to the
-/// triangle, and a small component of it (a shadow ray's offset from the plane it leaves)
-/// must survive beside a large one. W + 7 = 25 at W = 18: the DSP48E1's 25-bit port, so
-/// s × e1 stays one DSP48E1 a product.
+/// Extra mantissa bits of s = orig − v0 and of q = s × e1: s spans the ray's whole
+/// distance to the triangle, and a small component of it (a shadow ray's offset from the
+/// plane it leaves) must survive beside a large one. W + 7 = 25 at W = 18: the DSP48E1's
+/// 25-bit port, so s × e1, s·p and dir·q, e2·q each stay one DSP48E1 a product.
 pub const S_EXTRA_BITS: u32 = 7;
 
-/// The vectors of step 2, in the order of [`widths`]: dir, e1, e2, s.
+/// The vectors of steps 2 and 3, in the order of [`widths`]: dir, e1, e2, s, then the
+/// truncated cross products p = dir × e2 and q = s × e1.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Vector {
     Dir,
     E1,
     E2,
     S,
+    P,
+    Q,
 }
 
-/// The mantissa widths of dir, e1, e2 (W) and s (W + [`S_EXTRA_BITS`]).
-pub fn widths(width: u32) -> [u32; 4] {
-    [width, width, width, width + S_EXTRA_BITS]
+/// The mantissa widths of dir, e1, e2, p (W) and s, q (W + [`S_EXTRA_BITS`]), in the
+/// order of [`Vector`]: dir, e1, e2, s, p, q.
+pub fn widths(width: u32) -> [u32; 6] {
+    let wide = width + S_EXTRA_BITS;
+    [width, width, width, wide, width, wide]
 }
 
-/// Step 4: the margin of a triple product of three vectors (det = e1·(dir × e2),
-/// N_u = s·(dir × e2), N_v = dir·(s × e1), N_t = e2·(s × e1)), in units of its last bit
-/// 2^(E_a + E_b + E_c − Σ(W_i − 1)): ⌈K·2^Σ(W_i − 1)⌉ with
-/// K = 3√3·(ε_a + ε_b + ε_c)(1 + τ)² (the filter: Hadamard's inequality on the telescoped
-/// trilinear error) + 6γ₇(1 + τ)³ (the fp32 fallback: seven roundings on each of the six
-/// terms) + 2^-39 (its flushes, inside the exponent range), where ε = 2^(1−W_i) for dir and
-/// 2^(1−W_i) + τ for a translated vector, τ = 2^-(23 + GUARD_BITS). `margin_scale` = 1 is
-/// the derived bound (tests shrink it).
-fn margin(width: u32, triple: [Vector; 3], margin_scale: f64) -> i128 {
-    let tau = 2f64.powi(-23 - GUARD_BITS);
-    let w = widths(width);
-    let bits = |v: Vector| w[v as usize] as i32 - 1;
-    let eps = |v: Vector| 2f64.powi(-bits(v)) + if v == Vector::Dir { 0.0 } else { tau };
+/// Significant bits of the margin's wired constants (each rounded up).
+const CONSTANT_BITS: i32 = 5;
+
+/// c rounded up to [`CONSTANT_BITS`] significant bits, times 2^shift.
+fn constant(c: f64, shift: i32) -> Fx {
+    let e = c.log2().floor() as i32 - (CONSTANT_BITS - 1);
+    // f64's own roundings (a few of 2^-53) are covered 10^4 times over before rounding up.
+    let m = (c * (1.0 + 1e-12) * 2f64.powi(-e)).ceil() as i128;
+    Fx::new(m, e + shift)
+}
+
+/// τ = 2^-(23 + GUARD_BITS): a translated component's error relative to its block (step 1).
+fn tau() -> f64 {
+    2f64.powi(-23 - GUARD_BITS)
+}
+
+/// The margin's three constants (docs/precision.md, "The block-floating-point filter",
+/// step 4), each for a term of the bound of a value a·trunc(b × c):
+/// - `dropped` (C_D): 3√3(1 + τ)², per vector times 2^(its dropped part's exponent + the other two
+///   block exponents) (Hadamard's inequality on the telescoped trilinear error);
+/// - `product` (C_P): 3, times 2^(E_a + the cut cross product's dropped exponent);
+/// - `fixed` (C_F): times 2^(E_a + E_b + E_c): the translations' error 3·3√3·τ(1 + τ)², the fp32
+///   fallback's 6γ₇(1 + τ)³ (seven roundings on each of the six terms) and 2^-39 (its flushes
+///   inside the exponent range), and the fallback's quotient roundings folded in as
+///   3u·6 (3u times a bound of 6·2^(E_a+E_b+E_c) on |value| + margin).
+struct Constants {
+    dropped: f64,
+    product: f64,
+    fixed: f64,
+}
+
+fn constants() -> Constants {
+    let tau = tau();
     let u = FP32_ROUNDING.unit;
     let gamma7 = 7.0 * u / (1.0 - 7.0 * u);
-    let k = 3f64.powf(1.5) * triple.map(eps).iter().sum::<f64>() * (1.0 + tau).powi(2)
-        + 6.0 * gamma7 * (1.0 + tau).powi(3)
-        + 2f64.powi(-39);
-    let lsb: i32 = triple.map(bits).iter().sum();
-    // f64's own roundings (a few of 2^-53) are covered 10^4 times over before rounding up.
-    (k * margin_scale * (1.0 + 1e-12) * 2f64.powi(lsb)).ceil() as i128
+    let hadamard = 3f64.powf(1.5);
+    Constants {
+        dropped: hadamard * (1.0 + tau).powi(2),
+        product: 3.0,
+        fixed: 3.0 * hadamard * tau * (1.0 + tau).powi(2)
+            + 6.0 * gamma7 * (1.0 + tau).powi(3)
+            + 2f64.powi(-39)
+            + 3.0 * u * QUOTIENT_RANGE,
+    }
+}
+
+/// A bound on |value| + margin in units of 2^(E_a + E_b + E_c) (the Hadamard bound 3√3 of
+/// the filter's value with the cut cross product's slack, plus a margin below 1 at every
+/// W ≥ 8; checked by `filter_values_are_within_their_margin_terms`): the fallback's
+/// quotient roundings (3u of it) are folded into the margin with it.
+const QUOTIENT_RANGE: f64 = 6.0;
+
+/// Step 4: the margin of a value a·trunc(b × c) (det = e1·trunc(dir × e2),
+/// N_u = s·trunc(dir × e2), N_v = dir·trunc(s × e1), N_t = e2·trunc(s × e1)), the filter's
+/// and the fallback's errors together:
+///
+/// ```text
+/// C_D·(2^(D_a + E_b + E_c) + 2^(E_a + D_b + E_c) + 2^(E_a + E_b + D_c))
+///     + C_P·2^(E_a + D_x) + C_F·2^(E_a + E_b + E_c)
+/// ```
+///
+/// with D the dropped parts' exponents ([`Block`]; a vector with nothing dropped has no
+/// term), x the cut cross product and the constants of [`constants`], each wired and
+/// rounded up to [`CONSTANT_BITS`]. Each term is rounded up to the value's last bit
+/// 2^`lsb`, and the result is in units of it: in hardware five shifted constants summed.
+/// `margin_scale` = 1 is the derived bound (tests shrink it). `None` if a term overflows.
+fn margin(blocks: &[Block; 6], value: [Vector; 4], lsb: i32, margin_scale: f64) -> Option<i128> {
+    let c = constants();
+    let [a, b, cc, x] = value.map(|v| blocks[v as usize]);
+    let sum = a.e + b.e + cc.e;
+    let mut terms = vec![constant(c.fixed * margin_scale, sum)];
+    for v in [a, b, cc] {
+        if let Some(d) = v.dropped {
+            terms.push(constant(c.dropped * margin_scale, sum - v.e + d));
+        }
+    }
+    if let Some(d) = x.dropped {
+        terms.push(constant(c.product * margin_scale, a.e + d));
+    }
+    terms.into_iter().try_fold(0i128, |acc, t| {
+        let units = match t.e - lsb {
+            up @ 0.. => Fx::new(t.m, 0).mantissa_at(-up)?,
+            // A term below the last bit: ceil(m·2^-k), the shift plus its sticky bit.
+            down => {
+                let k = (-down).min(127) as u32;
+                let fl = t.m >> k;
+                fl + i128::from(fl << k != t.m)
+            }
+        };
+        acc.checked_add(units)
+    })
+}
+
+/// Significant bits (with the sign) of the short floats the decisions compare.
+pub const SHORT_BITS: u32 = 10;
+
+/// Step 5's normalisation: x rounded to a [`SHORT_BITS`]-bit two's-complement mantissa at
+/// the exponent of its leading bit, **outward**: down (towards −∞, the arithmetic shift
+/// alone) or up (the shift plus one if a dropped bit was set). Never moves a lower bound up
+/// or an upper bound down; within one unit of the short mantissa's last bit.
+pub fn round(x: Fx, up: bool) -> Fx {
+    if x.m == 0 {
+        return x;
+    }
+    let lsb = top(x) - (SHORT_BITS as i32 - 1);
+    let Ok(shift @ 1..) = u32::try_from(lsb - x.e) else {
+        return x;
+    };
+    let floor = x.m >> shift.min(127);
+    let sticky = x.m != floor << shift.min(127);
+    Fx::new(floor + i128::from(up && sticky), lsb)
 }
 
 /// The fallback's t_min, moved down to τ' ≤ t_min − λ (λ = 2^-126, the fallback's smallest
@@ -227,25 +378,19 @@ fn t_min_below(t_min: f32) -> Option<Fx> {
     })
 }
 
-/// 2^24: the fallback's unit roundoff u = 2^-24 as an integer scale.
-const U_INV: i128 = 1 << 24;
-
 impl Filter {
     /// [`Filter::decide`] for [`super::FilterKind::Bfp`]: `decide_linear`'s tests (the
-    /// table in docs/precision.md, "The division-free filter"), on exact integers: with
-    /// σ = sign(det), n = σ·N, e the margins, L = |det| − e_D, H = |det| + e_D, and the
-    /// fallback's u = 2^-24, λ = 2^-126:
-    /// - |det| + e_D < eps (the fallback's parallel test fires);
-    /// - otherwise only if |det| > e_D and nothing overflows or flushes (1 < L·max/2,
-    ///   2λH < 1, |N| + e < L·max/4 for each numerator);
-    /// - u < 0: n_u + e_u < 0 and 2λH < |n_u + e_u|(1 − u); v likewise;
-    /// - u > 1: H(1 + 3u) < n_u − e_u;
-    /// - u + v > 1: H(1 + 2u) < n_u + n_v − e_u − e_v − 3u(|n_u| + |n_v| + e_u + e_v)
-    ///   (1 + 2u ≥ the derivation's 1 + u + 4λ);
-    /// - t ≤ t_min: n_t + e_t + 3u(|n_t| + e_t) < τ'·(L if τ' ≥ 0 else H), τ' ≤ t_min − λ
-    ///   ([`t_min_below`]; τ·M(τ) grows with τ, so a smaller τ is conservative).
-    ///
-    /// A sum or product that would overflow i128 leaves its test undecided (forwarded).
+    /// table in docs/precision.md, "The division-free filter") on short floats rounded
+    /// outward ([`round`]). With σ = sign(det), n = σ·N and the margins e (the fallback's
+    /// quotient roundings folded in, [`margin`]): H = up(|det| + e_D), L = down(|det| − e_D),
+    /// and per numerator hi = up(n + e), lo = down(n − e):
+    /// - H < eps (the fallback's parallel test fires);
+    /// - otherwise only if L > 0, L ≥ 2^-126, H < 2^125 and max(hi, −lo) < L·2^125 (no
+    ///   reciprocal overflows or flushes, no quotient overflows);
+    /// - u < 0: hi_u < 0 and H·2^-124 ≤ −hi_u (the quotient is not flushed to −0); v likewise;
+    /// - u > 1: H < lo_u;
+    /// - u + v > 1: H < down(lo_u + lo_v);
+    /// - t ≤ t_min: hi_t < down(τ'·(L if τ' ≥ 0 else H)), τ' ≤ t_min − λ ([`t_min_below`]).
     pub(super) fn decide_bfp(&self, q: &MtQuery, margin_scale: f64) -> Option<MtResult> {
         let FilterFormat::Bfp(width) = self.pair.filter else {
             unreachable!("Filter::new pairs the bfp kind with a bfpW filter")
@@ -266,88 +411,71 @@ impl Filter {
             to_block(e2, w[2])?,
             to_block(s, w[3])?,
         ];
-        if [dir, e1, e2, s]
-            .iter()
-            .any(|b| !(EXP_MIN..=EXP_MAX).contains(&b.e))
-        {
+        let ranged = [dir, e1, e2, s];
+        if ranged.iter().any(|b| !(EXP_MIN..=EXP_MAX).contains(&b.e)) {
             return None;
         }
-        // Step 3, exactly: p = dir × e2, q = s × e1, det = e1·p, N = (s·p, dir·q, e2·q);
-        // each with its margin, both in units of its last bit.
-        let (p, qv) = (cross(&dir.m, &e2.m), cross(&s.m, &e1.m));
-        let block = |v: Vector| [dir, e1, e2, s][v as usize];
-        let value = |m: i128, triple: [Vector; 3]| -> Option<(Fx, Fx)> {
-            let sum: i32 = triple.map(|v| block(v).e).iter().sum();
-            let lsb: i32 = triple.map(|v| w[v as usize] as i32 - 1).iter().sum();
-            let units = margin(width, triple, margin_scale);
-            (sum >= SUM_MIN).then_some((Fx::new(m, sum - lsb), Fx::new(units, sum - lsb)))
+        // Step 3: p = dir × e2 and q = s × e1 exactly, cut to blocks, then the dots exactly.
+        let p = cross_block(&dir, &e2, w[Vector::P as usize]);
+        let qv = cross_block(&s, &e1, w[Vector::Q as usize]);
+        let blocks = [dir, e1, e2, s, p, qv];
+        use Vector::{Dir, E1, E2, P, Q, S};
+        // Each value with its margin; a triple below SUM_MIN is forwarded.
+        let value = |vectors: [Vector; 4]| -> Option<(Fx, i128)> {
+            let [a, b, c, x] = vectors.map(|v| blocks[v as usize]);
+            let lsb = a.lsb + x.lsb;
+            let e = margin(&blocks, vectors, lsb, margin_scale)?;
+            (a.e + b.e + c.e >= SUM_MIN).then_some((Fx::new(dot(&a.m, &x.m), lsb), e))
         };
-        use Vector::{Dir, E1, E2, S};
-        let (det, ed) = value(dot(&e1.m, &p), [E1, Dir, E2])?;
-        let (nu, eu) = value(dot(&s.m, &p), [S, Dir, E2])?;
-        let (nv, ev) = value(dot(&dir.m, &qv), [Dir, S, E1])?;
-        let (nt, et) = value(dot(&e2.m, &qv), [E2, S, E1])?;
-        let miss = Some(MtResult::default());
-        let d_abs = Fx::new(det.m.abs(), det.e);
-        let high = d_abs.add(ed)?;
-        let eps = split(DET_EPSILON).expect("a finite constant");
-        if high.lt(eps) {
-            return miss;
+        let (det, ed) = value([E1, Dir, E2, P])?;
+        let (nu, eu) = value([S, Dir, E2, P])?;
+        let (nv, ev) = value([Dir, S, E1, Q])?;
+        let (nt, et) = value([E2, S, E1, Q])?;
+        // Value ± margin: integer adders at the value's last bit.
+        let at = |m: Option<i128>, x: Fx| Some(Fx::new(m?, x.e));
+        let d_abs = det.m.abs();
+        let high = round(at(d_abs.checked_add(ed), det)?, true);
+        if high.lt(split(DET_EPSILON).expect("a finite constant")) {
+            return Some(MtResult::default());
         }
-        let low = Fx::new(d_abs.m - ed.m, det.e);
-        if low.m <= 0 {
-            return None;
-        }
-        // No reciprocal overflows or flushes, no quotient overflows: max = (2^24 − 1)·2^104.
-        let one = Fx::new(1, 0);
-        let (half_max, quarter_max) = (low.times(U_INV - 1, 103)?, low.times(U_INV - 1, 102)?);
-        let mut in_range = one.lt(half_max) && high.times(1, -125)?.lt(one);
-        for (n, e) in [(nu, eu), (nv, ev), (nt, et)] {
-            in_range = in_range && Fx::new(n.m.abs() + e.m, n.e).lt(quarter_max);
-        }
+        let low = round(Fx::new(d_abs - ed, det.e), false);
+        let sigma = det.m.signum();
+        // Per numerator σN + e rounded up and σN − e rounded down.
+        let bounds = |n: Fx, e: i128| -> Option<(Fx, Fx)> {
+            let m = sigma * n.m;
+            Some((
+                round(at(m.checked_add(e), n)?, true),
+                round(at(m.checked_sub(e), n)?, false),
+            ))
+        };
+        let [u, v, t] = [bounds(nu, eu)?, bounds(nv, ev)?, bounds(nt, et)?];
+        // No reciprocal overflows or flushes, no quotient overflows (powers of two: exponent
+        // comparisons in hardware).
+        let pow2 = |e: i32| Fx::new(1, e);
+        let room = low.times(1, 125)?;
+        let in_range = low.m > 0
+            && !low.lt(pow2(-126))
+            && high.lt(pow2(125))
+            && [u, v, t]
+                .iter()
+                .all(|&(hi, lo)| hi.lt(room) && Fx::new(-lo.m, lo.e).lt(room));
         if !in_range {
             return None;
         }
-        let sigma = det.m.signum();
-        let [nu, nv, nt] = [nu, nv, nt].map(|n| Fx::new(sigma * n.m, n.e));
-        let below_zero = |n: Fx, e: Fx| -> Option<bool> {
-            let top = Fx::new(n.m + e.m, n.e);
-            Some(top.m < 0 && high.times(1, -125)?.lt(top.times(-(U_INV - 1), -24)?))
-        };
-        let above_one = |n: Fx, e: Fx| -> Option<bool> {
-            Some(high.times(U_INV + 3, -24)?.lt(Fx::new(n.m - e.m, n.e)))
-        };
-        // (n − e) − 3u(|n| + e), scaled by 2^24: a numerator's lowest value after rounding.
-        let lowest = |n: Fx, e: Fx| -> Option<Fx> {
-            let m = (n.m - e.m).checked_mul(U_INV)? - 3 * (n.m.abs() + e.m);
-            Some(Fx::new(m, n.e - 24))
-        };
-        let uv_above_one = || -> Option<bool> {
-            let uv_low = lowest(nu, eu)?.add(lowest(nv, ev)?)?;
-            Some(high.times(U_INV + 2, -24)?.lt(uv_low))
-        };
+        let flush = high.times(1, -124)?;
+        let below_zero = |(hi, _): (Fx, Fx)| hi.m < 0 && !Fx::new(-hi.m, hi.e).lt(flush);
         let t_below = || -> Option<bool> {
             let tau = t_min_below(q.t_min)?;
-            let t_high = Fx::new(
-                (nt.m + et.m).checked_mul(U_INV)? + 3 * (nt.m.abs() + et.m),
-                nt.e - 24,
-            );
             let bound = if tau.m >= 0 { low } else { high };
-            Some(t_high.lt(Fx::new(tau.m.checked_mul(bound.m)?, tau.e + bound.e)))
+            let product = Fx::new(tau.m.checked_mul(bound.m)?, tau.e + bound.e);
+            Some(t.0.lt(round(product, false)))
         };
-        let certain = [
-            below_zero(nu, eu),
-            above_one(nu, eu),
-            below_zero(nv, ev),
-            uv_above_one(),
-            t_below(),
-        ]
-        .contains(&Some(true));
-        if certain {
-            miss
-        } else {
-            None
-        }
+        let certain = below_zero(u)
+            || high.lt(u.1)
+            || below_zero(v)
+            || high.lt(round(u.1.add(v.1)?, false))
+            || t_below() == Some(true);
+        certain.then_some(MtResult::default())
     }
 }
 
@@ -453,21 +581,177 @@ mod tests {
         assert_eq!(t_min_below(f32::NAN), None);
     }
 
+    /// A vector of three fp32 numbers as exact values.
+    fn exact(v: [f32; 3]) -> [Fx; 3] {
+        v.map(|c| split(c).unwrap())
+    }
+
+    /// Exact a·(b × c) of exact vectors (exponents small enough for i128).
+    fn triple(a: [Fx; 3], b: [Fx; 3], c: [Fx; 3]) -> Fx {
+        let mul = |x: Fx, y: Fx| Fx::new(x.m * y.m, x.e + y.e);
+        let sub = |x: Fx, y: Fx| x.add(Fx::new(-y.m, y.e)).unwrap();
+        let bc = [
+            sub(mul(b[1], c[2]), mul(b[2], c[1])),
+            sub(mul(b[2], c[0]), mul(b[0], c[2])),
+            sub(mul(b[0], c[1]), mul(b[1], c[0])),
+        ];
+        (0..3)
+            .map(|k| mul(a[k], bc[k]))
+            .try_fold(Fx::new(0, 0), Fx::add)
+            .unwrap()
+    }
+
+    proptest! {
+        /// Outward rounding never moves a value inward: down ≤ x ≤ up, both within one
+        /// unit of the short mantissa's last bit, both SHORT_BITS wide (up may carry into
+        /// the next power of two), and a value that fits is kept.
+        #[test]
+        fn outward_rounding_never_moves_inward(m in any::<i64>(), e in -60i32..60) {
+            let x = Fx::new(i128::from(m), e);
+            let (down, up) = (round(x, false), round(x, true));
+            prop_assert!(!x.lt(down) && !up.lt(x), "{x:?} {down:?} {up:?}");
+            let lsb = down.e;
+            prop_assert_eq!(up.e, lsb);
+            prop_assert!(up.m - down.m <= 1);
+            let limit = 1i128 << (SHORT_BITS - 1);
+            prop_assert!(-limit <= down.m && down.m < limit);
+            prop_assert!(-limit <= up.m && up.m <= limit);
+            if m.unsigned_abs() < 1 << (SHORT_BITS - 2) {
+                prop_assert_eq!(down, x);
+                prop_assert_eq!(up, x);
+            }
+            // Against f64 where f64 is exact.
+            if m.unsigned_abs() < 1 << 52 {
+                let (xf, step) = (x.to_f64(), 2f64.powi(lsb));
+                prop_assert!(down.to_f64() <= xf && xf - down.to_f64() < step);
+                prop_assert!(up.to_f64() >= xf && up.to_f64() - xf < step);
+            }
+        }
+
+        /// The dropped parts' bound: every component's truncation error is below
+        /// 2^dropped, and nothing is reported dropped when the block is exact.
+        #[test]
+        fn dropped_parts_bound_the_truncation_error(
+            v in proptest::array::uniform3(float(-30, 30)),
+            w in 8u32..=24,
+        ) {
+            let Some(b) = to_block(exact(v), w) else { return Ok(()); };
+            let errs: Vec<f64> = v
+                .iter()
+                .zip(b.m)
+                .map(|(c, m)| f64::from(*c) - m as f64 * 2f64.powi(b.lsb))
+                .collect();
+            match b.dropped {
+                None => prop_assert!(errs.iter().all(|&e| e == 0.0)),
+                Some(d) => {
+                    prop_assert!(errs.iter().all(|&e| e < 2f64.powi(d)));
+                    prop_assert!(d <= b.lsb);
+                    // Tight: the largest error is at least half the bound, unless the
+                    // window clamped it.
+                    let top = errs.iter().cloned().fold(0.0, f64::max);
+                    prop_assert!(top >= 2f64.powi(d - 1) || d == b.e - DROP_WINDOW);
+                }
+            }
+        }
+
+        /// The filter's value a·trunc(b × c) against the exact triple product: within the
+        /// margin's filter terms (the margin less its fixed part, which is the fallback's and
+        /// the translations'), and |value| + margin within QUOTIENT_RANGE·2^(E_a+E_b+E_c).
+        #[test]
+        fn filter_values_are_within_their_margin_terms(
+            a in proptest::array::uniform3(float(-6, 6)),
+            b in proptest::array::uniform3(float(-6, 6)),
+            c in proptest::array::uniform3(float(-6, 6)),
+            w in 8u32..=24,
+        ) {
+            let ws = widths(w);
+            let (Some(ab), Some(bb), Some(cb)) = (
+                to_block(exact(a), ws[1]),
+                to_block(exact(b), ws[0]),
+                to_block(exact(c), ws[2]),
+            ) else { return Ok(()); };
+            let xb = cross_block(&bb, &cb, ws[4]);
+            // The cut is a valid block: every exact component in [−2^e, 2^e).
+            for m in cross(&bb.m, &cb.m) {
+                let x = Fx::new(m, bb.lsb + cb.lsb);
+                prop_assert!(top(x) <= xb.e || m == 0);
+            }
+            // As det = e1·trunc(dir × e2): a in E1's place, b in Dir's, c in E2's.
+            let blocks = [bb, ab, cb, bb, xb, xb];
+            let value = [Vector::E1, Vector::Dir, Vector::E2, Vector::P];
+            let filter = Fx::new(dot(&ab.m, &xb.m), ab.lsb + xb.lsb);
+            let want = triple(exact(a), exact(b), exact(c));
+            let err = filter.add(Fx::new(-want.m, want.e)).unwrap();
+            // The fallback's part (the fixed constant) is not the filter's: leave it out.
+            let fixed = constant(constants().fixed, ab.e + bb.e + cb.e);
+            let e = Fx::new(margin(&blocks, value, filter.e, 1.0).unwrap(), filter.e);
+            let filter_terms = e.add(Fx::new(-fixed.m, fixed.e)).unwrap();
+            prop_assert!(!filter_terms.lt(Fx::new(err.m.abs(), err.e)), "{err:?} > {filter_terms:?}");
+            let sum = ab.e + bb.e + cb.e;
+            let range = Fx::new(QUOTIENT_RANGE as i128, sum);
+            prop_assert!(Fx::new(filter.m.abs(), filter.e).add(e).unwrap().lt(range));
+        }
+
+        /// The truncated cross product's own term: |a·(trunc(b × c) − b × c)| ≤ 3·2^(E_a+D_x).
+        #[test]
+        fn truncated_dots_are_within_their_term(
+            a in proptest::array::uniform3(-(1i128 << 24)..1 << 24),
+            x in proptest::array::uniform3(-(1i128 << 40)..1 << 40),
+            w in 8u32..=24,
+        ) {
+            let Some(ab) = to_block(a.map(|m| Fx::new(m, -24)), w) else { return Ok(()); };
+            let Some(xb) = to_block(x.map(|m| Fx::new(m, -40)), w) else { return Ok(()); };
+            let full = Fx::new(dot(&ab.m, &x), ab.lsb - 40);
+            let cut = Fx::new(dot(&ab.m, &xb.m), ab.lsb + xb.lsb);
+            let err = cut.add(Fx::new(-full.m, full.e)).unwrap();
+            match xb.dropped {
+                None => prop_assert_eq!(err.m, 0),
+                Some(d) => prop_assert!(Fx::new(err.m.abs(), err.e).lt(Fx::new(3, ab.e + d)) || err.m == 0),
+            }
+        }
+    }
+
     #[test]
-    fn margins_grow_as_the_width_shrinks() {
-        use Vector::{Dir, E1, E2, S};
-        // In units of 2^(sum of exponents): K, decreasing with W; s's extra bits make the
-        // numerators' margins smaller than det's.
-        let k = |w: u32, t: [Vector; 3]| {
-            let lsb: i32 = t.map(|v| widths(w)[v as usize] as i32 - 1).iter().sum();
-            margin(w, t, 1.0) as f64 * 2f64.powi(-lsb)
+    fn margins_shrink_with_the_width_and_the_dropped_bits() {
+        // Everything dropped at a full step: the old per-width constant, decreasing with W.
+        let full = |w: u32| {
+            let b = |e: i32, width: u32| Block {
+                m: [0; 3],
+                e,
+                lsb: e - (width as i32 - 1),
+                dropped: Some(e - (width as i32 - 1)),
+            };
+            let ws = widths(w);
+            let blocks = [
+                b(0, ws[0]),
+                b(0, ws[1]),
+                b(0, ws[2]),
+                b(0, ws[3]),
+                b(1, ws[4]),
+                b(1, ws[5]),
+            ];
+            let det = [Vector::E1, Vector::Dir, Vector::E2, Vector::P];
+            Fx::new(margin(&blocks, det, -80, 1.0).unwrap(), -80).to_f64()
         };
         for w in 9..=24 {
-            assert!(k(w, [E1, Dir, E2]) < k(w - 1, [E1, Dir, E2]));
-            assert!(k(w, [S, Dir, E2]) < k(w, [E1, Dir, E2]));
+            assert!(full(w) < full(w - 1));
         }
-        // W = 18: det's 3√3·3·2^-17 ≈ 1.19e-4 plus the fallback's 6γ₇ ≈ 2.5e-6.
-        assert!((1.21e-4..1.23e-4).contains(&k(18, [E1, Dir, E2])));
-        assert!(margin(18, [E1, Dir, E2], 0.5) < margin(18, [E1, Dir, E2], 1.0));
+        // W = 18: 3√3·3·2^-17 ≈ 1.19e-4, the truncated p's 3·2^-16 ≈ 4.6e-5, the fixed
+        // part ≈ 3.6e-6.
+        assert!((1.66e-4..1.72e-4).contains(&full(18)), "{}", full(18));
+        // Nothing dropped anywhere: the fixed part alone.
+        let exact = Block {
+            m: [0; 3],
+            e: 0,
+            lsb: -17,
+            dropped: None,
+        };
+        let det = [Vector::E1, Vector::Dir, Vector::E2, Vector::P];
+        let units = |scale: f64| margin(&[exact; 6], det, -80, scale).unwrap();
+        let m = Fx::new(units(1.0), -80).to_f64();
+        assert!((3.0e-6..4.0e-6).contains(&m), "{m}");
+        assert!(units(0.5) < units(1.0));
+        // Rounded up to the value's last bit: a term below it still counts one unit.
+        assert_eq!(margin(&[exact; 6], det, 0, 1.0), Some(1));
     }
 }
