@@ -30,3 +30,33 @@ mod traversal {
     mod timing;
     mod unit_axil;
 }
+
+/// hdl's lib is built with `test = false`, so a `#[cfg(test)]` module under src/ would
+/// compile in no build and run in none: this names any, so that its tests move here.
+#[test]
+fn no_unit_tests_hide_in_the_lib() {
+    fn sources(dir: &std::path::Path, found: &mut Vec<std::path::PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                sources(&path, found);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                found.push(path);
+            }
+        }
+    }
+    let mut files = Vec::new();
+    sources(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src"),
+        &mut files,
+    );
+    assert!(files.len() > 20, "{} sources found", files.len());
+    let hidden: Vec<_> = files
+        .iter()
+        .filter(|f| std::fs::read_to_string(f).unwrap().contains("#[cfg(test)]"))
+        .collect();
+    assert!(
+        hidden.is_empty(),
+        "unit tests in {hidden:?} never run: move them to hdl/tests/blocks/"
+    );
+}
