@@ -8,6 +8,7 @@ use hdl::synth::{synthesize, SynthOptions};
 use hdl::verilog::TOP;
 use hw_model::{Format, HwFormat};
 use rand::{rngs::StdRng, Rng, SeedableRng};
+use rayon::prelude::*;
 
 /// Edge-case operands of a float format: zeros, subnormals, min/max normal, Inf, NaN,
 /// one and its neighbours, values whose sums/products land on rounding halfway points.
@@ -204,18 +205,21 @@ fn recip_of_every_half_precision_input_matches_the_model() {
 
 #[test]
 fn every_operator_passes_verilator_lint() {
-    for format in HwFormat::all() {
-        for op in Op::ALL {
-            let max = formats::max_stages(format, op);
-            for stages in [0, max] {
-                let rtl = formats::rtl(format, op, stages).unwrap();
-                assert_eq!(rtl.latency, stages);
-                if let Err(e) = hdl::verilog::verilator_lint(&rtl.verilog) {
-                    panic!("{format} {op} stages={stages}: verilator lint failed:\n{e}");
-                }
-            }
+    let designs: Vec<(HwFormat, Op, usize)> = HwFormat::all()
+        .flat_map(|format| {
+            Op::ALL.into_iter().flat_map(move |op| {
+                [0, formats::max_stages(format, op)].map(|stages| (format, op, stages))
+            })
+        })
+        .collect();
+    // A Verilator process a design, one a core.
+    designs.into_par_iter().for_each(|(format, op, stages)| {
+        let rtl = formats::rtl(format, op, stages).unwrap();
+        assert_eq!(rtl.latency, stages);
+        if let Err(e) = hdl::verilog::verilator_lint(&rtl.verilog) {
+            panic!("{format} {op} stages={stages}: verilator lint failed:\n{e}");
         }
-    }
+    });
 }
 
 #[test]

@@ -13,6 +13,7 @@ use hw_model::traversal::{TraversalModel, UnitCounters, UnitRay};
 use hw_model::{Format, HwFormat};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
+use rayon::prelude::*;
 use rust_hdl::prelude::*;
 use sw_renderer::bvh::Bvh;
 use sw_renderer::hit::Hit;
@@ -286,12 +287,15 @@ fn unsupported_configurations_are_errors() {
 
 #[test]
 fn the_units_verilog_passes_verilator_lint() {
-    for (format, lanes) in [
+    // A Verilator process a unit, one a core: the widest alone is most of the test's time.
+    [
         (HwFormat::FP32, 1),
         (HwFormat::named("fx32_16"), 1),
         // Every lane-dependent part is in the widest unit (2 lanes are Verilated in sim).
         (HwFormat::FP32, MAX_LANES),
-    ] {
+    ]
+    .into_par_iter()
+    .for_each(|(format, lanes)| {
         let verilog = unit_verilog(&UnitConfig {
             format,
             ..config_with(lanes)
@@ -299,7 +303,7 @@ fn the_units_verilog_passes_verilator_lint() {
         .unwrap();
         verilator_lint_waiving(&verilog, UNIT_VERILATOR_WAIVERS)
             .unwrap_or_else(|e| panic!("{format}, {lanes} lanes: {e}"));
-    }
+    });
 }
 
 /// yosys resources of the unit (fp32, depth 5, `lanes` lanes) with the scene memory of

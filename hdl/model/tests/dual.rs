@@ -132,10 +132,14 @@ fn pair(s: &str) -> FormatPair {
 
 /// The queries where the fallback hits: what a filter must never reject.
 fn fallback_hits(pair: &FormatPair, qs: &[MtQuery]) -> Vec<(MtQuery, MtResult)> {
-    qs.iter()
-        .map(|q| (*q, mt_model(&pair.fallback, q)))
-        .filter(|(_, r)| r.hit)
-        .collect()
+    per_chunk(qs, |chunk| {
+        chunk
+            .iter()
+            .map(|q| (*q, mt_model(&pair.fallback, q)))
+            .filter(|(_, r)| r.hit)
+            .collect::<Vec<_>>()
+    })
+    .concat()
 }
 
 /// A filter under test and its pairs: `main` takes the long random run, `extra` (scaled by
@@ -191,22 +195,42 @@ fn filter(p: &str, scale_exp: i32, kind: FilterKind) -> Filter {
     Filter::new(pair(p), scale_exp, kind).unwrap()
 }
 
+/// `f` over `items` in one contiguous chunk per core, results in chunk order. The checks
+/// are per query on queries made beforehand from one seed, so a failure names the same
+/// query whatever the split; a chunk's panic is re-raised as it was.
+fn per_chunk<T: Sync, R: Send>(items: &[T], f: impl Fn(&[T]) -> R + Sync) -> Vec<R> {
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let size = items.len().div_ceil(threads).max(1);
+    std::thread::scope(|s| {
+        let chunks: Vec<_> = items.chunks(size).map(|c| s.spawn(|| f(c))).collect();
+        chunks
+            .into_iter()
+            .map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+            .collect()
+    })
+}
+
 /// Dual == fallback on every query: `hit` always, t, u, v bits on every fallback hit.
 /// Returns the share the filter decided alone.
 fn check_equal(filter: Filter, qs: &[MtQuery]) -> f64 {
     let pair = filter.pair;
     let dual = DualIntersector::with_filter(filter);
-    let mut got = vec![MtResult::default(); qs.len()];
-    dual.intersect_batch(qs, &mut got).unwrap();
-    let mut hits = 0;
-    for (q, g) in qs.iter().zip(&got) {
-        let want = mt_model(&pair.fallback, q);
-        assert_eq!(g.hit, want.hit, "{filter:?}: {q:?}");
-        if want.hit {
-            hits += 1;
-            assert!(g.same_bits(&want), "{pair}: {q:?}: {g:?} vs {want:?}");
+    let hits: usize = per_chunk(qs, |chunk| {
+        let mut got = vec![MtResult::default(); chunk.len()];
+        dual.intersect_batch(chunk, &mut got).unwrap();
+        let mut hits = 0;
+        for (q, g) in chunk.iter().zip(&got) {
+            let want = mt_model(&pair.fallback, q);
+            assert_eq!(g.hit, want.hit, "{filter:?}: {q:?}");
+            if want.hit {
+                hits += 1;
+                assert!(g.same_bits(&want), "{pair}: {q:?}: {g:?} vs {want:?}");
+            }
         }
-    }
+        hits
+    })
+    .into_iter()
+    .sum();
     let stats = dual.stats();
     assert_eq!(stats.tests, qs.len() as u64);
     assert!(hits > qs.len() / 10, "{pair}: only {hits} hits");

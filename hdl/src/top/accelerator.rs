@@ -208,7 +208,7 @@ hw_model::hw_formats!(per_format);
 
 /// Verilog of the accelerator body (top module `top`) in `format`. The caller validates the
 /// configuration.
-pub(crate) fn body_verilog(
+pub fn body_verilog(
     format: hw_model::HwFormat,
     depth: usize,
     lanes: usize,

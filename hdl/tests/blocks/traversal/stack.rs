@@ -1,0 +1,81 @@
+//! `hdl::traversal::stack`.
+
+use hdl::traversal::stack::*;
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+use rust_hdl::prelude::*;
+
+type Stacks = SlotStacks<6, 3, 3, 6, 16>;
+
+/// Random pushes, pops and clears of different slots each cycle against `Vec` stacks.
+#[test]
+fn pushes_and_pops_follow_a_stack_per_slot() {
+    const DEPTH: usize = 5;
+    let mut uut = Stacks::new(DEPTH);
+    uut.connect_all();
+    let mut rng = StdRng::seed_from_u64(11);
+    let mut stacks = vec![Vec::<u64>::new(); 6];
+    // What the last cycle's pop must answer: Some(entry) or None (empty).
+    let mut expect: Option<Option<u64>> = None;
+    // The slot whose push the last cycle dropped.
+    let mut dropped: Option<u64> = None;
+    let (mut pops, mut empties, mut overflowed, mut drops) = (0, 0, None, 0);
+    for cycle in 0..5_000 {
+        let push_slot = rng.gen_range(0..6usize);
+        let pop_slot = (push_slot + rng.gen_range(1..6)) % 6;
+        let push = rng.gen_bool(0.5);
+        let pop = rng.gen_bool(0.45);
+        let clear = rng.gen_bool(0.02);
+        let clear_slot = (0..6).find(|&s| s != push_slot && s != pop_slot).unwrap();
+        let data: u64 = rng.gen_range(0..1 << 16);
+        uut.push.next = push;
+        uut.push_slot.next = (push_slot as u64).into();
+        uut.push_data.next = data.into();
+        uut.pop.next = pop;
+        uut.pop_slot.next = (pop_slot as u64).into();
+        uut.clear.next = clear;
+        uut.clear_slot.next = (clear_slot as u64).into();
+        uut.clock.next = Clock { clk: false };
+        assert!(simulate(&mut uut, 100));
+        if let Some(want) = expect.take() {
+            match want {
+                Some(entry) => {
+                    assert!(uut.popped.val() && !uut.empty.val(), "cycle {cycle}");
+                    assert_eq!(uut.pop_data.val().to_u64(), entry, "cycle {cycle}");
+                }
+                None => assert!(uut.empty.val() && !uut.popped.val(), "cycle {cycle}"),
+            }
+        } else {
+            assert!(!uut.popped.val() && !uut.empty.val(), "cycle {cycle}");
+        }
+        assert_eq!(uut.overflow.val(), overflowed.is_some());
+        if let Some(slot) = overflowed {
+            assert_eq!(uut.overflow_slot.val().to_u64(), slot);
+        }
+        assert_eq!(uut.dropped.val(), dropped.is_some(), "cycle {cycle}");
+        if let Some(slot) = dropped.take() {
+            assert_eq!(uut.dropped_slot.val().to_u64(), slot, "cycle {cycle}");
+        }
+        if push {
+            if stacks[push_slot].len() < DEPTH {
+                stacks[push_slot].push(data);
+            } else {
+                overflowed.get_or_insert(push_slot as u64);
+                dropped = Some(push_slot as u64);
+                drops += 1;
+            }
+        }
+        if pop {
+            let entry = stacks[pop_slot].pop();
+            pops += usize::from(entry.is_some());
+            empties += usize::from(entry.is_none());
+            expect = Some(entry);
+        }
+        if clear {
+            stacks[clear_slot].clear();
+        }
+        uut.clock.next = Clock { clk: true };
+        assert!(simulate(&mut uut, 100));
+    }
+    assert!(pops > 500 && empties > 100 && overflowed.is_some() && drops > 10);
+}
