@@ -282,16 +282,25 @@ impl BoundArith {
     fn up(self, x: f64) -> f64 {
         match self {
             BoundArith::Exact => x,
-            BoundArith::Coarse(bits) => {
-                if x == 0.0 || !x.is_finite() {
-                    return x;
-                }
-                // A floor one too high (x just below a power of two) makes the grid coarser,
-                // never the value smaller.
-                let quantum = 2f64.powi(x.log2().floor() as i32 - bits as i32);
-                (x / quantum).ceil() * quantum
-            }
+            BoundArith::Coarse(bits) => round_up_to_bits(x, bits),
         }
+    }
+}
+
+/// `x` ≥ 0 rounded up to a float of `bits` fraction bits (0 and non-finite values stay): the
+/// numbers of a hardware bound network.
+pub(crate) fn round_up_to_bits(x: f64, bits: u32) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let dropped = f64::MANTISSA_DIGITS - 1 - bits;
+    let raw = x.to_bits();
+    let low = raw & ((1u64 << dropped) - 1);
+    if low == 0 {
+        x
+    } else {
+        // Carrying into the exponent field gives the next power of two, as it should.
+        f64::from_bits((raw - low) + (1u64 << dropped))
     }
 }
 

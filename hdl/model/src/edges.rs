@@ -15,7 +15,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::dual::HW_BOUND_BITS;
+use crate::dual::{round_up_to_bits, HW_BOUND_BITS};
 use crate::format::Format;
 use crate::precision::rounding_error;
 
@@ -111,18 +111,7 @@ const EXPONENT_BITS: u64 = 0x7ff0_0000_0000_0000;
 
 /// `x` ≥ 0 rounded up to [`HW_BOUND_BITS`] fraction bits: the bound network's numbers.
 fn up(x: f64) -> f64 {
-    if x == 0.0 || !x.is_finite() {
-        return x;
-    }
-    let dropped = 52 - HW_BOUND_BITS;
-    let bits = x.to_bits();
-    let low = bits & ((1u64 << dropped) - 1);
-    if low == 0 {
-        x
-    } else {
-        // Carrying into the exponent field gives the next power of two, as it should.
-        f64::from_bits((bits - low) + (1u64 << dropped))
-    }
+    round_up_to_bits(x, HW_BOUND_BITS)
 }
 
 /// a + b of two bound values, rounded up: f64's sum, moved up one step if it was inexact
