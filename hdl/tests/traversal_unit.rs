@@ -176,7 +176,7 @@ mod fp16_unit {
 fn fp32_unit_answers_and_counts_as_the_model(lanes: usize) {
     with_build_stack(move || {
         let (load, run) = (fp32_unit::Bench::load, fp32_unit::Bench::run);
-        answers_and_counts(FP32, lanes, fp32_unit::Bench::new(lanes), load, run)
+        answers_and_counts(Format::FP32, lanes, fp32_unit::Bench::new(lanes), load, run)
     });
 }
 
@@ -209,7 +209,6 @@ fn the_fp16_unit_answers_and_counts_as_the_model() {
     });
 }
 
-const FP32: Format = Format::Float { exp: 8, man: 23 };
 const FP16: Format = Format::Float { exp: 5, man: 10 };
 
 type Answers = (Vec<Option<Hit>>, UnitCounters);
@@ -243,8 +242,8 @@ fn answers_and_counts<B>(
     let hits = want.iter().filter(|h| h.is_some()).count();
     assert!(hits >= 5, "{hits} hits are too few to show anything");
     assert_eq!(counters, want_counters);
-    if format != FP32 {
-        let fp32 = TraversalModel::new(FP32, 32, model.image().clone());
+    if format != Format::FP32 {
+        let fp32 = TraversalModel::new(Format::FP32, 32, model.image().clone());
         let differ = rays
             .iter()
             .zip(&want)

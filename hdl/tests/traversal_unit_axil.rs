@@ -180,8 +180,6 @@ impl Bench {
     }
 }
 
-const FP32: Format = Format::Float { exp: 8, man: 23 };
-
 #[test]
 fn the_unit_is_controlled_and_counted_over_axi4_lite() {
     with_build_stack(|| {
@@ -241,7 +239,7 @@ fn the_unit_is_controlled_and_counted_over_axi4_lite() {
         // Rays: answers and the counters over the bus equal the model's.
         let rays = rays(3, 16, tris.len() as u32);
         let image = SceneImage::from_words(&words).unwrap();
-        let model = TraversalModel::new(FP32, config.stack_depth, image);
+        let model = TraversalModel::new(Format::FP32, config.stack_depth, image);
         let mut want_counters = UnitCounters::default();
         let want: Vec<Option<Hit>> = (rays.iter())
             .map(|r| model.trace(r, &mut want_counters).unwrap())

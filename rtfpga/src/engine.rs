@@ -226,7 +226,7 @@ impl PrecisionArgs {
                 FilterFormat::Bfp(_) => (p.fallback, p.fallback),
             },
         };
-        let fp32 = answers == Format::Float { exp: 8, man: 23 };
+        let fp32 = answers == Format::FP32;
         let model = matches!(kind, EngineKind::Model | EngineKind::Traversal);
         // Unscaled unless asked: auto scaling measured no better in any format and worse in
         // e5m14 and the fixed formats (docs/precision.md).

@@ -44,8 +44,9 @@ impl Advance {
             Advance::TriangleBox => {
                 let (moved, t0) = advanced(q);
                 let r = mt(&moved);
+                let f = Format::FP32;
                 MtResult {
-                    t: FP32.to_f32(FP32.add(FP32.from_f32(r.t), t0)),
+                    t: f.to_f32(f.add(f.from_f32(r.t), t0)),
                     ..r
                 }
             }
@@ -55,15 +56,13 @@ impl Advance {
 
 named_choice!(Advance, "origin advance");
 
-/// The hardware's fp32 (its operators: round to nearest even, subnormals flushed).
-const FP32: Format = Format::Float { exp: 8, man: 23 };
-
 /// `q` with its origin moved to `o + t0·d` and its `t_min` to `t_min − t0`, and t0 (fp32
 /// bits): the largest slab entry `min((lo − o)/d, (hi − o)/d)` of the triangle's bounding box
 /// over the axes where it is finite, and at least 0 (an origin inside the box stays). All in
-/// fp32, as `(lo − o)·(1/d)`: the traversal unit's box test computes the same per node.
+/// fp32, as `(lo − o)·(1/d)`, the operations of the traversal unit's box test (without its
+/// padded origins).
 pub fn advanced(q: &MtQuery) -> (MtQuery, u64) {
-    let f = FP32;
+    let f = Format::FP32;
     let finite = |x: u64| f.to_f32(x).is_finite();
     let min = |a: u64, b: u64| if f.lt(b, a) { b } else { a };
     let mut t0 = f.from_f32(0.0);
@@ -124,7 +123,7 @@ mod tests {
     fn the_origin_moves_to_the_box_entry_and_not_backwards() {
         // Along +z from z = 0: the box spans z 10..12, entered at t = 10.
         let (moved, t0) = advanced(&query([2.0, 3.0, 0.0], [0.0, 0.0, 1.0]));
-        assert_eq!(FP32.to_f32(t0), 10.0);
+        assert_eq!(Format::FP32.to_f32(t0), 10.0);
         assert_eq!(moved.orig, [2.0, 3.0, 10.0]);
         assert_eq!(moved.t_min, -9.5);
         // From inside the box, or moving away from it: no move.
@@ -133,14 +132,14 @@ mod tests {
             ([2.0, 3.0, 0.0], [0.0, 0.0, -1.0]),
         ] {
             let (moved, t0) = advanced(&query(o, d));
-            assert_eq!((moved.orig, FP32.to_f32(t0)), (o, 0.0));
+            assert_eq!((moved.orig, Format::FP32.to_f32(t0)), (o, 0.0));
         }
     }
 
     #[test]
     fn the_distance_moved_is_added_back_to_t() {
         let q = query([2.0, 3.0, 0.0], [0.0, 0.0, 1.0]);
-        let fp32 = FP32;
+        let fp32 = Format::FP32;
         let r = Advance::TriangleBox.run(&q, |m| crate::mt_model(&fp32, m));
         let plain = crate::mt_model(&fp32, &q);
         assert!(r.hit && plain.hit);

@@ -97,6 +97,9 @@ impl std::str::FromStr for Format {
 }
 
 impl Format {
+    /// fp32 as the hardware computes it (round to nearest even, subnormals flushed).
+    pub const FP32: Format = Format::Float { exp: 8, man: 23 };
+
     /// Total bits of a value.
     #[inline]
     pub fn width(&self) -> u32 {

@@ -15,7 +15,7 @@
 use crate::format::Format;
 
 /// fp32 as the datapath computes it.
-const F: Format = Format::Float { exp: 8, man: 23 };
+const F: Format = Format::FP32;
 
 /// Relative padding of the ray origin and bound: the BVH's, which also padded the boxes.
 pub use sw_renderer::bvh::PAD;
