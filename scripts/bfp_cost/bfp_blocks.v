@@ -32,16 +32,7 @@ module bfp_block #(parameter IW = 29, W = 18) (
     input signed [IW-1:0] x0, x1, x2, input signed [9:0] e0, e1, e2,
     output reg signed [W-1:0] m0, m1, m2, output reg signed [9:0] be,
     output reg signed [9:0] de, output reg dz);
-    function [6:0] bits(input [IW-1:0] x);  // position of the leading bit of x ^ sign
-        integer i;
-        reg [IW-1:0] y;
-        begin
-            y = x ^ {IW{x[IW-1]}};
-            bits = 0;
-            for (i = 0; i < IW; i = i + 1)
-                if (y[i]) bits = i + 1;
-        end
-    endfunction
+    `include "sign_bits.vh"
     function [6:0] ones(input [IW-1:0] x);  // position of the leading one of x, plus one
         integer i;
         begin
@@ -161,16 +152,7 @@ endmodule
 module bfp_round #(parameter IW = 65, M = 16, UP = 1) (
     input clk, input signed [IW-1:0] x,
     output reg signed [M:0] m, output reg [6:0] sh);
-    function [6:0] bits(input [IW-1:0] x);
-        integer i;
-        reg [IW-1:0] y;
-        begin
-            y = x ^ {IW{x[IW-1]}};
-            bits = 0;
-            for (i = 0; i < IW; i = i + 1)
-                if (y[i]) bits = i + 1;
-        end
-    endfunction
+    `include "sign_bits.vh"
     wire [6:0] t = bits(x);
     // Right shift that leaves M bits (sign included): t + 1 - M, at least 0.
     wire [6:0] r = t + 1 > M ? t + 1 - M : 0;
