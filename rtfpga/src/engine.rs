@@ -12,7 +12,7 @@ use hw_model::dual::{
 };
 use hw_model::precision::{auto_scale_exp, SceneRange, SpawnChoice};
 use hw_model::traversal::{SceneCapacity, SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
-use hw_model::{Advance, Edges, Format, ModelIntersector};
+use hw_model::{Advance, Edges, Format, ModelIntersector, NamedChoice};
 use sim::hw_intersector::{HwIntersector, Mode};
 use sw_renderer::intersect::F32Intersector;
 use sw_renderer::rays::RayEngine;
@@ -152,22 +152,11 @@ pub enum ScaleKind {
     None,
 }
 
-/// `--spawn`'s parser: the policies' names, listed in the help.
-fn spawn_choice() -> impl TypedValueParser<Value = SpawnChoice> {
-    clap::builder::PossibleValuesParser::new(SpawnChoice::ALL.map(SpawnChoice::name))
-        .try_map(|name| name.parse::<SpawnChoice>())
-}
-
-/// `--edges`'s parser: the edge tests' names, listed in the help.
-fn edges_choice() -> impl TypedValueParser<Value = Edges> {
-    clap::builder::PossibleValuesParser::new(Edges::ALL.map(Edges::name))
-        .try_map(|name| name.parse::<Edges>())
-}
-
-/// `--advance`'s parser: the choices' names, listed in the help.
-fn advance_choice() -> impl TypedValueParser<Value = Advance> {
-    clap::builder::PossibleValuesParser::new(Advance::ALL.map(Advance::name))
-        .try_map(|name| name.parse::<Advance>())
+/// The parser of a closed list of choices (`--spawn`, `--edges`, `--advance`): its names,
+/// listed in the help.
+fn choice<T: NamedChoice>() -> impl TypedValueParser<Value = T> {
+    clap::builder::PossibleValuesParser::new(T::CHOICES.iter().map(|c| c.choice_name()))
+        .try_map(|name| name.parse::<T>())
 }
 
 /// The model lane's options beyond its format (docs/precision.md): the hardware lanes' are
@@ -193,7 +182,7 @@ pub struct PrecisionArgs {
     /// Spawn policy of secondary and shadow rays: thesis (origin offset by the scene's bias)
     /// or format-aware (also a t_min from the format's rounding error, the triangle left
     /// excluded) [default: thesis for the f32 engine and for fp32, else format-aware].
-    #[arg(long, value_parser = spawn_choice())]
+    #[arg(long, value_parser = choice::<SpawnChoice>())]
     pub spawn: Option<SpawnChoice>,
     /// Scaling of the queries into the format's range, model and traversal engines only
     /// [default: none].
@@ -201,13 +190,13 @@ pub struct PrecisionArgs {
     pub scale: Option<ScaleKind>,
     /// The model lane's edge test: exact (the hardware's) or conservative (widened by its
     /// running error bound), model engine with one format only [default: exact].
-    #[arg(long, value_parser = edges_choice())]
+    #[arg(long, value_parser = choice::<Edges>())]
     pub edges: Option<Edges>,
     /// Where the model lane starts a query's ray: none (at its origin, the hardware's) or
     /// triangle-box (moved in fp32 to where it enters the triangle's bounding box), model
     /// engine with one format only [default: triangle-box for a format-aware model render,
     /// else none].
-    #[arg(long, value_parser = advance_choice())]
+    #[arg(long, value_parser = choice::<Advance>())]
     pub advance: Option<Advance>,
 }
 

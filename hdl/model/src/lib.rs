@@ -7,10 +7,25 @@
 //! `sw_renderer::rays`): the model as an intersector ([`engine`]) and the traversal unit's
 //! model ([`traversal`]); the renderer itself depends on no hardware crate.
 
-/// `Display` and `FromStr` of a closed list of named choices (a CLI value, a config value)
-/// from its `ALL` and `name()`: the error names `$what`, the bad value and the list.
+/// A closed list of named choices (a CLI value, a config value), as [`named_choice!`] gives
+/// it: what a command line parser lists and parses.
+pub trait NamedChoice: Copy + Send + Sync + std::str::FromStr<Err = String> + 'static {
+    /// Every choice, in the order a help text lists them.
+    const CHOICES: &'static [Self];
+    fn choice_name(self) -> &'static str;
+}
+
+/// `Display`, `FromStr` and [`NamedChoice`] of a closed list of named choices from its `ALL`
+/// and `name()`: the parse error names `$what`, the bad value and the list.
 macro_rules! named_choice {
     ($ty:ty, $what:literal) => {
+        impl $crate::NamedChoice for $ty {
+            const CHOICES: &'static [Self] = &<$ty>::ALL;
+            fn choice_name(self) -> &'static str {
+                self.name()
+            }
+        }
+
         impl std::fmt::Display for $ty {
             fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
                 f.write_str(self.name())
