@@ -96,18 +96,6 @@ pub fn advanced(q: &MtQuery) -> (MtQuery, u64) {
 mod tests {
     use super::*;
 
-    #[test]
-    fn names_parse_and_unknown_names_list_the_choices() {
-        for a in Advance::ALL {
-            assert_eq!(a.name().parse::<Advance>(), Ok(a));
-        }
-        let e = "far".parse::<Advance>().unwrap_err();
-        assert!(
-            e.contains("`far`") && e.contains("none or triangle-box"),
-            "{e}"
-        );
-    }
-
     fn query(orig: [f32; 3], dir: [f32; 3]) -> MtQuery {
         MtQuery {
             orig,

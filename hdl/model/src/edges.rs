@@ -292,18 +292,6 @@ mod tests {
     use crate::lookup;
 
     #[test]
-    fn names_parse_and_unknown_names_list_the_choices() {
-        for e in Edges::ALL {
-            assert_eq!(e.name().parse::<Edges>(), Ok(e));
-        }
-        let e = "loose".parse::<Edges>().unwrap_err();
-        assert!(
-            e.contains("`loose`") && e.contains("exact or conservative"),
-            "{e}"
-        );
-    }
-
-    #[test]
     fn rounding_up_keeps_four_significant_bits() {
         assert_eq!(up(1.0), 1.0);
         assert_eq!(up(1.0625), 1.125);

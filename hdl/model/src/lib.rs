@@ -70,3 +70,30 @@ pub use edges::Edges;
 pub use engine::ModelIntersector;
 pub use format::{Format, FormatError, Overflow, Quant};
 pub use mt::{mt_model, mt_model_edges, mt_model_scaled, scale_query, MtQuery, MtResult};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::precision::SpawnChoice;
+
+    /// Every name parses back to its choice and displays as itself; `bad` is an error naming
+    /// it and the `list`.
+    fn names_round_trip<T: NamedChoice + PartialEq + std::fmt::Debug + std::fmt::Display>(
+        bad: &str,
+        list: &str,
+    ) {
+        for &c in T::CHOICES {
+            assert_eq!(c.choice_name().parse::<T>(), Ok(c));
+            assert_eq!(c.to_string(), c.choice_name());
+        }
+        let e = bad.parse::<T>().unwrap_err();
+        assert!(e.contains(&format!("`{bad}`")) && e.contains(list), "{e}");
+    }
+
+    #[test]
+    fn named_choices_parse_their_names_and_list_them_in_errors() {
+        names_round_trip::<SpawnChoice>("format_aware", "thesis or format-aware");
+        names_round_trip::<Edges>("loose", "exact or conservative");
+        names_round_trip::<Advance>("far", "none or triangle-box");
+    }
+}
