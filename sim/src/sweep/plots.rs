@@ -108,7 +108,8 @@ where
     let mut chart = ChartBuilder::on(area)
         .caption(
             format!(
-                "Worst-scene PSNR vs format width, {variant} ({} scenes, {}); top = identical",
+                "Worst-scene PSNR vs format width, {} ({} scenes, {})",
+                variant.name(),
                 r.scenes.len(),
                 r.image_size
             ),
@@ -316,7 +317,10 @@ where
     let max_dsp = with.iter().filter_map(|r| r.dsp48e1).max().unwrap_or(1);
     let mut chart = ChartBuilder::on(area)
         .caption(
-            format!("Quality vs DSP48E1, {variant}: Pareto front in red; top = identical"),
+            format!(
+                "Quality vs DSP48E1, {}: Pareto front in red",
+                variant.name()
+            ),
             ("sans-serif", 20),
         )
         .margin(15)
