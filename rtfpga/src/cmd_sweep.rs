@@ -86,7 +86,7 @@ pub fn run_merge(a: MergeArgs) -> Result<()> {
 
 fn summary(results: &Results, layout: &Layout) {
     println!(
-        "{} rows (points × spawn policies) merged: {}, {}, {}, {}",
+        "{} rows (points × spawn policies, the hardware lane) merged: {}, {}, {}, {}",
         results.rows.len(),
         layout.results("csv").display(),
         layout.quality_csv().display(),
@@ -98,14 +98,14 @@ fn summary(results: &Results, layout: &Layout) {
         .iter()
         .filter(|q| !results.model_formats.contains(&q.format))
         .collect();
-    for &policy in &results.policies {
-        match sweep::table::smallest_format_above(hardware.iter().copied(), policy, 40.0) {
+    for &variant in &results.variants {
+        match sweep::table::smallest_format_above(hardware.iter().copied(), variant, 40.0) {
             Some(q) => println!(
-                "smallest format with PSNR >= 40 dB on every scene, {policy} policy: {} ({} bits)",
+                "smallest format with PSNR >= 40 dB on every scene, {variant}: {} ({} bits)",
                 q.format, q.bits
             ),
             None if !hardware.is_empty() => {
-                println!("no format reaches PSNR >= 40 dB on every scene with the {policy} policy")
+                println!("no format reaches PSNR >= 40 dB on every scene with the {variant}")
             }
             None => {}
         }

@@ -239,16 +239,11 @@ impl PrecisionArgs {
         let single_model =
             kind == EngineKind::Model && matches!(hw.format, FormatChoice::Single(_));
         let lane = if single_model {
-            let format_aware = choice == SpawnChoice::FormatAware;
             Lane {
                 edges: self.edges.unwrap_or_default(),
-                // Measured: the moved origin is what takes e5m14 past 40 dB
-                // (docs/precision.md).
-                advance: self.advance.unwrap_or(if format_aware {
-                    Advance::TriangleBox
-                } else {
-                    Advance::None
-                }),
+                advance: self
+                    .advance
+                    .unwrap_or_else(|| hw_model::advance::default_for(choice)),
             }
         } else {
             let asked = Lane {

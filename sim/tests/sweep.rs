@@ -1,7 +1,7 @@
 //! The design-space sweep: a tiny configuration end to end (model engine, two formats under
-//! both spawn policies, one dual-precision pair, tiny images, projection), a job run on its
-//! own reproducing the local run's result, and bad configurations refused with the file, line
-//! and key before any work.
+//! both spawn policies and both origin advances, a float and a block-floating-point
+//! dual-precision pair, tiny images, projection), a job run on its own reproducing the local
+//! run's result, and bad configurations refused with the file, line and key before any work.
 //!
 //! Synthesis and co-simulation of the smallest accelerator take over a minute, so that test
 //! is ignored by default: `cargo test --release -p sim --test sweep -- --ignored`.
@@ -10,7 +10,8 @@ use std::path::{Path, PathBuf};
 
 use hw_model::dual::{DualIntersector, FormatPair};
 use hw_model::precision::SpawnChoice;
-use hw_model::HwFormat;
+use hw_model::{Advance, HwFormat};
+use sim::sweep::config::Variant;
 use sim::sweep::dual::DualResult;
 use sim::sweep::hardware::PointResult;
 use sim::sweep::layout::read_json;
@@ -54,15 +55,25 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
         return;
     };
     let dir = tempfile::tempdir().unwrap();
-    // Both policies by default; one pair.
+    // Both policies and both advances by default; a float and a bfp pair.
     let text = format!(
-        "{TINY}pairs = [\"fp16/fp32\"]\n\n[projection]\nthesis_scenes = {:?}\n",
+        "{TINY}pairs = [\"fp16/fp32\", \"bfp16/fp32\"]\n\n[projection]\nthesis_scenes = {:?}\n",
         scenes.display().to_string()
     );
     let path = config_file(dir.path(), "tiny.toml", &text);
     let config = sweep::load(&path).unwrap();
     assert_eq!(config.points.len(), 4);
     assert_eq!(config.policies, SpawnChoice::ALL);
+    assert_eq!(config.advances, Advance::ALL);
+    // The advance under format-aware only (its default lane in `rtfpga render`).
+    let (thesis, fa) = (SpawnChoice::Thesis, SpawnChoice::FormatAware);
+    let variant = |policy, advance| Variant { policy, advance };
+    let (plain, fa_plain, fa_advanced) = (
+        variant(thesis, Advance::None),
+        variant(fa, Advance::None),
+        variant(fa, Advance::TriangleBox),
+    );
+    assert_eq!(config.variants(), [plain, fa_plain, fa_advanced]);
     let out = dir.path().join("out");
     let results = sweep::run_local(&config, &out, &local(2)).unwrap();
     let layout = Layout::new(&out);
@@ -78,14 +89,14 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
     ] {
         assert!(out.join(file).is_file(), "{file} missing");
     }
-    for policy in SpawnChoice::ALL {
+    for v in config.variants() {
         for ext in ["png", "svg"] {
             assert!(layout
-                .plot(&format!("psnr_vs_bits_{policy}"), ext)
+                .plot(&format!("psnr_vs_bits_{}", v.name()), ext)
                 .is_file());
         }
         for format in ["fp32", "fx16_10"] {
-            let grid = image::open(layout.grid(format, policy)).unwrap();
+            let grid = image::open(layout.grid(format, v)).unwrap();
             // Two scenes stacked, render and heat-map side by side (4-pixel gaps).
             assert_eq!(
                 (grid.width(), grid.height()),
@@ -96,44 +107,55 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
 
     // The manifest: prepare, one quality job per format, one per pair, one per point, merge.
     let jobs = std::fs::read_to_string(layout.jobs_txt()).unwrap();
-    assert_eq!(jobs.lines().count(), 2 + 1 + 4);
-    assert!(jobs.contains(" --job dual/fp16/fp32"));
+    assert_eq!(jobs.lines().count(), 2 + 2 + 4);
+    assert!(jobs.contains(" --job dual/fp16/fp32") && jobs.contains(" --job dual/bfp16/fp32"));
     assert!(jobs
         .lines()
         .all(|l| l.starts_with("rtfpga sweep-job --config ") && l.contains(" --job ")));
 
-    // fp32 with the thesis' spawning is the reference's arithmetic: identical; the 16-bit
-    // fixed format is not, under either policy.
-    assert_eq!(results.quality.len(), 2 * 2);
-    let q = |f: &str, policy: SpawnChoice| {
+    // fp32 with the thesis' spawning and no advance is the reference's arithmetic:
+    // identical; the 16-bit fixed format is not, under either policy.
+    assert_eq!(results.quality.len(), 2 * 3);
+    let q = |f: &str, v: Variant| {
         results
             .quality
             .iter()
-            .find(|q| q.format == f && q.policy == policy)
+            .find(|q| q.format == f && q.variant() == v)
             .unwrap()
     };
-    let thesis = SpawnChoice::Thesis;
-    assert_eq!(q("fp32", thesis).min_psnr_db(), f64::INFINITY);
-    assert!(q("fp32", thesis)
+    assert_eq!(q("fp32", plain).min_psnr_db(), f64::INFINITY);
+    assert!(q("fp32", plain)
         .scenes
         .iter()
         .all(|s| s.differing_pixels == 0));
-    for policy in SpawnChoice::ALL {
-        let coarse = q("fx16_10", policy).min_psnr_db();
+    for v in [plain, fa_plain] {
+        let coarse = q("fx16_10", v).min_psnr_db();
         assert!(
             coarse.is_finite() && coarse < 40.0,
-            "fx16_10 {policy} min PSNR {coarse}"
+            "fx16_10 {v} min PSNR {coarse}"
         );
-        assert!(q("fx16_10", policy).max_differing_share() > 0.0);
+        assert!(q("fx16_10", v).max_differing_share() > 0.0);
     }
+    // The advance really changes the narrow format's renders (and its saved images).
+    let scenes_of = |v| {
+        q("fx16_10", v)
+            .scenes
+            .iter()
+            .map(|s| (s.psnr_db, s.differing_pixels))
+            .collect::<Vec<_>>()
+    };
+    assert_ne!(scenes_of(fa_plain), scenes_of(fa_advanced));
+    let teapot = |v| image::open(layout.quality_dir("fx16_10", v).join("utah_teapot.png")).unwrap();
+    assert_ne!(teapot(fa_plain), teapot(fa_advanced));
 
-    // The pair: one result per policy, every image equal to the fp32 model's (so identical
+    // The pairs: one result per policy, every image equal to the fp32 model's (so identical
     // to the reference under the thesis' spawning), a share of its tests forwarded, and the
-    // counts those of the pair's own intersector rendering the scene.
-    assert_eq!(results.dual.len(), 2);
-    let pair = FormatPair::parse("fp16/fp32").unwrap();
+    // counts those of the pair's own intersector (the engines' filter for it) rendering the
+    // scene.
+    assert_eq!(results.dual.len(), 2 * 2);
     for d in &results.dual {
-        assert_eq!((d.pair.as_str(), d.filter_bits), ("fp16/fp32", 16));
+        let pair = FormatPair::parse(&d.pair).unwrap();
+        assert_eq!(d.filter_bits, 16);
         assert!(d.exact(), "{d:?}");
         for s in &d.scenes {
             assert!(
@@ -164,21 +186,26 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
             (d.scenes[0].tests, d.scenes[0].forwarded)
         );
     }
-    let on_disk: DualResult =
-        read_json(&layout.dual_result("fp16/fp32", SpawnChoice::FormatAware)).unwrap();
     assert_eq!(
-        Some(&on_disk),
-        results.dual.iter().find(|d| d.policy != thesis)
+        results
+            .dual
+            .iter()
+            .map(|d| d.pair.as_str())
+            .collect::<Vec<_>>(),
+        ["fp16/fp32", "fp16/fp32", "bfp16/fp32", "bfp16/fp32"]
     );
+    let on_disk: DualResult = read_json(&layout.dual_result("bfp16/fp32", fa)).unwrap();
+    assert_eq!(Some(&on_disk), results.dual.last());
 
-    // Rows: one per point and policy; quality comes from the format and policy, cycles per
-    // test from the lanes, and the frame time from the projection (same workload, so every
-    // row's ARM-only time agrees).
+    // Rows: one per point and policy, with the hardware's lane (no advance); quality comes
+    // from the format and policy, cycles per test from the lanes, and the frame time from the
+    // projection (same workload, so every row's ARM-only time agrees).
     assert_eq!(results.rows.len(), 4 * 2);
     let arm = results.arm_only_s.unwrap();
     for r in &results.rows {
-        let policy = r.policy.unwrap();
-        assert_eq!(r.min_psnr_db.unwrap().0, q(&r.format, policy).min_psnr_db());
+        let v = variant(r.policy.unwrap(), r.advance.unwrap());
+        assert!(v.in_hardware(), "{v}");
+        assert_eq!(r.min_psnr_db.unwrap().0, q(&r.format, v).min_psnr_db());
         assert_eq!(r.cycles_per_test, 1.0 / r.lanes as f64);
         assert_eq!(
             r.latency,
@@ -219,13 +246,24 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
     assert_eq!(csv.lines().count(), 1 + 4 * 2);
     assert!(csv
         .lines()
-        .any(|l| l.starts_with("fp32_d1_l1,fp32,32,1,1,thesis,") && l.contains(",inf,")));
-    // quality.csv: 2 formats and 1 pair, each × 2 policies × 2 scenes.
+        .any(|l| l.starts_with("fp32_d1_l1,fp32,32,1,1,thesis,none,") && l.contains(",inf,")));
+    // quality.csv: 2 formats × 3 variants and 2 pairs × 2 policies, each × 2 scenes.
     let quality_csv = std::fs::read_to_string(layout.quality_csv()).unwrap();
-    assert_eq!(quality_csv.lines().count(), 1 + 3 * 2 * 2);
-    assert!(quality_csv.lines().any(|l| l
-        .starts_with("fp16/fp32,pair,16,format-aware,simple_plane,")
-        && l.ends_with(",true")));
+    assert_eq!(quality_csv.lines().count(), 1 + (2 * 3 + 2 * 2) * 2);
+    for start in [
+        "fp16/fp32,pair,16,format-aware,none,simple_plane,",
+        "bfp16/fp32,pair,16,thesis,none,utah_teapot,",
+    ] {
+        assert!(
+            quality_csv
+                .lines()
+                .any(|l| l.starts_with(start) && l.ends_with(",true")),
+            "{start}"
+        );
+    }
+    assert!(quality_csv
+        .lines()
+        .any(|l| l.starts_with("fx16_10,hardware,16,format-aware,triangle-box,utah_teapot,")));
     let md = std::fs::read_to_string(layout.results("md")).unwrap();
     for r in &results.rows {
         assert!(
@@ -235,16 +273,16 @@ fn a_tiny_sweep_runs_end_to_end_with_consistent_numbers() {
         );
     }
     assert!(md.contains(
-        "Smallest hardware format with PSNR ≥ 40 dB on every scene (thesis policy): **fp32**"
+        "Smallest hardware format with PSNR ≥ 40 dB on every scene (thesis policy, advance none): **fp32**"
     ));
-    assert!(md.contains("| fp16/fp32 | format-aware |"));
+    assert!(md.contains("| fx16_10 | format-aware | triangle-box | 16 |"));
+    assert!(md.contains("| bfp16/fp32 | format-aware |"));
 
     // A job run on its own (as a manifest line does) writes the same result.
-    let fa = SpawnChoice::FormatAware;
-    let before: QualityResult = read_json(&layout.quality_result("fx16_10", fa)).unwrap();
+    let before: QualityResult = read_json(&layout.quality_result("fx16_10", fa_advanced)).unwrap();
     let job = Job::parse("quality/fx16_10", &config).unwrap();
     sweep::run_job(&config, &layout, &job).unwrap();
-    let again: QualityResult = read_json(&layout.quality_result("fx16_10", fa)).unwrap();
+    let again: QualityResult = read_json(&layout.quality_result("fx16_10", fa_advanced)).unwrap();
     assert_eq!(
         before
             .scenes
@@ -362,6 +400,16 @@ fn bad_configurations_are_rejected_with_file_line_and_key() {
             "listed twice",
         ),
         ("policies = []", "empty list"),
+        (
+            r#"advances = ["none", "sideways"]"#,
+            "unknown origin advance `sideways`: expected none or triangle-box",
+        ),
+        (r#"advances = ["none", "none"]"#, "listed twice"),
+        ("advances = []", "empty list"),
+        (
+            r#"advances = ["triangle-box"]"#,
+            "the thesis policy would have no render",
+        ),
         (r#"pairs = ["fp32/fp16"]"#, "not narrower"),
         (r#"pairs = ["fp16/fp33"]"#, "fallback half"),
         (r#"pairs = ["fx16_10/fp32"]"#, "fixed point"),
@@ -385,6 +433,18 @@ fn bad_configurations_are_rejected_with_file_line_and_key() {
     .unwrap();
     assert_eq!(chosen.policies, [SpawnChoice::FormatAware]);
     assert_eq!(chosen.pairs, ["bf16/fp32"]);
+    let advanced_only = sweep::parse(
+        &format!("{TINY}policies = [\"format-aware\"]\nadvances = [\"triangle-box\"]\n"),
+        &bad_path(),
+    )
+    .unwrap();
+    assert_eq!(
+        advanced_only.variants(),
+        [Variant {
+            policy: SpawnChoice::FormatAware,
+            advance: Advance::TriangleBox
+        }]
+    );
 
     let e = rejection(&with("lanes = [1, 0]"));
     assert_eq!((e.line, e.key.as_str()), (4, "lanes"));

@@ -12,6 +12,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::mt::{MtQuery, MtResult};
+use crate::precision::SpawnChoice;
 use crate::Format;
 
 /// Where a lane starts the ray of its Möller-Trumbore test.
@@ -90,6 +91,18 @@ pub fn advanced(q: &MtQuery) -> (MtQuery, u64) {
         },
         t0,
     )
+}
+
+/// The advance a model render of one format gets unless one is asked for: triangle-box under
+/// the format-aware policy (measured: it is what takes e5m14 past 40 dB, docs/precision.md),
+/// none under the thesis policy (the thesis' lane, equal to the golden images in fp32). Other
+/// engines and dual-precision pairs have the hardware's lane only ([`Advance::None`]). The CLI's
+/// default and the sweep's lanes both come from here.
+pub fn default_for(spawn: SpawnChoice) -> Advance {
+    match spawn {
+        SpawnChoice::FormatAware => Advance::TriangleBox,
+        SpawnChoice::Thesis => Advance::None,
+    }
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use hdl::top::{TopConfig, TopError};
 use hw_model::dual::FormatPair;
 use hw_model::precision::SpawnChoice;
-use hw_model::HwFormat;
+use hw_model::{Advance, HwFormat, NamedChoice};
 use serde::{Deserialize, Serialize};
 use sw_renderer::scene::{builtin, Scene};
 use toml::Spanned;
@@ -22,8 +22,8 @@ pub enum Stage {
     Verilog,
     /// yosys resources and logic depth of the points `[synth]` selects.
     Synth,
-    /// Model-engine renders of every scene in every format and spawn policy, and of every
-    /// dual-precision pair, against the f32 reference.
+    /// Model-engine renders of every scene in every format and variant (spawn policy and
+    /// origin advance), and of every dual-precision pair, against the f32 reference.
     Quality,
     /// Verilated renders of the `[cosim]` points, compared with the model engine.
     Cosim,
@@ -38,6 +38,35 @@ pub const ALL_STAGES: [Stage; 5] = [
     Stage::Cosim,
     Stage::Projection,
 ];
+
+/// How the quality stage renders a format: a spawn policy and where the model lane starts
+/// each query's ray (docs/precision.md, "Advancing the origin").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub struct Variant {
+    pub policy: SpawnChoice,
+    pub advance: Advance,
+}
+
+impl Variant {
+    /// Folder and file names: the policy's name, `+ADVANCE` when the origin is advanced.
+    pub fn name(self) -> String {
+        match self.advance {
+            Advance::None => self.policy.name().to_string(),
+            a => format!("{}+{a}", self.policy),
+        }
+    }
+
+    /// The hardware lanes' variant: they do not advance the origin.
+    pub fn in_hardware(self) -> bool {
+        self.advance == Advance::None
+    }
+}
+
+impl std::fmt::Display for Variant {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} policy, advance {}", self.policy, self.advance)
+    }
+}
 
 /// A scene of the sweep: how to load it and the label its files are named after.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -82,6 +111,9 @@ pub struct SweepConfig {
     pub model_formats: Vec<String>,
     /// Spawn policies the quality stage renders each format with.
     pub policies: Vec<SpawnChoice>,
+    /// Origin advances of the model lane the quality stage renders each format with
+    /// ([`SweepConfig::variants`] says under which policies).
+    pub advances: Vec<Advance>,
     /// Dual-precision pairs (`FILTER/FALLBACK`, as `FormatPair` prints them): model only, no
     /// hardware yet, so quality and the forwarded share but no points.
     pub pairs: Vec<String>,
@@ -109,6 +141,16 @@ impl SweepConfig {
             .map(|f| f.name().to_string())
             .chain(self.model_formats.iter().cloned())
             .collect()
+    }
+
+    /// Every (policy, advance) the quality stage renders, policy by policy: each policy with
+    /// the hardware's lane (advance none, what the points' rows and co-simulation are
+    /// compared with) and with the lane `rtfpga render` gives it by default
+    /// (`hw_model::advance::default_for`), of those `advances` lists. So triangle-box only
+    /// under format-aware: the thesis policy's narrow formats fail from self-intersection at
+    /// the spawn point, which moving the origin does not touch.
+    pub fn variants(&self) -> Vec<Variant> {
+        variants(&self.policies, &self.advances)
     }
 
     pub fn runs(&self, stage: Stage) -> bool {
@@ -154,6 +196,7 @@ struct RawConfig {
     formats: List<String>,
     model_formats: Option<List<String>>,
     policies: Option<List<String>>,
+    advances: Option<List<String>>,
     pairs: Option<List<String>>,
     #[serde(default)]
     keep_verilog: bool,
@@ -275,8 +318,25 @@ pub fn parse(text: &str, path: &Path) -> Result<SweepConfig, ConfigError> {
         None => Vec::new(),
     };
     let policies = match &raw.policies {
-        Some(list) => check_policies(&src, list)?,
+        Some(list) => check_choices(&src, list, "policies", "spawn policy")?,
         None => SpawnChoice::ALL.to_vec(),
+    };
+    let advances = match &raw.advances {
+        Some(list) => {
+            let advances = check_choices(&src, list, "advances", "origin advance")?;
+            let rendered = variants(&policies, &advances);
+            if let Some(p) = policies
+                .iter()
+                .find(|&&p| !rendered.iter().any(|v| v.policy == p))
+            {
+                return Err(src.err(list, "advances", format!(
+                    "the {p} policy would have no render: it takes the origin advance {} only (the hardware's, and its default in `rtfpga render`); add it or drop the policy",
+                    hw_model::advance::default_for(*p)
+                )));
+            }
+            advances
+        }
+        None => Advance::ALL.to_vec(),
     };
     let pairs = match &raw.pairs {
         Some(list) => check_pairs(&src, list)?,
@@ -337,6 +397,7 @@ pub fn parse(text: &str, path: &Path) -> Result<SweepConfig, ConfigError> {
         formats,
         model_formats,
         policies,
+        advances,
         pairs,
         keep_verilog: raw.keep_verilog,
         points,
@@ -407,23 +468,37 @@ fn check_model_formats(
     Ok(out)
 }
 
-fn check_policies(src: &Source, list: &List<String>) -> Result<Vec<SpawnChoice>, ConfigError> {
+/// A list of named choices (`policies`, `advances`), each once.
+fn check_choices<T: NamedChoice + PartialEq + std::fmt::Display>(
+    src: &Source,
+    list: &List<String>,
+    key: &str,
+    what: &str,
+) -> Result<Vec<T>, ConfigError> {
     let mut out = Vec::new();
-    for p in src.non_empty(list, "policies")? {
-        let choice: SpawnChoice = p
+    for p in src.non_empty(list, key)? {
+        let choice: T = p
             .get_ref()
             .parse()
-            .map_err(|e: String| src.err(p, "policies", e))?;
+            .map_err(|e: String| src.err(p, key, e))?;
         if out.contains(&choice) {
-            return Err(src.err(
-                p,
-                "policies",
-                format!("spawn policy `{choice}` is listed twice"),
-            ));
+            return Err(src.err(p, key, format!("{what} `{choice}` is listed twice")));
         }
         out.push(choice);
     }
     Ok(out)
+}
+
+fn variants(policies: &[SpawnChoice], advances: &[Advance]) -> Vec<Variant> {
+    let mut out = Vec::new();
+    for &policy in policies {
+        for &advance in advances {
+            if advance == Advance::None || advance == hw_model::advance::default_for(policy) {
+                out.push(Variant { policy, advance });
+            }
+        }
+    }
+    out
 }
 
 /// The pairs as `FormatPair` prints them, each checked by `FormatPair::parse`.

@@ -120,6 +120,7 @@ fn cosimulate(config: &SweepConfig, layout: &Layout, point: &Point) -> Result<Ve
     let hw = HwIntersector::new(&point.top_config(), Mode::Stream)
         .with_context(|| format!("building the Verilated model of {}", point.id()))?;
     let format = point.format.format();
+    // The hardware lanes do not advance the origin: they equal the plain model lane.
     let model = ModelIntersector::new(format);
     let mut records = Vec::new();
     for &policy in &config.policies {

@@ -6,6 +6,8 @@ use anyhow::{Context, Result};
 use hw_model::precision::SpawnChoice;
 use serde::{de::DeserializeOwned, Serialize};
 
+use super::config::Variant;
+
 #[derive(Clone, Debug)]
 pub struct Layout {
     root: PathBuf,
@@ -39,12 +41,12 @@ impl Layout {
         self.root.join("reference").join(format!("{scene}.png"))
     }
 
-    pub fn quality_dir(&self, format: &str, policy: SpawnChoice) -> PathBuf {
-        self.root.join("quality").join(format).join(policy.name())
+    pub fn quality_dir(&self, format: &str, variant: Variant) -> PathBuf {
+        self.root.join("quality").join(format).join(variant.name())
     }
 
-    pub fn quality_result(&self, format: &str, policy: SpawnChoice) -> PathBuf {
-        self.quality_dir(format, policy).join("result.json")
+    pub fn quality_result(&self, format: &str, variant: Variant) -> PathBuf {
+        self.quality_dir(format, variant).join("result.json")
     }
 
     /// A dual-precision pair's renders (`fp16/fp32` in the folder `fp16_fp32`).
@@ -72,10 +74,10 @@ impl Layout {
         self.root.join("synth-cache").join(format!("{id}.json"))
     }
 
-    pub fn grid(&self, format: &str, policy: SpawnChoice) -> PathBuf {
+    pub fn grid(&self, format: &str, variant: Variant) -> PathBuf {
         self.root
             .join("grids")
-            .join(format!("{format}_{}.png", policy.name()))
+            .join(format!("{format}_{}.png", variant.name()))
     }
 
     pub fn plot(&self, name: &str, ext: &str) -> PathBuf {
@@ -86,7 +88,7 @@ impl Layout {
         self.root.join(format!("results.{ext}"))
     }
 
-    /// One line per format or dual-precision pair, policy and scene.
+    /// One line per format or dual-precision pair, policy, advance and scene.
     pub fn quality_csv(&self) -> PathBuf {
         self.root.join("quality.csv")
     }

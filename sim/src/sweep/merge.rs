@@ -10,10 +10,9 @@
 
 use anyhow::{bail, Result};
 use hdl::top::fit::{fit_from, fit_with_fixed, LaneFit, Usage, XC7Z020};
-use hw_model::precision::SpawnChoice;
 use hw_model::HwFormat;
 
-use super::config::{Stage, SweepConfig};
+use super::config::{Stage, SweepConfig, Variant};
 use super::dual::DualResult;
 use super::hardware::PointResult;
 use super::layout::{read_json, write_json, Layout};
@@ -31,9 +30,9 @@ pub fn merge(layout: &Layout) -> Result<Results> {
     let mut dual: Vec<DualResult> = Vec::new();
     if runs_quality {
         for f in config.quality_formats() {
-            for &policy in &config.policies {
+            for variant in config.variants() {
                 quality.extend(read_or_note(
-                    &layout.quality_result(&f, policy),
+                    &layout.quality_result(&f, variant),
                     &mut missing,
                 ));
             }
@@ -65,9 +64,15 @@ pub fn merge(layout: &Layout) -> Result<Results> {
         None
     };
 
-    // One row per point and policy, or per point without quality.
-    let policies: Vec<Option<SpawnChoice>> = if runs_quality {
-        config.policies.iter().copied().map(Some).collect()
+    // One row per point and variant of the hardware's lane (no origin advance), or per point
+    // without quality.
+    let hardware_variants: Vec<Variant> = config
+        .variants()
+        .into_iter()
+        .filter(|v| v.in_hardware())
+        .collect();
+    let variants: Vec<Option<Variant>> = if runs_quality && !hardware_variants.is_empty() {
+        hardware_variants.into_iter().map(Some).collect()
     } else {
         vec![None]
     };
@@ -87,17 +92,18 @@ pub fn merge(layout: &Layout) -> Result<Results> {
             ),
             (None, None) => (None, None),
         };
-        for &policy in &policies {
+        for &variant in &variants {
             let q = quality
                 .iter()
-                .find(|q| q.format == p.point.format.name() && Some(q.policy) == policy);
+                .find(|q| q.format == p.point.format.name() && Some(q.variant()) == variant);
             rows.push(Row {
                 id: p.point.id(),
                 format: p.point.format.to_string(),
                 bits: p.bits,
                 depth: p.point.depth,
                 lanes: p.point.lanes,
-                policy,
+                policy: variant.map(|v| v.policy),
+                advance: variant.map(|v| v.advance),
                 latency: p.latency,
                 cycles_per_test,
                 cycles_measured: !p.cosim.is_empty(),
@@ -121,7 +127,7 @@ pub fn merge(layout: &Layout) -> Result<Results> {
     }
     let results = Results {
         rows,
-        policies: config.policies.clone(),
+        variants: config.variants(),
         quality,
         dual,
         model_formats: config.model_formats.clone(),

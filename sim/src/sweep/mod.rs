@@ -1,6 +1,6 @@
 //! Design-space sweeps: formats × depths × lanes, each point's hardware (Verilog, yosys
 //! resources and logic depth, latency, co-simulation), each format's image quality per spawn
-//! policy and each dual-precision pair's exactness and forwarded share,
+//! policy and origin advance, and each dual-precision pair's exactness and forwarded share,
 //! merged into tables, plots and image grids with the projected ZedBoard frame time.
 //!
 //! - [`config`]: SWEEP.toml, checked before any work;

@@ -1,6 +1,6 @@
-//! The sweep's plots (plotters, PNG and SVG): per spawn policy the worst-scene PSNR against
-//! the format's bits and the Pareto front of quality against DSP48E1; LUT and DSP48E1
-//! against lanes.
+//! The sweep's plots (plotters, PNG and SVG): per variant (spawn policy and origin advance) the
+//! worst-scene PSNR against the format's bits, and per variant of the hardware's lane the
+//! Pareto front of quality against DSP48E1; LUT and DSP48E1 against lanes.
 
 use std::collections::BTreeMap;
 
@@ -8,8 +8,7 @@ use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use hw_model::precision::SpawnChoice;
-
+use super::config::Variant;
 use super::layout::{parent_dir, Layout};
 use super::quality::QualityResult;
 use super::table::{Results, Row};
@@ -31,24 +30,24 @@ fn capped(v: f64, ceiling: f64) -> f64 {
 }
 
 pub fn write_all(results: &Results, layout: &Layout) -> Result<()> {
-    for &policy in &results.policies {
+    for &variant in &results.variants {
         let quality: Vec<&QualityResult> = results
             .quality
             .iter()
-            .filter(|q| q.policy == policy)
+            .filter(|q| q.variant() == variant)
             .collect();
         if !quality.is_empty() {
             save(
                 layout,
-                &format!("psnr_vs_bits_{}", policy.name()),
-                |a| psnr_vs_bits(a, results, &quality, policy),
-                |a| psnr_vs_bits(a, results, &quality, policy),
+                &format!("psnr_vs_bits_{}", variant.name()),
+                |a| psnr_vs_bits(a, results, &quality, variant),
+                |a| psnr_vs_bits(a, results, &quality, variant),
             )?;
         }
         let rows: Vec<&Row> = results
             .rows
             .iter()
-            .filter(|r| r.policy == Some(policy))
+            .filter(|r| r.policy == Some(variant.policy) && r.advance == Some(variant.advance))
             .collect();
         if rows
             .iter()
@@ -56,9 +55,9 @@ pub fn write_all(results: &Results, layout: &Layout) -> Result<()> {
         {
             save(
                 layout,
-                &format!("pareto_psnr_dsp_{}", policy.name()),
-                |a| pareto(a, &rows, policy),
-                |a| pareto(a, &rows, policy),
+                &format!("pareto_psnr_dsp_{}", variant.name()),
+                |a| pareto(a, &rows, variant),
+                |a| pareto(a, &rows, variant),
             )?;
         }
     }
@@ -99,7 +98,7 @@ fn psnr_vs_bits<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     r: &Results,
     quality: &[&QualityResult],
-    policy: SpawnChoice,
+    variant: Variant,
 ) -> Result<()>
 where
     DB::ErrorType: 'static,
@@ -109,7 +108,8 @@ where
     let mut chart = ChartBuilder::on(area)
         .caption(
             format!(
-                "Worst-scene PSNR vs format width, {policy} policy ({} scenes, {}); top = identical",
+                "Worst-scene PSNR vs format width, {} ({} scenes, {})",
+                variant.name(),
                 r.scenes.len(),
                 r.image_size
             ),
@@ -302,7 +302,7 @@ pub fn pareto_front<'r>(rows: &[&'r Row]) -> Vec<&'r Row> {
 fn pareto<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     rows: &[&Row],
-    policy: SpawnChoice,
+    variant: Variant,
 ) -> Result<()>
 where
     DB::ErrorType: 'static,
@@ -317,7 +317,10 @@ where
     let max_dsp = with.iter().filter_map(|r| r.dsp48e1).max().unwrap_or(1);
     let mut chart = ChartBuilder::on(area)
         .caption(
-            format!("Quality vs DSP48E1, {policy} policy: Pareto front in red; top = identical"),
+            format!(
+                "Quality vs DSP48E1, {}: Pareto front in red",
+                variant.name()
+            ),
             ("sans-serif", 20),
         )
         .margin(15)

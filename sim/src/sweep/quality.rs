@@ -1,19 +1,21 @@
 //! The `quality/FORMAT` job: every scene through the model engine in one format under each
-//! spawn policy, against the f32 reference: PSNR, share of differing pixels, the renders,
-//! error heat-maps and an image grid per policy. The model is bit-accurate to the hardware at
-//! every depth and lane count, so quality is a property of the format and the policy alone and
-//! is computed once per pair of them.
+//! variant (spawn policy and origin advance, `SweepConfig::variants`), against the f32
+//! reference: PSNR, share of differing pixels, the renders, error heat-maps and an image grid
+//! per variant. The model is bit-accurate to the hardware at every depth and lane count, so
+//! quality is a property of the format and the variant alone and is computed once per pair of
+//! them. The hardware lanes have no origin advance: only the `advance none` results are the
+//! hardware's.
 
 use std::time::Instant;
 
 use anyhow::Result;
 use hw_model::precision::SpawnChoice;
-use hw_model::ModelIntersector;
+use hw_model::{Advance, ModelIntersector};
 use serde::{Deserialize, Serialize};
 use sw_renderer::compare::{compare, diff_heatmap};
 use sw_renderer::render::save_png;
 
-use super::config::SweepConfig;
+use super::config::{SweepConfig, Variant};
 use super::grid::write_grid;
 use super::layout::{parent_dir, write_json, Layout};
 use super::point::format_bits;
@@ -38,10 +40,19 @@ pub struct QualityResult {
     pub format: String,
     pub bits: u32,
     pub policy: SpawnChoice,
+    /// The model lane's; none is the hardware lanes'.
+    pub advance: Advance,
     pub scenes: Vec<SceneQuality>,
 }
 
 impl QualityResult {
+    pub fn variant(&self) -> Variant {
+        Variant {
+            policy: self.policy,
+            advance: self.advance,
+        }
+    }
+
     /// The worst scene's PSNR.
     pub fn min_psnr_db(&self) -> f64 {
         self.scenes
@@ -58,16 +69,19 @@ impl QualityResult {
     }
 }
 
-/// Every policy of the sweep in `format`, each written to its result file.
+/// Every variant of the sweep in `format`, each written to its result file.
 pub fn run(config: &SweepConfig, layout: &Layout, format: &str) -> Result<Vec<QualityResult>> {
     let parsed = hw_model::lookup(format)?;
-    let isect = ModelIntersector::new(parsed);
     let mut results = Vec::new();
-    for &policy in &config.policies {
-        let spawn = policy.policy(&parsed, 0);
+    for variant in config.variants() {
+        let isect = ModelIntersector {
+            advance: variant.advance,
+            ..ModelIntersector::new(parsed)
+        };
+        let spawn = variant.policy.policy(&parsed, 0);
         let mut scenes = Vec::new();
         let mut grid_rows = Vec::new();
-        let dir = layout.quality_dir(format, policy);
+        let dir = layout.quality_dir(format, variant);
         for scene in &config.scenes {
             let reference = reference(layout, scene)?;
             let start = Instant::now();
@@ -90,14 +104,15 @@ pub fn run(config: &SweepConfig, layout: &Layout, format: &str) -> Result<Vec<Qu
                 render_s,
             });
         }
-        write_grid(&grid_rows, &layout.grid(format, policy))?;
+        write_grid(&grid_rows, &layout.grid(format, variant))?;
         let result = QualityResult {
             format: format.to_string(),
             bits: format_bits(format),
-            policy,
+            policy: variant.policy,
+            advance: variant.advance,
             scenes,
         };
-        write_json(&layout.quality_result(format, policy), &result)?;
+        write_json(&layout.quality_result(format, variant), &result)?;
         results.push(result);
     }
     Ok(results)

@@ -1,14 +1,16 @@
-//! The merged results: one row per point and spawn policy (results.csv), one row per format
-//! or dual-precision pair, policy and scene (quality.csv), all of it in results.json and as
-//! Markdown tables in results.md.
+//! The merged results: one row per point and spawn policy with the hardware's lane (advance
+//! none; results.csv), one row per format or dual-precision pair, policy, advance and scene
+//! (quality.csv), all of it in results.json and as Markdown tables in results.md.
 
 use std::fmt::Write as _;
 use std::path::Path;
 
 use anyhow::{Context, Result};
 use hw_model::precision::SpawnChoice;
+use hw_model::Advance;
 use serde::{Deserialize, Serialize};
 
+use super::config::Variant;
 use super::dual::DualResult;
 use super::layout::parent_dir;
 use super::quality::{Psnr, QualityResult};
@@ -34,6 +36,9 @@ pub struct Row {
     /// The spawn policy of the quality columns (none without the quality stage: one row per
     /// point).
     pub policy: Option<SpawnChoice>,
+    /// The origin advance of the quality columns: none, the hardware lanes' (none without the
+    /// quality stage).
+    pub advance: Option<Advance>,
     /// Lane latency in cycles.
     pub latency: usize,
     /// Stream-mode cycles per test of the whole accelerator.
@@ -66,8 +71,9 @@ pub struct Row {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Results {
     pub rows: Vec<Row>,
-    pub policies: Vec<SpawnChoice>,
-    /// One per format and policy.
+    /// The quality stage's (policy, advance) combinations.
+    pub variants: Vec<Variant>,
+    /// One per format and variant.
     pub quality: Vec<QualityResult>,
     /// One per dual-precision pair and policy (model only).
     pub dual: Vec<DualResult>,
@@ -101,6 +107,8 @@ pub struct QualityRow {
     /// The format's width; a pair's filter width.
     pub bits: u32,
     pub policy: SpawnChoice,
+    /// The model lane's origin advance (pairs: none, they have the hardware's lane).
+    pub advance: Advance,
     pub scene: String,
     pub psnr_db: Psnr,
     /// Formats only.
@@ -124,6 +132,7 @@ pub fn quality_rows(results: &Results) -> Vec<QualityRow> {
             kind: kind.into(),
             bits: q.bits,
             policy: q.policy,
+            advance: q.advance,
             scene: s.scene.clone(),
             psnr_db: s.psnr_db,
             differing_share: Some(s.differing_share),
@@ -137,6 +146,7 @@ pub fn quality_rows(results: &Results) -> Vec<QualityRow> {
             kind: "pair".into(),
             bits: d.filter_bits,
             policy: d.policy,
+            advance: Advance::None,
             scene: s.scene.clone(),
             psnr_db: s.psnr_db,
             differing_share: None,
@@ -162,15 +172,15 @@ fn opt<T: std::fmt::Display>(v: &Option<T>) -> String {
     v.as_ref().map_or_else(|| "—".to_string(), T::to_string)
 }
 
-/// The smallest format (fewest bits) whose worst scene reaches `db` under `policy`.
+/// The smallest format (fewest bits) whose worst scene reaches `db` under `variant`.
 pub fn smallest_format_above<'q>(
     quality: impl IntoIterator<Item = &'q QualityResult>,
-    policy: SpawnChoice,
+    variant: Variant,
     db: f64,
 ) -> Option<&'q QualityResult> {
     quality
         .into_iter()
-        .filter(|q| q.policy == policy && q.min_psnr_db() >= db)
+        .filter(|q| q.variant() == variant && q.min_psnr_db() >= db)
         .min_by(|a, b| (a.bits, &a.format).cmp(&(b.bits, &b.format)))
 }
 
@@ -214,9 +224,9 @@ pub fn markdown(results: &Results) -> Result<String> {
         )?;
     }
     writeln!(s, "## Points\n")?;
-    writeln!(s, "Resources: `yosys` synthesised, `estimate` = fixed + lanes × per-lane from the 1- and 2-lane synthesis; lanes fit = lanes of the format and depth that fit an XC7Z020 (limit; †fp16_d1 = this point's 1-lane synthesis with the fixed part (AXI-Lite slave, stream front end) of that 1- and 2-lane pair). Cycles/test: `*` measured in co-simulation.\n")?;
-    writeln!(s, "| point | bits | depth | lanes | latency | cycles/test | LUT | FF | DSP | BRAM18 | CARRY4 | logic depth | resources | lanes fit | policy | min PSNR dB | max diff px | cosim = model | frame s | × ARM |")?;
-    writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---:|---:|---|---:|---:|")?;
+    writeln!(s, "Resources: `yosys` synthesised, `estimate` = fixed + lanes × per-lane from the 1- and 2-lane synthesis; lanes fit = lanes of the format and depth that fit an XC7Z020 (limit; †fp16_d1 = this point's 1-lane synthesis with the fixed part (AXI-Lite slave, stream front end) of that 1- and 2-lane pair). Cycles/test: `*` measured in co-simulation. Quality: the hardware's lane (advance none).\n")?;
+    writeln!(s, "| point | bits | depth | lanes | latency | cycles/test | LUT | FF | DSP | BRAM18 | CARRY4 | logic depth | resources | lanes fit | policy | advance | min PSNR dB | max diff px | cosim = model | frame s | × ARM |")?;
+    writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|---:|---:|---|---:|---:|")?;
     for r in &results.rows {
         let res = match r.resources {
             Some(ResourceSource::Yosys) => "yosys",
@@ -233,7 +243,7 @@ pub fn markdown(results: &Results) -> Result<String> {
         };
         writeln!(
             s,
-            "| {} | {} | {} | {} | {} | {:.3}{} | {} | {} | {} | {} | {} | {} | {res} | {fit} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {:.3}{} | {} | {} | {} | {} | {} | {} | {res} | {fit} | {} | {} | {} | {} | {} | {} | {} |",
             r.id,
             r.bits,
             r.depth,
@@ -248,6 +258,7 @@ pub fn markdown(results: &Results) -> Result<String> {
             opt(&r.carry4),
             opt(&r.logic_depth),
             opt(&r.policy),
+            opt(&r.advance),
             opt(&r.min_psnr_db),
             opt(&r.max_differing_share.map(|x| format!("{:.2} %", 100.0 * x))),
             opt(&r.cosim_identical.map(|b| if b { "yes" } else { "NO" })),
@@ -262,7 +273,7 @@ pub fn markdown(results: &Results) -> Result<String> {
         )?;
         scene_table_head(
             &mut s,
-            ("| format | policy | bits |", "|---|---|---:|"),
+            ("| format | policy | advance | bits |", "|---|---|---|---:|"),
             &results.scenes,
             "---|",
             (" min PSNR |", "---:|"),
@@ -273,7 +284,11 @@ pub fn markdown(results: &Results) -> Result<String> {
             } else {
                 ""
             };
-            write!(s, "| {}{tag} | {} | {} |", q.format, q.policy, q.bits)?;
+            write!(
+                s,
+                "| {}{tag} | {} | {} | {} |",
+                q.format, q.policy, q.advance, q.bits
+            )?;
             for sq in &q.scenes {
                 write!(s, " {} / {:.2} % |", sq.psnr_db, 100.0 * sq.differing_share)?;
             }
@@ -284,7 +299,13 @@ pub fn markdown(results: &Results) -> Result<String> {
             .quality
             .iter()
             .partition(|q| !results.model_formats.contains(&q.format));
-        for &policy in &results.policies {
+        for &variant in &results.variants {
+            // An advanced origin exists in the model lane only.
+            let lane = if variant.in_hardware() {
+                ""
+            } else {
+                "; model lane only: the hardware lanes do not advance the origin"
+            };
             for (what, list) in [
                 ("hardware format", &hardware),
                 ("model-only format", &model),
@@ -292,9 +313,9 @@ pub fn markdown(results: &Results) -> Result<String> {
                 if list.is_empty() {
                     continue;
                 }
-                match smallest_format_above(list.iter().copied(), policy, 40.0) {
-                    Some(q) => writeln!(s, "- Smallest {what} with PSNR ≥ 40 dB on every scene ({policy} policy): **{}** ({} bits, worst {} dB).", q.format, q.bits, Psnr(q.min_psnr_db()))?,
-                    None => writeln!(s, "- No {what} reaches PSNR ≥ 40 dB on every scene ({policy} policy).")?,
+                match smallest_format_above(list.iter().copied(), variant, 40.0) {
+                    Some(q) => writeln!(s, "- Smallest {what} with PSNR ≥ 40 dB on every scene ({variant}{lane}): **{}** ({} bits, worst {} dB).", q.format, q.bits, Psnr(q.min_psnr_db()))?,
+                    None => writeln!(s, "- No {what} reaches PSNR ≥ 40 dB on every scene ({variant}{lane}).")?,
                 }
             }
         }
@@ -302,7 +323,7 @@ pub fn markdown(results: &Results) -> Result<String> {
     if !results.dual.is_empty() {
         writeln!(
             s,
-            "\n## Dual precision (model only: no hardware, so no points or resources)\n"
+            "\n## Dual precision (model only: no hardware, so no points or resources; the hardware's lane, advance none)\n"
         )?;
         writeln!(s, "Share of each scene's Möller-Trumbore tests the filter forwards to the fallback; all = over every scene's tests; = fallback: every image equals the fallback format's model render under the same policy; min PSNR against f32.\n")?;
         scene_table_head(
