@@ -391,6 +391,24 @@ proptest! {
                 prop_assert_eq!(counters.rays, parts.len() as u64);
             }
         }
+
+        // With the leaf advance in a narrow format a chunk's leaf is entered at the distance
+        // the whole scene's walk enters it (a chunk's root box is its subtree's box), so the
+        // answers stay the whole scene's.
+        let e5m14: Format = "e5m14".parse().unwrap();
+        let whole = TraversalModel::new(e5m14, 64, image.clone()).advanced(Advance::LeafBox);
+        let chunked = ChunkedModel::new(e5m14, 64, 0, image, SceneMemory::Chunked(cap))
+            .unwrap()
+            .advanced(Advance::LeafBox);
+        for r in &rays {
+            let want = whole.trace(r, &mut UnitCounters::default()).unwrap();
+            let got = chunked.trace(r, &mut UnitCounters::default()).unwrap();
+            if r.any_hit {
+                prop_assert_eq!(got.is_some(), want.is_some(), "leaf-box {:?}", r);
+            } else {
+                prop_assert_eq!(got, want, "leaf-box {:?}", r);
+            }
+        }
     }
 }
 
