@@ -7,6 +7,7 @@ use std::path::PathBuf;
 use anyhow::{bail, Context, Result};
 use clap::{Args as ClapArgs, ValueEnum};
 use hw_model::traversal::{TraversalEngine, DEFAULT_STACK_DEPTH};
+use hw_model::Advance;
 use sim::projection::{
     self, Board, Calibration, Design, Frontend, Role, Setup, Traversal, Workload, Workloads,
 };
@@ -153,6 +154,7 @@ pub fn run(a: Args) -> Result<()> {
                 format: a.format.format(),
                 stack_depth: DEFAULT_STACK_DEPTH,
                 scale_exp: 0,
+                advance: Advance::None,
                 timing: Some(hdl::traversal::timing::unit_timing(
                     a.format,
                     a.depth,

@@ -138,7 +138,7 @@ pub fn make_scaled(
             advance: lane.advance,
         }),
         EngineKind::Hw => Box::new(HwIntersector::new(&hw.top_config()?, Mode::Stream)?),
-        EngineKind::Traversal => Box::new(hw.traversal_engine(scale_exp, memory)?),
+        EngineKind::Traversal => Box::new(hw.traversal_engine(scale_exp, lane.advance, memory)?),
     };
     Ok(Made { engine, dual: None })
 }
@@ -192,10 +192,11 @@ pub struct PrecisionArgs {
     /// running error bound), model engine with one format only [default: exact].
     #[arg(long, value_parser = choice::<Edges>())]
     pub edges: Option<Edges>,
-    /// Where the model lane starts a query's ray: none (at its origin, the hardware's) or
-    /// triangle-box (moved in fp32 to where it enters the triangle's bounding box), model
-    /// engine with one format only [default: triangle-box for a format-aware model render,
-    /// else none].
+    /// Where a lane starts a query's ray: none (at its origin), triangle-box (moved in fp32
+    /// to where it enters the triangle's bounding box; model engine with one format only) or
+    /// leaf-box (moved to where it enters the BVH leaf, as the traversal unit's box test
+    /// computed it; traversal engine only) [default: triangle-box for a format-aware model
+    /// render, else none].
     #[arg(long, value_parser = choice::<Advance>())]
     pub advance: Option<Advance>,
 }
@@ -238,6 +239,9 @@ impl PrecisionArgs {
         // hardware's are accepted.
         let single_model =
             kind == EngineKind::Model && matches!(hw.format, FormatChoice::Single(_));
+        if single_model && self.advance == Some(Advance::LeafBox) {
+            bail!("--advance leaf-box needs the traversal engine (--engine traversal): it starts a leaf's queries where the unit's box test entered the leaf; the model engine has no leaves (--advance triangle-box is its per-triangle form)")
+        }
         let lane = if single_model {
             Lane {
                 edges: self.edges.unwrap_or_default(),
@@ -250,11 +254,23 @@ impl PrecisionArgs {
                 edges: self.edges.unwrap_or_default(),
                 advance: self.advance.unwrap_or_default(),
             };
-            if asked != Lane::default() {
+            // The traversal unit also starts a leaf's queries at the leaf's box entry.
+            let unit_advance = kind == EngineKind::Traversal && asked.advance == Advance::LeafBox;
+            let built = Lane {
+                advance: if unit_advance {
+                    Advance::LeafBox
+                } else {
+                    Advance::None
+                },
+                ..Lane::default()
+            };
+            if asked != built {
                 bail!(
-                    "--edges {} --advance {}: model-only so far (--engine model with one format); the hardware lanes, the traversal unit and dual-precision pairs test exact edges from the query's origin",
+                    "--edges {} --advance {}: not built for --engine {} with --format {}: --edges conservative and --advance triangle-box are model-only so far (--engine model with one format), --advance leaf-box is the traversal unit's (--engine traversal); the hardware lanes, the traversal unit and dual-precision pairs test exact edges",
                     asked.edges,
-                    asked.advance
+                    asked.advance,
+                    engine_name(kind),
+                    hw.format
                 )
             }
             asked
@@ -265,6 +281,12 @@ impl PrecisionArgs {
             lane,
         })
     }
+}
+
+/// `--engine`'s spelling of `kind`.
+fn engine_name(kind: EngineKind) -> String {
+    kind.to_possible_value()
+        .map_or_else(|| format!("{kind:?}"), |v| v.get_name().to_string())
 }
 
 /// The traversal unit's scene memory when no `--scene-capacity` is given: the block-RAM
@@ -331,9 +353,15 @@ impl HwConfig {
     }
 
     /// The traversal unit's model in this configuration, its Möller-Trumbore queries scaled
-    /// by 2^`scale_exp`, holding scenes in `memory`; timed by its schedule model when the
-    /// format has hardware (any other format has no lane latency to time with).
-    pub fn traversal_engine(&self, scale_exp: i32, memory: SceneMemory) -> Result<TraversalEngine> {
+    /// by 2^`scale_exp` and started where `advance` says, holding scenes in `memory`; timed by
+    /// its schedule model when the format has hardware (any other format has no lane latency
+    /// to time with).
+    pub fn traversal_engine(
+        &self,
+        scale_exp: i32,
+        advance: Advance,
+        memory: SceneMemory,
+    ) -> Result<TraversalEngine> {
         let format = self.single_format()?;
         let timing = hw_model::HwFormat::try_from(format).ok().map(|f| {
             hdl::traversal::timing::unit_timing(f, self.depth, self.lanes, self.slots as usize)
@@ -342,6 +370,7 @@ impl HwConfig {
             format,
             stack_depth: DEFAULT_STACK_DEPTH,
             scale_exp,
+            advance,
             timing,
             memory,
         })

@@ -478,6 +478,58 @@ fn format_pairs_are_checked_and_model_only() {
     assert!(!out_png.exists());
 }
 
+/// `--advance leaf-box` reaches the traversal unit's model: the CLI's image is the library's
+/// engine with the leaf advance, and the render line says it.
+#[test]
+fn render_traversal_with_the_leaf_advance_is_the_librarys() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_png = dir.path().join("leaf.png");
+    let out = ok(&[
+        "render",
+        "--scene",
+        "glass_pen",
+        "--width",
+        "32",
+        "--height",
+        "18",
+        "--engine",
+        "traversal",
+        "--format",
+        "e5m14",
+        "--advance",
+        "leaf-box",
+        "--scene-capacity",
+        "100000,100000",
+        "--quiet",
+        "--out",
+        s(&out_png),
+    ]);
+    assert!(
+        out.contains("spawn=format-aware scale_exp=0 edges=exact advance=leaf-box "),
+        "{out}"
+    );
+    let e5m14: hw_model::Format = "e5m14".parse().unwrap();
+    let engine = hw_model::traversal::TraversalEngine {
+        format: e5m14,
+        stack_depth: hw_model::traversal::DEFAULT_STACK_DEPTH,
+        scale_exp: 0,
+        advance: Advance::LeafBox,
+        timing: None,
+        memory: hw_model::traversal::SceneMemory::Unbounded,
+    };
+    let opts = RenderOptions {
+        width: Some(32),
+        height: Some(18),
+        spawn: spawn_policy(&e5m14, 0),
+        ..Default::default()
+    };
+    let scene = Scene::load("glass_pen").unwrap();
+    assert_eq!(
+        read_png(&out_png),
+        render(&scene, &engine, &opts).unwrap().image
+    );
+}
+
 /// Without --spawn a narrow model render is format-aware; `--scale auto` scales it; the
 /// render line says both.
 #[test]
@@ -629,20 +681,65 @@ fn bad_spawn_and_scale_arguments_are_errors() {
     fails(
         &[&base[..], &["--advance", "far", "--out", s(&out_png)]].concat(),
         2,
-        &["far", "none", "triangle-box"],
+        &["far", "none", "triangle-box", "leaf-box"],
     );
-    // The lane options are the model's: other engines and pairs refuse them.
-    for (engine, format, option) in [
-        ("hw", "fp16", ["--edges", "conservative"]),
-        ("traversal", "fp16", ["--advance", "triangle-box"]),
-        ("f32", "fp32", ["--edges", "conservative"]),
-        ("model", "fp16/fp32", ["--advance", "triangle-box"]),
+    // The lane options are the model's, leaf-box the traversal unit's: other engines and
+    // pairs refuse them.
+    for (engine, format, option, says) in [
+        (
+            "hw",
+            "fp16",
+            ["--edges", "conservative"],
+            "model-only so far",
+        ),
+        (
+            "traversal",
+            "fp16",
+            ["--advance", "triangle-box"],
+            "model-only so far",
+        ),
+        (
+            "traversal",
+            "fp16",
+            ["--edges", "conservative"],
+            "model-only so far",
+        ),
+        (
+            "f32",
+            "fp32",
+            ["--edges", "conservative"],
+            "model-only so far",
+        ),
+        (
+            "model",
+            "fp16/fp32",
+            ["--advance", "triangle-box"],
+            "model-only so far",
+        ),
+        (
+            "hw",
+            "fp16",
+            ["--advance", "leaf-box"],
+            "the traversal unit's",
+        ),
+        (
+            "model",
+            "fp16/fp32",
+            ["--advance", "leaf-box"],
+            "the traversal unit's",
+        ),
+        (
+            "model",
+            "fp16",
+            ["--advance", "leaf-box"],
+            "needs the traversal engine",
+        ),
     ] {
         let args = ["--engine", engine, "--format", format, option[0], option[1]];
         fails(
             &[&base[..], &args[..], &["--out", s(&out_png)]].concat(),
             1,
-            &["model-only so far"],
+            &[says],
         );
     }
     assert!(!out_png.exists());

@@ -13,7 +13,7 @@
 use hdl::traversal::unit::UnitConfig;
 use hw_model::traversal::strategies::{mesh, ray};
 use hw_model::traversal::{TraversalError, TraversalModel, UnitCounters, UnitRay};
-use hw_model::{lookup, HwFormat};
+use hw_model::{lookup, Advance, HwFormat};
 use proptest::prelude::*;
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use sim::traversal_unit::{
@@ -462,6 +462,7 @@ fn chunked_passes_through_the_unit_equal_the_chunked_model() {
         format: lookup("fp32").unwrap(),
         stack_depth: config.stack_depth,
         scale_exp: 0,
+        advance: Advance::None,
         timing: None,
         memory: SceneMemory::Chunked(SceneCapacity {
             nodes: nodes as u32,

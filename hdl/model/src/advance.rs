@@ -8,6 +8,11 @@
 //! origin to where the ray enters the triangle's bounding box, in fp32, makes |s| the size
 //! of the box. u and v do not change in exact arithmetic (they do not depend on where on the
 //! ray the origin is), t changes by the distance moved, which the lane adds back in fp32.
+//!
+//! Two forms choose the distance t0 and share the move ([`moved`], [`moved_back`]): per
+//! query from the triangle's box ([`Advance::TriangleBox`], the model engine), and per ray
+//! and BVH leaf from the leaf's box entry the traversal unit's box test has already computed
+//! ([`Advance::LeafBox`]), so that |s| is the leaf's size rather than the triangle's.
 
 use serde::{Deserialize, Serialize};
 
@@ -23,34 +28,50 @@ pub enum Advance {
     #[default]
     None,
     /// Where the ray enters the triangle's bounding box, if ahead of the origin
-    /// ([`advanced`]); model-only so far.
+    /// ([`advanced`]); the model engine only.
     TriangleBox,
+    /// Where the ray enters the BVH leaf holding the triangle, as the traversal unit's box
+    /// test computed that entry ([`leaf_start`]); the traversal unit only (outside one there
+    /// is no leaf, and the ray stays at its origin: t0 = 0).
+    LeafBox,
 }
 
 impl Advance {
-    pub const ALL: [Advance; 2] = [Advance::None, Advance::TriangleBox];
+    pub const ALL: [Advance; 3] = [Advance::None, Advance::TriangleBox, Advance::LeafBox];
 
     pub fn name(self) -> &'static str {
         match self {
             Advance::None => "none",
             Advance::TriangleBox => "triangle-box",
+            Advance::LeafBox => "leaf-box",
         }
     }
 
-    /// The answer of the test `mt` to `q`, the ray started where `self` says.
+    /// The answer of the test `mt` to `q`, the ray started where `self` says (outside a
+    /// leaf: [`Advance::run_in_leaf`] without a leaf entry).
     #[inline]
     pub fn run(self, q: &MtQuery, mt: impl FnOnce(&MtQuery) -> MtResult) -> MtResult {
-        match self {
-            Advance::None => mt(q),
-            Advance::TriangleBox => {
-                let (moved, t0) = advanced(q);
-                let r = mt(&moved);
-                let f = Format::FP32;
-                MtResult {
-                    t: f.to_f32(f.add(f.from_f32(r.t), t0)),
-                    ..r
-                }
-            }
+        self.run_in_leaf(q, None, mt)
+    }
+
+    /// The answer of the test `mt` to `q` of a BVH leaf the box test entered at
+    /// `leaf_entry` (if known), the ray started where `self` says.
+    #[inline]
+    pub fn run_in_leaf(
+        self,
+        q: &MtQuery,
+        leaf_entry: Option<f32>,
+        mt: impl FnOnce(&MtQuery) -> MtResult,
+    ) -> MtResult {
+        let t0 = match self {
+            Advance::None => return mt(q),
+            Advance::TriangleBox => triangle_box_entry(q),
+            Advance::LeafBox => leaf_start(leaf_entry),
+        };
+        let r = mt(&moved(q, t0));
+        MtResult {
+            t: moved_back(r.t, t0),
+            ..r
         }
     }
 }
@@ -63,6 +84,12 @@ named_choice!(Advance, "origin advance");
 /// fp32, as `(lo − o)·(1/d)`, the operations of the traversal unit's box test (without its
 /// padded origins).
 pub fn advanced(q: &MtQuery) -> (MtQuery, u64) {
+    let t0 = triangle_box_entry(q);
+    (moved(q, t0), t0)
+}
+
+/// t0 of [`advanced`]: the triangle's bounding box's entry, at least 0 (fp32 bits).
+fn triangle_box_entry(q: &MtQuery) -> u64 {
     let f = Format::FP32;
     let finite = |x: u64| f.to_f32(x).is_finite();
     let min = |a: u64, b: u64| if f.lt(b, a) { b } else { a };
@@ -78,19 +105,39 @@ pub fn advanced(q: &MtQuery) -> (MtQuery, u64) {
             t0 = entry;
         }
     }
-    let moved = std::array::from_fn(|k| {
+    t0
+}
+
+/// t0 of [`Advance::LeafBox`] (fp32 bits): the leaf box's entry as the box test computed it
+/// (from the origin moved by its pad, so a little before the unpadded box), if it is finite
+/// and positive, else 0 (no leaf known, an origin inside the box, or an entry distance that
+/// overflowed: the ray stays where it is).
+pub fn leaf_start(leaf_entry: Option<f32>) -> u64 {
+    let f = Format::FP32;
+    let zero = f.from_f32(0.0);
+    match leaf_entry.map(|t| f.from_f32(t)) {
+        Some(t) if f.to_f32(t).is_finite() && f.lt(zero, t) => t,
+        _ => zero,
+    }
+}
+
+/// `q` with its origin moved to `o + t0·d` and its `t_min` to `t_min − t0`, in fp32 (RNE,
+/// subnormals flushed): the one move of every form of the advance, and what the traversal
+/// unit's advance block computes.
+pub fn moved(q: &MtQuery, t0: u64) -> MtQuery {
+    let f = Format::FP32;
+    let orig = std::array::from_fn(|k| {
         let (o, d) = (f.from_f32(q.orig[k]), f.from_f32(q.dir[k]));
         f.to_f32(f.add(o, f.mul(t0, d)))
     });
     let t_min = f.to_f32(f.sub(f.from_f32(q.t_min), t0));
-    (
-        MtQuery {
-            orig: moved,
-            t_min,
-            ..*q
-        },
-        t0,
-    )
+    MtQuery { orig, t_min, ..*q }
+}
+
+/// The moved ray's `t` as the query's own: `t + t0` in fp32.
+pub fn moved_back(t: f32, t0: u64) -> f32 {
+    let f = Format::FP32;
+    f.to_f32(f.add(f.from_f32(t), t0))
 }
 
 /// The advance a model render of one format gets unless one is asked for: triangle-box under
@@ -145,5 +192,31 @@ mod tests {
         let plain = crate::mt_model(&fp32, &q);
         assert!(r.hit && plain.hit);
         assert_eq!((r.t, r.u, r.v), (plain.t, plain.u, plain.v));
+    }
+
+    #[test]
+    fn a_leaf_entry_moves_the_ray_only_when_finite_and_ahead() {
+        let f = Format::FP32;
+        for (entry, t0) in [
+            (Some(10.0), 10.0),
+            (Some(0.0), 0.0),
+            (Some(-3.0), 0.0),
+            (Some(f32::INFINITY), 0.0),
+            (Some(f32::NAN), 0.0),
+            (None, 0.0),
+        ] {
+            assert_eq!(f.to_f32(leaf_start(entry)), t0, "{entry:?}");
+        }
+        // The leaf's entry moves the ray as the triangle's box does: the same answer here,
+        // where both boxes are entered at z = 10.
+        let q = query([2.0, 3.0, 0.0], [0.0, 0.0, 1.0]);
+        let fp16 = crate::lookup("fp16").unwrap();
+        let test = |m: &MtQuery| crate::mt_model(&fp16, m);
+        let leaf = Advance::LeafBox.run_in_leaf(&q, Some(10.0), test);
+        let triangle = Advance::TriangleBox.run(&q, test);
+        let bits = |r: &MtResult| (r.hit, r.t.to_bits(), r.u.to_bits(), r.v.to_bits());
+        assert_eq!(bits(&leaf), bits(&triangle));
+        assert!(leaf.hit);
+        assert_eq!(leaf.t, 11.0); // (2, 3) lies on the triangle's plane at z = 11
     }
 }

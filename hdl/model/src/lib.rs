@@ -94,6 +94,6 @@ mod tests {
     fn named_choices_parse_their_names_and_list_them_in_errors() {
         names_round_trip::<SpawnChoice>("format_aware", "thesis or format-aware");
         names_round_trip::<Edges>("loose", "exact or conservative");
-        names_round_trip::<Advance>("far", "none or triangle-box");
+        names_round_trip::<Advance>("far", "none or triangle-box or leaf-box");
     }
 }

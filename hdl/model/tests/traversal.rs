@@ -11,7 +11,7 @@ use hw_model::traversal::{
     ChunkedModel, SceneCapacity, SceneMemory, TraversalEngine, TraversalError, TraversalModel,
     UnitCounters, UnitRay,
 };
-use hw_model::{lookup, mt_model, Format, ModelIntersector};
+use hw_model::{lookup, mt_model, Advance, Format, ModelIntersector};
 use proptest::prelude::*;
 use sw_renderer::bvh::Bvh;
 use sw_renderer::compare::compare;
@@ -227,6 +227,7 @@ fn fp32_renders_of_the_builtin_scenes_equal_the_software() {
         format: fp32(),
         stack_depth: 64,
         scale_exp: 0,
+        advance: Advance::None,
         timing: None,
         memory: SceneMemory::Unbounded,
     };
@@ -252,6 +253,7 @@ fn fp32_renders_of_the_thesis_scenes_equal_the_software() {
         format: fp32(),
         stack_depth: 64,
         scale_exp: 0,
+        advance: Advance::None,
         timing: None,
         memory: SceneMemory::Unbounded,
     };
@@ -273,6 +275,7 @@ fn a_render_whose_stack_overflows_fails_with_the_engines_error() {
         format: fp32(),
         stack_depth: 2,
         scale_exp: 0,
+        advance: Advance::None,
         timing: None,
         memory: SceneMemory::Unbounded,
     };
@@ -304,6 +307,7 @@ fn format_aware_renders_equal_the_bvh_path_in_a_narrow_scaled_format() {
             format: fp16,
             stack_depth: 64,
             scale_exp,
+            advance: Advance::None,
             timing: None,
             memory: SceneMemory::Unbounded,
         };
@@ -385,6 +389,24 @@ proptest! {
                 prop_assert_eq!(got, want, "{:?}", r);
                 // Every pass walks the ray.
                 prop_assert_eq!(counters.rays, parts.len() as u64);
+            }
+        }
+
+        // With the leaf advance in a narrow format a chunk's leaf is entered at the distance
+        // the whole scene's walk enters it (a chunk's root box is its subtree's box), so the
+        // answers stay the whole scene's.
+        let e5m14: Format = "e5m14".parse().unwrap();
+        let whole = TraversalModel::new(e5m14, 64, image.clone()).advanced(Advance::LeafBox);
+        let chunked = ChunkedModel::new(e5m14, 64, 0, image, SceneMemory::Chunked(cap))
+            .unwrap()
+            .advanced(Advance::LeafBox);
+        for r in &rays {
+            let want = whole.trace(r, &mut UnitCounters::default()).unwrap();
+            let got = chunked.trace(r, &mut UnitCounters::default()).unwrap();
+            if r.any_hit {
+                prop_assert_eq!(got.is_some(), want.is_some(), "leaf-box {:?}", r);
+            } else {
+                prop_assert_eq!(got, want, "leaf-box {:?}", r);
             }
         }
     }
@@ -536,6 +558,7 @@ fn fp32_unit(memory: SceneMemory) -> TraversalEngine {
         format: fp32(),
         stack_depth: 64,
         scale_exp: 0,
+        advance: Advance::None,
         timing: None,
         memory,
     }

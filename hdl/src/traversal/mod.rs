@@ -5,6 +5,7 @@ pub mod arbiter;
 pub mod box_test;
 pub mod far_end;
 pub mod hit_update;
+pub mod leaf_advance;
 pub mod ray_setup;
 pub mod scene_memory;
 pub mod scene_memory_driver;

@@ -24,6 +24,7 @@ mod traversal {
     mod box_test;
     mod far_end;
     mod hit_update;
+    mod leaf_advance;
     mod ray_setup;
     mod scene_memory_driver;
     mod stack;

@@ -30,6 +30,7 @@ use thiserror::Error;
 
 use super::{TraversalError, TraversalModel, UnitCounters, UnitRay};
 use crate::format::Format;
+use crate::Advance;
 
 /// What the unit's scene memory holds: inner nodes and triangle records.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -340,6 +341,15 @@ impl ChunkedModel {
             })
             .collect::<Result<_, sw_renderer::scene_image::SceneImageError>>()?;
         Ok(ChunkedModel { chunks })
+    }
+
+    /// Every chunk starting its Möller-Trumbore queries where `advance` says
+    /// ([`TraversalModel::advanced`]).
+    pub fn advanced(self, advance: Advance) -> ChunkedModel {
+        let chunks = self.chunks.into_iter().map(|c| c.advanced(advance));
+        ChunkedModel {
+            chunks: chunks.collect(),
+        }
     }
 
     pub fn chunks(&self) -> &[TraversalModel] {

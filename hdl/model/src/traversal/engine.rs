@@ -10,18 +10,21 @@ use super::schedule::{schedule, UnitTiming};
 use super::{Step, TraversalError, UnitCounters, UnitRay};
 use crate::catalogue::catalogue;
 use crate::format::Format;
+use crate::Advance;
 
 /// Renders through [`TraversalModel`](super::TraversalModel): the scene image is written
 /// from the renderer's BVH, split for the unit's scene `memory` (`capacity`: whole if it
 /// fits, else chunks, else an error naming the sizes), each part loaded through its word
 /// stream (so the loader's checks run), and every wavefront's rays are answered by the model,
-/// pass by pass, its Möller-Trumbore queries scaled by 2^`scale_exp`; with `timing`, each
+/// pass by pass, its Möller-Trumbore queries scaled by 2^`scale_exp` and started where
+/// `advance` says ([`TraversalModel::advanced`](super::TraversalModel::advanced)); with `timing`, each
 /// pass is also timed by the schedule model (`CastStats::cycles`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TraversalEngine {
     pub format: Format,
     pub stack_depth: usize,
     pub scale_exp: i32,
+    pub advance: Advance,
     pub timing: Option<UnitTiming>,
     pub memory: SceneMemory,
 }
@@ -48,7 +51,8 @@ impl RayEngine for TraversalEngine {
                 self.scale_exp,
                 &image,
                 self.memory,
-            )?,
+            )?
+            .advanced(self.advance),
             timing: self.timing,
         }))
     }

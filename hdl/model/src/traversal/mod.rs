@@ -17,6 +17,11 @@
 //! boxes with the far end of
 //! `t.next_up()` so that an equally near hit with a lower index is still found. Box tests are
 //! conservative, so in fp32 every answer equals the software renderer's.
+//!
+//! With [`Advance::LeafBox`] a leaf's queries start at the leaf box's entry distance t0 as
+//! the box test that entered the leaf computed it (`crate::advance::leaf_start`): origin
+//! `o + t0·d`, `t_min − t0`, the lane's t returned as `t + t0` (fp32). Everything after the
+//! lane (the window, the nearest hit, the far end, the answer) sees that returned t.
 
 pub mod box_test;
 pub mod capacity;
@@ -38,7 +43,7 @@ use thiserror::Error;
 
 use crate::format::Format;
 use crate::mt::mt_model_scaled;
-use crate::Edges;
+use crate::{Advance, Edges};
 use box_test::{box_test, ray_setup, t_hi, BoxResult};
 
 /// Entries of a ray's traversal stack unless configured otherwise: a walk pushes at most one
@@ -128,6 +133,8 @@ pub struct TraversalModel {
     format: Format,
     /// Möller-Trumbore sees every coordinate times 2^scale_exp (box tests stay fp32).
     scale_exp: i32,
+    /// Where a leaf's Möller-Trumbore queries start (`None` or `LeafBox`).
+    advance: Advance,
     stack_depth: usize,
     image: SceneImage,
 }
@@ -139,9 +146,16 @@ impl TraversalModel {
         TraversalModel {
             format,
             scale_exp: 0,
+            advance: Advance::None,
             stack_depth,
             image,
         }
+    }
+
+    /// The unit starting its Möller-Trumbore queries where `advance` says (the hardware
+    /// builds `None` and `LeafBox`; `TriangleBox` is the model engine's).
+    pub fn advanced(self, advance: Advance) -> TraversalModel {
+        TraversalModel { advance, ..self }
     }
 
     /// The unit with its Möller-Trumbore queries scaled by 2^`scale_exp`
@@ -181,15 +195,16 @@ impl TraversalModel {
         counters.box_tests += 1;
         step(Step::Box);
         let entered = box_test(&setup, &root);
+        // A subtree and the distance at which the box test entered it.
         let mut stack: Vec<(Link, f32)> = Vec::with_capacity(self.stack_depth);
         if entered.enters[0] {
             stack.push((img.root, entered.near[0]));
         }
         let window = ray.window();
         let mut best: Option<Hit> = None;
-        while let Some((mut link, near)) = stack.pop() {
+        while let Some((mut link, mut entry)) = stack.pop() {
             step(Step::Pop);
-            if setup.t_hi < near {
+            if setup.t_hi < entry {
                 continue;
             }
             loop {
@@ -197,7 +212,8 @@ impl TraversalModel {
                 if link.is_leaf() {
                     let leaf = link.first as usize..(link.first + link.count) as usize;
                     let tested = counters.mt_tests;
-                    let answer = self.leaf(ray, &window, &img.triangles[leaf], counters, &mut best);
+                    let triangles = &img.triangles[leaf];
+                    let answer = self.leaf(ray, &window, entry, triangles, counters, &mut best);
                     step(Step::Leaf((counters.mt_tests - tested) as u32));
                     match answer {
                         Leaf::Occluded(hit) => return Ok(Some(hit)),
@@ -226,10 +242,10 @@ impl TraversalModel {
                             });
                         }
                         stack.push((node.child[1 - first], near[1 - first]));
-                        link = node.child[first];
+                        (link, entry) = (node.child[first], near[first]);
                     }
-                    [true, false] => link = node.child[0],
-                    [false, true] => link = node.child[1],
+                    [true, false] => (link, entry) = (node.child[0], near[0]),
+                    [false, true] => (link, entry) = (node.child[1], near[1]),
                     [false, false] => break,
                 }
             }
@@ -261,11 +277,13 @@ enum Leaf {
 impl TraversalModel {
     /// Tests every triangle of a leaf (an any-hit ray skips the non-shadow-casters), as the
     /// unit issues a whole leaf to its lanes before it looks at the answers; the first
-    /// counting hit in leaf order answers an any-hit ray.
+    /// counting hit in leaf order answers an any-hit ray. `entry`: where the box test entered
+    /// the leaf.
     fn leaf(
         &self,
         ray: &UnitRay,
         window: &Window,
+        entry: f32,
         triangles: &[ImageTriangle],
         counters: &mut UnitCounters,
         best: &mut Option<Hit>,
@@ -276,20 +294,18 @@ impl TraversalModel {
                 continue;
             }
             counters.mt_tests += 1;
+            let query = MtQuery {
+                orig: ray.orig,
+                dir: ray.dir,
+                v0: tri.verts[0],
+                v1: tri.verts[1],
+                v2: tri.verts[2],
+                t_min: window.t_min,
+            };
             // The unit's lanes are the hardware's: exact edges.
-            let r = mt_model_scaled(
-                &self.format,
-                self.scale_exp,
-                Edges::Exact,
-                &MtQuery {
-                    orig: ray.orig,
-                    dir: ray.dir,
-                    v0: tri.verts[0],
-                    v1: tri.verts[1],
-                    v2: tri.verts[2],
-                    t_min: window.t_min,
-                },
-            );
+            let r = self.advance.run_in_leaf(&query, Some(entry), |q| {
+                mt_model_scaled(&self.format, self.scale_exp, Edges::Exact, q)
+            });
             // The fp32 words compare as IEEE floats: t is never subnormal (the datapath
             // flushes), so this is the hardware's comparison too.
             if !window.counts(tri.index, &r) {

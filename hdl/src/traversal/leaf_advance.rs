@@ -1,0 +1,237 @@
+//! The origin advance of a ray's leaf queries in fp32 (docs/precision.md "Advancing the
+//! origin", `--advance leaf-box`): `o' = o + t0·d` per axis and `t_min' = t_min − t0`, one
+//! ray a cycle (II = 1), bit for bit `hw_model::advance::moved`. t0 is the leaf box's entry
+//! distance the unit's box test computed (`hw_model::advance::leaf_start` chooses it); the
+//! lane's answer is moved back by one fp32 `Add` (`t + t0`, `hw_model::advance::moved_back`)
+//! beside the lane. Not yet instantiated by the unit (`traversal::unit`): the block the
+//! leaf ports will put in front of their lanes.
+//!
+//! The dataflow, with the cycle each value is ready (the operators' latencies at `depth`,
+//! see [`AdvanceSchedule`]):
+//! ```text
+//! scaled_dir    = mul            t0·d_k          (three multipliers)
+//! latency       = mul + add      o_k + t0·d_k    (three adders)
+//! lowered_t_min = sub            t_min − t0, then delayed to `latency`
+//! ```
+
+use rust_hdl::prelude::*;
+
+use crate::formats::fp32::{self, Add, Mul, Sub};
+use crate::mt::delay::Delay;
+use crate::mt::schedule::OpLatencies;
+use crate::operator::Op;
+use crate::traversal::box_test::Tag;
+
+type Word = Bits<32>;
+
+/// When each value of the advance is ready, from the operators' latencies at a depth.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AdvanceSchedule {
+    /// Registers per fp32 `Mul`, `Add`, `Sub`: `min(depth, max_stages)`.
+    pub mul: usize,
+    pub add: usize,
+    pub sub: usize,
+    /// Inputs (ray, t0, valid, tag) to outputs.
+    pub latency: usize,
+}
+
+impl AdvanceSchedule {
+    pub fn new(depth: usize) -> Self {
+        let ops = OpLatencies::for_depth(depth, fp32::max_stages);
+        AdvanceSchedule {
+            mul: ops.mul,
+            add: ops.add,
+            sub: ops.sub,
+            latency: ops.mul + ops.add,
+        }
+    }
+
+    /// The origin to its addition (it skips the multiplication).
+    pub fn orig_to_sum(&self) -> usize {
+        self.mul
+    }
+
+    /// `t_min − t0` to the outputs.
+    pub fn lowered_to_out(&self) -> usize {
+        self.latency
+            .checked_sub(self.sub)
+            .expect("a subtraction is never slower than a multiplication and an addition")
+    }
+}
+
+/// Cycles from a ray at the inputs to its moved origin at the outputs: the one source of it.
+pub fn latency(depth: usize) -> usize {
+    AdvanceSchedule::new(depth).latency
+}
+
+/// The depth at which every operator of the block has all its pipeline registers.
+pub fn max_depth() -> usize {
+    [Op::Add, Op::Sub, Op::Mul]
+        .into_iter()
+        .map(fp32::max_stages)
+        .max()
+        .unwrap_or(0)
+}
+
+/// One ray's advance a cycle: `orig`, `dir` (x, y, z), `t_min`, `t0` (fp32 words),
+/// `valid_in` and `tag_in` in; `moved` (x, y, z) and `t_min_out` exactly
+/// [`latency`]`(depth)` cycles later with `valid_out` and `tag_out`. `depth` is the pipeline
+/// registers per operator, each saturating at its own `max_stages()`. No reset: the valid
+/// line holds the flip-flops' power-on zeros.
+#[derive(LogicBlock)]
+pub struct LeafAdvance {
+    pub clock: Signal<In, Clock>,
+    pub valid_in: Signal<In, Bit>,
+    pub tag_in: Signal<In, Tag>,
+    pub orig: Vec<Signal<In, Word>>,
+    pub dir: Vec<Signal<In, Word>>,
+    pub t_min: Signal<In, Word>,
+    pub t0: Signal<In, Word>,
+    pub valid_out: Signal<Out, Bit>,
+    pub tag_out: Signal<Out, Tag>,
+    pub moved: Vec<Signal<Out, Word>>,
+    pub t_min_out: Signal<Out, Word>,
+    scaled_dir: Vec<Mul>,
+    orig_at_sum: Vec<Delay<Word>>,
+    moved_sum: Vec<Add>,
+    lowered_t_min: Sub,
+    lowered_at_out: Delay<Word>,
+    valid_at_out: Delay<Bit>,
+    tag_at_out: Delay<Tag>,
+}
+
+impl LeafAdvance {
+    pub fn new(depth: usize) -> Self {
+        let s = AdvanceSchedule::new(depth);
+        Self {
+            clock: Default::default(),
+            valid_in: Default::default(),
+            tag_in: Default::default(),
+            orig: (0..3).map(|_| Default::default()).collect(),
+            dir: (0..3).map(|_| Default::default()).collect(),
+            t_min: Default::default(),
+            t0: Default::default(),
+            valid_out: Default::default(),
+            tag_out: Default::default(),
+            moved: (0..3).map(|_| Default::default()).collect(),
+            t_min_out: Default::default(),
+            scaled_dir: (0..3).map(|_| Mul::new(s.mul)).collect(),
+            orig_at_sum: (0..3).map(|_| Delay::new(s.orig_to_sum())).collect(),
+            moved_sum: (0..3).map(|_| Add::new(s.add)).collect(),
+            lowered_t_min: Sub::new(s.sub),
+            lowered_at_out: Delay::new(s.lowered_to_out()),
+            valid_at_out: Delay::new(s.latency),
+            tag_at_out: Delay::new(s.latency),
+        }
+    }
+
+    /// Drives the inputs with one ray (the simulator's side of the ports).
+    pub fn set_inputs(&mut self, x: &AdvanceInput) {
+        let word = |x: f32| Word::from(u64::from(x.to_bits()));
+        self.valid_in.next = x.valid;
+        self.tag_in.next = u64::from(x.tag).into();
+        for k in 0..3 {
+            self.orig[k].next = word(x.orig[k]);
+            self.dir[k].next = word(x.dir[k]);
+        }
+        self.t_min.next = word(x.t_min);
+        self.t0.next = word(x.t0);
+    }
+
+    /// What the outputs show (fp32 bits).
+    pub fn outputs(&self) -> AdvanceOutput {
+        let bits = |w: Word| w.to_u64() as u32;
+        AdvanceOutput {
+            valid: self.valid_out.val(),
+            tag: self.tag_out.val().to_u64() as u16,
+            moved: [0, 1, 2].map(|k| bits(self.moved[k].val())),
+            t_min: bits(self.t_min_out.val()),
+        }
+    }
+}
+
+impl Logic for LeafAdvance {
+    #[hdl_gen]
+    fn update(&mut self) {
+        for k in 0..3 {
+            self.scaled_dir[k].clock.next = self.clock.val();
+            self.orig_at_sum[k].clock.next = self.clock.val();
+            self.moved_sum[k].clock.next = self.clock.val();
+            // o + t0·d, in the model's operand order.
+            self.scaled_dir[k].a.next = self.t0.val();
+            self.scaled_dir[k].b.next = self.dir[k].val();
+            self.orig_at_sum[k].d.next = self.orig[k].val();
+            self.moved_sum[k].a.next = self.orig_at_sum[k].q.val();
+            self.moved_sum[k].b.next = self.scaled_dir[k].y.val();
+            self.moved[k].next = self.moved_sum[k].y.val();
+        }
+        self.lowered_t_min.clock.next = self.clock.val();
+        self.lowered_at_out.clock.next = self.clock.val();
+        self.valid_at_out.clock.next = self.clock.val();
+        self.tag_at_out.clock.next = self.clock.val();
+        self.lowered_t_min.a.next = self.t_min.val();
+        self.lowered_t_min.b.next = self.t0.val();
+        self.lowered_at_out.d.next = self.lowered_t_min.y.val();
+        self.t_min_out.next = self.lowered_at_out.q.val();
+        self.valid_at_out.d.next = self.valid_in.val();
+        self.tag_at_out.d.next = self.tag_in.val();
+        self.valid_out.next = self.valid_at_out.q.val();
+        self.tag_out.next = self.tag_at_out.q.val();
+    }
+}
+
+/// One ray at the inputs.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AdvanceInput {
+    pub valid: bool,
+    pub tag: u16,
+    pub orig: [f32; 3],
+    pub dir: [f32; 3],
+    pub t_min: f32,
+    pub t0: f32,
+}
+
+/// What the block's outputs show in one cycle (fp32 bits).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AdvanceOutput {
+    pub valid: bool,
+    pub tag: u16,
+    pub moved: [u32; 3],
+    pub t_min: u32,
+}
+
+/// Runs a freshly built block at `depth` in rust-hdl's simulator for `inputs.len() + flush`
+/// cycles, feeding `inputs[c]` in cycle `c` (then idle, all-zero inputs) and returning what
+/// the outputs show in every cycle.
+pub fn simulate_leaf_advance(
+    depth: usize,
+    inputs: &[AdvanceInput],
+    flush: usize,
+) -> Vec<AdvanceOutput> {
+    let inputs = inputs.to_vec();
+    crate::top::with_build_stack(move || {
+        let mut uut = LeafAdvance::new(depth);
+        uut.connect_all();
+        let idle = AdvanceInput::default();
+        (0..inputs.len() + flush)
+            .map(|cycle| {
+                uut.set_inputs(inputs.get(cycle).unwrap_or(&idle));
+                uut.clock.next = Clock { clk: false };
+                assert!(simulate(&mut uut, 10_000), "leaf advance did not settle");
+                let out = uut.outputs();
+                uut.clock.next = Clock { clk: true };
+                assert!(simulate(&mut uut, 10_000), "leaf advance did not settle");
+                out
+            })
+            .collect()
+    })
+}
+
+/// Verilog of the block at `depth`, top module `top`.
+pub fn leaf_advance_verilog(depth: usize) -> String {
+    crate::top::with_build_stack(move || {
+        let mut uut = LeafAdvance::new(depth);
+        uut.connect_all();
+        generate_verilog(&uut)
+    })
+}
