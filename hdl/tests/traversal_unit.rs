@@ -10,7 +10,7 @@ use hdl::traversal::unit::{unit_verilog, UnitConfig, UnitConfigError, MAX_LANES}
 use hdl::verilog::{verilator_lint_waiving, UNIT_VERILATOR_WAIVERS};
 use hw_model::traversal::packet::{hit_from_words, HIT_WORDS, RAY_WORDS};
 use hw_model::traversal::{TraversalModel, UnitCounters, UnitRay};
-use hw_model::{Format, HwFormat};
+use hw_model::{Advance, Format, HwFormat};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
@@ -46,8 +46,8 @@ macro_rules! bench {
         }
 
         impl Bench {
-            pub fn new(lanes: usize) -> Self {
-                let mut uut = Box::new(<$unit>::new(DEPTH, 32, lanes));
+            pub fn new(lanes: usize, advance: Advance) -> Self {
+                let mut uut = Box::new(<$unit>::new(DEPTH, 32, lanes, advance));
                 uut.connect_all();
                 let mut b = Bench { uut, cycles: 0 };
                 b.uut.reset_n.next = false;
@@ -176,7 +176,8 @@ mod fp16_unit {
 fn fp32_unit_answers_and_counts_as_the_model(lanes: usize) {
     with_build_stack(move || {
         let (load, run) = (fp32_unit::Bench::load, fp32_unit::Bench::run);
-        answers_and_counts(Format::FP32, lanes, fp32_unit::Bench::new(lanes), load, run)
+        let bench = fp32_unit::Bench::new(lanes, Advance::None);
+        answers_and_counts(Format::FP32, lanes, Advance::None, bench, load, run)
     });
 }
 
@@ -205,7 +206,20 @@ fn the_three_lane_fp32_unit_answers_and_counts_as_the_model() {
 fn the_fp16_unit_answers_and_counts_as_the_model() {
     with_build_stack(|| {
         let (load, run) = (fp16_unit::Bench::load, fp16_unit::Bench::run);
-        answers_and_counts(FP16, 1, fp16_unit::Bench::new(1), load, run)
+        let bench = fp16_unit::Bench::new(1, Advance::None);
+        answers_and_counts(FP16, 1, Advance::None, bench, load, run)
+    });
+}
+
+/// The leaf advance in fp16 (`--advance leaf-box`): each leaf's queries moved to the leaf's
+/// entry distance from the box test, the lane's t moved back; answers and counters equal
+/// the model's `advanced(LeafBox)`, and differ from the unadvanced lane's somewhere.
+#[test]
+fn the_fp16_unit_with_the_leaf_advance_answers_and_counts_as_the_model() {
+    with_build_stack(|| {
+        let (load, run) = (fp16_unit::Bench::load, fp16_unit::Bench::run);
+        let bench = fp16_unit::Bench::new(1, Advance::LeafBox);
+        answers_and_counts(FP16, 1, Advance::LeafBox, bench, load, run)
     });
 }
 
@@ -216,6 +230,7 @@ type Answers = (Vec<Option<Hit>>, UnitCounters);
 fn answers_and_counts<B>(
     format: Format,
     lanes: usize,
+    advance: Advance,
     mut bench: B,
     load: fn(&mut B, &[u32]) -> LoadStatus,
     run: fn(&mut B, &[UnitRay], &mut StdRng, f64) -> Answers,
@@ -227,7 +242,7 @@ fn answers_and_counts<B>(
     let status = load(&mut bench, &words);
     status_result(&status, &words, config.memory).unwrap();
     let rays = rays(3, 40, tris.len() as u32);
-    let model = TraversalModel::new(format, 32, image);
+    let model = TraversalModel::new(format, 32, image).advanced(advance);
     let mut want_counters = UnitCounters::default();
     let want: Vec<Option<Hit>> = (rays.iter())
         .map(|r| model.trace(r, &mut want_counters).unwrap())
@@ -242,15 +257,23 @@ fn answers_and_counts<B>(
     let hits = want.iter().filter(|h| h.is_some()).count();
     assert!(hits >= 5, "{hits} hits are too few to show anything");
     assert_eq!(counters, want_counters);
+    // The format and the advance each change some answer, so the test shows them.
+    let differs_from = |other: TraversalModel| {
+        (rays.iter().zip(&want))
+            .any(|(r, w)| bits(&other.trace(r, &mut UnitCounters::default()).unwrap()) != bits(w))
+    };
     if format != Format::FP32 {
         let fp32 = TraversalModel::new(Format::FP32, 32, model.image().clone());
-        let differ = rays
-            .iter()
-            .zip(&want)
-            .any(|(r, w)| bits(&fp32.trace(r, &mut UnitCounters::default()).unwrap()) != bits(w));
         assert!(
-            differ,
+            differs_from(fp32),
             "{format} answered every ray as fp32: the lane's format is not shown"
+        );
+    }
+    if advance != Advance::None {
+        let plain = TraversalModel::new(format, 32, model.image().clone());
+        assert!(
+            differs_from(plain),
+            "{format} answered every ray as without the advance: it is not shown"
         );
     }
 }
@@ -276,6 +299,13 @@ fn unsupported_configurations_are_errors() {
         .unwrap_err(),
         UnitConfigError::StackDepth(33)
     );
+    let triangle_box = UnitConfig {
+        advance: Advance::TriangleBox,
+        ..ok
+    };
+    let e = unit_verilog(&triangle_box).unwrap_err();
+    assert_eq!(e, UnitConfigError::Advance(Advance::TriangleBox));
+    assert!(e.to_string().contains("not triangle-box"), "{e}");
     let mut odd = ok;
     odd.memory.node_bits = 7;
     assert!(unit_verilog(&odd)

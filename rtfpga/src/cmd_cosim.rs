@@ -15,7 +15,7 @@ use sw_renderer::intersect::{F32Intersector, Intersector};
 use sw_renderer::render::{render, save_png, RenderOptions, RenderOutput};
 use sw_renderer::scene::Scene;
 
-use crate::engine::{HwConfig, UnitKind};
+use crate::engine::{HwConfig, UnitAdvanceArgs, UnitKind};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum ModeArg {
@@ -37,6 +37,8 @@ pub struct Args {
     unit: UnitKind,
     #[command(flatten)]
     hw: HwConfig,
+    #[command(flatten)]
+    advance: UnitAdvanceArgs,
     /// Override the scene's width (1 to 16384 pixels).
     #[arg(long, value_parser = crate::cmd_render::image_side())]
     width: Option<u32>,
@@ -64,6 +66,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
+    a.advance.of(a.unit)?;
     let scene = Scene::load(&a.scene)?;
     if a.unit == UnitKind::Traversal {
         return run_traversal(&a, &scene);
@@ -179,7 +182,7 @@ fn run_traversal(a: &Args, scene: &Scene) -> Result<()> {
     if a.mode != ModeArg::Stream || a.vcd.is_some() {
         bail!("--mode register/register-irq and --vcd are options of --unit mt: the traversal unit takes its rays over its own stream");
     }
-    let config = a.hw.unit_config()?;
+    let config = a.hw.unit_config(a.advance.of(a.unit)?)?;
     let engine = UnitEngine::new(&config, Traffic::FULL_SPEED, true)?;
     let name = sw_renderer::rays::RayEngine::name(&engine);
     let built = engine.model();

@@ -160,6 +160,7 @@ pub fn run(a: Args) -> Result<()> {
                     a.depth,
                     a.lanes as usize,
                     a.slots as usize,
+                    Advance::None,
                 )),
                 memory: a.memory.memory(a.lanes as usize),
             };

@@ -5,7 +5,7 @@
 use anyhow::{bail, Result};
 use clap::Args as ClapArgs;
 
-use crate::engine::{HwConfig, UnitKind};
+use crate::engine::{HwConfig, UnitAdvanceArgs, UnitKind};
 use hdl::operator::Op;
 use hdl::synth::{synthesize, SynthOptions, SynthReport};
 use hdl::top::fit::{fit_from, synthesize_top, LaneFit, Usage, XC7Z020};
@@ -19,6 +19,8 @@ pub struct Args {
     unit: UnitKind,
     #[command(flatten)]
     hw: HwConfig,
+    #[command(flatten)]
+    advance: UnitAdvanceArgs,
     /// Synthesise one operator of `--format` instead of the accelerator (add, sub, mul,
     /// recip, lt, from_f32, to_f32).
     #[arg(long)]
@@ -36,11 +38,12 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<()> {
     let options = SynthOptions::default();
+    let advance = a.advance.of(a.unit)?;
     if a.unit == UnitKind::Traversal {
         if a.op.is_some() {
             bail!("--op synthesises one operator of the accelerator's lane; it does not combine with --unit traversal");
         }
-        let config = a.hw.unit_config()?;
+        let config = a.hw.unit_config(advance)?;
         let verilog = unit_verilog(&config)?;
         let report = synthesize(&verilog, "top", &options)?;
         let label = format!(

@@ -7,7 +7,7 @@ use anyhow::{bail, Context, Result};
 use clap::Args as ClapArgs;
 use std::path::PathBuf;
 
-use crate::engine::{HwConfig, UnitKind};
+use crate::engine::{HwConfig, UnitAdvanceArgs, UnitKind};
 use hdl::generate::{
     default_configs, default_unit_config, generate, unit_dir_name, unit_files, write_files,
 };
@@ -21,6 +21,8 @@ pub struct Args {
     unit: UnitKind,
     #[command(flatten)]
     hw: HwConfig,
+    #[command(flatten)]
+    advance: UnitAdvanceArgs,
     /// Output directory (created if missing).
     #[arg(long)]
     out: PathBuf,
@@ -31,11 +33,12 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
+    let advance = a.advance.of(a.unit)?;
     if a.unit == UnitKind::Traversal {
         if a.defaults {
             bail!("--defaults writes every committed file set, the traversal unit's among them; with --unit traversal give --format, --depth and --lanes");
         }
-        return traversal_unit(&a.hw.unit_config()?, &a.out, true);
+        return traversal_unit(&a.hw.unit_config(advance)?, &a.out, true);
     }
     let jobs: Vec<(TopConfig, PathBuf)> = if a.defaults {
         default_configs()

@@ -159,6 +159,28 @@ fn choice<T: NamedChoice>() -> impl TypedValueParser<Value = T> {
         .try_map(|name| name.parse::<T>())
 }
 
+/// `--advance` of the traversal unit's RTL (`verilog`, `synth` and `cosim`).
+#[derive(ClapArgs, Clone, Debug)]
+pub struct UnitAdvanceArgs {
+    /// `--unit traversal`: where the unit's lanes start a leaf's queries: none (at the ray's
+    /// origin) or leaf-box (moved to where the box test entered the leaf, the model's
+    /// `--engine traversal --advance leaf-box`; docs/traversal-unit.md) [default: none].
+    #[arg(long, value_parser = choice::<Advance>())]
+    pub advance: Option<Advance>,
+}
+
+impl UnitAdvanceArgs {
+    /// The advance of `unit`: an error for another than none with the accelerator, whose
+    /// lanes start at the query's origin.
+    pub fn of(&self, unit: UnitKind) -> Result<Advance> {
+        let advance = self.advance.unwrap_or_default();
+        if unit == UnitKind::Mt && advance != Advance::None {
+            bail!("--advance {advance}: the Möller-Trumbore accelerator's lanes start at the query's origin; the leaf advance is the traversal unit's (--unit traversal)");
+        }
+        Ok(advance)
+    }
+}
+
 /// The model lane's options beyond its format (docs/precision.md): the hardware lanes' are
 /// the defaults.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -364,7 +386,8 @@ impl HwConfig {
     ) -> Result<TraversalEngine> {
         let format = self.single_format()?;
         let timing = hw_model::HwFormat::try_from(format).ok().map(|f| {
-            hdl::traversal::timing::unit_timing(f, self.depth, self.lanes, self.slots as usize)
+            let slots = self.slots as usize;
+            hdl::traversal::timing::unit_timing(f, self.depth, self.lanes, slots, advance)
         });
         Ok(TraversalEngine {
             format,
@@ -377,10 +400,12 @@ impl HwConfig {
     }
 
     /// The traversal unit of this configuration, its scene memory the one that fits the
-    /// XC7Z020 beside `lanes` lanes: an error naming what the RTL does not build.
-    pub fn unit_config(&self) -> Result<UnitConfig> {
+    /// XC7Z020 beside `lanes` lanes, its lanes started where `advance` says: an error naming
+    /// what the RTL does not build.
+    pub fn unit_config(&self, advance: Advance) -> Result<UnitConfig> {
         let mut config = UnitConfig::new(self.single_format()?.try_into()?, self.depth, self.lanes);
         config.slots = self.slots as usize;
+        config.advance = advance;
         if let Some(c) = self.unit_memory {
             let (node_bits, triangle_bits) =
                 scene_memory::address_bits_for(c.nodes as usize, c.triangles as usize);

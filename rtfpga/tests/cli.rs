@@ -1636,6 +1636,49 @@ fn verilog_of_the_traversal_unit_writes_its_verilog_and_config() {
     }
 }
 
+/// `--advance leaf-box` builds the traversal unit with the leaf advance around its lane
+/// (`none`, the default, has none of it); the accelerator and triangle-box are refused.
+#[test]
+fn verilog_of_the_traversal_unit_with_the_leaf_advance() {
+    let dir = tempfile::tempdir().unwrap();
+    let unit = |advance: &str| {
+        let out_dir = dir.path().join(advance);
+        ok(&[
+            "verilog",
+            "--unit",
+            "traversal",
+            "--unit-memory",
+            "16,32",
+            "--advance",
+            advance,
+            "--out",
+            s(&out_dir),
+        ]);
+        std::fs::read_to_string(out_dir.join("traversal_unit.v")).unwrap()
+    };
+    assert!(unit("leaf-box").contains("around$0$lane_query"));
+    assert!(!unit("none").contains("around"));
+    let out = s(dir.path());
+    fails(
+        &["verilog", "--advance", "leaf-box", "--out", out],
+        1,
+        &["--advance leaf-box", "--unit traversal"],
+    );
+    fails(
+        &[
+            "verilog",
+            "--unit",
+            "traversal",
+            "--advance",
+            "triangle-box",
+            "--out",
+            out,
+        ],
+        1,
+        &["not triangle-box"],
+    );
+}
+
 /// `cosim --unit traversal` renders through the Verilated unit: its counters per ray, the
 /// simulation speed, and the image identical to the software's.
 #[test]

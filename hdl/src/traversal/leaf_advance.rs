@@ -3,8 +3,8 @@
 //! ray a cycle (II = 1), bit for bit `hw_model::advance::moved`. t0 is the leaf box's entry
 //! distance the unit's box test computed (`hw_model::advance::leaf_start` chooses it); the
 //! lane's answer is moved back by one fp32 `Add` (`t + t0`, `hw_model::advance::moved_back`)
-//! beside the lane. Not yet instantiated by the unit (`traversal::unit`): the block the
-//! leaf ports will put in front of their lanes.
+//! beside the lane. [`AroundLane`] is that pair around one lane of the traversal unit
+//! (`unit_top` builds one per lane with `--advance leaf-box`).
 //!
 //! The dataflow, with the cycle each value is ready (the operators' latencies at `depth`,
 //! see [`AdvanceSchedule`]):
@@ -20,6 +20,7 @@ use crate::formats::fp32::{self, Add, Mul, Sub};
 use crate::mt::delay::Delay;
 use crate::mt::schedule::OpLatencies;
 use crate::operator::Op;
+use crate::top::stream::QUERY_BITS;
 use crate::traversal::box_test::Tag;
 
 type Word = Bits<32>;
@@ -62,6 +63,13 @@ impl AdvanceSchedule {
 /// Cycles from a ray at the inputs to its moved origin at the outputs: the one source of it.
 pub fn latency(depth: usize) -> usize {
     AdvanceSchedule::new(depth).latency
+}
+
+/// Cycles the advance adds to a lane's answer path: the block in front of it, the `t + t0`
+/// adder behind it.
+pub fn around_lane_latency(depth: usize) -> usize {
+    let s = AdvanceSchedule::new(depth);
+    s.latency + s.add
 }
 
 /// The depth at which every operator of the block has all its pipeline registers.
@@ -234,4 +242,120 @@ pub fn leaf_advance_verilog(depth: usize) -> String {
         uut.connect_all();
         generate_verilog(&uut)
     })
+}
+
+/// The leaf advance around one MT lane of `lane_latency` cycles: a packed query (the
+/// accelerator's operand order: orig, dir, v0, v1, v2, t_min) and the leaf's entry distance
+/// in, the moved query out to the lane; the lane's answer in, `t + t0` (and hit, u, v
+/// beside it) out. t0 is `hw_model::advance::leaf_start` of the entry: the entry if finite,
+/// positive and normal, else 0 (a subnormal t0 moves nothing through the flushing
+/// operators, so it is 0 either way). Query to answer: [`around_lane_latency`] plus the lane's.
+#[derive(LogicBlock)]
+pub struct AroundLane {
+    pub clock: Signal<In, Clock>,
+    /// From the leaf port (with the query).
+    pub valid_in: Signal<In, Bit>,
+    pub query_in: Signal<In, Bits<QUERY_BITS>>,
+    pub entry: Signal<In, Word>,
+    /// To the lane.
+    pub lane_valid: Signal<Out, Bit>,
+    pub lane_query: Signal<Out, Bits<QUERY_BITS>>,
+    /// From the lane.
+    pub lane_hit: Signal<In, Bit>,
+    pub lane_t: Signal<In, Word>,
+    pub lane_u: Signal<In, Word>,
+    pub lane_v: Signal<In, Word>,
+    /// To the leaf port's answer path.
+    pub hit: Signal<Out, Bit>,
+    pub t: Signal<Out, Word>,
+    pub u: Signal<Out, Word>,
+    pub v: Signal<Out, Word>,
+    advance: LeafAdvance,
+    /// The query's other words (dir, vertices) wait for the moved origin.
+    query_at: Delay<Bits<QUERY_BITS>>,
+    /// t0 travels beside the advance and the lane to the adder.
+    t0_at: Delay<Word>,
+    moved_back: Add,
+    hit_at: Delay<Bit>,
+    u_at: Delay<Word>,
+    v_at: Delay<Word>,
+    t0: Signal<Local, Word>,
+    exponent: Signal<Local, Bits<8>>,
+}
+
+impl AroundLane {
+    pub fn new(depth: usize, lane_latency: usize) -> Self {
+        let s = AdvanceSchedule::new(depth);
+        Self {
+            clock: Default::default(),
+            valid_in: Default::default(),
+            query_in: Default::default(),
+            entry: Default::default(),
+            lane_valid: Default::default(),
+            lane_query: Default::default(),
+            lane_hit: Default::default(),
+            lane_t: Default::default(),
+            lane_u: Default::default(),
+            lane_v: Default::default(),
+            hit: Default::default(),
+            t: Default::default(),
+            u: Default::default(),
+            v: Default::default(),
+            advance: LeafAdvance::new(depth),
+            query_at: Delay::new(s.latency),
+            t0_at: Delay::new(s.latency + lane_latency),
+            moved_back: Add::new(s.add),
+            hit_at: Delay::new(s.add),
+            u_at: Delay::new(s.add),
+            v_at: Delay::new(s.add),
+            t0: Default::default(),
+            exponent: Default::default(),
+        }
+    }
+}
+
+impl Logic for AroundLane {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.advance.clock.next = self.clock.val();
+        self.query_at.clock.next = self.clock.val();
+        self.t0_at.clock.next = self.clock.val();
+        self.moved_back.clock.next = self.clock.val();
+        self.hit_at.clock.next = self.clock.val();
+        self.u_at.clock.next = self.clock.val();
+        self.v_at.clock.next = self.clock.val();
+        // leaf_start: only a finite, positive, normal entry moves the ray.
+        self.exponent.next = self.entry.val().get_bits::<8>(23);
+        self.t0.next = 0.into();
+        if !self.entry.val().get_bit(31) & self.exponent.val().any() & !self.exponent.val().all() {
+            self.t0.next = self.entry.val();
+        }
+        self.advance.valid_in.next = self.valid_in.val();
+        self.advance.tag_in.next = 0.into();
+        for k in 0..3 {
+            self.advance.orig[k].next = self.query_in.val().get_bits::<32>(32 * k);
+            self.advance.dir[k].next = self.query_in.val().get_bits::<32>(32 * (3 + k));
+        }
+        self.advance.t_min.next = self.query_in.val().get_bits::<32>(480);
+        self.advance.t0.next = self.t0.val();
+        self.query_at.d.next = self.query_in.val();
+        // The moved origin (words 0-2) and t_min (word 15) around the delayed words 3-14.
+        self.lane_valid.next = self.advance.valid_out.val();
+        self.lane_query.next = bit_cast::<QUERY_BITS, 32>(self.advance.moved[0].val())
+            | (bit_cast::<QUERY_BITS, 32>(self.advance.moved[1].val()) << 32)
+            | (bit_cast::<QUERY_BITS, 32>(self.advance.moved[2].val()) << 64)
+            | (((self.query_at.q.val() << 32) >> 128) << 96)
+            | (bit_cast::<QUERY_BITS, 32>(self.advance.t_min_out.val()) << 480);
+        // The answer: t + t0 in fp32, the rest delayed beside the adder.
+        self.t0_at.d.next = self.t0.val();
+        self.moved_back.a.next = self.lane_t.val();
+        self.moved_back.b.next = self.t0_at.q.val();
+        self.hit_at.d.next = self.lane_hit.val();
+        self.u_at.d.next = self.lane_u.val();
+        self.v_at.d.next = self.lane_v.val();
+        self.hit.next = self.hit_at.q.val();
+        self.t.next = self.moved_back.y.val();
+        self.u.next = self.u_at.q.val();
+        self.v.next = self.v_at.q.val();
+    }
 }

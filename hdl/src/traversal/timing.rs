@@ -3,9 +3,9 @@
 //! unit's RTL is co-simulated.
 
 use hw_model::traversal::schedule::UnitTiming;
-use hw_model::HwFormat;
+use hw_model::{Advance, HwFormat};
 
-use super::{box_test, far_end, ray_setup};
+use super::{box_test, far_end, leaf_advance, ray_setup};
 use crate::formats::fp32;
 use crate::mt::schedule::OpLatencies;
 
@@ -19,20 +19,33 @@ pub const MEMORY_READ: usize = 1;
 pub const SLOT_UPDATE: usize = 1;
 
 /// The unit with `lanes` MT lanes in `format` and `slots` ray slots, every operator built
-/// with `depth` pipeline registers (at most its maximum).
-pub fn unit_timing(format: HwFormat, depth: usize, lanes: usize, slots: usize) -> UnitTiming {
+/// with `depth` pipeline registers (at most its maximum), starting a leaf's queries where
+/// `advance` says (`None` or `LeafBox`).
+pub fn unit_timing(
+    format: HwFormat,
+    depth: usize,
+    lanes: usize,
+    slots: usize,
+    advance: Advance,
+) -> UnitTiming {
     let lt = OpLatencies::for_depth(depth, fp32::max_stages).lt;
     let cycles = |c: usize| c as u64;
+    let around_lane = match advance {
+        Advance::LeafBox => leaf_advance::around_lane_latency(depth),
+        // triangle-box is the model engine's alone: the unit's plain lane.
+        Advance::None | Advance::TriangleBox => 0,
+    };
     UnitTiming {
         slots,
         lanes,
         setup_latency: cycles(ray_setup::latency(depth) + SLOT_UPDATE),
         box_latency: cycles(MEMORY_READ + box_test::latency(depth) + SLOT_UPDATE),
-        // Triangle read, the lane, the (t, index) comparison with the slot's nearest hit,
-        // then the far end of the new bound.
+        // Triangle read, the lane (behind the leaf advance, `t + t0` after it), the (t,
+        // index) comparison with the slot's nearest hit, then the far end of the new bound.
         mt_latency: cycles(
             MEMORY_READ
                 + crate::mt::latency(format, depth)
+                + around_lane
                 + lt
                 + far_end::latency(depth)
                 + SLOT_UPDATE,

@@ -40,7 +40,7 @@
 
 use hw_model::traversal::packet::{hit_word, ray_word, ANY_HIT, HAS_EXCLUDE, HIT_WORDS, RAY_WORDS};
 use hw_model::traversal::schedule::UnitTiming;
-use hw_model::HwFormat;
+use hw_model::{Advance, HwFormat};
 use rust_hdl::prelude::*;
 use thiserror::Error;
 
@@ -125,6 +125,9 @@ pub struct TraversalCore<
     pub lane_t: Vec<Signal<In, Bits<32>>>,
     pub lane_u: Vec<Signal<In, Bits<32>>>,
     pub lane_v: Vec<Signal<In, Bits<32>>>,
+    /// With the leaf advance (else no lanes): the entry distance of the query's leaf,
+    /// beside `lane_query` (`unit_top` puts `leaf_advance::AroundLane` between core and lane).
+    pub lane_entry: Vec<Signal<Out, Bits<32>>>,
 
     memory: SceneMemory<NB, TB, LF, LC, NW, TW>,
     setup: RaySetupUnit,
@@ -174,6 +177,9 @@ pub struct TraversalCore<
     /// The current link: a node, or the leaf's next triangle and how many are left.
     link_first: Vec<DFF<Bits<LF>>>,
     link_count: Vec<DFF<Bits<LC>>>,
+    /// With the leaf advance (else no slots): where the box test entered the current link
+    /// (the box answer's `near`, a popped entry's distance), the model's `entry`.
+    link_entry: Vec<DFF<Bits<32>>>,
     slot_id: Vec<Constant<Bits<SB>>>,
     one: Constant<Bits<S>>,
     one_count: Constant<Bits<LC>>,
@@ -203,6 +209,8 @@ pub struct TraversalCore<
     leaf_last: Vec<DFF<Bit>>,
     leaf_any_hit: Vec<DFF<Bit>>,
     leaf_has_exclude: Vec<DFF<Bit>>,
+    /// With the leaf advance: the granted slot's `link_entry`, beside the query.
+    leaf_entry: Vec<DFF<Bits<32>>>,
     /// What travels beside each lane: issued (tested or skipped), tested, last of its leaf,
     /// triangle, the window, the pad.
     issued_at: Vec<Delay<Bit>>,
@@ -356,8 +364,16 @@ impl<
 {
     /// A core whose operators have `depth` pipeline registers each (at most their maximum),
     /// whose slots have stacks of `stack_depth` entries, for `lanes` lanes of `lane_latency`
-    /// cycles.
-    pub fn new(depth: usize, stack_depth: usize, lanes: usize, lane_latency: usize) -> Self {
+    /// cycles (query to answer, with whatever `unit_top` puts around the lane). With
+    /// `entries`, it keeps each slot's entry distance and gives it beside each query
+    /// (`lane_entry`, for the leaf advance); without, it has none of that logic.
+    pub fn new(
+        depth: usize,
+        stack_depth: usize,
+        lanes: usize,
+        lane_latency: usize,
+        entries: bool,
+    ) -> Self {
         assert_eq!(W, LF + LC + 32, "a stack entry is a link and a distance");
         assert!(
             S <= 1 << SB && S <= 1 << 16,
@@ -372,6 +388,7 @@ impl<
             (0..lanes).map(|_| Delay::new(latency)).collect()
         }
         let lane_mask = |l: usize| (l..S).step_by(lanes).fold(0u64, |m, s| m | 1 << s);
+        let (entry_slots, entry_lanes) = if entries { (S, lanes) } else { (0, 0) };
         Self {
             clock: Default::default(),
             reset_n: Default::default(),
@@ -405,6 +422,7 @@ impl<
             lane_t: defaults(lanes),
             lane_u: defaults(lanes),
             lane_v: defaults(lanes),
+            lane_entry: defaults(entry_lanes),
             memory: SceneMemory::new(lanes),
             setup: RaySetupUnit::new(depth),
             boxes: BoxTest::new(depth),
@@ -439,6 +457,7 @@ impl<
             t_hi: defaults(S),
             link_first: defaults(S),
             link_count: defaults(S),
+            link_entry: defaults(entry_slots),
             slot_id: (0..S).map(|s| Constant::new((s as u64).into())).collect(),
             one: Constant::new(1.into()),
             one_count: Constant::new(1.into()),
@@ -460,6 +479,7 @@ impl<
             leaf_last: defaults(lanes),
             leaf_any_hit: defaults(lanes),
             leaf_has_exclude: defaults(lanes),
+            leaf_entry: defaults(entry_lanes),
             issued_at: beside_lane(lanes, lane_latency),
             tested_at: beside_lane(lanes, lane_latency),
             last_at: beside_lane(lanes, lane_latency),
@@ -1185,6 +1205,36 @@ impl<
             }
         }
 
+        // ---- The leaf advance's entry distances (none without it).
+        for i in 0..self.link_entry.len() {
+            self.link_entry[i].clock.next = self.clock.val();
+            self.link_entry[i].d.next = self.link_entry[i].q.val();
+            // The entered child's (the root's box is child 0), as `box_link_first` picks it.
+            if self.box_visit.val() & self.box_done.val().get_bit(i) {
+                if self.root_at.q.val()
+                    | (self.boxes.enters[0].val()
+                        & !(self.boxes.enters[1].val() & self.boxes.first.val()))
+                {
+                    self.link_entry[i].d.next = self.boxes.near[0].val();
+                } else {
+                    self.link_entry[i].d.next = self.boxes.near[1].val();
+                }
+            }
+            if self.pop_enters.val() & self.pop_done.val().get_bit(i) {
+                self.link_entry[i].d.next = bit_cast::<32, W>(self.stacks.pop_data.val());
+            }
+        }
+        for l in 0..self.leaf_entry.len() {
+            self.leaf_entry[l].clock.next = self.clock.val();
+            self.leaf_entry[l].d.next = self.leaf_entry[l].q.val();
+            for i in 0..self.link_entry.len() {
+                if self.leaf_grant[l].val().get_bit(i) {
+                    self.leaf_entry[l].d.next = self.link_entry[i].q.val();
+                }
+            }
+            self.lane_entry[l].next = self.leaf_entry[l].q.val();
+        }
+
         // ---- Status and counters.
         self.overflow_q.d.next = self.overflow_q.q.val();
         self.overflow_ray_q.d.next = self.overflow_ray_q.q.val();
@@ -1270,6 +1320,9 @@ pub struct UnitConfig {
     pub slots: usize,
     pub stack_depth: usize,
     pub memory: MemoryConfig,
+    /// Where the lanes start a leaf's queries: `None` or `LeafBox` (`leaf_advance::AroundLane`
+    /// around every lane).
+    pub advance: Advance,
 }
 
 /// A configuration the RTL does not build.
@@ -1281,6 +1334,8 @@ pub enum UnitConfigError {
     Slots(usize),
     #[error("a stack of {0} entries: the unit's stacks hold 1 to {MAX_STACK_DEPTH}")]
     StackDepth(usize),
+    #[error("the traversal unit's RTL advances to the leaf box (leaf-box) or not at all (none), not {}", .0.name())]
+    Advance(Advance),
     #[error("no scene memory of {node_bits} node and {triangle_bits} triangle address bits is built (sizes: 4/5, 9/10, 11/12, 12/13)")]
     Memory {
         node_bits: usize,
@@ -1303,12 +1358,19 @@ impl UnitConfig {
                 node_bits,
                 triangle_bits,
             },
+            advance: Advance::None,
         }
     }
 
     /// The unit's timing, as the schedule model takes it.
     pub fn timing(&self) -> UnitTiming {
-        unit_timing(self.format, self.depth, self.lanes, self.slots)
+        unit_timing(
+            self.format,
+            self.depth,
+            self.lanes,
+            self.slots,
+            self.advance,
+        )
     }
 
     /// Whether the RTL builds this configuration.
@@ -1321,6 +1383,9 @@ impl UnitConfig {
         }
         if !(1..=MAX_STACK_DEPTH).contains(&self.stack_depth) {
             return Err(UnitConfigError::StackDepth(self.stack_depth));
+        }
+        if self.advance == Advance::TriangleBox {
+            return Err(UnitConfigError::Advance(self.advance));
         }
         match (self.memory.node_bits, self.memory.triangle_bits) {
             (4, 5) | (9, 10) | (11, 12) | (12, 13) => Ok(()),

@@ -315,7 +315,12 @@ macro_rules! axil_top {
                     hit_tvalid: Default::default(),
                     hit_tready: Default::default(),
                     control: UnitControl::new(config),
-                    unit: <$unit>::new(config.depth, config.stack_depth, config.lanes),
+                    unit: <$unit>::new(
+                        config.depth,
+                        config.stack_depth,
+                        config.lanes,
+                        config.advance,
+                    ),
                 }
             }
         }

@@ -10,7 +10,9 @@ use super::unit::UnitConfig;
 /// scene memory size and `verilog`.
 macro_rules! unit_top {
     ($lane:ty, $latency:path) => {
+        use hw_model::Advance;
         use rust_hdl::prelude::*;
+        use $crate::traversal::leaf_advance::{around_lane_latency, AroundLane};
         use $crate::traversal::scene_memory::{triangle_record_bits, ERROR_CODE_BITS};
         use $crate::traversal::unit::{TraversalCore, HIT_BITS, RAY_BITS};
 
@@ -56,6 +58,9 @@ macro_rules! unit_top {
             pub count_busy_cycles: Signal<Out, Bits<32>>,
             core: TraversalCore<NB, TB, LF, LC, NW, TW, S, SB, PB, AB, W>,
             lanes: Vec<$lane>,
+            /// With `--advance leaf-box`, one per lane between the core and the lane (else
+            /// none: the Verilog of `none` has no trace of the advance).
+            around: Vec<AroundLane>,
         }
 
         impl<
@@ -73,8 +78,14 @@ macro_rules! unit_top {
             > UnitTop<NB, TB, LF, LC, NW, TW, S, SB, PB, AB, W>
         {
             /// Operators with `depth` pipeline registers each, stacks of `stack_depth`, `lanes`
-            /// MT lanes.
-            pub fn new(depth: usize, stack_depth: usize, lanes: usize) -> Self {
+            /// MT lanes starting a leaf's queries where `advance` says (`None` or `LeafBox`,
+            /// `UnitConfig::check`).
+            pub fn new(depth: usize, stack_depth: usize, lanes: usize, advance: Advance) -> Self {
+                let lane_latency = $latency(depth);
+                let (around, around_latency) = match advance {
+                    Advance::LeafBox => (lanes, around_lane_latency(depth)),
+                    Advance::None | Advance::TriangleBox => (0, 0),
+                };
                 Self {
                     clock: Default::default(),
                     reset_n: Default::default(),
@@ -102,8 +113,17 @@ macro_rules! unit_top {
                     count_box_tests: Default::default(),
                     count_mt_tests: Default::default(),
                     count_busy_cycles: Default::default(),
-                    core: TraversalCore::new(depth, stack_depth, lanes, $latency(depth)),
+                    core: TraversalCore::new(
+                        depth,
+                        stack_depth,
+                        lanes,
+                        lane_latency + around_latency,
+                        around > 0,
+                    ),
                     lanes: (0..lanes).map(|_| <$lane>::new(depth)).collect(),
+                    around: (0..around)
+                        .map(|_| AroundLane::new(depth, lane_latency))
+                        .collect(),
                 }
             }
         }
@@ -159,6 +179,23 @@ macro_rules! unit_top {
                     self.core.lane_u[l].next = self.lanes[l].u.val();
                     self.core.lane_v[l].next = self.lanes[l].v.val();
                 }
+                // The leaf advance, when built, between the core and each lane.
+                for l in 0..self.around.len() {
+                    self.around[l].clock.next = self.clock.val();
+                    self.around[l].valid_in.next = self.core.lane_valid[l].val();
+                    self.around[l].query_in.next = self.core.lane_query[l].val();
+                    self.around[l].entry.next = self.core.lane_entry[l].val();
+                    self.lanes[l].valid_in.next = self.around[l].lane_valid.val();
+                    self.lanes[l].query.next = self.around[l].lane_query.val();
+                    self.around[l].lane_hit.next = self.lanes[l].hit.val();
+                    self.around[l].lane_t.next = self.lanes[l].t.val();
+                    self.around[l].lane_u.next = self.lanes[l].u.val();
+                    self.around[l].lane_v.next = self.lanes[l].v.val();
+                    self.core.lane_hit[l].next = self.around[l].hit.val();
+                    self.core.lane_t[l].next = self.around[l].t.val();
+                    self.core.lane_u[l].next = self.around[l].u.val();
+                    self.core.lane_v[l].next = self.around[l].v.val();
+                }
             }
         }
 
@@ -178,6 +215,7 @@ macro_rules! unit_top {
             stack_depth: usize,
             lanes: usize,
             memory: (usize, usize),
+            advance: Advance,
         ) -> String {
             fn generate<U: Block>(unit: U) -> String {
                 let mut unit = Box::new(unit);
@@ -185,10 +223,10 @@ macro_rules! unit_top {
                 generate_verilog(unit.as_ref())
             }
             match memory {
-                (4, 5) => generate(Unit4x5::new(depth, stack_depth, lanes)),
-                (9, 10) => generate(Unit9x10::new(depth, stack_depth, lanes)),
-                (11, 12) => generate(Unit11x12::new(depth, stack_depth, lanes)),
-                _ => generate(Unit12x13::new(depth, stack_depth, lanes)),
+                (4, 5) => generate(Unit4x5::new(depth, stack_depth, lanes, advance)),
+                (9, 10) => generate(Unit9x10::new(depth, stack_depth, lanes, advance)),
+                (11, 12) => generate(Unit11x12::new(depth, stack_depth, lanes, advance)),
+                _ => generate(Unit12x13::new(depth, stack_depth, lanes, advance)),
             }
         }
     };
@@ -208,7 +246,7 @@ macro_rules! per_format {
         )*
 
         /// Verilog generators of the units, in catalogue order.
-        static UNITS: &[fn(usize, usize, usize, (usize, usize)) -> String] =
+        static UNITS: &[fn(usize, usize, usize, (usize, usize), hw_model::Advance) -> String] =
             &[$($name::verilog),*];
     };
 }
@@ -218,5 +256,11 @@ hw_model::hw_formats!(per_format);
 /// The Verilog of a checked configuration (`unit::unit_verilog` checks and calls this).
 pub(super) fn verilog(config: &UnitConfig) -> String {
     let memory = (config.memory.node_bits, config.memory.triangle_bits);
-    UNITS[usize::from(config.format.code())](config.depth, config.stack_depth, config.lanes, memory)
+    UNITS[usize::from(config.format.code())](
+        config.depth,
+        config.stack_depth,
+        config.lanes,
+        memory,
+        config.advance,
+    )
 }

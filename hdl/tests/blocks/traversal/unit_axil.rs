@@ -3,17 +3,23 @@
 use hdl::regmap::unit as map;
 use hdl::traversal::unit::UnitConfig;
 use hdl::traversal::unit_axil::*;
-use hw_model::HwFormat;
+use hw_model::{Advance, HwFormat};
 
 #[test]
 fn a_reset_outlasts_every_step_in_flight() {
     for format in HwFormat::all() {
         for depth in 0..=hdl::mt::max_depth(format) {
-            let timing = UnitConfig::new(format, depth, 1).timing();
-            assert!(
-                longest_step(&timing) < u64::from(map::RESET_CYCLES),
-                "{format} depth {depth}: {timing:?}"
-            );
+            for advance in [Advance::None, Advance::LeafBox] {
+                let timing = UnitConfig {
+                    advance,
+                    ..UnitConfig::new(format, depth, 1)
+                }
+                .timing();
+                assert!(
+                    longest_step(&timing) < u64::from(map::RESET_CYCLES),
+                    "{format} depth {depth} {advance:?}: {timing:?}"
+                );
+            }
         }
     }
 }
