@@ -19,11 +19,16 @@ use rust_hdl::prelude::*;
 use crate::formats::fp32::{self, Add, Mul, Sub};
 use crate::mt::delay::Delay;
 use crate::mt::schedule::OpLatencies;
+use crate::mt::T_MIN_WORD;
 use crate::operator::Op;
 use crate::top::stream::QUERY_BITS;
 use crate::traversal::box_test::Tag;
 
 type Word = Bits<32>;
+
+// `AroundLane` spells t_min's place in the query as the literal 480 (hdl_gen would leak a
+// named const into the Verilog).
+const _: () = assert!(32 * T_MIN_WORD == 480);
 
 /// When each value of the advance is ready, from the operators' latencies at a depth.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
