@@ -1,6 +1,8 @@
 //! `rtfpga cosim`: render a scene through the Verilated accelerator (`--unit mt`) or the
-//! Verilated traversal unit (`--unit traversal`), render it in software (f32) at the same
-//! size, report the simulated work and speed, last line `psnr_db=...`.
+//! Verilated traversal unit (`--unit traversal`), spawning secondary and shadow rays as
+//! `render` does (`--spawn`, the same default), render it in software (f32, the thesis'
+//! spawn: the golden images') at the same size, report the simulated work and speed, last
+//! line `psnr_db=...`.
 
 use std::path::PathBuf;
 
@@ -14,8 +16,9 @@ use sw_renderer::compare;
 use sw_renderer::intersect::{F32Intersector, Intersector};
 use sw_renderer::render::{render, save_png, RenderOptions, RenderOutput};
 use sw_renderer::scene::Scene;
+use sw_renderer::spawn::SpawnPolicy;
 
-use crate::engine::{HwConfig, UnitAdvanceArgs, UnitKind};
+use crate::engine::{HwConfig, SpawnArgs, UnitAdvanceArgs, UnitKind};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum ModeArg {
@@ -39,6 +42,8 @@ pub struct Args {
     hw: HwConfig,
     #[command(flatten)]
     advance: UnitAdvanceArgs,
+    #[command(flatten)]
+    spawn: SpawnArgs,
     /// Override the scene's width (1 to 16384 pixels).
     #[arg(long, value_parser = crate::cmd_render::image_side())]
     width: Option<u32>,
@@ -65,12 +70,21 @@ pub struct Args {
     quiet: bool,
 }
 
+/// The spawn policy by name and the policy itself, as `render --engine hw|traversal` in the
+/// same format resolves them. The hardware takes its queries unscaled.
+fn spawn(a: &Args) -> Result<(&'static str, SpawnPolicy)> {
+    let format = a.hw.single_format()?;
+    let choice = a.spawn.choice(a.unit.engine(), &format);
+    Ok((choice.name(), choice.policy(&format, 0)))
+}
+
 pub fn run(a: Args) -> Result<()> {
     a.advance.of(a.unit)?;
     let scene = Scene::load(&a.scene)?;
     if a.unit == UnitKind::Traversal {
         return run_traversal(&a, &scene);
     }
+    let (spawn_name, spawn) = spawn(&a)?;
     let config = a.hw.top_config()?;
     let mode = match a.mode {
         ModeArg::Stream => Mode::Stream,
@@ -100,7 +114,7 @@ pub fn run(a: Args) -> Result<()> {
         },
         built.build_time.as_secs_f64()
     );
-    let out = render(&scene, &hw, &options(&a));
+    let out = render(&scene, &hw, &options(&a, spawn));
     hw.close_vcd();
     let out = out.with_context(|| format!("co-simulating {}", hw.name()))?;
     let sw = save_and_render_software(&a, &scene, &out)?;
@@ -108,7 +122,7 @@ pub fn run(a: Args) -> Result<()> {
     let s = hw.stats();
     let wall = out.stats.render_time.as_secs_f64();
     println!(
-        "scene={} size={}x{} engine=\"{}\" tests={} cycles={} cycles_per_test={:.2} lane_utilisation={:.4} transactions={} instances={}",
+        "scene={} size={}x{} engine=\"{}\" spawn={spawn_name} tests={} cycles={} cycles_per_test={:.2} lane_utilisation={:.4} transactions={} instances={}",
         scene.name,
         out.image.width(),
         out.image.height(),
@@ -140,22 +154,23 @@ pub fn run(a: Args) -> Result<()> {
     print_comparison(&out, &sw)
 }
 
-/// The render options of `a`.
-fn options(a: &Args) -> RenderOptions {
+/// The render options of `a`, spawning with `spawn`.
+fn options(a: &Args, spawn: SpawnPolicy) -> RenderOptions {
     RenderOptions {
         width: a.width,
         height: a.height,
         progress: !a.quiet,
+        spawn,
         ..Default::default()
     }
 }
 
-/// The hardware render saved, the software render (f32) at the same size.
+/// The hardware render saved, the software render (f32, the thesis' spawn) at the same size.
 fn save_and_render_software(a: &Args, scene: &Scene, hw: &RenderOutput) -> Result<RenderOutput> {
     save_png(&hw.image, &a.out).with_context(|| format!("writing {}", a.out.display()))?;
     let opts = RenderOptions {
         progress: false,
-        ..options(a)
+        ..options(a, SpawnPolicy::Thesis)
     };
     Ok(render(scene, &F32Intersector, &opts)?)
 }
@@ -183,6 +198,7 @@ fn run_traversal(a: &Args, scene: &Scene) -> Result<()> {
         bail!("--mode register/register-irq and --vcd are options of --unit mt: the traversal unit takes its rays over its own stream");
     }
     let config = a.hw.unit_config(a.advance.of(a.unit)?)?;
+    let (spawn_name, spawn) = spawn(a)?;
     let engine = UnitEngine::new(&config, Traffic::FULL_SPEED, true)?;
     let name = sw_renderer::rays::RayEngine::name(&engine);
     let built = engine.model();
@@ -196,8 +212,8 @@ fn run_traversal(a: &Args, scene: &Scene) -> Result<()> {
         },
         built.build_time.as_secs_f64()
     );
-    let out =
-        render(scene, &engine, &options(a)).with_context(|| format!("co-simulating {}", name))?;
+    let out = render(scene, &engine, &options(a, spawn))
+        .with_context(|| format!("co-simulating {}", name))?;
     let sw = save_and_render_software(a, scene, &out)?;
     let c = out.stats.trace.cast;
     let s = engine.stats();
@@ -205,7 +221,7 @@ fn run_traversal(a: &Args, scene: &Scene) -> Result<()> {
     let per_ray = |n: u64| n as f64 / rays.max(1) as f64;
     let cycles = c.cycles.max(1) as f64;
     println!(
-        "scene={} size={}x{} engine=\"{}\" rays={rays} cycles={} cycles_per_ray={:.2} node_visits_per_ray={:.2} box_tests_per_ray={:.2} mt_tests_per_ray={:.2} box_utilisation={:.4} lane_utilisation={:.4} busy_cycles={} instances={}",
+        "scene={} size={}x{} engine=\"{}\" spawn={spawn_name} rays={rays} cycles={} cycles_per_ray={:.2} node_visits_per_ray={:.2} box_tests_per_ray={:.2} mt_tests_per_ray={:.2} box_utilisation={:.4} lane_utilisation={:.4} busy_cycles={} instances={}",
         scene.name,
         out.image.width(),
         out.image.height(),

@@ -6,7 +6,6 @@ use anyhow::{bail, Context, Result};
 use clap::Args as ClapArgs;
 use sw_renderer::render::{render, save_png, RenderOptions};
 use sw_renderer::scene::Scene;
-use sw_renderer::spawn::SpawnPolicy;
 
 use crate::engine::{self, EngineKind, HwConfig, MemoryArgs, PrecisionArgs};
 
@@ -77,10 +76,7 @@ pub fn run(a: Args) -> Result<()> {
         "scene={} engine={} spawn={} scale_exp={} edges={} advance={} size={}x{} triangles={} rays={} mt_queries={} box_tests={} node_visits={} prepare_s={:.3} render_s={:.3} mrays_per_s={:.2}",
         scene.name,
         engine.name(),
-        match spawn {
-            SpawnPolicy::Thesis => "thesis",
-            SpawnPolicy::FormatAware(_) => "format-aware",
-        },
+        precision.choice.name(),
         scale_exp,
         lane.edges,
         lane.advance,

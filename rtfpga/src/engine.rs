@@ -42,6 +42,17 @@ pub enum UnitKind {
     Traversal,
 }
 
+impl UnitKind {
+    /// The `render` engine whose hardware this is (`--engine hw` co-simulates the
+    /// accelerator; `--engine traversal` is the unit's model).
+    pub fn engine(self) -> EngineKind {
+        match self {
+            UnitKind::Mt => EngineKind::Hw,
+            UnitKind::Traversal => EngineKind::Traversal,
+        }
+    }
+}
+
 /// The hardware configuration: number format, pipeline depth, lanes.
 #[derive(ClapArgs, Clone, Debug)]
 pub struct HwConfig {
@@ -192,20 +203,42 @@ pub struct Lane {
 /// What `PrecisionArgs` resolve to for one render.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Precision {
+    /// The spawn policy by name, and what it is for this format and scale.
+    pub choice: SpawnChoice,
     pub spawn: SpawnPolicy,
     pub scale_exp: i32,
     pub lane: Lane,
+}
+
+/// `--spawn` (`render` and `cosim`): how secondary and shadow rays are spawned.
+#[derive(ClapArgs, Clone, Debug)]
+pub struct SpawnArgs {
+    /// Spawn policy of secondary and shadow rays: thesis (origin offset by the scene's bias)
+    /// or format-aware (also a t_min from the format's rounding error, the triangle left
+    /// excluded) [default: thesis for the f32 engine and for fp32, else format-aware].
+    #[arg(long, value_parser = choice::<SpawnChoice>())]
+    pub spawn: Option<SpawnChoice>,
+}
+
+impl SpawnArgs {
+    /// The policy asked for, else the default of `kind` answering in `answers`: the thesis'
+    /// for the f32 engine and for fp32 (they reproduce the reference), else format-aware.
+    pub fn choice(&self, kind: EngineKind, answers: &Format) -> SpawnChoice {
+        let thesis = kind == EngineKind::F32 || *answers == Format::FP32;
+        self.spawn.unwrap_or(if thesis {
+            SpawnChoice::Thesis
+        } else {
+            SpawnChoice::FormatAware
+        })
+    }
 }
 
 /// `--spawn`, `--scale`, `--edges` and `--advance`: reduced precision that renders
 /// (docs/precision.md).
 #[derive(ClapArgs, Clone, Debug)]
 pub struct PrecisionArgs {
-    /// Spawn policy of secondary and shadow rays: thesis (origin offset by the scene's bias)
-    /// or format-aware (also a t_min from the format's rounding error, the triangle left
-    /// excluded) [default: thesis for the f32 engine and for fp32, else format-aware].
-    #[arg(long, value_parser = choice::<SpawnChoice>())]
-    pub spawn: Option<SpawnChoice>,
+    #[command(flatten)]
+    pub spawn: SpawnArgs,
     /// Scaling of the queries into the format's range, model and traversal engines only
     /// [default: none].
     #[arg(long, value_enum)]
@@ -238,7 +271,6 @@ impl PrecisionArgs {
                 FilterFormat::Bfp(_) => (p.fallback, p.fallback),
             },
         };
-        let fp32 = answers == Format::FP32;
         let model = matches!(kind, EngineKind::Model | EngineKind::Traversal);
         // Unscaled unless asked: auto scaling measured no better in any format and worse in
         // e5m14 and the fixed formats (docs/precision.md).
@@ -251,12 +283,7 @@ impl PrecisionArgs {
             ScaleKind::Auto => auto_scale_exp(&scaled, &SceneRange::of(scene)?),
         };
         let answer_scale = if answers == scaled { scale_exp } else { 0 };
-        let thesis = kind == EngineKind::F32 || fp32;
-        let choice = self.spawn.unwrap_or(if thesis {
-            SpawnChoice::Thesis
-        } else {
-            SpawnChoice::FormatAware
-        });
+        let choice = self.spawn.choice(kind, &answers);
         // The lane options exist in the model of one format only; elsewhere only the
         // hardware's are accepted.
         let single_model =
@@ -298,6 +325,7 @@ impl PrecisionArgs {
             asked
         };
         Ok(Precision {
+            choice,
             spawn: choice.policy(&answers, answer_scale),
             scale_exp,
             lane,

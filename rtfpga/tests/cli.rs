@@ -1504,6 +1504,80 @@ fn cosim_of_a_small_simple_plane_matches_software() {
     assert_eq!(img, library_render("simple_plane", 16, 9, &F32Intersector));
 }
 
+/// `cosim --spawn` spawns as `render` does, with its default (format-aware for fp16): the
+/// image is `render --engine model` with the same format and spawn (the model equals the
+/// hardware bit for bit), and the policies differ here, so the option reaches the render.
+/// fp16 at depth 1 with one lane is the build cosim_equivalence.rs's fp16 test makes: the
+/// shared model cache adds no Verilator build.
+#[test]
+fn cosim_spawns_as_render_does() {
+    if which("verilator").is_none() {
+        writeln!(
+            std::io::stderr(),
+            "cosim_spawns_as_render_does: skipped, no verilator on PATH"
+        )
+        .unwrap();
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let size = ["--scene", "simple_plane", "--width", "16", "--height", "9"];
+    let hw = [
+        "--format", "fp16", "--depth", "1", "--lanes", "1", "--quiet",
+    ];
+    let cosim = |spawn: &[&str]| {
+        let out_png = dir.path().join(format!("cosim{}.png", spawn.join("")));
+        let mut cmd = rtfpga();
+        // A cold model cache builds the Verilated model first.
+        cmd.timeout(Duration::from_secs(900));
+        let out = cmd
+            .arg("cosim")
+            .args(size)
+            .args(hw)
+            .args(spawn)
+            .args(["--out", s(&out_png)])
+            .assert()
+            .success()
+            .get_output()
+            .clone();
+        (String::from_utf8(out.stdout).unwrap(), read_png(&out_png))
+    };
+    let model = |spawn: &str| {
+        let out_png = dir.path().join(format!("model-{spawn}.png"));
+        let mut args = vec!["render", "--engine", "model", "--advance", "none"];
+        args.extend(size.iter().chain(&hw));
+        args.extend(["--spawn", spawn, "--out", s(&out_png)]);
+        ok(&args);
+        read_png(&out_png)
+    };
+    let format_aware = model("format-aware");
+    let thesis = model("thesis");
+    assert_ne!(format_aware, thesis, "the policies render alike here");
+    for (spawn, name, want) in [
+        (&[][..], "format-aware", &format_aware),
+        (&["--spawn", "format-aware"], "format-aware", &format_aware),
+        (&["--spawn", "thesis"], "thesis", &thesis),
+    ] {
+        let (stdout, image) = cosim(spawn);
+        assert!(stdout.contains(&format!(" spawn={name} ")), "{stdout}");
+        assert!(&image == want, "{spawn:?}: not the model's image\n{stdout}");
+    }
+}
+
+/// `--spawn` takes a policy's name; anything else is a usage error listing them.
+#[test]
+fn cosim_spawn_takes_a_policy_name() {
+    rtfpga()
+        .args(["cosim", "--scene", "simple_plane", "--spawn", "bias"])
+        .args(["--out", "never.png"])
+        .assert()
+        .code(2)
+        .stderr(
+            predicate::str::contains("--spawn")
+                .and(predicate::str::contains("thesis"))
+                .and(predicate::str::contains("format-aware")),
+        );
+}
+
 /// `--unit traversal`: the configurations the unit's RTL does not build, and options of the
 /// accelerator only, are errors naming what is wrong, before any model is built; a bad
 /// `--unit` is a usage error.

@@ -4,17 +4,25 @@
 //! NaN and infinite components; its failure modes (a scene too big, a malformed image, a
 //! stack overflow) as errors; the 7 thesis scenes rendered through it identical to the
 //! software. One Verilated build of the CLI's default configuration (fp32, depth 1, one
-//! lane, 4,096 nodes and 8,192 triangles) serves every test but the ignored one of chunked
-//! passes through the smallest memory and the multi-lane ones: 2 and 3 lanes (each with
-//! its XC7Z020 memory, 2,048 nodes and 4,096 triangles) on random meshes, and 2 lanes on
-//! two thesis scenes. 131 s with a warm model cache (the thesis scenes 110 s of it); a cold
-//! build adds about 2 minutes per configuration.
+//! lane, 4,096 nodes and 8,192 triangles) serves every default test but the two of the
+//! second build: two lanes (the XC7Z020 memory beside them, 2,048 nodes and 4,096
+//! triangles) in the narrow float [`NARROW`] with the leaf advance, against the advanced
+//! model on random meshes and on two thesis scenes. Ignored (each its own build): chunked
+//! passes through the smallest memory, 3 lanes, fp16 without the advance.
+//! Time: BENCHMARKS.md "make test".
+
+use std::cell::Cell;
 
 use hdl::traversal::unit::UnitConfig;
+use hw_model::precision::SpawnChoice;
 use hw_model::traversal::strategies::{mesh, ray};
-use hw_model::traversal::{TraversalError, TraversalModel, UnitCounters, UnitRay};
-use hw_model::{lookup, Advance, HwFormat};
+use hw_model::traversal::{
+    SceneCapacity, SceneMemory, TraversalEngine, TraversalError, TraversalModel, UnitCounters,
+    UnitRay,
+};
+use hw_model::{Advance, HwFormat};
 use proptest::prelude::*;
+use proptest::test_runner::TestRunner;
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use sim::traversal_unit::{
     unit_model, Traffic, UnitDriver, UnitEngine, UnitError, UnitRun, VerilatedUnit,
@@ -32,6 +40,19 @@ use sw_renderer::world::WorldTriangle;
 
 fn config() -> UnitConfig {
     UnitConfig::new(HwFormat::FP32, 1, 1)
+}
+
+/// The narrow float of the two-lane leaf-box unit: where the advance changes answers. (fp16
+/// until e5m14, the 20-bit format it brings to ≥ 40 dB, is a catalogue format.)
+const NARROW: HwFormat = HwFormat::named("fp16");
+
+/// The two-lane unit (its XC7Z020 memory) in [`NARROW`] with the leaf advance: one build for
+/// both of its tests.
+fn two_lane_leaf_box() -> UnitConfig {
+    UnitConfig {
+        advance: Advance::LeafBox,
+        ..UnitConfig::new(NARROW, 1, 2)
+    }
 }
 
 /// A fresh, reset unit of [`config`] (the model is built once per process).
@@ -56,16 +77,19 @@ fn model(
     image: &SceneImage,
     rays: &[UnitRay],
 ) -> Result<(Vec<Option<Hit>>, UnitCounters), TraversalError> {
-    model_in("fp32", image, rays)
+    model_in(HwFormat::FP32, Advance::None, image, rays)
 }
 
-/// The model's answers and counters in `format` for `rays` on `image`.
+/// The model's answers and counters in `format`, started where `advance` says, for `rays`
+/// on `image`.
 fn model_in(
-    format: &str,
+    format: HwFormat,
+    advance: Advance,
     image: &SceneImage,
     rays: &[UnitRay],
 ) -> Result<(Vec<Option<Hit>>, UnitCounters), TraversalError> {
-    let m = TraversalModel::new(lookup(format).unwrap(), config().stack_depth, image.clone());
+    let m =
+        TraversalModel::new(format.format(), config().stack_depth, image.clone()).advanced(advance);
     let mut c = UnitCounters::default();
     let answers = (rays.iter())
         .map(|r| m.trace(r, &mut c))
@@ -101,21 +125,24 @@ fn numbered(mut rays: Vec<UnitRay>) -> Vec<UnitRay> {
     rays
 }
 
-/// The unit of fp32, depth 1, `lanes` lanes (its XC7Z020 scene memory) answers every ray as the model does, bit for
-/// bit, and counts the same work.
+/// The unit of `c` answers every ray as the model of its format and advance does, bit for
+/// bit, and counts the same work. Returns how many of the answers the model without the
+/// advance gives differently.
 fn equals_the_model(
-    lanes: usize,
+    c: UnitConfig,
     tris: &[WorldTriangle],
     rays: Vec<UnitRay>,
-) -> Result<(), TestCaseError> {
+) -> Result<usize, TestCaseError> {
     let rays = numbered(rays);
     let img = image(tris);
-    let (want, counters) = model(&img, &rays).unwrap();
-    let mut d = unit_of(UnitConfig::new(HwFormat::FP32, 1, lanes));
+    let (want, counters) = model_in(c.format, c.advance, &img, &rays).unwrap();
+    let mut d = unit_of(c);
     let (got, run) = on_unit(&mut d, &img, &rays, Traffic::FULL_SPEED).unwrap();
     prop_assert_eq!(bits(&got), bits(&want));
     prop_assert_eq!(run.counters, counters);
-    Ok(())
+    let (plain, _) = model_in(c.format, Advance::None, &img, &rays).unwrap();
+    let (want, plain) = (bits(&want), bits(&plain));
+    Ok(want.iter().zip(&plain).filter(|(w, p)| w != p).count())
 }
 
 proptest! {
@@ -126,23 +153,16 @@ proptest! {
         tris in mesh(),
         rays in prop::collection::vec(ray(), 1..40),
     ) {
-        equals_the_model(1, &tris, rays)?;
+        equals_the_model(config(), &tris, rays)?;
     }
 }
 
-// More lanes: fewer cases, each lane count one more Verilated build (about 2 min cold). Three
-// lanes only adds a third copy of what two exercise, so it is ignored to keep `make test`
-// inside its budget: `cargo test --release -p sim --test traversal_unit_verilator -- --ignored`.
+// More lanes: fewer cases, each configuration one more Verilated build (about 2 min cold).
+// Three lanes only adds a third copy of what two exercise, so it is ignored to keep `make
+// test` inside its budget: `cargo test --release -p sim --test traversal_unit_verilator --
+// --ignored`.
 proptest! {
     #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
-
-    #[test]
-    fn the_two_lane_unit_equals_the_model_on_random_meshes_and_rays(
-        tris in mesh(),
-        rays in prop::collection::vec(ray(), 1..40),
-    ) {
-        equals_the_model(2, &tris, rays)?;
-    }
 
     #[test]
     #[ignore]
@@ -150,8 +170,42 @@ proptest! {
         tris in mesh(),
         rays in prop::collection::vec(ray(), 1..40),
     ) {
-        equals_the_model(3, &tris, rays)?;
+        equals_the_model(UnitConfig::new(HwFormat::FP32, 1, 3), &tris, rays)?;
     }
+}
+
+/// A random ray started 8 of its directions further back, outside the mesh: there the
+/// leaf advance moves the queries of every leaf it reaches.
+fn distant_ray() -> impl Strategy<Value = UnitRay> {
+    ray().prop_map(|r| UnitRay {
+        orig: [0, 1, 2].map(|k| r.orig[k] - 8.0 * r.dir[k]),
+        ..r
+    })
+}
+
+/// Two lanes in [`NARROW`] with the leaf advance equal `TraversalModel::advanced(LeafBox)`
+/// on 12 random cases, half the rays distant. The runner is written out (not `proptest!`) to count, over all
+/// cases, the answers that the unadvanced model gives differently: some must, or a unit
+/// without the advance would pass too.
+#[test]
+fn the_two_lane_leaf_box_unit_equals_the_advanced_model_on_random_meshes_and_rays() {
+    let mut runner = TestRunner::new(ProptestConfig {
+        cases: 12,
+        ..ProptestConfig::default()
+    });
+    let differing = Cell::new(0);
+    let rays = prop_oneof![ray(), distant_ray()];
+    let cases = (mesh(), prop::collection::vec(rays, 1..40));
+    runner
+        .run(&cases, |(tris, rays)| {
+            differing.set(differing.get() + equals_the_model(two_lane_leaf_box(), &tris, rays)?);
+            Ok(())
+        })
+        .unwrap();
+    assert!(
+        differing.get() > 0,
+        "every answer is the unadvanced model's: the advance is not shown"
+    );
 }
 
 /// 2,000 grid triangles on three planes and 600 rays through them.
@@ -398,44 +452,84 @@ fn a_stack_overflow_is_reported_not_hung() {
     assert_eq!((bits(&got), run.counters), (bits(&want), counters));
 }
 
-/// The thesis scenes `names` rendered through the unit of `config` at 48×27 equal the
-/// software's images.
-fn thesis_scenes_equal_the_software(test: &str, config: &UnitConfig, names: &[&str]) {
-    let Some(root) = thesis_scenes::for_test(&format!("traversal_unit_verilator::{test}")) else {
-        return;
-    };
-    let engine = UnitEngine::new(config, Traffic::FULL_SPEED, true).unwrap();
+/// The thesis scenes at 48×27 (`None` with a SKIPPED line when they are not found).
+fn small_thesis_scenes(test: &str, names: &[&str]) -> Option<(Vec<Scene>, RenderOptions)> {
+    let root = thesis_scenes::for_test(&format!("traversal_unit_verilator::{test}"))?;
+    let scenes = (names.iter())
+        .map(|name| Scene::load(root.join(name).to_str().unwrap()).unwrap())
+        .collect();
     let opts = RenderOptions {
         width: Some(48),
         height: Some(27),
         progress: false,
         ..Default::default()
     };
-    for name in names {
-        let scene = Scene::load(root.join(name).to_str().unwrap()).unwrap();
-        let hw = render(&scene, &engine, &opts).unwrap();
-        let sw = render(&scene, &F32Intersector, &opts).unwrap();
-        let diff = compare(&hw.image, &sw.image).unwrap();
-        assert_eq!(diff.differing_pixels, 0, "{name}: {diff:?}");
+    Some((scenes, opts))
+}
+
+/// The model engine of the unit `c` (`render --engine traversal` with its format, advance
+/// and scene memory), started where `advance` says.
+fn model_engine(c: &UnitConfig, advance: Advance) -> TraversalEngine {
+    let (nodes, triangles) = c.memory.capacity();
+    TraversalEngine {
+        format: c.format.format(),
+        stack_depth: c.stack_depth,
+        scale_exp: 0,
+        advance,
+        timing: None,
+        memory: SceneMemory::Chunked(SceneCapacity {
+            nodes: nodes as u32,
+            triangles: triangles as u32,
+        }),
     }
 }
 
 #[test]
 fn thesis_scenes_render_identical_to_the_software() {
-    thesis_scenes_equal_the_software(
-        "thesis_scenes_render_identical",
-        &config(),
-        &thesis_scenes::SCENE_DIRS,
-    );
+    let Some((scenes, opts)) =
+        small_thesis_scenes("thesis_scenes_render_identical", &thesis_scenes::SCENE_DIRS)
+    else {
+        return;
+    };
+    let engine = UnitEngine::new(&config(), Traffic::FULL_SPEED, true).unwrap();
+    for scene in &scenes {
+        let hw = render(scene, &engine, &opts).unwrap();
+        let sw = render(scene, &F32Intersector, &opts).unwrap();
+        let diff = compare(&hw.image, &sw.image).unwrap();
+        assert_eq!(diff.differing_pixels, 0, "{}: {diff:?}", scene.name);
+    }
 }
 
-/// Two lanes (the random-mesh test's build).
+/// Two thesis scenes through the two-lane leaf-box unit in [`NARROW`] (the random-mesh
+/// test's build), spawned format-aware (`render`'s default for a narrow format), render as
+/// `render --engine traversal` does with the same format, spawn and advance; without the
+/// advance the model renders some pixel differently, so the advance is shown.
 #[test]
-fn thesis_scenes_through_two_lanes_render_identical_to_the_software() {
-    thesis_scenes_equal_the_software(
-        "thesis_scenes_through_two_lanes",
-        &UnitConfig::new(HwFormat::FP32, 1, 2),
+fn thesis_scenes_through_the_two_lane_leaf_box_unit_render_as_the_model() {
+    let Some((scenes, opts)) = small_thesis_scenes(
+        "thesis_scenes_through_the_two_lane_leaf_box_unit",
         &["Simple_plane_scene", "Glasses_scene"],
+    ) else {
+        return;
+    };
+    let c = two_lane_leaf_box();
+    let opts = RenderOptions {
+        spawn: SpawnChoice::FormatAware.policy(&c.format.format(), 0),
+        ..opts
+    };
+    let engine = UnitEngine::new(&c, Traffic::FULL_SPEED, true).unwrap();
+    let mut advance_shown = false;
+    for scene in &scenes {
+        let hw = render(scene, &engine, &opts).unwrap();
+        let want = render(scene, &model_engine(&c, c.advance), &opts).unwrap();
+        let diff = compare(&hw.image, &want.image).unwrap();
+        assert_eq!(diff.differing_pixels, 0, "{}: {diff:?}", scene.name);
+        let plain = render(scene, &model_engine(&c, Advance::None), &opts).unwrap();
+        advance_shown |= plain.image != want.image;
+    }
+    assert!(
+        advance_shown,
+        "the model renders every pixel as without the advance: it is not shown"
     );
 }
 
@@ -448,7 +542,6 @@ fn thesis_scenes_through_two_lanes_render_identical_to_the_software() {
 #[ignore]
 fn chunked_passes_through_the_unit_equal_the_chunked_model() {
     use hdl::traversal::scene_memory_driver::MemoryConfig;
-    use hw_model::traversal::{SceneCapacity, SceneMemory, TraversalEngine};
     let config = UnitConfig {
         memory: MemoryConfig {
             node_bits: 4,
@@ -457,18 +550,7 @@ fn chunked_passes_through_the_unit_equal_the_chunked_model() {
         ..config()
     };
     let engine = UnitEngine::new(&config, Traffic::FULL_SPEED, true).unwrap();
-    let (nodes, triangles) = config.memory.capacity();
-    let model = TraversalEngine {
-        format: lookup("fp32").unwrap(),
-        stack_depth: config.stack_depth,
-        scale_exp: 0,
-        advance: Advance::None,
-        timing: None,
-        memory: SceneMemory::Chunked(SceneCapacity {
-            nodes: nodes as u32,
-            triangles: triangles as u32,
-        }),
-    };
+    let model = model_engine(&config, Advance::None);
     let scene = Scene::load("glasses").unwrap();
     let opts = RenderOptions {
         width: Some(16),
@@ -500,10 +582,11 @@ fn chunked_passes_through_the_unit_equal_the_chunked_model() {
 #[ignore]
 fn fp16_through_the_unit_equals_the_fp16_model() {
     let (img, rays) = busy_scene();
-    let (want, counters) = model_in("fp16", &img, &rays).unwrap();
+    let fp16 = HwFormat::named("fp16");
+    let (want, counters) = model_in(fp16, Advance::None, &img, &rays).unwrap();
     let (fp32, _) = model(&img, &rays).unwrap();
     assert_ne!(bits(&want), bits(&fp32));
-    let mut d = unit_of(UnitConfig::new(HwFormat::named("fp16"), 1, 1));
+    let mut d = unit_of(UnitConfig::new(fp16, 1, 1));
     let (got, run) = on_unit(&mut d, &img, &rays, Traffic::FULL_SPEED).unwrap();
     assert_eq!(bits(&got), bits(&want));
     assert_eq!(run.counters, counters);
