@@ -126,8 +126,9 @@
 #define XRTFPGA_CONTROL_FORMAT_FX32_16_RND_SAT   13
 #define XRTFPGA_CONTROL_FORMAT_FX32_20           14
 #define XRTFPGA_CONTROL_FORMAT_FX32_20_RND_SAT   15
-#define XRTFPGA_CONTROL_FORMAT_COUNT             16
+#define XRTFPGA_CONTROL_FORMAT_E5M14             16
+#define XRTFPGA_CONTROL_FORMAT_COUNT             17
 // Names by code: static const char *const Names[] = XRTFPGA_CONTROL_FORMAT_NAMES;
-#define XRTFPGA_CONTROL_FORMAT_NAMES { "fp32", "fp24", "bf16", "fp16", "fx16_10", "fx16_10_rnd_sat", "fx16_13", "fx16_13_rnd_sat", "fx21_12", "fx21_12_rnd_sat", "fx25_10", "fx25_10_rnd_sat", "fx32_16", "fx32_16_rnd_sat", "fx32_20", "fx32_20_rnd_sat" }
+#define XRTFPGA_CONTROL_FORMAT_NAMES { "fp32", "fp24", "bf16", "fp16", "fx16_10", "fx16_10_rnd_sat", "fx16_13", "fx16_13_rnd_sat", "fx21_12", "fx21_12_rnd_sat", "fx25_10", "fx25_10_rnd_sat", "fx32_16", "fx32_16_rnd_sat", "fx32_20", "fx32_20_rnd_sat", "e5m14" }
 
 #endif // XRTFPGA_HW_H

@@ -4,7 +4,7 @@
 //! thousand cycles a second, so the default run uses a few dozen queries per format; more:
 //! `cargo test --release -p hdl --test mt_lane -- --ignored`.
 
-use hdl::formats::{self, bf16, fp16, fp24, fp32, fx16_10, fx32_16_rnd_sat};
+use hdl::formats::{self, bf16, e5m14, fp16, fp24, fp32, fx16_10, fx32_16_rnd_sat};
 use hdl::mt::{self, simulate_lane, Lane};
 use hw_model::{mt_model, HwFormat, MtQuery};
 use rand::{rngs::StdRng, Rng, SeedableRng};
@@ -214,6 +214,8 @@ lane_tests! {
     fx32_16_rnd_sat_lane_matches_the_model: fx32_16_rnd_sat, depth 1, random 64;
     fx32_20_lane_matches_the_model: fx32_20, depth 1, random 64;
     fx32_20_rnd_sat_lane_matches_the_model: fx32_20_rnd_sat, depth 3, random 64;
+    e5m14_lane_matches_the_model: e5m14, depth 1, random 64;
+    e5m14_lane_matches_the_model_deepest: e5m14, depth mt::max_depth(e5m14::HW), random 64;
 }
 
 /// Every format with rust-hdl operators has its lane checked above.
@@ -261,6 +263,7 @@ fn every_lane_matches_the_model_on_more_queries_and_depths() {
         check_format::<fp16::MtLane>(depth, 300, seed + 4);
         check_format::<fx16_10::MtLane>(depth, 300, seed + 5);
         check_format::<fx32_16_rnd_sat::MtLane>(depth, 300, seed + 6);
+        check_format::<e5m14::MtLane>(depth, 300, seed + 7);
     }
     check_format::<fp32::MtLane>(usize::MAX, 100, 50);
 }

@@ -171,6 +171,10 @@ mod fp16_unit {
     bench!(hdl::traversal::unit_top::fp16::Unit4x5);
 }
 
+mod e5m14_unit {
+    bench!(hdl::traversal::unit_top::e5m14::Unit4x5);
+}
+
 /// The fp32 unit with `lanes` lanes: answers and counters equal the model's, with
 /// back-pressure on the hits.
 fn fp32_unit_answers_and_counts_as_the_model(lanes: usize) {
@@ -220,6 +224,18 @@ fn the_fp16_unit_with_the_leaf_advance_answers_and_counts_as_the_model() {
         let (load, run) = (fp16_unit::Bench::load, fp16_unit::Bench::run);
         let bench = fp16_unit::Bench::new(1, Advance::LeafBox);
         answers_and_counts(FP16, 1, Advance::LeafBox, bench, load, run)
+    });
+}
+
+/// e5m14 with the leaf advance: the 20-bit catalogue format this advance takes past 40 dB on
+/// the thesis scenes (docs/precision.md), the unit its yosys figures are for.
+#[test]
+fn the_e5m14_unit_with_the_leaf_advance_answers_and_counts_as_the_model() {
+    with_build_stack(|| {
+        let (load, run) = (e5m14_unit::Bench::load, e5m14_unit::Bench::run);
+        let bench = e5m14_unit::Bench::new(1, Advance::LeafBox);
+        let format = HwFormat::named("e5m14").format();
+        answers_and_counts(format, 1, Advance::LeafBox, bench, load, run)
     });
 }
 
