@@ -1,4 +1,9 @@
 //! The block-floating-point dual-precision filter (docs/precision.md, "The block-floating-point
 //! filter"), one block per file, each bit for bit its `hw_model::dual::bfp` function.
 
+pub mod to_block;
 pub mod translate;
+
+/// The mantissa width W the filter is built at: bfp18/fp32, the width docs/precision.md
+/// measures and costs (`hw_model::dual::bfp::widths` gives each vector's from it).
+pub const WIDTH: u32 = 18;

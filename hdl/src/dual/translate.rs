@@ -7,8 +7,12 @@
 use hw_model::dual::bfp::GUARD_BITS;
 use rust_hdl::prelude::*;
 
-/// Width of the difference: a 24-bit significand, the guard bits, a sign and a carry.
-pub const DIFF_BITS: usize = 24 + GUARD_BITS as usize + 2;
+/// fp32's significand with its hidden bit, and its exponent field.
+pub const SIGNIFICAND_BITS: usize = 24;
+pub const FIELD_BITS: usize = 8;
+
+/// Width of the difference: a significand, the guard bits, a sign and a carry.
+pub const DIFF_BITS: usize = SIGNIFICAND_BITS + GUARD_BITS as usize + 2;
 
 /// `d`·2^(`e` − 150 − GUARD_BITS) = a − b (subnormals read as 0); `d` is two's complement,
 /// `e` the larger exponent field.
@@ -18,23 +22,23 @@ pub struct Translate {
     pub a: Signal<In, Bits<32>>,
     pub b: Signal<In, Bits<32>>,
     pub d: Signal<Out, Bits<DIFF_BITS>>,
-    pub e: Signal<Out, Bits<8>>,
+    pub e: Signal<Out, Bits<FIELD_BITS>>,
     d_reg: DFF<Bits<DIFF_BITS>>,
-    e_reg: DFF<Bits<8>>,
+    e_reg: DFF<Bits<FIELD_BITS>>,
     hidden: Constant<Bits<DIFF_BITS>>,
     one: Constant<Bits<DIFF_BITS>>,
     /// The difference's sign bit (a Rust constant as a bit index would reach the Verilog as
     /// an undefined name).
     sign: Constant<Bits<DIFF_BITS>>,
-    guard: Constant<Bits<8>>,
+    guard: Constant<Bits<FIELD_BITS>>,
     /// The largest shift that still matters: beyond it only the sign is left.
-    max_shift: Constant<Bits<8>>,
-    ea: Signal<Local, Bits<8>>,
-    eb: Signal<Local, Bits<8>>,
+    max_shift: Constant<Bits<FIELD_BITS>>,
+    ea: Signal<Local, Bits<FIELD_BITS>>,
+    eb: Signal<Local, Bits<FIELD_BITS>>,
     /// The signed significands, moved up by the guard bits.
     sa: Signal<Local, Bits<DIFF_BITS>>,
     sb: Signal<Local, Bits<DIFF_BITS>>,
-    shift: Signal<Local, Bits<8>>,
+    shift: Signal<Local, Bits<FIELD_BITS>>,
     /// The operand with the smaller exponent, before and after its arithmetic shift.
     lesser: Signal<Local, Bits<DIFF_BITS>>,
     shifted: Signal<Local, Bits<DIFF_BITS>>,

@@ -185,6 +185,11 @@ pub fn cross_block(x: &Block, y: &Block, width: u32) -> Block {
     place(v, x.e + y.e + 1, width)
 }
 
+/// How far below a block's last bit a component lies when [`place`] drops it whole and
+/// charges 2^lsb for it (an i128 shift's limit; nearer, its dropped part's own leading bit
+/// is charged). Hardware reproduces the threshold with one comparison.
+pub const FAR_BELOW: i32 = i128::BITS as i32 - 1;
+
 /// The W-bit block of `v` at block exponent e (every component in [−2^e, 2^e)): each
 /// component shifted to the block's last bit by an arithmetic shift, and the exponent of
 /// the largest dropped part.
@@ -193,7 +198,7 @@ fn place(v: [Fx; 3], e: i32, width: u32) -> Block {
     let parts = v.map(|x| match x.e - lsb {
         up @ 0.. => (x.m << up, None),
         // Far below the block the whole component is dropped, and 2^lsb bounds it.
-        down if -down >= 127 => (x.m >> 127, if x.m == 0 { None } else { Some(lsb) }),
+        down if -down >= FAR_BELOW => (x.m >> FAR_BELOW, if x.m == 0 { None } else { Some(lsb) }),
         down => {
             let m = x.m >> -down;
             // The dropped bits x − m·2^lsb, in [0, 2^lsb), at x's exponent.
@@ -237,7 +242,7 @@ pub const S_EXTRA_BITS: u32 = 7;
 /// The vectors of steps 2 and 3, in the order of [`widths`]: dir, e1, e2, s, then the
 /// truncated cross products p = dir × e2 and q = s × e1.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Vector {
+pub enum Vector {
     Dir,
     E1,
     E2,
@@ -248,7 +253,7 @@ enum Vector {
 
 /// The mantissa widths of dir, e1, e2, p (W) and s, q (W + [`S_EXTRA_BITS`]), in the
 /// order of [`Vector`]: dir, e1, e2, s, p, q.
-pub fn widths(width: u32) -> [u32; 6] {
+pub const fn widths(width: u32) -> [u32; 6] {
     let wide = width + S_EXTRA_BITS;
     [width, width, width, wide, width, wide]
 }
