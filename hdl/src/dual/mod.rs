@@ -1,6 +1,8 @@
 //! The block-floating-point dual-precision filter (docs/precision.md, "The block-floating-point
 //! filter"), one block per file, each bit for bit its `hw_model::dual::bfp` function.
 
+pub mod cross_block;
+pub mod dot;
 pub mod to_block;
 pub mod translate;
 

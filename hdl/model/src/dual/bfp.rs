@@ -229,7 +229,9 @@ fn cross(a: &[i128; 3], b: &[i128; 3]) -> [i128; 3] {
     ]
 }
 
-fn dot(a: &[i128; 3], b: &[i128; 3]) -> i128 {
+/// Step 3's dots (det = e1·p̂, N_u = s·p̂, N_v = dir·q̂, N_t = e2·q̂) of two blocks'
+/// mantissas, exactly: the value at the sum of their last bits.
+pub fn dot(a: &[i128; 3], b: &[i128; 3]) -> i128 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
