@@ -3,6 +3,7 @@
 
 pub mod cross_block;
 pub mod dot;
+pub mod margin;
 pub mod to_block;
 pub mod translate;
 

@@ -6,6 +6,7 @@
 mod dual {
     mod cross_block;
     mod dot;
+    mod margin;
     mod to_block;
     mod translate;
 }

@@ -4,7 +4,7 @@
 //! ([`to_block`]) gives each of dir, e1, e2, s one block exponent, W-bit mantissas and the
 //! exponent of its largest dropped part; step 3 computes the cross products exactly, cuts
 //! them to blocks at a fixed exponent ([`cross_block`]) and the dots exactly; step 4
-//! ([`margin`]) bounds the filter's and the fp32 fallback's errors by a few constants
+//! ([`margin_units`]) bounds the filter's and the fp32 fallback's errors by a few constants
 //! shifted by block and dropped-part exponents; step 5 ([`Filter::decide_bfp`]) decides the
 //! fallback's tests on short floats rounded outward ([`round`]), every rounding in the
 //! direction that keeps a decision certain.
@@ -182,8 +182,11 @@ pub fn to_block(v: [Fx; 3], width: u32) -> Option<Block> {
 /// (the leading one of the low bits, a 3-way max) is still what the margin charges.
 pub fn cross_block(x: &Block, y: &Block, width: u32) -> Block {
     let v = cross(&x.m, &y.m).map(|m| Fx::new(m, x.lsb + y.lsb));
-    place(v, x.e + y.e + 1, width)
+    place(v, x.e + y.e + CROSS_HEADROOM, width)
 }
+
+/// A cut cross product's block exponent above E_x + E_y ([`cross_block`]).
+pub const CROSS_HEADROOM: i32 = 1;
 
 /// How far below a block's last bit a component lies when [`place`] drops it whole and
 /// charges 2^lsb for it (an i128 shift's limit; nearer, its dropped part's own leading bit
@@ -253,6 +256,14 @@ pub enum Vector {
     Q,
 }
 
+/// The four values [a, b, c, x] = a·trunc(b × c) of steps 3 to 5 (x = b × c cut):
+/// det = e1·trunc(dir × e2), N_u = s·trunc(dir × e2), N_v = dir·trunc(s × e1),
+/// N_t = e2·trunc(s × e1).
+pub const DET: [Vector; 4] = [Vector::E1, Vector::Dir, Vector::E2, Vector::P];
+pub const N_U: [Vector; 4] = [Vector::S, Vector::Dir, Vector::E2, Vector::P];
+pub const N_V: [Vector; 4] = [Vector::Dir, Vector::S, Vector::E1, Vector::Q];
+pub const N_T: [Vector; 4] = [Vector::E2, Vector::S, Vector::E1, Vector::Q];
+
 /// The mantissa widths of dir, e1, e2, p (W) and s, q (W + [`S_EXTRA_BITS`]), in the
 /// order of [`Vector`]: dir, e1, e2, s, p, q.
 pub const fn widths(width: u32) -> [u32; 6] {
@@ -261,7 +272,7 @@ pub const fn widths(width: u32) -> [u32; 6] {
 }
 
 /// Significant bits of the margin's wired constants (each rounded up).
-const CONSTANT_BITS: i32 = 5;
+pub const CONSTANT_BITS: i32 = 5;
 
 /// c rounded up to [`CONSTANT_BITS`] significant bits, times 2^shift.
 fn constant(c: f64, shift: i32) -> Fx {
@@ -310,11 +321,77 @@ fn constants() -> Constants {
 /// the filter's value with the cut cross product's slack, plus a margin below 1 at every
 /// W ≥ 8; checked by `filter_values_are_within_their_margin_terms`): the fallback's
 /// quotient roundings (3u of it) are folded into the margin with it.
-const QUOTIENT_RANGE: f64 = 6.0;
+pub const QUOTIENT_RANGE: f64 = 6.0;
 
-/// Step 4: the margin of a value a·trunc(b × c) (det = e1·trunc(dir × e2),
-/// N_u = s·trunc(dir × e2), N_v = dir·trunc(s × e1), N_t = e2·trunc(s × e1)), the filter's
-/// and the fallback's errors together:
+/// Step 4: K of a value a·trunc(b × c) (det = e1·trunc(dir × e2), N_u = s·trunc(dir × e2),
+/// N_v = dir·trunc(s × e1), N_t = e2·trunc(s × e1), given as [a, b, c, x]): its last bit is
+/// 2^(E_a + E_b + E_c − K), fixed per kind and width because the cut cross product's block
+/// exponent is E_b + E_c + [`CROSS_HEADROOM`] ([`cross_block`]).
+pub const fn value_shift(width: u32, value: [Vector; 4]) -> i32 {
+    let w = widths(width);
+    let (a, x) = (w[value[0] as usize] as i32, w[value[3] as usize] as i32);
+    (a - 1) + (x - 1) - CROSS_HEADROOM
+}
+
+/// One wired term of a margin in units of the value's last bit: `m`·2^(`shift` − below),
+/// below the distance of a vector's dropped part under its own block exponent (0 for the
+/// fixed term), rounded up.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Term {
+    /// The constant's mantissa, [`CONSTANT_BITS`] significant bits.
+    pub m: i128,
+    pub shift: i32,
+}
+
+impl Term {
+    /// m·2^(shift − below) rounded up to an integer; `None` if it overflows.
+    pub fn units(self, below: i32) -> Option<i128> {
+        match self.shift - below {
+            up @ 0.. => Fx::new(self.m, 0).mantissa_at(-up),
+            // Below the last bit: ceil(m·2^-k), the shift plus its sticky bit.
+            down => {
+                let k = (-down).min(127) as u32;
+                let fl = self.m >> k;
+                Some(fl + i128::from(fl << k != self.m))
+            }
+        }
+    }
+}
+
+/// What hardware wires for one value kind: the fixed term and, for a, b, c and the cut
+/// cross product x, the term charged when that vector dropped something.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MarginTerms {
+    pub fixed: Term,
+    pub dropped: [Term; 4],
+}
+
+/// The terms of [`margin_units`] for `value` ([a, b, c, x], x = b × c) at mantissa width
+/// `width`: with ΣE = E_a + E_b + E_c and the value's last bit 2^(ΣE − K) ([`value_shift`]),
+/// C_F·2^ΣE is C_F·2^K units; a vector's C_D·2^(ΣE − E_v + D_v) is C_D·2^(K − below_v)
+/// (below_v = E_v − D_v); the cut's C_P·2^(E_a + D_x) is C_P·2^(K + [`CROSS_HEADROOM`] −
+/// below_x) (E_x = E_b + E_c + [`CROSS_HEADROOM`]). No term depends on an absolute exponent.
+pub fn margin_terms(width: u32, value: [Vector; 4], margin_scale: f64) -> MarginTerms {
+    let c = constants();
+    let k = value_shift(width, value);
+    let term = |c: f64, shift: i32| {
+        let t = constant(c * margin_scale, shift);
+        Term { m: t.m, shift: t.e }
+    };
+    let dropped = term(c.dropped, k);
+    MarginTerms {
+        fixed: term(c.fixed, k),
+        dropped: [
+            dropped,
+            dropped,
+            dropped,
+            term(c.product, k + CROSS_HEADROOM),
+        ],
+    }
+}
+
+/// Step 4: the margin of a value a·trunc(b × c) (`value` = [a, b, c, x], as
+/// [`value_shift`]), the filter's and the fallback's errors together:
 ///
 /// ```text
 /// C_D·(2^(D_a + E_b + E_c) + 2^(E_a + D_b + E_c) + 2^(E_a + E_b + D_c))
@@ -323,34 +400,24 @@ const QUOTIENT_RANGE: f64 = 6.0;
 ///
 /// with D the dropped parts' exponents ([`Block`]; a vector with nothing dropped has no
 /// term), x the cut cross product and the constants of [`constants`], each wired and
-/// rounded up to [`CONSTANT_BITS`]. Each term is rounded up to the value's last bit
-/// 2^`lsb`, and the result is in units of it: in hardware five shifted constants summed.
+/// rounded up to [`CONSTANT_BITS`]. Each term is rounded up to the value's last bit, and the
+/// result is in units of it. Computed from what hardware has ([`margin_terms`]): the width,
+/// the kind and each vector's dropped distance below its own block exponent (`below`,
+/// E − D; `None`: nothing dropped), so five shifted constants summed, no absolute exponent.
 /// `margin_scale` = 1 is the derived bound (tests shrink it). `None` if a term overflows.
-fn margin(blocks: &[Block; 6], value: [Vector; 4], lsb: i32, margin_scale: f64) -> Option<i128> {
-    let c = constants();
-    let [a, b, cc, x] = value.map(|v| blocks[v as usize]);
-    let sum = a.e + b.e + cc.e;
-    let mut terms = vec![constant(c.fixed * margin_scale, sum)];
-    for v in [a, b, cc] {
-        if let Some(d) = v.dropped {
-            terms.push(constant(c.dropped * margin_scale, sum - v.e + d));
-        }
-    }
-    if let Some(d) = x.dropped {
-        terms.push(constant(c.product * margin_scale, a.e + d));
-    }
-    terms.into_iter().try_fold(0i128, |acc, t| {
-        let units = match t.e - lsb {
-            up @ 0.. => Fx::new(t.m, 0).mantissa_at(-up)?,
-            // A term below the last bit: ceil(m·2^-k), the shift plus its sticky bit.
-            down => {
-                let k = (-down).min(127) as u32;
-                let fl = t.m >> k;
-                fl + i128::from(fl << k != t.m)
-            }
-        };
-        acc.checked_add(units)
-    })
+pub fn margin_units(
+    width: u32,
+    value: [Vector; 4],
+    below: [Option<i32>; 4],
+    margin_scale: f64,
+) -> Option<i128> {
+    let terms = margin_terms(width, value, margin_scale);
+    terms
+        .dropped
+        .iter()
+        .zip(below)
+        .filter_map(|(t, below)| Some(t.units(below?)))
+        .try_fold(terms.fixed.units(0)?, |acc, t| acc.checked_add(t?))
 }
 
 /// Significant bits (with the sign) of the short floats the decisions compare.
@@ -389,7 +456,7 @@ impl Filter {
     /// [`Filter::decide`] for [`super::FilterKind::Bfp`]: `decide_linear`'s tests (the
     /// table in docs/precision.md, "The division-free filter") on short floats rounded
     /// outward ([`round`]). With σ = sign(det), n = σ·N and the margins e (the fallback's
-    /// quotient roundings folded in, [`margin`]): H = up(|det| + e_D), L = down(|det| − e_D),
+    /// quotient roundings folded in, [`margin_units`]): H = up(|det| + e_D), L = down(|det| − e_D),
     /// and per numerator hi = up(n + e), lo = down(n − e):
     /// - H < eps (the fallback's parallel test fires);
     /// - otherwise only if L > 0, L ≥ 2^-126, H < 2^125 and max(hi, −lo) < L·2^125 (no
@@ -426,18 +493,18 @@ impl Filter {
         let p = cross_block(&dir, &e2, w[Vector::P as usize]);
         let qv = cross_block(&s, &e1, w[Vector::Q as usize]);
         let blocks = [dir, e1, e2, s, p, qv];
-        use Vector::{Dir, E1, E2, P, Q, S};
         // Each value with its margin; a triple below SUM_MIN is forwarded.
         let value = |vectors: [Vector; 4]| -> Option<(Fx, i128)> {
             let [a, b, c, x] = vectors.map(|v| blocks[v as usize]);
             let lsb = a.lsb + x.lsb;
-            let e = margin(&blocks, vectors, lsb, margin_scale)?;
+            let below = [a, b, c, x].map(|v| v.dropped.map(|d| v.e - d));
+            let e = margin_units(width, vectors, below, margin_scale)?;
             (a.e + b.e + c.e >= SUM_MIN).then_some((Fx::new(dot(&a.m, &x.m), lsb), e))
         };
-        let (det, ed) = value([E1, Dir, E2, P])?;
-        let (nu, eu) = value([S, Dir, E2, P])?;
-        let (nv, ev) = value([Dir, S, E1, Q])?;
-        let (nt, et) = value([E2, S, E1, Q])?;
+        let (det, ed) = value(DET)?;
+        let (nu, eu) = value(N_U)?;
+        let (nv, ev) = value(N_V)?;
+        let (nt, et) = value(N_T)?;
         // Value ± margin: integer adders at the value's last bit.
         let at = |m: Option<i128>, x: Fx| Some(Fx::new(m?, x.e));
         let d_abs = det.m.abs();
@@ -684,14 +751,16 @@ mod tests {
                 prop_assert!(top(x) <= xb.e || m == 0);
             }
             // As det = e1·trunc(dir × e2): a in E1's place, b in Dir's, c in E2's.
-            let blocks = [bb, ab, cb, bb, xb, xb];
-            let value = [Vector::E1, Vector::Dir, Vector::E2, Vector::P];
+            let value = DET;
             let filter = Fx::new(dot(&ab.m, &xb.m), ab.lsb + xb.lsb);
             let want = triple(exact(a), exact(b), exact(c));
             let err = filter.add(Fx::new(-want.m, want.e)).unwrap();
             // The fallback's part (the fixed constant) is not the filter's: leave it out.
             let fixed = constant(constants().fixed, ab.e + bb.e + cb.e);
-            let e = Fx::new(margin(&blocks, value, filter.e, 1.0).unwrap(), filter.e);
+            // The value's last bit is 2^(ΣE − K), K fixed per kind and width.
+            prop_assert_eq!(filter.e, ab.e + bb.e + cb.e - value_shift(w, value));
+            let below = [ab, bb, cb, xb].map(|v| v.dropped.map(|d| v.e - d));
+            let e = Fx::new(margin_units(w, value, below, 1.0).unwrap(), filter.e);
             let filter_terms = e.add(Fx::new(-fixed.m, fixed.e)).unwrap();
             prop_assert!(!filter_terms.lt(Fx::new(err.m.abs(), err.e)), "{err:?} > {filter_terms:?}");
             let sum = ab.e + bb.e + cb.e;
@@ -720,25 +789,13 @@ mod tests {
 
     #[test]
     fn margins_shrink_with_the_width_and_the_dropped_bits() {
-        // Everything dropped at a full step: the old per-width constant, decreasing with W.
+        let det = DET;
+        // Everything dropped at a full step (each vector's own W − 1 below its block
+        // exponent), in units of 2^ΣE: the old per-width constant, decreasing with W.
         let full = |w: u32| {
-            let b = |e: i32, width: u32| Block {
-                m: [0; 3],
-                e,
-                lsb: e - (width as i32 - 1),
-                dropped: Some(e - (width as i32 - 1)),
-            };
-            let ws = widths(w);
-            let blocks = [
-                b(0, ws[0]),
-                b(0, ws[1]),
-                b(0, ws[2]),
-                b(0, ws[3]),
-                b(1, ws[4]),
-                b(1, ws[5]),
-            ];
-            let det = [Vector::E1, Vector::Dir, Vector::E2, Vector::P];
-            Fx::new(margin(&blocks, det, -80, 1.0).unwrap(), -80).to_f64()
+            let below = det.map(|v| Some(widths(w)[v as usize] as i32 - 1));
+            let k = value_shift(w, det);
+            Fx::new(margin_units(w, det, below, 1.0).unwrap(), -k).to_f64()
         };
         for w in 9..=24 {
             assert!(full(w) < full(w - 1));
@@ -747,18 +804,84 @@ mod tests {
         // part ≈ 3.6e-6.
         assert!((1.66e-4..1.72e-4).contains(&full(18)), "{}", full(18));
         // Nothing dropped anywhere: the fixed part alone.
-        let exact = Block {
-            m: [0; 3],
-            e: 0,
-            lsb: -17,
-            dropped: None,
-        };
-        let det = [Vector::E1, Vector::Dir, Vector::E2, Vector::P];
-        let units = |scale: f64| margin(&[exact; 6], det, -80, scale).unwrap();
-        let m = Fx::new(units(1.0), -80).to_f64();
+        let k = value_shift(18, det);
+        let units = |scale: f64| margin_units(18, det, [None; 4], scale).unwrap();
+        let m = Fx::new(units(1.0), -k).to_f64();
         assert!((3.0e-6..4.0e-6).contains(&m), "{m}");
         assert!(units(0.5) < units(1.0));
-        // Rounded up to the value's last bit: a term below it still counts one unit.
-        assert_eq!(margin(&[exact; 6], det, 0, 1.0), Some(1));
+        // Rounded up to the value's last bit: at W = 8 (K = 13) the fixed part is below it
+        // and still counts one unit.
+        assert_eq!(value_shift(8, det), 13);
+        assert_eq!(margin_units(8, det, [None; 4], 1.0), Some(1));
+    }
+
+    /// The margin as it was first written, from the blocks' absolute exponents and the
+    /// value's last bit: the independent reference of [`margin_units`].
+    fn margin_from_exponents(
+        blocks: &[Block; 6],
+        value: [Vector; 4],
+        lsb: i32,
+        margin_scale: f64,
+    ) -> Option<i128> {
+        let c = constants();
+        let [a, b, cc, x] = value.map(|v| blocks[v as usize]);
+        let sum = a.e + b.e + cc.e;
+        let mut terms = vec![constant(c.fixed * margin_scale, sum)];
+        for v in [a, b, cc] {
+            if let Some(d) = v.dropped {
+                terms.push(constant(c.dropped * margin_scale, sum - v.e + d));
+            }
+        }
+        if let Some(d) = x.dropped {
+            terms.push(constant(c.product * margin_scale, a.e + d));
+        }
+        terms.into_iter().try_fold(0i128, |acc, t| {
+            let units = match t.e - lsb {
+                up @ 0.. => Fx::new(t.m, 0).mantissa_at(-up)?,
+                down => {
+                    let k = (-down).min(127) as u32;
+                    let fl = t.m >> k;
+                    fl + i128::from(fl << k != t.m)
+                }
+            };
+            acc.checked_add(units)
+        })
+    }
+
+    proptest! {
+        /// The margin from the width, the kind and the dropped distances equals the one from
+        /// the blocks' absolute exponents, for blocks placed as the filter places them
+        /// (lsb = e − W + 1, the cut's exponent E_b + E_c + 1) and each kind of value.
+        #[test]
+        fn margins_from_distances_equal_margins_from_exponents(
+            w in 8u32..=24,
+            kind in 0usize..4,
+            e in proptest::array::uniform4(EXP_MIN..=EXP_MAX),
+            below in proptest::array::uniform6(prop_oneof![
+                1 => Just(None),
+                1 => Just(Some(DROP_WINDOW)),
+                4 => (0..=DROP_WINDOW).prop_map(Some),
+            ]),
+            scale in prop_oneof![Just(1.0), 0.01f64..1.0],
+        ) {
+            use Vector::{Dir, E1, E2, P, Q, S};
+            let ws = widths(w);
+            let value = [DET, N_U, N_V, N_T][kind];
+            // dir, e1, e2, s at random; the cut cross products' exponents follow.
+            let mut es = [e[0], e[1], e[2], e[3], 0, 0];
+            es[P as usize] = es[Dir as usize] + es[E2 as usize] + CROSS_HEADROOM;
+            es[Q as usize] = es[S as usize] + es[E1 as usize] + CROSS_HEADROOM;
+            let blocks: [Block; 6] = std::array::from_fn(|v| {
+                let lsb = es[v] - (ws[v] as i32 - 1);
+                // A dropped part lies at or below the block's last bit.
+                let below = below[v].map(|b| b.max(ws[v] as i32 - 1));
+                Block { m: [0; 3], e: es[v], lsb, dropped: below.map(|b| es[v] - b) }
+            });
+            let [a, _, _, x] = value.map(|v| blocks[v as usize]);
+            let want = margin_from_exponents(&blocks, value, a.lsb + x.lsb, scale);
+            let below = value.map(|v| blocks[v as usize].dropped.map(|d| blocks[v as usize].e - d));
+            prop_assert_eq!(margin_units(w, value, below, scale), want);
+            prop_assert!(want.is_some());
+        }
     }
 }
