@@ -4,6 +4,8 @@
 //! (about 9 CPU-minutes of the cold CI build); hdl's lib sets `test = false`.
 
 mod dual {
+    mod decide;
+    mod round;
     mod to_block;
     mod translate;
 }
