@@ -1,9 +1,13 @@
 //! The block-floating-point dual-precision filter (docs/precision.md, "The block-floating-point
 //! filter"), one block per file, each bit for bit its `hw_model::dual::bfp` function.
 
+pub mod add_down;
 pub mod cross_block;
+pub mod decide;
 pub mod dot;
 pub mod margin;
+pub mod round;
+pub mod short_lt;
 pub mod to_block;
 pub mod translate;
 

@@ -5,8 +5,10 @@
 
 mod dual {
     mod cross_block;
+    mod decide;
     mod dot;
     mod margin;
+    mod round;
     mod to_block;
     mod translate;
 }

@@ -39,7 +39,7 @@ pub struct Fx {
 }
 
 impl Fx {
-    fn new(m: i128, e: i32) -> Fx {
+    pub fn new(m: i128, e: i32) -> Fx {
         Fx { m, e }
     }
 
@@ -66,6 +66,8 @@ impl Fx {
     }
 
     /// The exact sum; `None` if aligning would overflow (a zero's exponent never counts).
+    /// What [`add_down`] is tested against.
+    #[cfg(test)]
     fn add(self, other: Fx) -> Option<Fx> {
         if other.m == 0 {
             return Some(self);
@@ -79,7 +81,7 @@ impl Fx {
 
     /// self < other, exactly, at any exponents: different signs or leading-bit positions
     /// decide alone, and equal leading-bit positions align without overflow.
-    fn lt(self, other: Fx) -> bool {
+    pub fn lt(self, other: Fx) -> bool {
         let (sa, sb) = (self.m.signum(), other.m.signum());
         if sa != sb || sa == 0 {
             return sa < sb;
@@ -440,116 +442,192 @@ pub fn round(x: Fx, up: bool) -> Fx {
     Fx::new(floor + i128::from(up && sticky), lsb)
 }
 
-/// The fallback's t_min, moved down to τ' ≤ t_min − λ (λ = 2^-126, the fallback's smallest
-/// normal): exact below 2^-102, else t_min − 1 ulp (one ulp ≥ λ there). `None` for a
-/// non-finite t_min (never a certain miss by t).
-fn t_min_below(t_min: f32) -> Option<Fx> {
+/// The fallback's t_min, moved down to τ' ≤ t_min − λ (λ = 2^[`RECIPROCAL_MIN`], the
+/// fallback's smallest normal): exact below 2^-102, else t_min − 1 ulp (one ulp ≥ λ there);
+/// at t_min's own exponent, λ being 2^(−126 − e) units of its last bit 2^e below 2^-102.
+/// `None` for a non-finite t_min (never a certain miss by t).
+pub fn t_min_below(t_min: f32) -> Option<Fx> {
     let t = split(t_min)?;
-    Some(if t.e >= -126 {
-        Fx::new(t.m - 1, t.e)
-    } else {
-        Fx::new((t.m << (t.e + 150)) - (1 << 24), -150)
+    Some(Fx::new(t.m - (1 << (RECIPROCAL_MIN - t.e).max(0)), t.e))
+}
+
+/// The range row's powers of two: L ≥ 2^RECIPROCAL_MIN (the reciprocal does not
+/// overflow), H < 2^QUOTIENT_MAX and max(hi, −lo) < L·2^QUOTIENT_MAX (no quotient
+/// overflows); the u < 0 row's H·2^FLUSH_SHIFT (the quotient is not flushed to −0).
+pub const RECIPROCAL_MIN: i32 = -126;
+pub const QUOTIENT_MAX: i32 = 125;
+pub const FLUSH_SHIFT: i32 = -124;
+
+/// x + y rounded down ([`round`]) by a short adder: the operands (short floats, at most
+/// [`SHORT_BITS`] + 1 bits with the sign) aligned at [`ADD_GUARD_BITS`] bits below the
+/// larger one's short mantissa, the smaller floored to that grid (an arithmetic shift),
+/// then added and rounded down. Equal to `round(x.add(y), false)` wherever the exact
+/// `Fx::add` does not overflow: a floored operand lies more than two bits below the larger
+/// one, so the sum's last short bit is above the grid, and flooring below it does not
+/// change a floor. Defined at any exponents (no i128 shift can overflow), where the model
+/// used to forward a query whose exact sum overflowed i128.
+pub fn add_down(x: Fx, y: Fx) -> Fx {
+    let t = |x: Fx| if x.m == 0 { i32::MIN } else { top(x) };
+    let (tx, ty) = (t(x), t(y));
+    if tx == i32::MIN || ty == i32::MIN {
+        return round(if x.m == 0 { y } else { x }, false);
+    }
+    let grid = tx.max(ty) - (SHORT_BITS as i32 - 1) - ADD_GUARD_BITS;
+    // Up exactly (an operand's top is at most the larger top), down by a floor.
+    let at = |x: Fx| match x.e - grid {
+        up @ 0.. => x.m << up,
+        down => x.m >> (-down).min(127),
+    };
+    round(Fx::new(at(x) + at(y), grid), false)
+}
+
+/// Bits [`add_down`] aligns below the larger operand's short mantissa.
+pub const ADD_GUARD_BITS: i32 = 3;
+
+/// The fallback's parallel threshold `DET_EPSILON` as a short float.
+pub fn det_epsilon() -> Fx {
+    split(DET_EPSILON).expect("a finite constant")
+}
+
+/// Step 5's rows (docs/precision.md, the table of "The block-floating-point filter"), each
+/// `true` where its condition holds; hardware evaluates them all at once.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Rows {
+    /// H < eps: the fallback's parallel test fires.
+    pub parallel: bool,
+    /// L > 0, L ≥ 2^-126, H < 2^125, max(hi, −lo) < L·2^125 for u, v, t.
+    pub in_range: bool,
+    /// u < 0: hi_u < 0 and H·2^-124 ≤ −hi_u.
+    pub u_below: bool,
+    /// u > 1: H < lo_u.
+    pub u_above: bool,
+    /// v < 0: as u.
+    pub v_below: bool,
+    /// u + v > 1: H < down(lo_u + lo_v).
+    pub uv_above: bool,
+    /// t ≤ t_min: hi_t < down(τ'·(L if τ' ≥ 0 else H)).
+    pub t_below: bool,
+}
+
+impl Rows {
+    /// A certain miss: the fallback would answer no hit.
+    pub fn miss(&self) -> bool {
+        self.parallel
+            || self.in_range
+                && (self.u_below || self.u_above || self.v_below || self.uv_above || self.t_below)
+    }
+}
+
+/// Steps 1–4 of the bfp filter at mantissa width `width`: det, N_u, N_v, N_t, each an
+/// integer at its last bit's exponent with its margin in units of that bit ([`margin`]).
+/// `None` forwards the query (a non-finite input, a zero vector, a block exponent outside
+/// [`EXP_MIN`, `EXP_MAX`], a triple below [`SUM_MIN`]).
+pub fn values(q: &MtQuery, width: u32, margin_scale: f64) -> Option<[(Fx, i128); 4]> {
+    let moved = |p: &[f32; 3]| -> Option<[Fx; 3]> {
+        Some([
+            translate(p[0], q.v0[0])?,
+            translate(p[1], q.v0[1])?,
+            translate(p[2], q.v0[2])?,
+        ])
+    };
+    let dir = [split(q.dir[0])?, split(q.dir[1])?, split(q.dir[2])?];
+    let (e1, e2, s) = (moved(&q.v1)?, moved(&q.v2)?, moved(&q.orig)?);
+    let w = widths(width);
+    let [dir, e1, e2, s] = [
+        to_block(dir, w[0])?,
+        to_block(e1, w[1])?,
+        to_block(e2, w[2])?,
+        to_block(s, w[3])?,
+    ];
+    let ranged = [dir, e1, e2, s];
+    if ranged.iter().any(|b| !(EXP_MIN..=EXP_MAX).contains(&b.e)) {
+        return None;
+    }
+    // Step 3: p = dir × e2 and q = s × e1 exactly, cut to blocks, then the dots exactly.
+    let p = cross_block(&dir, &e2, w[Vector::P as usize]);
+    let qv = cross_block(&s, &e1, w[Vector::Q as usize]);
+    let blocks = [dir, e1, e2, s, p, qv];
+    // Each value with its margin; a triple below SUM_MIN is forwarded.
+    let value = |vectors: [Vector; 4]| -> Option<(Fx, i128)> {
+        let [a, b, c, x] = vectors.map(|v| blocks[v as usize]);
+        let lsb = a.lsb + x.lsb;
+        let below = [a, b, c, x].map(|v| v.dropped.map(|d| v.e - d));
+        let e = margin_units(width, vectors, below, margin_scale)?;
+        (a.e + b.e + c.e >= SUM_MIN).then_some((Fx::new(dot(&a.m, &x.m), lsb), e))
+    };
+    Some([value(DET)?, value(N_U)?, value(N_V)?, value(N_T)?])
+}
+
+/// Step 5 ([`Filter::decide_bfp`]): the rows of the decision table from det and its margin
+/// `e_det`, the numerators N_u, N_v, N_t with theirs (values at their last bit's exponent,
+/// margins in units of that bit) and the query's t_min. `None` only if an i128 adder
+/// overflows (never at the filter's widths): forwarded.
+pub fn decide(det: Fx, e_det: i128, nums: [(Fx, i128); 3], t_min: f32) -> Option<Rows> {
+    // Value ± margin: integer adders at the value's last bit.
+    let at = |m: Option<i128>, x: Fx| Some(Fx::new(m?, x.e));
+    let d_abs = det.m.abs();
+    let high = round(at(d_abs.checked_add(e_det), det)?, true);
+    let low = round(Fx::new(d_abs - e_det, det.e), false);
+    let sigma = det.m.signum();
+    // Per numerator σN + e rounded up and σN − e rounded down.
+    let bounds = |(n, e): (Fx, i128)| -> Option<(Fx, Fx)> {
+        let m = sigma * n.m;
+        Some((
+            round(at(m.checked_add(e), n)?, true),
+            round(at(m.checked_sub(e), n)?, false),
+        ))
+    };
+    let [u, v, t] = [bounds(nums[0])?, bounds(nums[1])?, bounds(nums[2])?];
+    // No reciprocal overflows or flushes, no quotient overflows (powers of two: exponent
+    // comparisons in hardware).
+    let pow2 = |e: i32| Fx::new(1, e);
+    let room = low.times(1, QUOTIENT_MAX)?;
+    let in_range = low.m > 0
+        && !low.lt(pow2(RECIPROCAL_MIN))
+        && high.lt(pow2(QUOTIENT_MAX))
+        && [u, v, t]
+            .iter()
+            .all(|&(hi, lo)| hi.lt(room) && Fx::new(-lo.m, lo.e).lt(room));
+    let flush = high.times(1, FLUSH_SHIFT)?;
+    let below_zero = |(hi, _): (Fx, Fx)| hi.m < 0 && !Fx::new(-hi.m, hi.e).lt(flush);
+    let t_below = || -> Option<bool> {
+        let tau = t_min_below(t_min)?;
+        let bound = if tau.m >= 0 { low } else { high };
+        let product = Fx::new(tau.m.checked_mul(bound.m)?, tau.e + bound.e);
+        Some(t.0.lt(round(product, false)))
+    };
+    Some(Rows {
+        parallel: high.lt(det_epsilon()),
+        in_range,
+        u_below: below_zero(u),
+        u_above: high.lt(u.1),
+        v_below: below_zero(v),
+        uv_above: high.lt(add_down(u.1, v.1)),
+        t_below: t_below() == Some(true),
     })
 }
 
 impl Filter {
     /// [`Filter::decide`] for [`super::FilterKind::Bfp`]: `decide_linear`'s tests (the
     /// table in docs/precision.md, "The division-free filter") on short floats rounded
-    /// outward ([`round`]). With σ = sign(det), n = σ·N and the margins e (the fallback's
-    /// quotient roundings folded in, [`margin_units`]): H = up(|det| + e_D), L = down(|det| − e_D),
-    /// and per numerator hi = up(n + e), lo = down(n − e):
+    /// outward ([`round`]): steps 1–4 ([`values`]), then step 5 ([`decide`]). With
+    /// σ = sign(det), n = σ·N and the margins e (the fallback's quotient roundings folded
+    /// in, [`margin_units`]): H = up(|det| + e_D), L = down(|det| − e_D), and per numerator
+    /// hi = up(n + e), lo = down(n − e):
     /// - H < eps (the fallback's parallel test fires);
     /// - otherwise only if L > 0, L ≥ 2^-126, H < 2^125 and max(hi, −lo) < L·2^125 (no
     ///   reciprocal overflows or flushes, no quotient overflows);
     /// - u < 0: hi_u < 0 and H·2^-124 ≤ −hi_u (the quotient is not flushed to −0); v likewise;
     /// - u > 1: H < lo_u;
-    /// - u + v > 1: H < down(lo_u + lo_v);
+    /// - u + v > 1: H < down(lo_u + lo_v) ([`add_down`]);
     /// - t ≤ t_min: hi_t < down(τ'·(L if τ' ≥ 0 else H)), τ' ≤ t_min − λ ([`t_min_below`]).
     pub(super) fn decide_bfp(&self, q: &MtQuery, margin_scale: f64) -> Option<MtResult> {
         let FilterFormat::Bfp(width) = self.pair.filter else {
             unreachable!("Filter::new pairs the bfp kind with a bfpW filter")
         };
-        let moved = |p: &[f32; 3]| -> Option<[Fx; 3]> {
-            Some([
-                translate(p[0], q.v0[0])?,
-                translate(p[1], q.v0[1])?,
-                translate(p[2], q.v0[2])?,
-            ])
-        };
-        let dir = [split(q.dir[0])?, split(q.dir[1])?, split(q.dir[2])?];
-        let (e1, e2, s) = (moved(&q.v1)?, moved(&q.v2)?, moved(&q.orig)?);
-        let w = widths(width);
-        let [dir, e1, e2, s] = [
-            to_block(dir, w[0])?,
-            to_block(e1, w[1])?,
-            to_block(e2, w[2])?,
-            to_block(s, w[3])?,
-        ];
-        let ranged = [dir, e1, e2, s];
-        if ranged.iter().any(|b| !(EXP_MIN..=EXP_MAX).contains(&b.e)) {
-            return None;
-        }
-        // Step 3: p = dir × e2 and q = s × e1 exactly, cut to blocks, then the dots exactly.
-        let p = cross_block(&dir, &e2, w[Vector::P as usize]);
-        let qv = cross_block(&s, &e1, w[Vector::Q as usize]);
-        let blocks = [dir, e1, e2, s, p, qv];
-        // Each value with its margin; a triple below SUM_MIN is forwarded.
-        let value = |vectors: [Vector; 4]| -> Option<(Fx, i128)> {
-            let [a, b, c, x] = vectors.map(|v| blocks[v as usize]);
-            let lsb = a.lsb + x.lsb;
-            let below = [a, b, c, x].map(|v| v.dropped.map(|d| v.e - d));
-            let e = margin_units(width, vectors, below, margin_scale)?;
-            (a.e + b.e + c.e >= SUM_MIN).then_some((Fx::new(dot(&a.m, &x.m), lsb), e))
-        };
-        let (det, ed) = value(DET)?;
-        let (nu, eu) = value(N_U)?;
-        let (nv, ev) = value(N_V)?;
-        let (nt, et) = value(N_T)?;
-        // Value ± margin: integer adders at the value's last bit.
-        let at = |m: Option<i128>, x: Fx| Some(Fx::new(m?, x.e));
-        let d_abs = det.m.abs();
-        let high = round(at(d_abs.checked_add(ed), det)?, true);
-        if high.lt(split(DET_EPSILON).expect("a finite constant")) {
-            return Some(MtResult::default());
-        }
-        let low = round(Fx::new(d_abs - ed, det.e), false);
-        let sigma = det.m.signum();
-        // Per numerator σN + e rounded up and σN − e rounded down.
-        let bounds = |n: Fx, e: i128| -> Option<(Fx, Fx)> {
-            let m = sigma * n.m;
-            Some((
-                round(at(m.checked_add(e), n)?, true),
-                round(at(m.checked_sub(e), n)?, false),
-            ))
-        };
-        let [u, v, t] = [bounds(nu, eu)?, bounds(nv, ev)?, bounds(nt, et)?];
-        // No reciprocal overflows or flushes, no quotient overflows (powers of two: exponent
-        // comparisons in hardware).
-        let pow2 = |e: i32| Fx::new(1, e);
-        let room = low.times(1, 125)?;
-        let in_range = low.m > 0
-            && !low.lt(pow2(-126))
-            && high.lt(pow2(125))
-            && [u, v, t]
-                .iter()
-                .all(|&(hi, lo)| hi.lt(room) && Fx::new(-lo.m, lo.e).lt(room));
-        if !in_range {
-            return None;
-        }
-        let flush = high.times(1, -124)?;
-        let below_zero = |(hi, _): (Fx, Fx)| hi.m < 0 && !Fx::new(-hi.m, hi.e).lt(flush);
-        let t_below = || -> Option<bool> {
-            let tau = t_min_below(q.t_min)?;
-            let bound = if tau.m >= 0 { low } else { high };
-            let product = Fx::new(tau.m.checked_mul(bound.m)?, tau.e + bound.e);
-            Some(t.0.lt(round(product, false)))
-        };
-        let certain = below_zero(u)
-            || high.lt(u.1)
-            || below_zero(v)
-            || high.lt(round(u.1.add(v.1)?, false))
-            || t_below() == Some(true);
-        certain.then_some(MtResult::default())
+        let [det, nu, nv, nt] = values(q, width, margin_scale)?;
+        let rows = decide(det.0, det.1, [nu, nv, nt], q.t_min)?;
+        rows.miss().then_some(MtResult::default())
     }
 }
 
@@ -700,6 +778,23 @@ mod tests {
                 prop_assert!(down.to_f64() <= xf && xf - down.to_f64() < step);
                 prop_assert!(up.to_f64() >= xf && up.to_f64() - xf < step);
             }
+        }
+
+        /// The short adder: its rounded-down sum is `round(x.add(y), false)` for any
+        /// short floats (rounded either way), at near and far exponents.
+        #[test]
+        fn the_short_adder_rounds_the_exact_sum_down(
+            a in any::<i64>(), ea in -60i32..60, ua in any::<bool>(),
+            b in any::<i64>(), eb in -60i32..60, ub in any::<bool>(),
+            shift in 0u32..64,
+        ) {
+            let x = round(Fx::new(i128::from(a >> shift), ea), ua);
+            let y = round(Fx::new(i128::from(b), eb), ub);
+            // Far apart, the exact sum overflows i128 (add_down does not).
+            let Some(sum) = x.add(y) else { return Ok(()); };
+            let want = round(sum, false);
+            let got = add_down(x, y);
+            prop_assert!(!got.lt(want) && !want.lt(got), "{x:?} + {y:?}: {got:?} {want:?}");
         }
 
         /// The dropped parts' bound: every component's truncation error is below

@@ -1,0 +1,208 @@
+//! `hdl::dual::round`, `hdl::dual::short_lt` and `hdl::dual::add_down`: step 5's
+//! normaliser, comparator and short adder, bit for bit the model's `round`, `Fx::lt` and
+//! `add_down`.
+
+use hdl::dual::add_down::AddDown;
+use hdl::dual::decide::{DET_SUM_BITS, NUM_SUM_BITS, PRODUCT_BITS};
+use hdl::dual::round::{Round, SHORT_EXP_BITS, SHORT_M_BITS};
+use hdl::dual::short_lt::Lt;
+use hw_model::dual::bfp::{add_down, round, Fx, SHORT_BITS};
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+use rust_hdl::prelude::*;
+
+/// Sign-extends the low `width` bits of `raw`.
+pub fn signed(raw: u64, width: usize) -> i128 {
+    let shift = 64 - width;
+    i128::from(((raw << shift) as i64) >> shift)
+}
+
+/// The low `width` bits of a two's-complement value.
+pub fn raw(x: i128, width: usize) -> u64 {
+    (x as u64) & (u64::MAX >> (64 - width))
+}
+
+/// The largest exponent magnitude the tests feed: a result still fits SHORT_EXP_BITS.
+pub const EXP_LIMIT: i32 = (1 << (SHORT_EXP_BITS - 1)) - 70;
+
+/// An IW-bit signed integer of a random bit count (zeros, ±1 and the extremes included).
+fn integer(rng: &mut StdRng, width: usize) -> i128 {
+    let bits = rng.gen_range(0..=width);
+    match bits {
+        0 => [0, -1][rng.gen_range(0..2)],
+        _ => rng.gen_range(-(1i128 << (bits - 1))..1i128 << (bits - 1)),
+    }
+}
+
+/// The normaliser's answer for x·2^e as the model's value.
+fn run_round<const IW: usize, const UP: bool>(uut: &mut Round<IW, UP>, x: i128, e: i32) -> Fx {
+    uut.x.next = raw(x, IW).to_bits();
+    uut.e.next = raw(i128::from(e), SHORT_EXP_BITS).to_bits();
+    assert!(simulate(uut, 100));
+    Fx {
+        m: signed(uut.m.val().to_u64(), SHORT_M_BITS),
+        e: signed(uut.f.val().to_u64(), SHORT_EXP_BITS) as i32,
+    }
+}
+
+/// Random, special and extreme integers at random exponents; the count of checks.
+fn check_round<const IW: usize, const UP: bool>(seed: u64) -> usize {
+    let mut uut = Round::<IW, UP>::default();
+    uut.connect_all();
+    let mut rng = StdRng::seed_from_u64(seed);
+    let (min, max) = (-(1i128 << (IW - 1)), (1i128 << (IW - 1)) - 1);
+    let short = 1i128 << (SHORT_BITS - 1);
+    let mut xs: Vec<i128> = (0..3000).map(|_| integer(&mut rng, IW)).collect();
+    // The edges: fits or not, a carry into the next power of two, ±powers of two, ±extremes.
+    for s in [0, 1, 2, 7, IW - SHORT_BITS as usize - 1] {
+        for x in [short - 1, short, -short, -short - 1, 1, -1, 0] {
+            xs.push((x << s).clamp(min, max));
+            xs.push(((x << s) - 1).clamp(min, max));
+            xs.push(((x << s) + 1).clamp(min, max));
+        }
+    }
+    xs.extend([min, max, min + 1, max - 1, 0, (1 << 40) - 1]);
+    for (i, &x) in xs.iter().enumerate() {
+        let x = x.clamp(min, max);
+        let e = match i % 3 {
+            0 => 0,
+            1 => [-EXP_LIMIT, EXP_LIMIT][i % 2],
+            _ => rng.gen_range(-EXP_LIMIT..=EXP_LIMIT),
+        };
+        let want = round(Fx { m: x, e }, UP);
+        assert_eq!(
+            run_round(&mut uut, x, e),
+            want,
+            "round({x}·2^{e}, up = {UP})"
+        );
+    }
+    xs.len()
+}
+
+#[test]
+fn round_equals_the_model_bit_for_bit() {
+    // The widths Decide rounds: value ± margin and τ'·bound, both directions.
+    let n = check_round::<DET_SUM_BITS, true>(1)
+        + check_round::<DET_SUM_BITS, false>(2)
+        + check_round::<NUM_SUM_BITS, true>(3)
+        + check_round::<NUM_SUM_BITS, false>(4)
+        + check_round::<PRODUCT_BITS, false>(5);
+    assert!(n > 15_000);
+}
+
+/// A short float as the normalisers produce them: a rounded integer, at times a power of
+/// two or a value that kept its own exponent.
+fn short(rng: &mut StdRng, near: i32) -> Fx {
+    let e = (near + rng.gen_range(-14..=14)).clamp(-EXP_LIMIT, EXP_LIMIT);
+    let x = Fx {
+        m: integer(rng, 40),
+        e,
+    };
+    match rng.gen_range(0..8) {
+        0 => Fx { m: 0, e },
+        1 => Fx {
+            m: [1, -1, 1 << (SHORT_BITS - 1), -(1 << (SHORT_BITS - 1))][rng.gen_range(0..4)],
+            e,
+        },
+        _ => round(x, rng.gen_bool(0.5)),
+    }
+}
+
+fn set(m: &mut Signal<In, Bits<SHORT_M_BITS>>, e: &mut Signal<In, Bits<SHORT_EXP_BITS>>, x: Fx) {
+    m.next = raw(x.m, SHORT_M_BITS).to_bits();
+    e.next = raw(i128::from(x.e), SHORT_EXP_BITS).to_bits();
+}
+
+/// Pairs at near and far exponents, equal leading bits, equal values, and opposite signs.
+fn pairs(seed: u64) -> Vec<(Fx, Fx)> {
+    let mut rng = StdRng::seed_from_u64(seed);
+    let mut out = Vec::new();
+    for _ in 0..4000 {
+        let base = rng.gen_range(-EXP_LIMIT + 20..EXP_LIMIT - 20);
+        let x = short(&mut rng, base);
+        let y = match rng.gen_range(0..6) {
+            0 => x,
+            1 => Fx { m: -x.m, e: x.e },
+            // The same value at another exponent, where the mantissa has room.
+            2 if x.m.abs() < 1 << (SHORT_BITS - 1) => Fx {
+                m: x.m * 2,
+                e: x.e - 1,
+            },
+            3 => {
+                let far = rng.gen_range(-EXP_LIMIT + 20..EXP_LIMIT - 20);
+                short(&mut rng, far)
+            }
+            _ => short(&mut rng, base),
+        };
+        out.push((x, y));
+    }
+    out
+}
+
+#[test]
+fn short_lt_equals_the_model_bit_for_bit() {
+    let mut uut = Lt::default();
+    uut.connect_all();
+    let mut seen = [0usize; 2];
+    for (x, y) in pairs(6) {
+        set(&mut uut.xm, &mut uut.xe, x);
+        set(&mut uut.ym, &mut uut.ye, y);
+        assert!(simulate(&mut uut, 100));
+        assert_eq!(uut.lt.val(), x.lt(y), "{x:?} < {y:?}");
+        seen[usize::from(x.lt(y))] += 1;
+    }
+    assert!(seen.iter().all(|&n| n > 1000), "{seen:?}");
+}
+
+#[test]
+fn add_down_equals_the_model_bit_for_bit() {
+    let mut uut = AddDown::default();
+    uut.connect_all();
+    for (x, y) in pairs(7) {
+        set(&mut uut.xm, &mut uut.xe, x);
+        set(&mut uut.ym, &mut uut.ye, y);
+        assert!(simulate(&mut uut, 100));
+        let got = Fx {
+            m: signed(uut.sm.val().to_u64(), SHORT_M_BITS),
+            e: signed(uut.se.val().to_u64(), SHORT_EXP_BITS) as i32,
+        };
+        assert_eq!(got, add_down(x, y), "{x:?} + {y:?}");
+    }
+}
+
+/// Their Verilog is what Vivado would read: Verilator lints it clean.
+#[test]
+fn verilog_passes_verilator_lint() {
+    for (name, verilog) in verilogs() {
+        if let Err(e) = hdl::verilog::verilator_lint(&verilog) {
+            panic!("{name}: verilator lint failed:\n{e}");
+        }
+    }
+}
+
+/// yosys xc7 resources of the normalisers, the comparator and the adder:
+/// `cargo test --release -p hdl --test blocks -- --ignored --nocapture round_resources`
+#[test]
+#[ignore]
+fn round_resources() {
+    println!("{}", hdl::synth::markdown_table(&verilogs()).unwrap());
+}
+
+fn verilogs() -> Vec<(String, String)> {
+    fn named<L: Block>(mut uut: L, name: String) -> (String, String) {
+        uut.connect_all();
+        (name, generate_verilog(&uut))
+    }
+    vec![
+        named(
+            Round::<NUM_SUM_BITS, true>::default(),
+            format!("Round up, {NUM_SUM_BITS} → {SHORT_M_BITS} bits"),
+        ),
+        named(
+            Round::<NUM_SUM_BITS, false>::default(),
+            format!("Round down, {NUM_SUM_BITS} → {SHORT_M_BITS} bits"),
+        ),
+        named(Lt::default(), format!("ShortLt, {SHORT_M_BITS} bits")),
+        named(AddDown::default(), "AddDown".to_string()),
+    ]
+}
