@@ -22,6 +22,9 @@ use crate::intmul::IntMul;
 
 const W: [u32; 6] = widths(WIDTH);
 
+/// Cycles from the inputs to the rows, `miss` and `forward`.
+pub const LATENCY: usize = 1;
+
 /// det = e1·p̂: two mantissas' product and two bits for the sum of three.
 pub const DET_BITS: usize = (W[Vector::E1 as usize] + W[Vector::P as usize] + 2) as usize;
 /// N_u = s·p̂, N_v = dir·q̂, N_t = e2·q̂: the same, at the wider pair (all three equal).

@@ -13,6 +13,9 @@ use rust_hdl::prelude::*;
 use super::to_block::BELOW_BITS;
 use super::WIDTH;
 
+/// Cycles from `below` to `margin`.
+pub const LATENCY: usize = 1;
+
 /// Bits of the margin of `value` at [`WIDTH`], in units of the value's last bit 2^(ΣE − K):
 /// the model bounds |value| + margin by `QUOTIENT_RANGE`·2^ΣE = `QUOTIENT_RANGE`·2^K units.
 pub const fn margin_bits(value: [Vector; 4]) -> usize {

@@ -24,6 +24,9 @@ pub const EXP_BITS: usize = FIELD_BITS + 1;
 /// bound, at most `DROP_WINDOW`.
 pub const BELOW_BITS: usize = (u32::BITS - DROP_WINDOW.leading_zeros()) as usize;
 
+/// Cycles from the inputs to the block.
+pub const LATENCY: usize = 1;
+
 /// dir: fp32 significands with their sign, to W bits.
 pub type DirToBlock =
     ToBlock<{ SIGNIFICAND_BITS + 1 }, { widths(WIDTH)[Vector::Dir as usize] as usize }>;

@@ -14,6 +14,9 @@ pub const FIELD_BITS: usize = 8;
 /// Width of the difference: a significand, the guard bits, a sign and a carry.
 pub const DIFF_BITS: usize = SIGNIFICAND_BITS + GUARD_BITS as usize + 2;
 
+/// Cycles from the inputs to `d` and `e`.
+pub const LATENCY: usize = 1;
+
 /// `d`·2^(`e` − 150 − GUARD_BITS) = a − b (subnormals read as 0); `d` is two's complement,
 /// `e` the larger exponent field.
 #[derive(LogicBlock)]
