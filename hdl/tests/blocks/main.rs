@@ -4,6 +4,7 @@
 //! (about 9 CPU-minutes of the cold CI build); hdl's lib sets `test = false`.
 
 mod dual {
+    mod common;
     mod cross_block;
     mod decide;
     mod dot;

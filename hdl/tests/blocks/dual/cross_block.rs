@@ -12,6 +12,8 @@ use hw_model::dual::bfp::{
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
+
+use super::common::{lint_clean, named};
 use sw_renderer::intersect::MtQuery;
 
 /// The low `width` bits of `raw` as a signed integer.
@@ -260,11 +262,7 @@ fn q_cross_equals_the_model_bit_for_bit() {
 /// Its Verilog, at both shapes, is what Vivado would read: Verilator lints it clean.
 #[test]
 fn verilog_passes_verilator_lint() {
-    for (name, verilog) in verilogs() {
-        if let Err(e) = hdl::verilog::verilator_lint(&verilog) {
-            panic!("{name}: verilator lint failed:\n{e}");
-        }
-    }
+    lint_clean(&verilogs(), &[]);
 }
 
 /// yosys xc7 resources of the two cut cross products:
@@ -277,18 +275,17 @@ fn cross_block_resources() {
 
 /// Each cross product's label (with its widths) and Verilog.
 fn verilogs() -> Vec<(String, String)> {
-    fn named<const XW: usize, const YW: usize, const PW: usize, const W: usize>(
-        mut uut: CrossBlock<XW, YW, PW, W>,
-        name: &str,
-    ) -> (String, String) {
-        uut.connect_all();
-        (
-            format!("{name}, {XW} × {YW} → {W} bits"),
-            generate_verilog(&uut),
-        )
+    fn shape<const XW: usize, const YW: usize, const PW: usize, const W: usize>(
+        _: &CrossBlock<XW, YW, PW, W>,
+    ) -> String {
+        format!("{XW} × {YW} → {W} bits")
     }
     vec![
-        named(PCross::default(), "p = dir × e2 (PCross)"),
-        named(QCross::default(), "q = s × e1 (QCross)"),
+        named(PCross::default(), |b| {
+            format!("p = dir × e2 (PCross), {}", shape(b))
+        }),
+        named(QCross::default(), |b| {
+            format!("q = s × e1 (QCross), {}", shape(b))
+        }),
     ]
 }

@@ -7,6 +7,7 @@ use rand::rngs::StdRng;
 use rand::SeedableRng;
 use rust_hdl::prelude::*;
 
+use super::common::{lint_clean, named};
 use super::cross_block::{extremes, field, filter_blocks, mantissa, signed, tick, Clocked};
 
 impl<const AW: usize, const BW: usize, const PW: usize, const OW: usize> Clocked
@@ -132,11 +133,7 @@ fn dot_widths_are_the_smallest_that_hold_every_value() {
 /// Its Verilog, at both shapes, is what Vivado would read: Verilator lints it clean.
 #[test]
 fn verilog_passes_verilator_lint() {
-    for (name, verilog) in verilogs() {
-        if let Err(e) = hdl::verilog::verilator_lint(&verilog) {
-            panic!("{name}: verilator lint failed:\n{e}");
-        }
-    }
+    lint_clean(&verilogs(), &[]);
 }
 
 /// yosys xc7 resources of the dots:
@@ -149,19 +146,20 @@ fn dot_resources() {
 
 /// Each dot's label (with its widths) and Verilog; N_v and N_t are the same block.
 fn verilogs() -> Vec<(String, String)> {
-    fn named<const AW: usize, const BW: usize, const PW: usize, const OW: usize>(
-        mut uut: Dot<AW, BW, PW, OW>,
-        name: &str,
-    ) -> (String, String) {
-        uut.connect_all();
-        (
-            format!("{name}, {AW} · {BW} → {OW} bits"),
-            generate_verilog(&uut),
-        )
+    fn shape<const AW: usize, const BW: usize, const PW: usize, const OW: usize>(
+        _: &Dot<AW, BW, PW, OW>,
+    ) -> String {
+        format!("{AW} · {BW} → {OW} bits")
     }
     vec![
-        named(DetDot::default(), "det = e1·p (DetDot)"),
-        named(NuDot::default(), "N_u = s·p (NuDot)"),
-        named(NvDot::default(), "N_v = dir·q, N_t = e2·q (NvDot, NtDot)"),
+        named(DetDot::default(), |b| {
+            format!("det = e1·p (DetDot), {}", shape(b))
+        }),
+        named(NuDot::default(), |b| {
+            format!("N_u = s·p (NuDot), {}", shape(b))
+        }),
+        named(NvDot::default(), |b| {
+            format!("N_v = dir·q, N_t = e2·q (NvDot, NtDot), {}", shape(b))
+        }),
     ]
 }

@@ -11,6 +11,8 @@ use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
 
+use super::common::{lint_clean, named};
+
 /// The block's margin for the dropped distances `below` of a, b, c, x (0: nothing dropped).
 fn run<const MB: usize>(uut: &mut Margin<MB>, below: [i32; 4]) -> i128 {
     for (input, b) in uut.below.iter_mut().zip(below) {
@@ -171,11 +173,7 @@ fn a_margin_checks_its_width() {
 /// Its Verilog, for each kind, is what Vivado would read: Verilator lints it clean.
 #[test]
 fn verilog_passes_verilator_lint() {
-    for (name, verilog) in verilogs() {
-        if let Err(e) = hdl::verilog::verilator_lint(&verilog) {
-            panic!("{name}: verilator lint failed:\n{e}");
-        }
-    }
+    lint_clean(&verilogs(), &[]);
 }
 
 /// yosys xc7 resources of the four margins:
@@ -188,17 +186,15 @@ fn margin_resources() {
 
 /// Each kind's label (with its width) and Verilog.
 fn verilogs() -> Vec<(String, String)> {
-    fn named<const MB: usize>(mut uut: Margin<MB>, name: &str) -> (String, String) {
-        uut.connect_all();
-        (
-            format!("{name}, 4 × {BELOW_BITS} → {MB} bits"),
-            generate_verilog(&uut),
-        )
+    fn shape<const MB: usize>(_: &Margin<MB>) -> String {
+        format!("4 × {BELOW_BITS} → {MB} bits")
     }
     vec![
-        named(DetMargin::det(), "det (DetMargin)"),
-        named(UMargin::n_u(), "N_u (UMargin)"),
-        named(VMargin::n_v(), "N_v (VMargin)"),
-        named(TMargin::n_t(), "N_t (TMargin)"),
+        named(DetMargin::det(), |b| {
+            format!("det (DetMargin), {}", shape(b))
+        }),
+        named(UMargin::n_u(), |b| format!("N_u (UMargin), {}", shape(b))),
+        named(VMargin::n_v(), |b| format!("N_v (VMargin), {}", shape(b))),
+        named(TMargin::n_t(), |b| format!("N_t (TMargin), {}", shape(b))),
     ]
 }

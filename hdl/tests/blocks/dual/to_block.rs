@@ -8,6 +8,8 @@ use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
 
+use super::common::{lint_clean, named};
+
 /// The fields' bias of an fp32 significand (its last bit's exponent is field − 150);
 /// `Translate`'s differences sit GUARD_BITS lower.
 const SIGNIFICAND_BIAS: i32 = 150;
@@ -187,11 +189,7 @@ fn s_blocks_equal_the_model_bit_for_bit() {
 /// clean.
 #[test]
 fn verilog_passes_verilator_lint() {
-    for (name, verilog) in verilogs() {
-        if let Err(e) = hdl::verilog::verilator_lint(&verilog) {
-            panic!("{name}: verilator lint failed:\n{e}");
-        }
-    }
+    lint_clean(&verilogs(), &[]);
 }
 
 /// yosys xc7 resources of the three conversions:
@@ -204,19 +202,18 @@ fn to_block_resources() {
 
 /// Each conversion's label (with its widths) and Verilog.
 fn verilogs() -> Vec<(String, String)> {
-    fn named<const IW: usize, const W: usize>(
-        mut uut: ToBlock<IW, W>,
-        name: &str,
-    ) -> (String, String) {
-        uut.connect_all();
-        (
-            format!("{name}, 3 × {IW} → {W} bits"),
-            generate_verilog(&uut),
-        )
+    fn shape<const IW: usize, const W: usize>(_: &ToBlock<IW, W>) -> String {
+        format!("3 × {IW} → {W} bits")
     }
     vec![
-        named(DirToBlock::default(), "dir (DirToBlock)"),
-        named(EdgeToBlock::default(), "e1 or e2 (EdgeToBlock)"),
-        named(SToBlock::default(), "s (SToBlock)"),
+        named(DirToBlock::default(), |b| {
+            format!("dir (DirToBlock), {}", shape(b))
+        }),
+        named(EdgeToBlock::default(), |b| {
+            format!("e1 or e2 (EdgeToBlock), {}", shape(b))
+        }),
+        named(SToBlock::default(), |b| {
+            format!("s (SToBlock), {}", shape(b))
+        }),
     ]
 }

@@ -7,6 +7,8 @@ use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
 
+use super::common::{lint_clean, named};
+
 /// The block's answer for (a, b), as the model's value.
 fn run(uut: &mut Translate, a: f32, b: f32) -> Fx {
     uut.a.next = a.to_bits().to_bits();
@@ -69,9 +71,10 @@ fn translation_equals_the_model_bit_for_bit() {
 /// widths included).
 #[test]
 fn verilog_passes_verilator_lint() {
-    let mut uut = Translate::default();
-    uut.connect_all();
-    if let Err(e) = hdl::verilog::verilator_lint(&generate_verilog(&uut)) {
-        panic!("verilator lint failed:\n{e}");
-    }
+    lint_clean(
+        &[named(Translate::default(), |_| {
+            format!("Translate, fp32 − fp32 → {DIFF_BITS} bits")
+        })],
+        &[],
+    );
 }

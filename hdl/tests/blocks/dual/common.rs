@@ -1,0 +1,23 @@
+//! What the dual block tests share: each block's Verilog as a (label, Verilog) pair, the
+//! one form that both the lint check ([`lint_clean`]) and `hdl::synth::markdown_table` read.
+
+use rust_hdl::prelude::*;
+
+/// The connected block's label (`label` reads the block, e.g. its widths from its type)
+/// and its Verilog.
+pub(super) fn named<B: Block>(mut uut: B, label: impl FnOnce(&B) -> String) -> (String, String) {
+    uut.connect_all();
+    (label(&uut), generate_verilog(&uut))
+}
+
+/// Each Verilog is what Vivado would read: `verilator --lint-only -Wall` passes it with
+/// `hdl::verilog`'s waivers and the `extra` ones (`&[]` for none); panics naming the first
+/// that fails, with Verilator's complaint.
+pub(super) fn lint_clean(verilogs: &[(String, String)], extra: &[&str]) {
+    assert!(!verilogs.is_empty(), "no Verilog to lint");
+    for (label, verilog) in verilogs {
+        if let Err(e) = hdl::verilog::verilator_lint_waiving(verilog, extra) {
+            panic!("{label}: verilator lint failed:\n{e}");
+        }
+    }
+}
