@@ -518,11 +518,12 @@ impl Rows {
     }
 }
 
-/// Steps 1–4 of the bfp filter at mantissa width `width`: det, N_u, N_v, N_t, each an
-/// integer at its last bit's exponent with its margin in units of that bit ([`margin`]).
-/// `None` forwards the query (a non-finite input, a zero vector, a block exponent outside
-/// [`EXP_MIN`, `EXP_MAX`], a triple below [`SUM_MIN`]).
-pub fn values(q: &MtQuery, width: u32, margin_scale: f64) -> Option<[(Fx, i128); 4]> {
+/// Steps 1–3 of the bfp filter at mantissa width `width`: the six blocks, in the order of
+/// [`Vector`] (dir, e1, e2, s, p, q), that [`values`] takes its dots of. The points are
+/// translated to v0, each vector is cut to its block, and p = dir × e2 and q = s × e1 are
+/// computed exactly and cut. `None` forwards the query (a non-finite input, a zero vector,
+/// a block exponent outside [`EXP_MIN`, `EXP_MAX`]).
+pub fn blocks(q: &MtQuery, width: u32) -> Option<[Block; 6]> {
     let moved = |p: &[f32; 3]| -> Option<[Fx; 3]> {
         Some([
             translate(p[0], q.v0[0])?,
@@ -543,11 +544,19 @@ pub fn values(q: &MtQuery, width: u32, margin_scale: f64) -> Option<[(Fx, i128);
     if ranged.iter().any(|b| !(EXP_MIN..=EXP_MAX).contains(&b.e)) {
         return None;
     }
-    // Step 3: p = dir × e2 and q = s × e1 exactly, cut to blocks, then the dots exactly.
+    // Step 3: p = dir × e2 and q = s × e1 exactly, cut to blocks.
     let p = cross_block(&dir, &e2, w[Vector::P as usize]);
     let qv = cross_block(&s, &e1, w[Vector::Q as usize]);
-    let blocks = [dir, e1, e2, s, p, qv];
-    // Each value with its margin; a triple below SUM_MIN is forwarded.
+    Some([dir, e1, e2, s, p, qv])
+}
+
+/// Steps 1–4 of the bfp filter at mantissa width `width`: det, N_u, N_v, N_t, each an
+/// integer at its last bit's exponent with its margin in units of that bit ([`margin`]).
+/// `None` forwards the query (a non-finite input, a zero vector, a block exponent outside
+/// [`EXP_MIN`, `EXP_MAX`], a triple below [`SUM_MIN`]).
+pub fn values(q: &MtQuery, width: u32, margin_scale: f64) -> Option<[(Fx, i128); 4]> {
+    let blocks = blocks(q, width)?;
+    // Step 3's dots exactly; each value with its margin; a triple below SUM_MIN is forwarded.
     let value = |vectors: [Vector; 4]| -> Option<(Fx, i128)> {
         let [a, b, c, x] = vectors.map(|v| blocks[v as usize]);
         let lsb = a.lsb + x.lsb;

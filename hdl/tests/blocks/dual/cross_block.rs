@@ -6,9 +6,7 @@ use hdl::dual::cross_block::*;
 use hdl::dual::to_block::EXP_BITS;
 use hdl::dual::WIDTH;
 use hw_model::dual::bfp::Block as ModelBlock;
-use hw_model::dual::bfp::{
-    cross_block, split, to_block, translate, widths, Fx, Vector, EXP_MAX, EXP_MIN,
-};
+use hw_model::dual::bfp::{blocks, cross_block, widths};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
@@ -148,9 +146,8 @@ fn random_and_special<const XW: usize, const YW: usize, const PW: usize, const W
 }
 
 /// The six blocks (in the order of `Vector`: dir, e1, e2, s, p, q) of `n` random
-/// triangle/ray queries as `Filter::decide_bfp` computes them at W = `WIDTH`: each point
-/// translated to v0, each vector to its block, p and q cut; queries it forwards before
-/// step 3 (a zero vector, an exponent out of range) are skipped.
+/// triangle/ray queries as the model's `blocks` (steps 1 to 3) gives them at W = `WIDTH`;
+/// queries it forwards (a zero vector, an exponent out of range) are skipped.
 pub(super) fn filter_blocks(seed: u64, n: usize) -> Vec<[ModelBlock; 6]> {
     // A point within ±s, some coordinates 0 (axis-aligned rays and edges).
     fn point(rng: &mut StdRng, s: f32) -> [f32; 3] {
@@ -160,7 +157,6 @@ pub(super) fn filter_blocks(seed: u64, n: usize) -> Vec<[ModelBlock; 6]> {
         })
     }
     let mut rng = StdRng::seed_from_u64(seed);
-    let w = widths(WIDTH);
     let mut out = Vec::new();
     while out.len() < n {
         let scale = 2f32.powi(rng.gen_range(-16..16));
@@ -188,28 +184,7 @@ pub(super) fn filter_blocks(seed: u64, n: usize) -> Vec<[ModelBlock; 6]> {
             let length = 2f32.powi(rng.gen_range(-8..8));
             q.dir = point(&mut rng, length);
         }
-        let moved = |p: &[f32; 3]| -> [Fx; 3] {
-            std::array::from_fn(|k| translate(p[k], q.v0[k]).unwrap())
-        };
-        let dir = q.dir.map(|c| split(c).unwrap());
-        let blocks = [
-            to_block(dir, w[0]),
-            to_block(moved(&q.v1), w[1]),
-            to_block(moved(&q.v2), w[2]),
-            to_block(moved(&q.orig), w[3]),
-        ];
-        let [Some(dir), Some(e1), Some(e2), Some(s)] = blocks else {
-            continue;
-        };
-        if [dir, e1, e2, s]
-            .iter()
-            .any(|b| !(EXP_MIN..=EXP_MAX).contains(&b.e))
-        {
-            continue;
-        }
-        let p = cross_block(&dir, &e2, w[Vector::P as usize]);
-        let qv = cross_block(&s, &e1, w[Vector::Q as usize]);
-        out.push([dir, e1, e2, s, p, qv]);
+        out.extend(blocks(&q, WIDTH));
     }
     out
 }

@@ -4,12 +4,12 @@ use hdl::dual::margin::*;
 use hdl::dual::to_block::BELOW_BITS;
 use hdl::dual::WIDTH;
 use hw_model::dual::bfp::{
-    cross_block, margin_units, split, to_block, translate, widths, Block as ModelBlock, Vector,
-    DET, DROP_WINDOW, N_T, N_U, N_V,
+    blocks, margin_units, widths, Block as ModelBlock, Vector, DET, DROP_WINDOW, N_T, N_U, N_V,
 };
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
+use sw_renderer::intersect::MtQuery;
 
 use super::common::{lint_clean, named};
 
@@ -70,8 +70,8 @@ fn random<const MB: usize>(uut: &mut Margin<MB>, value: [Vector; 4], count: usiz
     }
 }
 
-/// The six blocks (dir, e1, e2, s, p, q) the model's steps 1 to 3 give a random query, or
-/// `None` where the model has no block (a zero vector).
+/// The six blocks (dir, e1, e2, s, p, q) the model's steps 1 to 3 (`blocks`) give a random
+/// query, or `None` where the model forwards it (a zero vector, an exponent out of range).
 fn filter_blocks(rng: &mut StdRng) -> Option<[ModelBlock; 6]> {
     let point = |rng: &mut StdRng| -> f32 {
         rng.gen_range(-1.0f32..1.0) * 2f32.powi(rng.gen_range(-20..20))
@@ -91,15 +91,15 @@ fn filter_blocks(rng: &mut StdRng) -> Option<[ModelBlock; 6]> {
         0 => 0.0,
         _ => rng.gen_range(-1.0f32..1.0) * 2f32.powi(rng.gen_range(-10..10)),
     });
-    let moved = |p: [f32; 3]| std::array::from_fn(|k| translate(p[k], v0[k]).unwrap());
-    let w = widths(WIDTH);
-    let dir = to_block(dir.map(|c| split(c).unwrap()), w[Vector::Dir as usize])?;
-    let e1 = to_block(moved(v1), w[Vector::E1 as usize])?;
-    let e2 = to_block(moved(v2), w[Vector::E2 as usize])?;
-    let s = to_block(moved(orig), w[Vector::S as usize])?;
-    let p = cross_block(&dir, &e2, w[Vector::P as usize]);
-    let q = cross_block(&s, &e1, w[Vector::Q as usize]);
-    Some([dir, e1, e2, s, p, q])
+    let q = MtQuery {
+        orig,
+        dir,
+        v0,
+        v1,
+        v2,
+        t_min: 0.0,
+    };
+    blocks(&q, WIDTH)
 }
 
 /// The distances `ToBlock` (and the cut) give for the blocks of random queries.
