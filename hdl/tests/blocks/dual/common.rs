@@ -3,11 +3,15 @@
 
 use rust_hdl::prelude::*;
 
-/// The connected block's label (`label` reads the block, e.g. its widths from its type)
-/// and its Verilog.
-pub(super) fn named<B: Block>(mut uut: B, label: impl FnOnce(&B) -> String) -> (String, String) {
+/// The connected block's label, "`name`, `shape`" (`shape` reads the block, e.g. its
+/// widths from its type), and its Verilog.
+pub(super) fn named<B: Block>(
+    mut uut: B,
+    name: &str,
+    shape: impl FnOnce(&B) -> String,
+) -> (String, String) {
     uut.connect_all();
-    (label(&uut), generate_verilog(&uut))
+    (format!("{name}, {}", shape(&uut)), generate_verilog(&uut))
 }
 
 /// Each Verilog is what Vivado would read: `verilator --lint-only -Wall` passes it with

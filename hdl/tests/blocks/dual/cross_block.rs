@@ -6,7 +6,7 @@ use hdl::dual::cross_block::*;
 use hdl::dual::to_block::EXP_BITS;
 use hdl::dual::WIDTH;
 use hw_model::dual::bfp::Block as ModelBlock;
-use hw_model::dual::bfp::{blocks, cross_block, widths};
+use hw_model::dual::bfp::{blocks, cross_block, Vector};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
@@ -194,44 +194,41 @@ fn biased(b: &ModelBlock, bias: usize) -> usize {
     usize::try_from(b.e + bias as i32).unwrap()
 }
 
+/// `uut` is x × y cut, of the vectors `x` and `y` at their biases `bias`: on the extremes
+/// and random blocks, whose `below`s must span nothing dropped, the nearest (W − 1) and the
+/// farthest (only the exact product's last bit, XW + YW − 2 below), then on the blocks of
+/// random queries.
+fn cross_equals_the_model<const XW: usize, const YW: usize, const PW: usize, const W: usize>(
+    mut uut: CrossBlock<XW, YW, PW, W>,
+    [x, y]: [Vector; 2],
+    bias: (usize, usize),
+    seed: u64,
+) {
+    uut.connect_all();
+    let seen = random_and_special(&mut uut, bias, seed);
+    for b in [0, W - 1, XW + YW - 2] {
+        assert!(seen.contains(&(b as u64)), "below {b} never seen: {seen:?}");
+    }
+    let cases: Vec<_> = filter_blocks(seed * 10, 2000)
+        .iter()
+        .map(|blocks| {
+            let (x, y) = (&blocks[x as usize], &blocks[y as usize]);
+            (x.m, biased(x, bias.0), y.m, biased(y, bias.1))
+        })
+        .collect();
+    stream(&mut uut, &cases, bias);
+}
+
 #[test]
 fn p_cross_equals_the_model_bit_for_bit() {
-    let mut uut = PCross::default();
-    uut.connect_all();
-    let seen = random_and_special(&mut uut, (DIR_BIAS, EDGE_BIAS), 1);
-    // The `below`s span nothing dropped, the nearest (W − 1) and the farthest (only the
-    // exact product's last bit, XW + YW − 2 below).
-    let (xw, yw, w) = (widths(WIDTH)[0], widths(WIDTH)[2], widths(WIDTH)[4]);
-    for b in [0, w - 1, xw + yw - 2] {
-        assert!(
-            seen.contains(&u64::from(b)),
-            "below {b} never seen: {seen:?}"
-        );
-    }
-    let cases: Vec<_> = filter_blocks(10, 2000)
-        .iter()
-        .map(|[dir, _, e2, ..]| (dir.m, biased(dir, DIR_BIAS), e2.m, biased(e2, EDGE_BIAS)))
-        .collect();
-    stream(&mut uut, &cases, (DIR_BIAS, EDGE_BIAS));
+    let vectors = [Vector::Dir, Vector::E2];
+    cross_equals_the_model(PCross::default(), vectors, (DIR_BIAS, EDGE_BIAS), 1);
 }
 
 #[test]
 fn q_cross_equals_the_model_bit_for_bit() {
-    let mut uut = QCross::default();
-    uut.connect_all();
-    let seen = random_and_special(&mut uut, (EDGE_BIAS, EDGE_BIAS), 2);
-    let (xw, yw, w) = (widths(WIDTH)[3], widths(WIDTH)[1], widths(WIDTH)[5]);
-    for b in [0, w - 1, xw + yw - 2] {
-        assert!(
-            seen.contains(&u64::from(b)),
-            "below {b} never seen: {seen:?}"
-        );
-    }
-    let cases: Vec<_> = filter_blocks(20, 2000)
-        .iter()
-        .map(|[_, e1, _, s, ..]| (s.m, biased(s, EDGE_BIAS), e1.m, biased(e1, EDGE_BIAS)))
-        .collect();
-    stream(&mut uut, &cases, (EDGE_BIAS, EDGE_BIAS));
+    let vectors = [Vector::S, Vector::E1];
+    cross_equals_the_model(QCross::default(), vectors, (EDGE_BIAS, EDGE_BIAS), 2);
 }
 
 /// Its Verilog, at both shapes, is what Vivado would read: Verilator lints it clean.
@@ -256,11 +253,7 @@ fn verilogs() -> Vec<(String, String)> {
         format!("{XW} × {YW} → {W} bits")
     }
     vec![
-        named(PCross::default(), |b| {
-            format!("p = dir × e2 (PCross), {}", shape(b))
-        }),
-        named(QCross::default(), |b| {
-            format!("q = s × e1 (QCross), {}", shape(b))
-        }),
+        named(PCross::default(), "p = dir × e2 (PCross)", shape),
+        named(QCross::default(), "q = s × e1 (QCross)", shape),
     ]
 }

@@ -152,14 +152,12 @@ fn verilogs() -> Vec<(String, String)> {
         format!("{AW} · {BW} → {OW} bits")
     }
     vec![
-        named(DetDot::default(), |b| {
-            format!("det = e1·p (DetDot), {}", shape(b))
-        }),
-        named(NuDot::default(), |b| {
-            format!("N_u = s·p (NuDot), {}", shape(b))
-        }),
-        named(NvDot::default(), |b| {
-            format!("N_v = dir·q, N_t = e2·q (NvDot, NtDot), {}", shape(b))
-        }),
+        named(DetDot::default(), "det = e1·p (DetDot)", shape),
+        named(NuDot::default(), "N_u = s·p (NuDot)", shape),
+        named(
+            NvDot::default(),
+            "N_v = dir·q, N_t = e2·q (NvDot, NtDot)",
+            shape,
+        ),
     ]
 }

@@ -91,14 +91,9 @@ fn filter_blocks(rng: &mut StdRng) -> Option<[ModelBlock; 6]> {
         0 => 0.0,
         _ => rng.gen_range(-1.0f32..1.0) * 2f32.powi(rng.gen_range(-10..10)),
     });
-    let q = MtQuery {
-        orig,
-        dir,
-        v0,
-        v1,
-        v2,
-        t_min: 0.0,
-    };
+    // A ray of its own direction, not one aimed at the triangle.
+    let mut q = MtQuery::aimed(orig, [v0, v1, v2], (0.0, 0.0), 0.0);
+    q.dir = dir;
     blocks(&q, WIDTH)
 }
 
@@ -190,11 +185,9 @@ fn verilogs() -> Vec<(String, String)> {
         format!("4 × {BELOW_BITS} → {MB} bits")
     }
     vec![
-        named(DetMargin::det(), |b| {
-            format!("det (DetMargin), {}", shape(b))
-        }),
-        named(UMargin::n_u(), |b| format!("N_u (UMargin), {}", shape(b))),
-        named(VMargin::n_v(), |b| format!("N_v (VMargin), {}", shape(b))),
-        named(TMargin::n_t(), |b| format!("N_t (TMargin), {}", shape(b))),
+        named(DetMargin::det(), "det (DetMargin)", shape),
+        named(UMargin::n_u(), "N_u (UMargin)", shape),
+        named(VMargin::n_v(), "N_v (VMargin)", shape),
+        named(TMargin::n_t(), "N_t (TMargin)", shape),
     ]
 }

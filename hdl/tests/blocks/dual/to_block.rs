@@ -206,14 +206,8 @@ fn verilogs() -> Vec<(String, String)> {
         format!("3 × {IW} → {W} bits")
     }
     vec![
-        named(DirToBlock::default(), |b| {
-            format!("dir (DirToBlock), {}", shape(b))
-        }),
-        named(EdgeToBlock::default(), |b| {
-            format!("e1 or e2 (EdgeToBlock), {}", shape(b))
-        }),
-        named(SToBlock::default(), |b| {
-            format!("s (SToBlock), {}", shape(b))
-        }),
+        named(DirToBlock::default(), "dir (DirToBlock)", shape),
+        named(EdgeToBlock::default(), "e1 or e2 (EdgeToBlock)", shape),
+        named(SToBlock::default(), "s (SToBlock)", shape),
     ]
 }

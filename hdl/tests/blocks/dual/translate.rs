@@ -72,8 +72,8 @@ fn translation_equals_the_model_bit_for_bit() {
 #[test]
 fn verilog_passes_verilator_lint() {
     lint_clean(
-        &[named(Translate::default(), |_| {
-            format!("Translate, fp32 − fp32 → {DIFF_BITS} bits")
+        &[named(Translate::default(), "Translate", |_| {
+            format!("fp32 − fp32 → {DIFF_BITS} bits")
         })],
         &[],
     );
