@@ -2,9 +2,9 @@
 //! normaliser, comparator and short adder, bit for bit the model's `round`, `Fx::lt` and
 //! `add_down`.
 
-use hdl::dual::add_down::AddDown;
+use hdl::dual::add_down::{self, AddDown};
 use hdl::dual::decide::{DET_SUM_BITS, NUM_SUM_BITS, PRODUCT_BITS};
-use hdl::dual::round::{Round, SHORT_EXP_BITS, SHORT_M_BITS};
+use hdl::dual::round::{self, Round, SHORT_EXP_BITS, SHORT_M_BITS};
 use hdl::dual::short_lt::Lt;
 use hw_model::dual::bfp::{add_down, round, Fx, SHORT_BITS};
 use rand::rngs::StdRng;
@@ -34,11 +34,54 @@ fn integer(rng: &mut StdRng, width: usize) -> i128 {
     }
 }
 
-/// The normaliser's answer for x·2^e as the model's value.
-fn run_round<const IW: usize, const UP: bool>(uut: &mut Round<IW, UP>, x: i128, e: i32) -> Fx {
-    uut.x.next = raw(x, IW).to_bits();
-    uut.e.next = raw(i128::from(e), SHORT_EXP_BITS).to_bits();
-    assert!(simulate(uut, 100));
+/// A block with a clock input.
+pub trait Clocked: Block {
+    fn clock(&mut self) -> &mut Signal<In, Clock>;
+}
+
+impl<const IW: usize, const UP: bool> Clocked for Round<IW, UP> {
+    fn clock(&mut self) -> &mut Signal<In, Clock> {
+        &mut self.clock
+    }
+}
+
+impl Clocked for AddDown {
+    fn clock(&mut self) -> &mut Signal<In, Clock> {
+        &mut self.clock
+    }
+}
+
+/// One clock cycle: the inputs set before it are registered at its rising edge.
+pub fn tick<B: Clocked>(uut: &mut B) {
+    uut.clock().next = Clock { clk: false };
+    assert!(simulate(uut, 1000));
+    uut.clock().next = Clock { clk: true };
+    assert!(simulate(uut, 1000));
+}
+
+/// `cases` streamed through `uut` one a cycle (`set` drives a case's inputs; `fill` follows
+/// the last), each checked (`check`) exactly `latency` clock edges after its inputs, so that
+/// a wrong latency compares a neighbour's result.
+pub fn stream<B: Clocked, C: Copy>(
+    uut: &mut B,
+    cases: &[C],
+    latency: usize,
+    fill: C,
+    mut set: impl FnMut(&mut B, C),
+    mut check: impl FnMut(&mut B, C),
+) {
+    assert!(latency > 0);
+    for i in 0..cases.len() + latency - 1 {
+        set(uut, cases.get(i).copied().unwrap_or(fill));
+        tick(uut);
+        if let Some(j) = (i + 1).checked_sub(latency) {
+            check(uut, cases[j]);
+        }
+    }
+}
+
+/// The normaliser's answer as the model's value.
+fn rounded<const IW: usize, const UP: bool>(uut: &Round<IW, UP>) -> Fx {
     Fx {
         m: signed(uut.m.val().to_u64(), SHORT_M_BITS),
         e: signed(uut.f.val().to_u64(), SHORT_EXP_BITS) as i32,
@@ -62,20 +105,32 @@ fn check_round<const IW: usize, const UP: bool>(seed: u64) -> usize {
         }
     }
     xs.extend([min, max, min + 1, max - 1, 0, (1 << 40) - 1]);
-    for (i, &x) in xs.iter().enumerate() {
-        let x = x.clamp(min, max);
-        let e = match i % 3 {
-            0 => 0,
-            1 => [-EXP_LIMIT, EXP_LIMIT][i % 2],
-            _ => rng.gen_range(-EXP_LIMIT..=EXP_LIMIT),
-        };
-        let want = round(Fx { m: x, e }, UP);
-        assert_eq!(
-            run_round(&mut uut, x, e),
-            want,
-            "round({x}·2^{e}, up = {UP})"
-        );
-    }
+    let cases: Vec<(i128, i32)> = xs
+        .iter()
+        .enumerate()
+        .map(|(i, &x)| {
+            let e = match i % 3 {
+                0 => 0,
+                1 => [-EXP_LIMIT, EXP_LIMIT][i % 2],
+                _ => rng.gen_range(-EXP_LIMIT..=EXP_LIMIT),
+            };
+            (x.clamp(min, max), e)
+        })
+        .collect();
+    stream(
+        &mut uut,
+        &cases,
+        round::LATENCY,
+        (0, 0),
+        |uut, (x, e)| {
+            uut.x.next = raw(x, IW).to_bits();
+            uut.e.next = raw(i128::from(e), SHORT_EXP_BITS).to_bits();
+        },
+        |uut, (x, e)| {
+            let want = round(Fx { m: x, e }, UP);
+            assert_eq!(rounded(uut), want, "round({x}·2^{e}, up = {UP})");
+        },
+    );
     xs.len()
 }
 
@@ -158,16 +213,25 @@ fn short_lt_equals_the_model_bit_for_bit() {
 fn add_down_equals_the_model_bit_for_bit() {
     let mut uut = AddDown::default();
     uut.connect_all();
-    for (x, y) in pairs(7) {
-        set(&mut uut.xm, &mut uut.xe, x);
-        set(&mut uut.ym, &mut uut.ye, y);
-        assert!(simulate(&mut uut, 100));
-        let got = Fx {
-            m: signed(uut.sm.val().to_u64(), SHORT_M_BITS),
-            e: signed(uut.se.val().to_u64(), SHORT_EXP_BITS) as i32,
-        };
-        assert_eq!(got, add_down(x, y), "{x:?} + {y:?}");
-    }
+    let cases = pairs(7);
+    let zero = Fx { m: 0, e: 0 };
+    stream(
+        &mut uut,
+        &cases,
+        add_down::LATENCY,
+        (zero, zero),
+        |uut, (x, y)| {
+            set(&mut uut.xm, &mut uut.xe, x);
+            set(&mut uut.ym, &mut uut.ye, y);
+        },
+        |uut, (x, y)| {
+            let got = Fx {
+                m: signed(uut.sm.val().to_u64(), SHORT_M_BITS),
+                e: signed(uut.se.val().to_u64(), SHORT_EXP_BITS) as i32,
+            };
+            assert_eq!(got, add_down(x, y), "{x:?} + {y:?}");
+        },
+    );
 }
 
 /// Their Verilog is what Vivado would read: Verilator lints it clean.
