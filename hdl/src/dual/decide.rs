@@ -3,7 +3,7 @@
 //! with their margins in units of those bits; value ± margin are integer adders, each sum
 //! normalised outward to a short float ([`Round`]: H = up(|det| + e_D), L = down(|det| −
 //! e_D), per numerator hi = up(σN + e), lo = down(σN − e)); then the table's rows are short
-//! comparisons ([`ShortLt`]), one short adder ([`AddDown`]) and one 25 × 10 product
+//! comparisons ([`ShortLt`], and [`Pow2Lt`] against the powers of two 2^-126 and 2^125), one short adder ([`AddDown`]) and one 25 × 10 product
 //! (τ'·bound: the unsigned [`IntMul`] on magnitudes, the sign beside).
 //!
 //! Pipelined, one decision a cycle, so that no stage holds more than one carry chain or
@@ -21,6 +21,7 @@ use rust_hdl::prelude::*;
 use super::add_down::{self, AddDown};
 use super::dot::dot_bits;
 use super::margin::margin_bits;
+use super::pow2_lt::Pow2Lt;
 use super::round::{self, Round, SHORT_EXP_BITS, SHORT_M_BITS};
 use super::short_lt::{Lt, ShortLt};
 use super::translate::SIGNIFICAND_BITS;
@@ -142,9 +143,10 @@ pub struct Decide {
     lo: [Round<NUM_SUM_BITS, false>; 3],
     /// H < eps.
     eps_lt: ShortLt<EPS_M_BITS>,
-    /// L < 2^-126, H < 2^125, hi < L·2^125, −lo < L·2^125.
-    tiny_lt: Lt,
-    huge_lt: Lt,
+    /// L < 2^-126, H < 2^125: against powers of two, exponent comparisons.
+    tiny_lt: Pow2Lt,
+    huge_lt: Pow2Lt,
+    /// hi < L·2^125, −lo < L·2^125.
     hi_room: [Lt; 3],
     lo_room: [Lt; 3],
     /// −hi_u < H·2^-124, −hi_v < H·2^-124.
@@ -283,8 +285,8 @@ impl Default for Decide {
             hi: Default::default(),
             lo: Default::default(),
             eps_lt: Default::default(),
-            tiny_lt: Default::default(),
-            huge_lt: Default::default(),
+            tiny_lt: Pow2Lt::new(RECIPROCAL_MIN),
+            huge_lt: Pow2Lt::new(QUOTIENT_MAX),
             hi_room: Default::default(),
             lo_room: Default::default(),
             u_flush: Default::default(),
@@ -524,12 +526,8 @@ impl Logic for Decide {
         // The range row: L ≥ 2^-126, H < 2^125, max(hi, −lo) < L·2^125.
         self.tiny_lt.xm.next = self.low.m.val();
         self.tiny_lt.xe.next = self.low.f.val();
-        self.tiny_lt.ym.next = self.one_m.val();
-        self.tiny_lt.ye.next = self.reciprocal_min.val();
         self.huge_lt.xm.next = self.high.m.val();
         self.huge_lt.xe.next = self.high.f.val();
-        self.huge_lt.ym.next = self.one_m.val();
-        self.huge_lt.ye.next = self.quotient_max.val();
         for k in 0..3 {
             self.hi_room[k].xm.next = self.hi[k].m.val();
             self.hi_room[k].xe.next = self.hi[k].f.val();

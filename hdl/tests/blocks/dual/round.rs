@@ -1,12 +1,13 @@
-//! `hdl::dual::round`, `hdl::dual::short_lt` and `hdl::dual::add_down`: step 5's
-//! normaliser, comparator and short adder, bit for bit the model's `round`, `Fx::lt` and
-//! `add_down`.
+//! `hdl::dual::round`, `hdl::dual::short_lt`, `hdl::dual::pow2_lt` and
+//! `hdl::dual::add_down`: step 5's normaliser, comparators and short adder, bit for bit the
+//! model's `round`, `Fx::lt` and `add_down`.
 
 use hdl::dual::add_down::{self, AddDown};
 use hdl::dual::decide::{DET_SUM_BITS, NUM_SUM_BITS, PRODUCT_BITS};
+use hdl::dual::pow2_lt::Pow2Lt;
 use hdl::dual::round::{self, Round, SHORT_EXP_BITS, SHORT_M_BITS};
 use hdl::dual::short_lt::Lt;
-use hw_model::dual::bfp::{add_down, round, Fx, SHORT_BITS};
+use hw_model::dual::bfp::{add_down, round, Fx, QUOTIENT_MAX, RECIPROCAL_MIN, SHORT_BITS};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
@@ -210,6 +211,57 @@ fn short_lt_equals_the_model_bit_for_bit() {
 }
 
 #[test]
+fn pow2_lt_equals_the_model_bit_for_bit() {
+    let mut rng = StdRng::seed_from_u64(8);
+    let mut seen = [0usize; 2];
+    // Decide's two powers, 0 and the tests' exponent limits.
+    let limit = EXP_LIMIT - 2 * SHORT_BITS as i32;
+    for k in [RECIPROCAL_MIN, QUOTIENT_MAX, 0, -limit, limit] {
+        let mut uut = Pow2Lt::new(k);
+        uut.connect_all();
+        let top = SHORT_BITS as i32 - 1;
+        // Short floats whose leading bit is near 2^k, zeros, ±1 and the extremes, and the
+        // boundary: 2^k itself at every mantissa length, just below and just above it.
+        let mut xs: Vec<Fx> = (0..2000).map(|_| short(&mut rng, k - top)).collect();
+        for s in 0..SHORT_BITS as i32 {
+            for m in [1i128, -1, 2, 3, (1 << s) - 1, (1 << s) + 1] {
+                for e in [k - s, k - s - 1, k - s + 1] {
+                    xs.push(Fx { m: m << s, e });
+                    xs.push(Fx { m, e });
+                }
+            }
+        }
+        xs.extend([
+            Fx { m: 0, e: k },
+            Fx {
+                m: 1 << top,
+                e: k - top,
+            },
+            Fx {
+                m: -(1 << top),
+                e: k - top,
+            },
+            Fx {
+                m: (1 << top) - 1,
+                e: k - top + 1,
+            },
+        ]);
+        for x in xs {
+            let x = Fx {
+                m: x.m.clamp(-(1 << top) - 1, 1 << top),
+                ..x
+            };
+            set(&mut uut.xm, &mut uut.xe, x);
+            assert!(simulate(&mut uut, 100));
+            let want = x.lt(Fx { m: 1, e: k });
+            assert_eq!(uut.lt.val(), want, "{x:?} < 2^{k}");
+            seen[usize::from(want)] += 1;
+        }
+    }
+    assert!(seen.iter().all(|&n| n > 1000), "{seen:?}");
+}
+
+#[test]
 fn add_down_equals_the_model_bit_for_bit() {
     let mut uut = AddDown::default();
     uut.connect_all();
@@ -267,6 +319,10 @@ fn verilogs() -> Vec<(String, String)> {
             format!("Round down, {NUM_SUM_BITS} → {SHORT_M_BITS} bits"),
         ),
         named(Lt::default(), format!("ShortLt, {SHORT_M_BITS} bits")),
+        named(
+            Pow2Lt::new(QUOTIENT_MAX),
+            format!("Pow2Lt, {SHORT_M_BITS} bits"),
+        ),
         named(AddDown::default(), "AddDown".to_string()),
     ]
 }
