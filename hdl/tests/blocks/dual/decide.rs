@@ -92,6 +92,11 @@ impl Seen {
 /// `inputs` streamed through the block one a cycle, each decision against the model's
 /// exactly [`LATENCY`] cycles after its inputs; what the model decided is counted.
 fn check(inputs: &[Input]) -> Seen {
+    check_at(inputs, LATENCY)
+}
+
+/// [`check`] with the outputs read `latency` cycles after the inputs.
+fn check_at(inputs: &[Input], latency: usize) -> Seen {
     let mut uut = Decide::default();
     uut.connect_all();
     let mut seen = Seen::default();
@@ -100,7 +105,7 @@ fn check(inputs: &[Input]) -> Seen {
         nums: [(Fx { m: 0, e: 0 }, 0); 3],
         t_min: 0.0,
     };
-    stream(&mut uut, inputs, LATENCY, zero, set, |uut, x| {
+    stream(&mut uut, inputs, latency, zero, set, |uut, x| {
         let want = decide(x.det.0, x.det.1, x.nums, x.t_min).expect("no i128 overflow");
         let (rows, miss, forward) = rows(uut);
         assert_eq!(rows, want, "{x:?}");
@@ -258,6 +263,20 @@ fn decisions_of_random_values_equal_the_model() {
         }
     }
     check(&inputs).assert_both_ways(5);
+}
+
+/// The check is tight: the same stream read a cycle early or a cycle late fails.
+#[test]
+fn a_wrong_latency_fails() {
+    let mut rng = StdRng::seed_from_u64(10);
+    let inputs: Vec<Input> = (0..200).map(|_| random(&mut rng)).collect();
+    for latency in [LATENCY - 1, LATENCY + 1] {
+        let result = std::panic::catch_unwind(|| check_at(&inputs, latency));
+        assert!(
+            result.is_err(),
+            "read at {latency} cycles, the decisions passed"
+        );
+    }
 }
 
 #[test]
