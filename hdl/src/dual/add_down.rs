@@ -2,12 +2,17 @@
 //! for bit `hw_model::dual::bfp::add_down`. Both operands are placed on a grid
 //! `ADD_GUARD_BITS` below the larger one's short mantissa (up exactly, or down by an
 //! arithmetic shift: floor), added, and normalised down by a [`Round`]; a zero operand
-//! passes the other to the normaliser. Combinational: `Decide` holds the registers.
+//! passes the other to the normaliser. The grid's sum is registered before the normaliser
+//! (itself two stages), so that the alignment and the leading-bit search of the sum are not
+//! one path.
 
 use hw_model::dual::bfp::{ADD_GUARD_BITS, SHORT_BITS};
 use rust_hdl::prelude::*;
 
 use super::round::{Round, SHORT_EXP_BITS, SHORT_M_BITS};
+
+/// Clock edges from the operands to the sum: the grid's sum, then the normaliser.
+pub const LATENCY: usize = 1 + super::round::LATENCY;
 
 /// The grid's sum: each operand below 2^(SHORT_BITS − 1 + ADD_GUARD_BITS) in magnitude, a
 /// sign and a carry.
@@ -16,12 +21,16 @@ pub const ADD_BITS: usize = SHORT_BITS as usize + ADD_GUARD_BITS as usize + 1;
 /// (`sm`, `se`) = down(x + y) for x = `xm`·2^`xe`, y = `ym`·2^`ye`.
 #[derive(LogicBlock)]
 pub struct AddDown {
+    pub clock: Signal<In, Clock>,
     pub xm: Signal<In, Bits<SHORT_M_BITS>>,
     pub xe: Signal<In, Bits<SHORT_EXP_BITS>>,
     pub ym: Signal<In, Bits<SHORT_M_BITS>>,
     pub ye: Signal<In, Bits<SHORT_EXP_BITS>>,
     pub sm: Signal<Out, Bits<SHORT_M_BITS>>,
     pub se: Signal<Out, Bits<SHORT_EXP_BITS>>,
+    /// The sum on the grid (or the non-zero operand) and its exponent.
+    sum_reg: DFF<Bits<ADD_BITS>>,
+    grid_reg: DFF<Bits<SHORT_EXP_BITS>>,
     round: Round<ADD_BITS, false>,
     sign: Constant<Bits<SHORT_M_BITS>>,
     /// The sign extension of a mantissa to the grid's width.
@@ -50,12 +59,15 @@ impl Default for AddDown {
     fn default() -> Self {
         let exp = |v: u64| Constant::new(v.to_bits());
         Self {
+            clock: Default::default(),
             xm: Default::default(),
             xe: Default::default(),
             ym: Default::default(),
             ye: Default::default(),
             sm: Default::default(),
             se: Default::default(),
+            sum_reg: Default::default(),
+            grid_reg: Default::default(),
             round: Default::default(),
             sign: Constant::new((1u64 << (SHORT_M_BITS - 1)).to_bits()),
             extension: Constant::new(
@@ -83,6 +95,9 @@ impl Default for AddDown {
 impl Logic for AddDown {
     #[hdl_gen]
     fn update(&mut self) {
+        self.sum_reg.clock.next = self.clock.val();
+        self.grid_reg.clock.next = self.clock.val();
+        self.round.clock.next = self.clock.val();
         // Sign-extended to the grid's width.
         self.x_wide.next = bit_cast::<ADD_BITS, SHORT_M_BITS>(self.xm.val());
         if (self.xm.val() & self.sign.val()).any() {
@@ -140,15 +155,17 @@ impl Logic for AddDown {
             }
         }
         // A zero operand passes the other (its exponent never counts).
-        self.round.x.next = self.x_at.val() + self.y_at.val();
-        self.round.e.next = self.grid.val();
+        self.sum_reg.d.next = self.x_at.val() + self.y_at.val();
+        self.grid_reg.d.next = self.grid.val();
         if !self.xm.val().any() {
-            self.round.x.next = self.y_wide.val();
-            self.round.e.next = self.ye.val();
+            self.sum_reg.d.next = self.y_wide.val();
+            self.grid_reg.d.next = self.ye.val();
         } else if !self.ym.val().any() {
-            self.round.x.next = self.x_wide.val();
-            self.round.e.next = self.xe.val();
+            self.sum_reg.d.next = self.x_wide.val();
+            self.grid_reg.d.next = self.xe.val();
         }
+        self.round.x.next = self.sum_reg.q.val();
+        self.round.e.next = self.grid_reg.q.val();
         self.sm.next = self.round.m.val();
         self.se.next = self.round.f.val();
     }

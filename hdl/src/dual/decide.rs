@@ -3,47 +3,58 @@
 //! with their margins in units of those bits; value ± margin are integer adders, each sum
 //! normalised outward to a short float ([`Round`]: H = up(|det| + e_D), L = down(|det| −
 //! e_D), per numerator hi = up(σN + e), lo = down(σN − e)); then the table's rows are short
-//! comparisons ([`ShortLt`]), one short adder ([`AddDown`]) and one 25 × 10 product
-//! (τ'·bound: the unsigned [`IntMul`] on magnitudes, the sign beside). One register stage:
-//! the rows, `miss` and `forward` the cycle after their inputs.
+//! comparisons ([`ShortLt`], and [`Pow2Lt`] against the powers of two 2^-126 and 2^125), one short adder ([`AddDown`]) and one 25 × 10 product
+//! (τ'·bound: the unsigned [`IntMul`] on magnitudes, the sign beside).
+//!
+//! Pipelined, one decision a cycle, so that no stage holds more than one carry chain or
+//! one normaliser half: |det| and σN; the sums; the two halves of each `Round` (H, L, hi,
+//! lo at cycle [`SHORT`]); then the comparisons and the product's magnitude; the product's
+//! sign; its `Round`; the last comparison and `miss`. The short adder runs beside the
+//! product, and shorter branches wait in [`Delay`] lines.
 
 use hw_model::dual::bfp::{
-    det_epsilon, split, widths, Vector, FLUSH_SHIFT, QUOTIENT_MAX, QUOTIENT_RANGE, RECIPROCAL_MIN,
-    SHORT_BITS,
+    det_epsilon, split, widths, Vector, DET, FLUSH_SHIFT, N_T, N_U, N_V, QUOTIENT_MAX,
+    RECIPROCAL_MIN, SHORT_BITS,
 };
 use rust_hdl::prelude::*;
 
-use super::add_down::AddDown;
-use super::round::{Round, SHORT_EXP_BITS, SHORT_M_BITS};
+use super::add_down::{self, AddDown};
+use super::dot::dot_bits;
+use super::margin::margin_bits;
+use super::pow2_lt::Pow2Lt;
+use super::round::{self, Round, SHORT_EXP_BITS, SHORT_M_BITS};
 use super::short_lt::{Lt, ShortLt};
 use super::translate::SIGNIFICAND_BITS;
 use super::WIDTH;
 use crate::intmul::IntMul;
+use crate::mt::delay::Delay;
 
 const W: [u32; 6] = widths(WIDTH);
 
-/// Cycles from the inputs to the rows, `miss` and `forward`.
-pub const LATENCY: usize = 1;
+/// A vector's mantissa width at [`WIDTH`].
+const fn width(v: Vector) -> usize {
+    W[v as usize] as usize
+}
 
-/// det = e1·p̂: two mantissas' product and two bits for the sum of three.
-pub const DET_BITS: usize = (W[Vector::E1 as usize] + W[Vector::P as usize] + 2) as usize;
+/// det = e1·p̂ at its dot's exact width ([`dot_bits`]).
+pub const DET_BITS: usize = dot_bits(width(Vector::E1), width(Vector::P));
 /// N_u = s·p̂, N_v = dir·q̂, N_t = e2·q̂: the same, at the wider pair (all three equal).
-pub const NUM_BITS: usize = (W[Vector::S as usize] + W[Vector::P as usize] + 2) as usize;
+pub const NUM_BITS: usize = dot_bits(width(Vector::S), width(Vector::P));
 const _: () = assert!(
-    W[Vector::S as usize] + W[Vector::P as usize]
-        == W[Vector::Dir as usize] + W[Vector::Q as usize]
-        && W[Vector::E2 as usize] == W[Vector::Dir as usize]
+    NUM_BITS == dot_bits(width(Vector::Dir), width(Vector::Q))
+        && NUM_BITS == dot_bits(width(Vector::E2), width(Vector::Q))
 );
 
-/// The bits of QUOTIENT_RANGE (|value| + margin ≤ QUOTIENT_RANGE·2^ΣE).
-const RANGE_BITS: u32 = u32::BITS - (QUOTIENT_RANGE as u32).leading_zeros();
-
-/// A margin in units of its value's last bit 2^(ΣE − K), K = W_a + W_x − 3: below
-/// QUOTIENT_RANGE·2^K.
-pub const DET_MARGIN_BITS: usize =
-    (W[Vector::E1 as usize] + W[Vector::P as usize] - 3 + RANGE_BITS) as usize;
-pub const NUM_MARGIN_BITS: usize =
-    (W[Vector::S as usize] + W[Vector::P as usize] - 3 + RANGE_BITS) as usize;
+/// The margins in units of their value's last bit, at step 4's widths ([`margin_bits`]).
+pub const DET_MARGIN_BITS: usize = margin_bits(DET);
+pub const NUM_MARGIN_BITS: usize = margin_bits(N_U);
+const _: () = assert!(
+    NUM_MARGIN_BITS == margin_bits(N_V)
+        && NUM_MARGIN_BITS == margin_bits(N_T)
+        // Narrower than its value: value ± margin fits one bit more.
+        && DET_MARGIN_BITS < DET_BITS
+        && NUM_MARGIN_BITS < NUM_BITS
+);
 
 /// value ± margin: one bit more than the value (exact for any inputs of these widths).
 pub const DET_SUM_BITS: usize = DET_BITS + 1;
@@ -61,8 +72,26 @@ pub const PRODUCT_BITS: usize = PRODUCT_MAG_BITS + 1;
 /// DET_EPSILON's mantissa: an fp32 significand and a sign.
 const EPS_M_BITS: usize = SIGNIFICAND_BITS + 1;
 
+/// The pipeline, as the cycle at which each value is registered: the sums (the `Round`s'
+/// inputs); H, L, hi, lo; τ'; the product's magnitude; its signed form (its `Round`'s
+/// input); the rounded product; the short sum down(lo_u + lo_v).
+const SUMS: usize = 2;
+/// H, L, hi and lo: their `Round`s' outputs.
+pub const SHORT: usize = SUMS + round::LATENCY;
+const TAU: usize = 2;
+const PRODUCT: usize = SHORT + 1;
+const SIGNED: usize = PRODUCT + 1;
+const ROUNDED: usize = SIGNED + round::LATENCY;
+const SUMMED: usize = SHORT + add_down::LATENCY;
+const _: () = assert!(TAU < SHORT && SUMMED <= ROUNDED);
+
+/// Cycles from the inputs to the rows, `miss` and `forward`: the last comparison
+/// (hi_t < down(τ'·bound)) and `miss` after the rounded product.
+pub const LATENCY: usize = ROUNDED + 1;
+
 /// The decision of one query: the table's rows (each its condition), `miss` (a certain
-/// miss: the fallback would answer no hit) and `forward` (to the fallback).
+/// miss: the fallback would answer no hit) and `forward` (to the fallback), [`LATENCY`]
+/// cycles after the inputs; a new query every cycle.
 #[derive(LogicBlock)]
 pub struct Decide {
     pub clock: Signal<In, Clock>,
@@ -85,6 +114,72 @@ pub struct Decide {
     pub t_below: Signal<Out, Bit>,
     pub miss: Signal<Out, Bit>,
     pub forward: Signal<Out, Bit>,
+    /// Cycle 1: |det|, σN and the margins; t_min's exponent and signed significand.
+    abs_reg: DFF<Bits<DET_SUM_BITS>>,
+    n_reg: [DFF<Bits<NUM_SUM_BITS>>; 3],
+    det_margin_reg: DFF<Bits<DET_MARGIN_BITS>>,
+    num_margin_reg: [DFF<Bits<NUM_MARGIN_BITS>>; 3],
+    t_e_reg: DFF<Bits<SHORT_EXP_BITS>>,
+    significand_reg: DFF<Bits<TAU_BITS>>,
+    /// Cycle [`SUMS`]: value ± margin.
+    high_x_reg: DFF<Bits<DET_SUM_BITS>>,
+    low_x_reg: DFF<Bits<DET_SUM_BITS>>,
+    hi_x_reg: [DFF<Bits<NUM_SUM_BITS>>; 3],
+    lo_x_reg: [DFF<Bits<NUM_SUM_BITS>>; 3],
+    /// The exponents beside them.
+    det_e_delay: Delay<Bits<SHORT_EXP_BITS>>,
+    num_e_delay: [Delay<Bits<SHORT_EXP_BITS>>; 3],
+    /// Cycle [`TAU`]: τ'; |τ'| and its sign wait for the bound at [`SHORT`], t_min's
+    /// exponent for the product's, its finiteness for the last row.
+    tau_reg: DFF<Bits<TAU_BITS>>,
+    tau_abs_delay: Delay<Bits<TAU_BITS>>,
+    tau_neg_delay: Delay<Bit>,
+    t_e_delay: Delay<Bits<SHORT_EXP_BITS>>,
+    finite_delay: Delay<Bit>,
+    /// H and L; per numerator hi and lo (cycle [`SHORT`]).
+    high: Round<DET_SUM_BITS, true>,
+    low: Round<DET_SUM_BITS, false>,
+    hi: [Round<NUM_SUM_BITS, true>; 3],
+    lo: [Round<NUM_SUM_BITS, false>; 3],
+    /// H < eps.
+    eps_lt: ShortLt<EPS_M_BITS>,
+    /// L < 2^-126, H < 2^125: against powers of two, exponent comparisons.
+    tiny_lt: Pow2Lt,
+    huge_lt: Pow2Lt,
+    /// hi < L·2^125, −lo < L·2^125.
+    hi_room: [Lt; 3],
+    lo_room: [Lt; 3],
+    /// −hi_u < H·2^-124, −hi_v < H·2^-124.
+    u_flush: Lt,
+    v_flush: Lt,
+    /// H < lo_u.
+    u_lt: Lt,
+    /// The rows decided at [`SHORT`], waiting for the last one.
+    parallel_delay: Delay<Bit>,
+    in_range_delay: Delay<Bit>,
+    u_below_delay: Delay<Bit>,
+    u_above_delay: Delay<Bit>,
+    v_below_delay: Delay<Bit>,
+    /// Cycle [`PRODUCT`]: |τ'|·|bound|, its sign and exponent.
+    mul: IntMul<TAU_MAG_BITS, BOUND_MAG_BITS, PRODUCT_MAG_BITS>,
+    product_reg: DFF<Bits<PRODUCT_MAG_BITS>>,
+    product_neg_reg: DFF<Bit>,
+    product_e_reg: DFF<Bits<SHORT_EXP_BITS>>,
+    /// Cycle [`SIGNED`]: the signed product, into down(τ'·bound) at [`ROUNDED`].
+    signed_reg: DFF<Bits<PRODUCT_BITS>>,
+    signed_e_reg: DFF<Bits<SHORT_EXP_BITS>>,
+    product: Round<PRODUCT_BITS, false>,
+    /// down(lo_u + lo_v) at [`SUMMED`], H beside it; H < the sum, waiting for the last row.
+    sum: AddDown,
+    high_m_delay: Delay<Bits<SHORT_M_BITS>>,
+    high_f_delay: Delay<Bits<SHORT_EXP_BITS>>,
+    uv_lt: Lt,
+    uv_delay: Delay<Bit>,
+    /// hi_t beside down(τ'·bound), and hi_t < it.
+    hi_t_m_delay: Delay<Bits<SHORT_M_BITS>>,
+    hi_t_f_delay: Delay<Bits<SHORT_EXP_BITS>>,
+    t_lt: Lt,
+    /// Cycle [`LATENCY`]: the outputs.
     parallel_reg: DFF<Bit>,
     in_range_reg: DFF<Bit>,
     u_below_reg: DFF<Bit>,
@@ -93,28 +188,6 @@ pub struct Decide {
     uv_above_reg: DFF<Bit>,
     t_below_reg: DFF<Bit>,
     miss_reg: DFF<Bit>,
-    /// H and L; per numerator hi and lo; down(τ'·bound).
-    high: Round<DET_SUM_BITS, true>,
-    low: Round<DET_SUM_BITS, false>,
-    hi: [Round<NUM_SUM_BITS, true>; 3],
-    lo: [Round<NUM_SUM_BITS, false>; 3],
-    product: Round<PRODUCT_BITS, false>,
-    mul: IntMul<TAU_MAG_BITS, BOUND_MAG_BITS, PRODUCT_MAG_BITS>,
-    sum: AddDown,
-    /// H < eps.
-    eps_lt: ShortLt<EPS_M_BITS>,
-    /// L < 2^-126, H < 2^125, hi < L·2^125, −lo < L·2^125.
-    tiny_lt: Lt,
-    huge_lt: Lt,
-    hi_room: [Lt; 3],
-    lo_room: [Lt; 3],
-    /// −hi_u < H·2^-124, −hi_v < H·2^-124.
-    u_flush: Lt,
-    v_flush: Lt,
-    /// H < lo_u, H < down(lo_u + lo_v), hi_t < down(τ'·bound).
-    u_lt: Lt,
-    uv_lt: Lt,
-    t_lt: Lt,
     eps_m: Constant<Bits<EPS_M_BITS>>,
     eps_e: Constant<Bits<SHORT_EXP_BITS>>,
     /// Sign extension of a short mantissa to EPS_M_BITS.
@@ -141,29 +214,24 @@ pub struct Decide {
     fp32_bias: Constant<Bits<SHORT_EXP_BITS>>,
     product_one: Constant<Bits<PRODUCT_BITS>>,
     det_wide: Signal<Local, Bits<DET_SUM_BITS>>,
-    det_abs: Signal<Local, Bits<DET_SUM_BITS>>,
     det_neg: Signal<Local, Bit>,
-    /// N and its margin one bit wider, σN per numerator.
+    /// N one bit wider, σN per numerator.
     num_wide: [Signal<Local, Bits<NUM_SUM_BITS>>; 3],
-    margin_wide: [Signal<Local, Bits<NUM_SUM_BITS>>; 3],
     n: [Signal<Local, Bits<NUM_SUM_BITS>>; 3],
     in_range_now: Signal<Local, Bit>,
     u_below_now: Signal<Local, Bit>,
     v_below_now: Signal<Local, Bit>,
-    certain: Signal<Local, Bit>,
+    t_below_now: Signal<Local, Bit>,
     /// τ' = ±significand − 2^k at t_min's exponent, its magnitude and the bound.
     field: Signal<Local, Bits<8>>,
-    t_e: Signal<Local, Bits<SHORT_EXP_BITS>>,
     significand: Signal<Local, Bits<TAU_BITS>>,
     unit_shift: Signal<Local, Bits<SHORT_EXP_BITS>>,
-    tau: Signal<Local, Bits<TAU_BITS>>,
     tau_neg: Signal<Local, Bit>,
     tau_abs: Signal<Local, Bits<TAU_BITS>>,
     bound_m: Signal<Local, Bits<SHORT_M_BITS>>,
     bound_e: Signal<Local, Bits<SHORT_EXP_BITS>>,
     bound_neg: Signal<Local, Bit>,
     bound_abs: Signal<Local, Bits<SHORT_M_BITS>>,
-    signed_product: Signal<Local, Bits<PRODUCT_BITS>>,
 }
 
 impl Default for Decide {
@@ -192,6 +260,58 @@ impl Default for Decide {
             t_below: Default::default(),
             miss: Default::default(),
             forward: Default::default(),
+            abs_reg: Default::default(),
+            n_reg: Default::default(),
+            det_margin_reg: Default::default(),
+            num_margin_reg: Default::default(),
+            t_e_reg: Default::default(),
+            significand_reg: Default::default(),
+            high_x_reg: Default::default(),
+            low_x_reg: Default::default(),
+            hi_x_reg: Default::default(),
+            lo_x_reg: Default::default(),
+            // The inputs' exponents reach the sums.
+            det_e_delay: Delay::new(SUMS),
+            num_e_delay: std::array::from_fn(|_| Delay::new(SUMS)),
+            tau_reg: Default::default(),
+            // From τ' (cycle TAU) and t_min's exponent (cycle 1) to the bound (SHORT).
+            tau_abs_delay: Delay::new(SHORT - TAU),
+            tau_neg_delay: Delay::new(SHORT - TAU),
+            t_e_delay: Delay::new(SHORT - 1),
+            // From t_min to the last row.
+            finite_delay: Delay::new(ROUNDED),
+            high: Default::default(),
+            low: Default::default(),
+            hi: Default::default(),
+            lo: Default::default(),
+            eps_lt: Default::default(),
+            tiny_lt: Pow2Lt::new(RECIPROCAL_MIN),
+            huge_lt: Pow2Lt::new(QUOTIENT_MAX),
+            hi_room: Default::default(),
+            lo_room: Default::default(),
+            u_flush: Default::default(),
+            v_flush: Default::default(),
+            u_lt: Default::default(),
+            parallel_delay: Delay::new(ROUNDED - SHORT),
+            in_range_delay: Delay::new(ROUNDED - SHORT),
+            u_below_delay: Delay::new(ROUNDED - SHORT),
+            u_above_delay: Delay::new(ROUNDED - SHORT),
+            v_below_delay: Delay::new(ROUNDED - SHORT),
+            mul: Default::default(),
+            product_reg: Default::default(),
+            product_neg_reg: Default::default(),
+            product_e_reg: Default::default(),
+            signed_reg: Default::default(),
+            signed_e_reg: Default::default(),
+            product: Default::default(),
+            sum: Default::default(),
+            high_m_delay: Delay::new(SUMMED - SHORT),
+            high_f_delay: Delay::new(SUMMED - SHORT),
+            uv_lt: Default::default(),
+            uv_delay: Delay::new(ROUNDED - SUMMED),
+            hi_t_m_delay: Delay::new(ROUNDED - SHORT),
+            hi_t_f_delay: Delay::new(ROUNDED - SHORT),
+            t_lt: Default::default(),
             parallel_reg: Default::default(),
             in_range_reg: Default::default(),
             u_below_reg: Default::default(),
@@ -200,23 +320,6 @@ impl Default for Decide {
             uv_above_reg: Default::default(),
             t_below_reg: Default::default(),
             miss_reg: Default::default(),
-            high: Default::default(),
-            low: Default::default(),
-            hi: Default::default(),
-            lo: Default::default(),
-            product: Default::default(),
-            mul: Default::default(),
-            sum: Default::default(),
-            eps_lt: Default::default(),
-            tiny_lt: Default::default(),
-            huge_lt: Default::default(),
-            hi_room: Default::default(),
-            lo_room: Default::default(),
-            u_flush: Default::default(),
-            v_flush: Default::default(),
-            u_lt: Default::default(),
-            uv_lt: Default::default(),
-            t_lt: Default::default(),
             eps_m: Constant::new((eps.m as u64).to_bits()),
             eps_e: exp(eps.e),
             eps_extension: Constant::new(high_ones(SHORT_M_BITS, EPS_M_BITS).to_bits()),
@@ -239,27 +342,22 @@ impl Default for Decide {
             fp32_bias: exp(bias),
             product_one: Constant::new(1u64.to_bits()),
             det_wide: Default::default(),
-            det_abs: Default::default(),
             det_neg: Default::default(),
             num_wide: Default::default(),
-            margin_wide: Default::default(),
             n: Default::default(),
             in_range_now: Default::default(),
             u_below_now: Default::default(),
             v_below_now: Default::default(),
-            certain: Default::default(),
+            t_below_now: Default::default(),
             field: Default::default(),
-            t_e: Default::default(),
             significand: Default::default(),
             unit_shift: Default::default(),
-            tau: Default::default(),
             tau_neg: Default::default(),
             tau_abs: Default::default(),
             bound_m: Default::default(),
             bound_e: Default::default(),
             bound_neg: Default::default(),
             bound_abs: Default::default(),
-            signed_product: Default::default(),
         }
     }
 }
@@ -267,6 +365,46 @@ impl Default for Decide {
 impl Logic for Decide {
     #[hdl_gen]
     fn update(&mut self) {
+        self.abs_reg.clock.next = self.clock.val();
+        self.det_margin_reg.clock.next = self.clock.val();
+        self.t_e_reg.clock.next = self.clock.val();
+        self.significand_reg.clock.next = self.clock.val();
+        self.high_x_reg.clock.next = self.clock.val();
+        self.low_x_reg.clock.next = self.clock.val();
+        self.det_e_delay.clock.next = self.clock.val();
+        self.tau_reg.clock.next = self.clock.val();
+        self.tau_abs_delay.clock.next = self.clock.val();
+        self.tau_neg_delay.clock.next = self.clock.val();
+        self.t_e_delay.clock.next = self.clock.val();
+        self.finite_delay.clock.next = self.clock.val();
+        self.high.clock.next = self.clock.val();
+        self.low.clock.next = self.clock.val();
+        for k in 0..3 {
+            self.n_reg[k].clock.next = self.clock.val();
+            self.num_margin_reg[k].clock.next = self.clock.val();
+            self.hi_x_reg[k].clock.next = self.clock.val();
+            self.lo_x_reg[k].clock.next = self.clock.val();
+            self.num_e_delay[k].clock.next = self.clock.val();
+            self.hi[k].clock.next = self.clock.val();
+            self.lo[k].clock.next = self.clock.val();
+        }
+        self.parallel_delay.clock.next = self.clock.val();
+        self.in_range_delay.clock.next = self.clock.val();
+        self.u_below_delay.clock.next = self.clock.val();
+        self.u_above_delay.clock.next = self.clock.val();
+        self.v_below_delay.clock.next = self.clock.val();
+        self.product_reg.clock.next = self.clock.val();
+        self.product_neg_reg.clock.next = self.clock.val();
+        self.product_e_reg.clock.next = self.clock.val();
+        self.signed_reg.clock.next = self.clock.val();
+        self.signed_e_reg.clock.next = self.clock.val();
+        self.product.clock.next = self.clock.val();
+        self.sum.clock.next = self.clock.val();
+        self.high_m_delay.clock.next = self.clock.val();
+        self.high_f_delay.clock.next = self.clock.val();
+        self.uv_delay.clock.next = self.clock.val();
+        self.hi_t_m_delay.clock.next = self.clock.val();
+        self.hi_t_f_delay.clock.next = self.clock.val();
         self.parallel_reg.clock.next = self.clock.val();
         self.in_range_reg.clock.next = self.clock.val();
         self.u_below_reg.clock.next = self.clock.val();
@@ -275,34 +413,24 @@ impl Logic for Decide {
         self.uv_above_reg.clock.next = self.clock.val();
         self.t_below_reg.clock.next = self.clock.val();
         self.miss_reg.clock.next = self.clock.val();
-        // |det| ± e_D at det's last bit, one bit wider (det sign-extended by hand).
+
+        // Cycle 1: |det| one bit wider (det sign-extended by hand).
         self.det_wide.next = bit_cast::<DET_SUM_BITS, DET_BITS>(self.det.val());
         self.det_neg.next = (self.det_wide.val() & self.det_sign.val()).any();
         if self.det_neg.val() {
             self.det_wide.next =
                 bit_cast::<DET_SUM_BITS, DET_BITS>(self.det.val()) | self.det_top.val();
         }
-        self.det_abs.next = self.det_wide.val();
+        self.abs_reg.d.next = self.det_wide.val();
         if self.det_neg.val() {
-            self.det_abs.next = !self.det_wide.val() + self.det_one.val();
+            self.abs_reg.d.next = !self.det_wide.val() + self.det_one.val();
         }
-        self.high.x.next =
-            self.det_abs.val() + bit_cast::<DET_SUM_BITS, DET_MARGIN_BITS>(self.det_margin.val());
-        self.high.e.next = self.det_e.val();
-        self.low.x.next =
-            self.det_abs.val() - bit_cast::<DET_SUM_BITS, DET_MARGIN_BITS>(self.det_margin.val());
-        self.low.e.next = self.det_e.val();
-        // σN ± e per numerator (σ = sign(det); 0 for a zero det). (bit_cast in a loop
-        // loses the loop variable: one per numerator.)
+        self.det_margin_reg.d.next = self.det_margin.val();
+        // σN per numerator (σ = sign(det); 0 for a zero det). (bit_cast in a loop loses the
+        // loop variable: one per numerator.)
         self.num_wide[0].next = bit_cast::<NUM_SUM_BITS, NUM_BITS>(self.num[0].val());
         self.num_wide[1].next = bit_cast::<NUM_SUM_BITS, NUM_BITS>(self.num[1].val());
         self.num_wide[2].next = bit_cast::<NUM_SUM_BITS, NUM_BITS>(self.num[2].val());
-        self.margin_wide[0].next =
-            bit_cast::<NUM_SUM_BITS, NUM_MARGIN_BITS>(self.num_margin[0].val());
-        self.margin_wide[1].next =
-            bit_cast::<NUM_SUM_BITS, NUM_MARGIN_BITS>(self.num_margin[1].val());
-        self.margin_wide[2].next =
-            bit_cast::<NUM_SUM_BITS, NUM_MARGIN_BITS>(self.num_margin[2].val());
         for k in 0..3 {
             self.n[k].next = self.num_wide[k].val();
             if (self.num_wide[k].val() & self.num_sign.val()).any() {
@@ -314,12 +442,79 @@ impl Logic for Decide {
             if !self.det.val().any() {
                 self.n[k].next = 0.into();
             }
-            self.hi[k].x.next = self.n[k].val() + self.margin_wide[k].val();
-            self.hi[k].e.next = self.num_e[k].val();
-            self.lo[k].x.next = self.n[k].val() - self.margin_wide[k].val();
-            self.lo[k].e.next = self.num_e[k].val();
+            self.n_reg[k].d.next = self.n[k].val();
+            self.num_margin_reg[k].d.next = self.num_margin[k].val();
         }
-        // H < eps (H sign-extended to eps's width).
+        // t_min's last bit's exponent and signed significand; subnormals read as 0.
+        self.field.next = self.t_min.val().get_bits::<8>(23);
+        self.t_e_reg.d.next =
+            bit_cast::<SHORT_EXP_BITS, 8>(self.field.val()) - self.fp32_bias.val();
+        self.significand.next = 0.into();
+        if self.field.val().any() {
+            self.significand.next =
+                self.hidden.val() | bit_cast::<TAU_BITS, 23>(self.t_min.val().get_bits::<23>(0));
+        }
+        self.significand_reg.d.next = self.significand.val();
+        if self.t_min.val().get_bit(31) {
+            self.significand_reg.d.next = !self.significand.val() + self.tau_one.val();
+        }
+        // A non-finite t_min decides nothing.
+        self.finite_delay.d.next = self.field.val() != self.field_max.val();
+
+        // Cycle SUMS: value ± margin at the value's last bit, exponents beside.
+        self.high_x_reg.d.next = self.abs_reg.q.val()
+            + bit_cast::<DET_SUM_BITS, DET_MARGIN_BITS>(self.det_margin_reg.q.val());
+        self.low_x_reg.d.next = self.abs_reg.q.val()
+            - bit_cast::<DET_SUM_BITS, DET_MARGIN_BITS>(self.det_margin_reg.q.val());
+        self.hi_x_reg[0].d.next = self.n_reg[0].q.val()
+            + bit_cast::<NUM_SUM_BITS, NUM_MARGIN_BITS>(self.num_margin_reg[0].q.val());
+        self.hi_x_reg[1].d.next = self.n_reg[1].q.val()
+            + bit_cast::<NUM_SUM_BITS, NUM_MARGIN_BITS>(self.num_margin_reg[1].q.val());
+        self.hi_x_reg[2].d.next = self.n_reg[2].q.val()
+            + bit_cast::<NUM_SUM_BITS, NUM_MARGIN_BITS>(self.num_margin_reg[2].q.val());
+        self.lo_x_reg[0].d.next = self.n_reg[0].q.val()
+            - bit_cast::<NUM_SUM_BITS, NUM_MARGIN_BITS>(self.num_margin_reg[0].q.val());
+        self.lo_x_reg[1].d.next = self.n_reg[1].q.val()
+            - bit_cast::<NUM_SUM_BITS, NUM_MARGIN_BITS>(self.num_margin_reg[1].q.val());
+        self.lo_x_reg[2].d.next = self.n_reg[2].q.val()
+            - bit_cast::<NUM_SUM_BITS, NUM_MARGIN_BITS>(self.num_margin_reg[2].q.val());
+        self.det_e_delay.d.next = self.det_e.val();
+        for k in 0..3 {
+            self.num_e_delay[k].d.next = self.num_e[k].val();
+        }
+        // Cycle TAU: τ' = ±significand − 2^k at t_min's last bit 2^e, k = max(0, −126 − e)
+        // (λ below 2^-102; one unit above).
+        self.unit_shift.next = 0.into();
+        if (self.t_e_reg.q.val() ^ self.exp_sign.val())
+            < (self.reciprocal_min.val() ^ self.exp_sign.val())
+        {
+            self.unit_shift.next = self.reciprocal_min.val() - self.t_e_reg.q.val();
+        }
+        self.tau_reg.d.next =
+            self.significand_reg.q.val() - (self.tau_one.val() << self.unit_shift.val());
+        self.t_e_delay.d.next = self.t_e_reg.q.val();
+        // Its sign and magnitude, waiting for the bound.
+        self.tau_neg.next = (self.tau_reg.q.val() & self.tau_sign.val()).any();
+        self.tau_abs.next = self.tau_reg.q.val();
+        if self.tau_neg.val() {
+            self.tau_abs.next = !self.tau_reg.q.val() + self.tau_one.val();
+        }
+        self.tau_abs_delay.d.next = self.tau_abs.val();
+        self.tau_neg_delay.d.next = self.tau_neg.val();
+
+        // Cycles SUMS to SHORT: the short floats H, L, hi, lo.
+        self.high.x.next = self.high_x_reg.q.val();
+        self.high.e.next = self.det_e_delay.q.val();
+        self.low.x.next = self.low_x_reg.q.val();
+        self.low.e.next = self.det_e_delay.q.val();
+        for k in 0..3 {
+            self.hi[k].x.next = self.hi_x_reg[k].q.val();
+            self.hi[k].e.next = self.num_e_delay[k].q.val();
+            self.lo[k].x.next = self.lo_x_reg[k].q.val();
+            self.lo[k].e.next = self.num_e_delay[k].q.val();
+        }
+
+        // After SHORT: H < eps (H sign-extended to eps's width).
         self.eps_lt.xm.next = bit_cast::<EPS_M_BITS, SHORT_M_BITS>(self.high.m.val());
         if (self.high.m.val() & self.short_sign.val()).any() {
             self.eps_lt.xm.next =
@@ -331,12 +526,8 @@ impl Logic for Decide {
         // The range row: L ≥ 2^-126, H < 2^125, max(hi, −lo) < L·2^125.
         self.tiny_lt.xm.next = self.low.m.val();
         self.tiny_lt.xe.next = self.low.f.val();
-        self.tiny_lt.ym.next = self.one_m.val();
-        self.tiny_lt.ye.next = self.reciprocal_min.val();
         self.huge_lt.xm.next = self.high.m.val();
         self.huge_lt.xe.next = self.high.f.val();
-        self.huge_lt.ym.next = self.one_m.val();
-        self.huge_lt.ye.next = self.quotient_max.val();
         for k in 0..3 {
             self.hi_room[k].xm.next = self.hi[k].m.val();
             self.hi_room[k].xe.next = self.hi[k].f.val();
@@ -370,44 +561,32 @@ impl Logic for Decide {
             (self.hi[0].m.val() & self.short_sign.val()).any() && !self.u_flush.lt.val();
         self.v_below_now.next =
             (self.hi[1].m.val() & self.short_sign.val()).any() && !self.v_flush.lt.val();
-        // u > 1: H < lo_u; u + v > 1: H < down(lo_u + lo_v).
+        // u > 1: H < lo_u.
         self.u_lt.xm.next = self.high.m.val();
         self.u_lt.xe.next = self.high.f.val();
         self.u_lt.ym.next = self.lo[0].m.val();
         self.u_lt.ye.next = self.lo[0].f.val();
+        self.parallel_delay.d.next = self.eps_lt.lt.val();
+        self.in_range_delay.d.next = self.in_range_now.val();
+        self.u_below_delay.d.next = self.u_below_now.val();
+        self.u_above_delay.d.next = self.u_lt.lt.val();
+        self.v_below_delay.d.next = self.v_below_now.val();
+        // u + v > 1: H < down(lo_u + lo_v), H waiting for the sum.
         self.sum.xm.next = self.lo[0].m.val();
         self.sum.xe.next = self.lo[0].f.val();
         self.sum.ym.next = self.lo[1].m.val();
         self.sum.ye.next = self.lo[1].f.val();
-        self.uv_lt.xm.next = self.high.m.val();
-        self.uv_lt.xe.next = self.high.f.val();
+        self.high_m_delay.d.next = self.high.m.val();
+        self.high_f_delay.d.next = self.high.f.val();
+        self.uv_lt.xm.next = self.high_m_delay.q.val();
+        self.uv_lt.xe.next = self.high_f_delay.q.val();
         self.uv_lt.ym.next = self.sum.sm.val();
         self.uv_lt.ye.next = self.sum.se.val();
-        // t ≤ t_min: τ' = ±significand − 2^k at t_min's last bit 2^e, k = max(0, −126 − e)
-        // (λ below 2^-102; one unit above); subnormals read as 0.
-        self.field.next = self.t_min.val().get_bits::<8>(23);
-        self.t_e.next = bit_cast::<SHORT_EXP_BITS, 8>(self.field.val()) - self.fp32_bias.val();
-        self.significand.next = 0.into();
-        if self.field.val().any() {
-            self.significand.next =
-                self.hidden.val() | bit_cast::<TAU_BITS, 23>(self.t_min.val().get_bits::<23>(0));
-        }
-        if self.t_min.val().get_bit(31) {
-            self.significand.next = !self.significand.val() + self.tau_one.val();
-        }
-        self.unit_shift.next = 0.into();
-        if (self.t_e.val() ^ self.exp_sign.val())
-            < (self.reciprocal_min.val() ^ self.exp_sign.val())
-        {
-            self.unit_shift.next = self.reciprocal_min.val() - self.t_e.val();
-        }
-        self.tau.next = self.significand.val() - (self.tau_one.val() << self.unit_shift.val());
-        self.tau_neg.next = (self.tau.val() & self.tau_sign.val()).any();
-        self.tau_abs.next = self.tau.val();
+        self.uv_delay.d.next = self.uv_lt.lt.val();
+        // t ≤ t_min, cycle PRODUCT: |τ'|·|bound|, bound = L if τ' ≥ 0 else H.
         self.bound_m.next = self.low.m.val();
         self.bound_e.next = self.low.f.val();
-        if self.tau_neg.val() {
-            self.tau_abs.next = !self.tau.val() + self.tau_one.val();
+        if self.tau_neg_delay.q.val() {
             self.bound_m.next = self.high.m.val();
             self.bound_e.next = self.high.f.val();
         }
@@ -416,35 +595,46 @@ impl Logic for Decide {
         if self.bound_neg.val() {
             self.bound_abs.next = !self.bound_m.val() + self.one_m.val();
         }
-        self.mul.a.next = bit_cast::<TAU_MAG_BITS, TAU_BITS>(self.tau_abs.val());
+        self.mul.a.next = bit_cast::<TAU_MAG_BITS, TAU_BITS>(self.tau_abs_delay.q.val());
         self.mul.b.next = bit_cast::<BOUND_MAG_BITS, SHORT_M_BITS>(self.bound_abs.val());
-        self.signed_product.next = bit_cast::<PRODUCT_BITS, PRODUCT_MAG_BITS>(self.mul.p.val());
-        if self.tau_neg.val() != self.bound_neg.val() {
-            self.signed_product.next =
-                !bit_cast::<PRODUCT_BITS, PRODUCT_MAG_BITS>(self.mul.p.val())
+        self.product_reg.d.next = self.mul.p.val();
+        self.product_neg_reg.d.next = self.tau_neg_delay.q.val() != self.bound_neg.val();
+        self.product_e_reg.d.next = self.t_e_delay.q.val() + self.bound_e.val();
+        // Cycle SIGNED: the signed product, rounded down by ROUNDED.
+        self.signed_reg.d.next =
+            bit_cast::<PRODUCT_BITS, PRODUCT_MAG_BITS>(self.product_reg.q.val());
+        if self.product_neg_reg.q.val() {
+            self.signed_reg.d.next =
+                !bit_cast::<PRODUCT_BITS, PRODUCT_MAG_BITS>(self.product_reg.q.val())
                     + self.product_one.val();
         }
-        self.product.x.next = self.signed_product.val();
-        self.product.e.next = self.t_e.val() + self.bound_e.val();
-        self.t_lt.xm.next = self.hi[2].m.val();
-        self.t_lt.xe.next = self.hi[2].f.val();
+        self.signed_e_reg.d.next = self.product_e_reg.q.val();
+        self.product.x.next = self.signed_reg.q.val();
+        self.product.e.next = self.signed_e_reg.q.val();
+        // hi_t < down(τ'·bound), hi_t waiting for it.
+        self.hi_t_m_delay.d.next = self.hi[2].m.val();
+        self.hi_t_f_delay.d.next = self.hi[2].f.val();
+        self.t_lt.xm.next = self.hi_t_m_delay.q.val();
+        self.t_lt.xe.next = self.hi_t_f_delay.q.val();
         self.t_lt.ym.next = self.product.m.val();
         self.t_lt.ye.next = self.product.f.val();
-        // A non-finite t_min decides nothing.
-        self.t_below_reg.d.next = self.t_lt.lt.val() && self.field.val() != self.field_max.val();
-        self.parallel_reg.d.next = self.eps_lt.lt.val();
-        self.in_range_reg.d.next = self.in_range_now.val();
-        self.u_below_reg.d.next = self.u_below_now.val();
-        self.u_above_reg.d.next = self.u_lt.lt.val();
-        self.v_below_reg.d.next = self.v_below_now.val();
-        self.uv_above_reg.d.next = self.uv_lt.lt.val();
-        self.certain.next = self.u_below_now.val()
-            || self.u_lt.lt.val()
-            || self.v_below_now.val()
-            || self.uv_lt.lt.val()
-            || (self.t_lt.lt.val() && self.field.val() != self.field_max.val());
-        self.miss_reg.d.next =
-            self.eps_lt.lt.val() || (self.in_range_now.val() && self.certain.val());
+
+        // Cycle LATENCY: the rows, miss and forward.
+        self.t_below_now.next = self.t_lt.lt.val() && self.finite_delay.q.val();
+        self.t_below_reg.d.next = self.t_below_now.val();
+        self.parallel_reg.d.next = self.parallel_delay.q.val();
+        self.in_range_reg.d.next = self.in_range_delay.q.val();
+        self.u_below_reg.d.next = self.u_below_delay.q.val();
+        self.u_above_reg.d.next = self.u_above_delay.q.val();
+        self.v_below_reg.d.next = self.v_below_delay.q.val();
+        self.uv_above_reg.d.next = self.uv_delay.q.val();
+        self.miss_reg.d.next = self.parallel_delay.q.val()
+            || (self.in_range_delay.q.val()
+                && (self.u_below_delay.q.val()
+                    || self.u_above_delay.q.val()
+                    || self.v_below_delay.q.val()
+                    || self.uv_delay.q.val()
+                    || self.t_below_now.val()));
         self.parallel.next = self.parallel_reg.q.val();
         self.in_range.next = self.in_range_reg.q.val();
         self.u_below.next = self.u_below_reg.q.val();

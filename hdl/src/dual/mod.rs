@@ -6,6 +6,7 @@ pub mod cross_block;
 pub mod decide;
 pub mod dot;
 pub mod margin;
+pub mod pow2_lt;
 pub mod round;
 pub mod short_lt;
 pub mod to_block;

@@ -2,12 +2,17 @@
 //! rounded outward, bit for bit `hw_model::dual::bfp::round`. The mantissa's bit count (of
 //! x XOR its sign) decides the shift that leaves `SHORT_BITS` signed bits; the arithmetic
 //! shift rounds down, and rounding up adds one if a shifted-out bit was set. A value that
-//! already fits keeps its exponent. Combinational: `Decide` holds the registers.
+//! already fits keeps its exponent. Two register stages, so that neither the leading-bit
+//! search nor the shift and increment lengthen a pipeline stage of `Decide`: the bit count,
+//! then the short float.
 
 use hw_model::dual::bfp::{widths, Vector, EXP_MAX, EXP_MIN, SHORT_BITS};
 use rust_hdl::prelude::*;
 
 use super::WIDTH;
+
+/// Clock edges from `x`, `e` to `m`, `f`.
+pub const LATENCY: usize = 2;
 
 /// A short float's mantissa: `SHORT_BITS` signed bits and one more for the carry of a
 /// rounding up (2^(SHORT_BITS − 1) itself).
@@ -37,6 +42,7 @@ pub const SHORT_EXP_BITS: usize = (u32::BITS - EXP_REACH.leading_zeros()) as usi
 /// the shift alone) or up (UP = true: plus one if a dropped bit was set).
 #[derive(LogicBlock)]
 pub struct Round<const IW: usize, const UP: bool> {
+    pub clock: Signal<In, Clock>,
     pub x: Signal<In, Bits<IW>>,
     pub e: Signal<In, Bits<SHORT_EXP_BITS>>,
     pub m: Signal<Out, Bits<SHORT_M_BITS>>,
@@ -49,10 +55,17 @@ pub struct Round<const IW: usize, const UP: bool> {
     one_m: Constant<Bits<SHORT_M_BITS>>,
     /// SHORT_BITS − 1: the magnitude bits a short mantissa holds.
     keep: Constant<Bits<SHORT_EXP_BITS>>,
+    /// Stage 1: x, e and the bit count of x XOR its sign.
+    x_reg: DFF<Bits<IW>>,
+    e_reg: DFF<Bits<SHORT_EXP_BITS>>,
+    length_reg: DFF<Bits<SHORT_EXP_BITS>>,
+    /// Stage 2: the short float.
+    m_reg: DFF<Bits<SHORT_M_BITS>>,
+    f_reg: DFF<Bits<SHORT_EXP_BITS>>,
     negative: Signal<Local, Bit>,
-    /// x XOR its sign and its bit count.
     magnitude: Signal<Local, Bits<IW>>,
     length: Signal<Local, Bits<SHORT_EXP_BITS>>,
+    held_negative: Signal<Local, Bit>,
     shift: Signal<Local, Bits<SHORT_EXP_BITS>>,
     shifted: Signal<Local, Bits<IW>>,
     /// A shifted-out bit was set.
@@ -67,6 +80,7 @@ impl<const IW: usize, const UP: bool> Default for Round<IW, UP> {
     fn default() -> Self {
         let exp = |v: u64| Constant::new(v.to_bits());
         Self {
+            clock: Default::default(),
             x: Default::default(),
             e: Default::default(),
             m: Default::default(),
@@ -77,7 +91,13 @@ impl<const IW: usize, const UP: bool> Default for Round<IW, UP> {
             one: exp(1),
             one_m: Constant::new(1u64.to_bits()),
             keep: exp(u64::from(SHORT_BITS) - 1),
+            x_reg: Default::default(),
+            e_reg: Default::default(),
+            length_reg: Default::default(),
+            m_reg: Default::default(),
+            f_reg: Default::default(),
             negative: Default::default(),
+            held_negative: Default::default(),
             magnitude: Default::default(),
             length: Default::default(),
             shift: Default::default(),
@@ -90,6 +110,12 @@ impl<const IW: usize, const UP: bool> Default for Round<IW, UP> {
 impl<const IW: usize, const UP: bool> Logic for Round<IW, UP> {
     #[hdl_gen]
     fn update(&mut self) {
+        self.x_reg.clock.next = self.clock.val();
+        self.e_reg.clock.next = self.clock.val();
+        self.length_reg.clock.next = self.clock.val();
+        self.m_reg.clock.next = self.clock.val();
+        self.f_reg.clock.next = self.clock.val();
+        // Stage 1: the bit count of x XOR its sign.
         self.negative.next = (self.x.val() & self.sign.val()).any();
         self.magnitude.next = self.x.val();
         if self.negative.val() {
@@ -101,26 +127,33 @@ impl<const IW: usize, const UP: bool> Logic for Round<IW, UP> {
                 self.length.next = i.to_bits() + self.one.val();
             }
         }
-        // Fits already (at most SHORT_BITS signed bits): kept, at its own exponent.
-        self.m.next = bit_cast::<SHORT_M_BITS, IW>(self.x.val());
-        self.f.next = self.e.val();
+        self.x_reg.d.next = self.x.val();
+        self.e_reg.d.next = self.e.val();
+        self.length_reg.d.next = self.length.val();
+        // Stage 2: fits already (at most SHORT_BITS signed bits): kept, at its own exponent.
+        self.held_negative.next = (self.x_reg.q.val() & self.sign.val()).any();
+        self.m_reg.d.next = bit_cast::<SHORT_M_BITS, IW>(self.x_reg.q.val());
+        self.f_reg.d.next = self.e_reg.q.val();
         self.shift.next = 0.into();
-        self.shifted.next = self.x.val();
+        self.shifted.next = self.x_reg.q.val();
         self.sticky.next = false;
-        if self.length.val() > self.keep.val() {
-            self.shift.next = self.length.val() - self.keep.val();
+        if self.length_reg.q.val() > self.keep.val() {
+            self.shift.next = self.length_reg.q.val() - self.keep.val();
             // Arithmetic shift right (down, towards −∞): a negative value's complement
             // shifts in zeros.
-            self.shifted.next = self.x.val() >> self.shift.val();
-            if self.negative.val() {
-                self.shifted.next = !(!self.x.val() >> self.shift.val());
+            self.shifted.next = self.x_reg.q.val() >> self.shift.val();
+            if self.held_negative.val() {
+                self.shifted.next = !(!self.x_reg.q.val() >> self.shift.val());
             }
-            self.sticky.next = (self.x.val() & !(self.ones.val() << self.shift.val())).any();
-            self.m.next = bit_cast::<SHORT_M_BITS, IW>(self.shifted.val());
+            self.sticky.next = (self.x_reg.q.val() & !(self.ones.val() << self.shift.val())).any();
+            self.m_reg.d.next = bit_cast::<SHORT_M_BITS, IW>(self.shifted.val());
             if self.up.val() && self.sticky.val() {
-                self.m.next = bit_cast::<SHORT_M_BITS, IW>(self.shifted.val()) + self.one_m.val();
+                self.m_reg.d.next =
+                    bit_cast::<SHORT_M_BITS, IW>(self.shifted.val()) + self.one_m.val();
             }
-            self.f.next = self.e.val() + self.shift.val();
+            self.f_reg.d.next = self.e_reg.q.val() + self.shift.val();
         }
+        self.m.next = self.m_reg.q.val();
+        self.f.next = self.f_reg.q.val();
     }
 }

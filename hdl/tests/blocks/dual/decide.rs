@@ -10,7 +10,7 @@ use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
 use sw_renderer::intersect::MtQuery;
 
-use super::round::raw;
+use super::round::{raw, stream, Clocked};
 
 /// One decision's inputs: det and N_u, N_v, N_t with their margins, and t_min.
 #[derive(Clone, Copy, Debug)]
@@ -20,8 +20,14 @@ struct Input {
     t_min: f32,
 }
 
-/// The block's rows, `miss` and `forward` a cycle after the input.
-fn run(uut: &mut Decide, x: &Input) -> (Rows, bool, bool) {
+impl Clocked for Decide {
+    fn clock(&mut self) -> &mut Signal<In, Clock> {
+        &mut self.clock
+    }
+}
+
+/// Drives one decision's inputs.
+fn set(uut: &mut Decide, x: Input) {
     let exp = |e: i32| raw(i128::from(e), SHORT_EXP_BITS).to_bits();
     uut.det.next = raw(x.det.0.m, DET_BITS).to_bits();
     uut.det_e.next = exp(x.det.0.e);
@@ -32,10 +38,10 @@ fn run(uut: &mut Decide, x: &Input) -> (Rows, bool, bool) {
         uut.num_margin[k].next = raw(x.nums[k].1, NUM_MARGIN_BITS).to_bits();
     }
     uut.t_min.next = u64::from(x.t_min.to_bits()).to_bits();
-    uut.clock.next = Clock { clk: false };
-    assert!(simulate(uut, 1000));
-    uut.clock.next = Clock { clk: true };
-    assert!(simulate(uut, 1000));
+}
+
+/// The block's rows, `miss` and `forward`.
+fn rows(uut: &Decide) -> (Rows, bool, bool) {
     let rows = Rows {
         parallel: uut.parallel.val(),
         in_range: uut.in_range.val(),
@@ -83,14 +89,31 @@ impl Seen {
     }
 }
 
-/// The block against the model on one input.
-fn check(uut: &mut Decide, x: &Input, seen: &mut Seen) {
-    let want = decide(x.det.0, x.det.1, x.nums, x.t_min).expect("no i128 overflow");
-    let (rows, miss, forward) = run(uut, x);
-    assert_eq!(rows, want, "{x:?}");
-    assert_eq!(miss, want.miss(), "{x:?}");
-    assert_eq!(forward, !want.miss(), "{x:?}");
-    seen.count(&want);
+/// `inputs` streamed through the block one a cycle, each decision against the model's
+/// exactly [`LATENCY`] cycles after its inputs; what the model decided is counted.
+fn check(inputs: &[Input]) -> Seen {
+    check_at(inputs, LATENCY)
+}
+
+/// [`check`] with the outputs read `latency` cycles after the inputs.
+fn check_at(inputs: &[Input], latency: usize) -> Seen {
+    let mut uut = Decide::default();
+    uut.connect_all();
+    let mut seen = Seen::default();
+    let zero = Input {
+        det: (Fx { m: 0, e: 0 }, 0),
+        nums: [(Fx { m: 0, e: 0 }, 0); 3],
+        t_min: 0.0,
+    };
+    stream(&mut uut, inputs, latency, zero, set, |uut, x| {
+        let want = decide(x.det.0, x.det.1, x.nums, x.t_min).expect("no i128 overflow");
+        let (rows, miss, forward) = rows(uut);
+        assert_eq!(rows, want, "{x:?}");
+        assert_eq!(miss, want.miss(), "{x:?}");
+        assert_eq!(forward, !want.miss(), "{x:?}");
+        seen.count(&want);
+    });
+    seen
 }
 
 /// A t_min: mostly 0, at times random of either sign, tiny (below 2^-102 and subnormal),
@@ -119,9 +142,13 @@ fn integer(rng: &mut StdRng, width: usize) -> i128 {
 /// The values' last bits' exponents the filter produces: a triple of block exponents in
 /// range less the widest mantissa pair.
 fn exponent(rng: &mut StdRng) -> i32 {
+    rng.gen_range(lowest_exponent()..=3 * EXP_MAX)
+}
+
+/// The lowest: SUM_MIN less the widest mantissa pair.
+fn lowest_exponent() -> i32 {
     let w = widths(WIDTH);
-    let k = (w[Vector::S as usize] + w[Vector::P as usize]) as i32;
-    rng.gen_range(SUM_MIN - k..=3 * EXP_MAX)
+    SUM_MIN - (w[Vector::S as usize] + w[Vector::P as usize]) as i32
 }
 
 /// Random values and margins of the block's full widths at filter exponents.
@@ -202,13 +229,8 @@ fn query(rng: &mut StdRng) -> MtQuery {
 
 #[test]
 fn decisions_of_random_values_equal_the_model() {
-    let mut uut = Decide::default();
-    uut.connect_all();
     let mut rng = StdRng::seed_from_u64(8);
-    let mut seen = Seen::default();
-    for _ in 0..2000 {
-        check(&mut uut, &random(&mut rng), &mut seen);
-    }
+    let mut inputs: Vec<Input> = (0..2000).map(|_| random(&mut rng)).collect();
     // The extremes of every input.
     let (dmin, dmax) = (-(1i128 << (DET_BITS - 1)), (1i128 << (DET_BITS - 1)) - 1);
     let (nmin, nmax) = (-(1i128 << (NUM_BITS - 1)), (1i128 << (NUM_BITS - 1)) - 1);
@@ -219,7 +241,7 @@ fn decisions_of_random_values_equal_the_model() {
     for det in [dmin, dmax, 0, 1, -1] {
         for n in [nmin, nmax, 0, 1, -1] {
             for (ed, en) in [(0, 0), (dm, nm), (1, 1)] {
-                for e in [SUM_MIN - 43, 0, 3 * EXP_MAX] {
+                for e in [lowest_exponent(), 0, 3 * EXP_MAX] {
                     let x = Input {
                         det: (Fx { m: det, e }, ed),
                         nums: [
@@ -235,22 +257,33 @@ fn decisions_of_random_values_equal_the_model() {
                         ],
                         t_min: 0.5,
                     };
-                    check(&mut uut, &x, &mut seen);
+                    inputs.push(x);
                 }
             }
         }
     }
-    seen.assert_both_ways(5);
+    check(&inputs).assert_both_ways(5);
+}
+
+/// The check is tight: the same stream read a cycle early or a cycle late fails.
+#[test]
+fn a_wrong_latency_fails() {
+    let mut rng = StdRng::seed_from_u64(10);
+    let inputs: Vec<Input> = (0..200).map(|_| random(&mut rng)).collect();
+    for latency in [LATENCY - 1, LATENCY + 1] {
+        let result = std::panic::catch_unwind(|| check_at(&inputs, latency));
+        assert!(
+            result.is_err(),
+            "read at {latency} cycles, the decisions passed"
+        );
+    }
 }
 
 #[test]
 fn decisions_of_filter_queries_equal_the_model() {
-    let mut uut = Decide::default();
-    uut.connect_all();
     let mut rng = StdRng::seed_from_u64(9);
-    let mut seen = Seen::default();
-    let mut n = 0;
-    while n < 3000 {
+    let mut inputs = Vec::new();
+    while inputs.len() < 3000 {
         let q = query(&mut rng);
         let Some([det, nu, nv, nt]) = values(&q, WIDTH, 1.0) else {
             continue;
@@ -260,18 +293,13 @@ fn decisions_of_filter_queries_equal_the_model() {
         for (v, m) in [nu, nv, nt] {
             assert!(v.m.abs() < 1 << (NUM_BITS - 1) && m < 1 << NUM_MARGIN_BITS);
         }
-        check(
-            &mut uut,
-            &Input {
-                det,
-                nums: [nu, nv, nt],
-                t_min: q.t_min,
-            },
-            &mut seen,
-        );
-        n += 1;
+        inputs.push(Input {
+            det,
+            nums: [nu, nv, nt],
+            t_min: q.t_min,
+        });
     }
-    seen.assert_both_ways(5);
+    check(&inputs).assert_both_ways(5);
 }
 
 /// Its Verilog is what Vivado would read: Verilator lints it clean but for UNOPTFLAT, the

@@ -1,12 +1,13 @@
-//! `hdl::dual::round`, `hdl::dual::short_lt` and `hdl::dual::add_down`: step 5's
-//! normaliser, comparator and short adder, bit for bit the model's `round`, `Fx::lt` and
-//! `add_down`.
+//! `hdl::dual::round`, `hdl::dual::short_lt`, `hdl::dual::pow2_lt` and
+//! `hdl::dual::add_down`: step 5's normaliser, comparators and short adder, bit for bit the
+//! model's `round`, `Fx::lt` and `add_down`.
 
-use hdl::dual::add_down::AddDown;
+use hdl::dual::add_down::{self, AddDown};
 use hdl::dual::decide::{DET_SUM_BITS, NUM_SUM_BITS, PRODUCT_BITS};
-use hdl::dual::round::{Round, SHORT_EXP_BITS, SHORT_M_BITS};
+use hdl::dual::pow2_lt::Pow2Lt;
+use hdl::dual::round::{self, Round, SHORT_EXP_BITS, SHORT_M_BITS};
 use hdl::dual::short_lt::Lt;
-use hw_model::dual::bfp::{add_down, round, Fx, SHORT_BITS};
+use hw_model::dual::bfp::{add_down, round, Fx, QUOTIENT_MAX, RECIPROCAL_MIN, SHORT_BITS};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
@@ -34,11 +35,54 @@ fn integer(rng: &mut StdRng, width: usize) -> i128 {
     }
 }
 
-/// The normaliser's answer for x·2^e as the model's value.
-fn run_round<const IW: usize, const UP: bool>(uut: &mut Round<IW, UP>, x: i128, e: i32) -> Fx {
-    uut.x.next = raw(x, IW).to_bits();
-    uut.e.next = raw(i128::from(e), SHORT_EXP_BITS).to_bits();
-    assert!(simulate(uut, 100));
+/// A block with a clock input.
+pub trait Clocked: Block {
+    fn clock(&mut self) -> &mut Signal<In, Clock>;
+}
+
+impl<const IW: usize, const UP: bool> Clocked for Round<IW, UP> {
+    fn clock(&mut self) -> &mut Signal<In, Clock> {
+        &mut self.clock
+    }
+}
+
+impl Clocked for AddDown {
+    fn clock(&mut self) -> &mut Signal<In, Clock> {
+        &mut self.clock
+    }
+}
+
+/// One clock cycle: the inputs set before it are registered at its rising edge.
+pub fn tick<B: Clocked>(uut: &mut B) {
+    uut.clock().next = Clock { clk: false };
+    assert!(simulate(uut, 1000));
+    uut.clock().next = Clock { clk: true };
+    assert!(simulate(uut, 1000));
+}
+
+/// `cases` streamed through `uut` one a cycle (`set` drives a case's inputs; `fill` follows
+/// the last), each checked (`check`) exactly `latency` clock edges after its inputs, so that
+/// a wrong latency compares a neighbour's result.
+pub fn stream<B: Clocked, C: Copy>(
+    uut: &mut B,
+    cases: &[C],
+    latency: usize,
+    fill: C,
+    mut set: impl FnMut(&mut B, C),
+    mut check: impl FnMut(&mut B, C),
+) {
+    assert!(latency > 0);
+    for i in 0..cases.len() + latency - 1 {
+        set(uut, cases.get(i).copied().unwrap_or(fill));
+        tick(uut);
+        if let Some(j) = (i + 1).checked_sub(latency) {
+            check(uut, cases[j]);
+        }
+    }
+}
+
+/// The normaliser's answer as the model's value.
+fn rounded<const IW: usize, const UP: bool>(uut: &Round<IW, UP>) -> Fx {
     Fx {
         m: signed(uut.m.val().to_u64(), SHORT_M_BITS),
         e: signed(uut.f.val().to_u64(), SHORT_EXP_BITS) as i32,
@@ -62,20 +106,32 @@ fn check_round<const IW: usize, const UP: bool>(seed: u64) -> usize {
         }
     }
     xs.extend([min, max, min + 1, max - 1, 0, (1 << 40) - 1]);
-    for (i, &x) in xs.iter().enumerate() {
-        let x = x.clamp(min, max);
-        let e = match i % 3 {
-            0 => 0,
-            1 => [-EXP_LIMIT, EXP_LIMIT][i % 2],
-            _ => rng.gen_range(-EXP_LIMIT..=EXP_LIMIT),
-        };
-        let want = round(Fx { m: x, e }, UP);
-        assert_eq!(
-            run_round(&mut uut, x, e),
-            want,
-            "round({x}·2^{e}, up = {UP})"
-        );
-    }
+    let cases: Vec<(i128, i32)> = xs
+        .iter()
+        .enumerate()
+        .map(|(i, &x)| {
+            let e = match i % 3 {
+                0 => 0,
+                1 => [-EXP_LIMIT, EXP_LIMIT][i % 2],
+                _ => rng.gen_range(-EXP_LIMIT..=EXP_LIMIT),
+            };
+            (x.clamp(min, max), e)
+        })
+        .collect();
+    stream(
+        &mut uut,
+        &cases,
+        round::LATENCY,
+        (0, 0),
+        |uut, (x, e)| {
+            uut.x.next = raw(x, IW).to_bits();
+            uut.e.next = raw(i128::from(e), SHORT_EXP_BITS).to_bits();
+        },
+        |uut, (x, e)| {
+            let want = round(Fx { m: x, e }, UP);
+            assert_eq!(rounded(uut), want, "round({x}·2^{e}, up = {UP})");
+        },
+    );
     xs.len()
 }
 
@@ -155,19 +211,79 @@ fn short_lt_equals_the_model_bit_for_bit() {
 }
 
 #[test]
+fn pow2_lt_equals_the_model_bit_for_bit() {
+    let mut rng = StdRng::seed_from_u64(8);
+    let mut seen = [0usize; 2];
+    // Decide's two powers, 0 and the tests' exponent limits.
+    let limit = EXP_LIMIT - 2 * SHORT_BITS as i32;
+    for k in [RECIPROCAL_MIN, QUOTIENT_MAX, 0, -limit, limit] {
+        let mut uut = Pow2Lt::new(k);
+        uut.connect_all();
+        let top = SHORT_BITS as i32 - 1;
+        // Short floats whose leading bit is near 2^k, zeros, ±1 and the extremes, and the
+        // boundary: 2^k itself at every mantissa length, just below and just above it.
+        let mut xs: Vec<Fx> = (0..2000).map(|_| short(&mut rng, k - top)).collect();
+        for s in 0..SHORT_BITS as i32 {
+            for m in [1i128, -1, 2, 3, (1 << s) - 1, (1 << s) + 1] {
+                for e in [k - s, k - s - 1, k - s + 1] {
+                    xs.push(Fx { m: m << s, e });
+                    xs.push(Fx { m, e });
+                }
+            }
+        }
+        xs.extend([
+            Fx { m: 0, e: k },
+            Fx {
+                m: 1 << top,
+                e: k - top,
+            },
+            Fx {
+                m: -(1 << top),
+                e: k - top,
+            },
+            Fx {
+                m: (1 << top) - 1,
+                e: k - top + 1,
+            },
+        ]);
+        for x in xs {
+            let x = Fx {
+                m: x.m.clamp(-(1 << top) - 1, 1 << top),
+                ..x
+            };
+            set(&mut uut.xm, &mut uut.xe, x);
+            assert!(simulate(&mut uut, 100));
+            let want = x.lt(Fx { m: 1, e: k });
+            assert_eq!(uut.lt.val(), want, "{x:?} < 2^{k}");
+            seen[usize::from(want)] += 1;
+        }
+    }
+    assert!(seen.iter().all(|&n| n > 1000), "{seen:?}");
+}
+
+#[test]
 fn add_down_equals_the_model_bit_for_bit() {
     let mut uut = AddDown::default();
     uut.connect_all();
-    for (x, y) in pairs(7) {
-        set(&mut uut.xm, &mut uut.xe, x);
-        set(&mut uut.ym, &mut uut.ye, y);
-        assert!(simulate(&mut uut, 100));
-        let got = Fx {
-            m: signed(uut.sm.val().to_u64(), SHORT_M_BITS),
-            e: signed(uut.se.val().to_u64(), SHORT_EXP_BITS) as i32,
-        };
-        assert_eq!(got, add_down(x, y), "{x:?} + {y:?}");
-    }
+    let cases = pairs(7);
+    let zero = Fx { m: 0, e: 0 };
+    stream(
+        &mut uut,
+        &cases,
+        add_down::LATENCY,
+        (zero, zero),
+        |uut, (x, y)| {
+            set(&mut uut.xm, &mut uut.xe, x);
+            set(&mut uut.ym, &mut uut.ye, y);
+        },
+        |uut, (x, y)| {
+            let got = Fx {
+                m: signed(uut.sm.val().to_u64(), SHORT_M_BITS),
+                e: signed(uut.se.val().to_u64(), SHORT_EXP_BITS) as i32,
+            };
+            assert_eq!(got, add_down(x, y), "{x:?} + {y:?}");
+        },
+    );
 }
 
 /// Their Verilog is what Vivado would read: Verilator lints it clean.
@@ -203,6 +319,10 @@ fn verilogs() -> Vec<(String, String)> {
             format!("Round down, {NUM_SUM_BITS} → {SHORT_M_BITS} bits"),
         ),
         named(Lt::default(), format!("ShortLt, {SHORT_M_BITS} bits")),
+        named(
+            Pow2Lt::new(QUOTIENT_MAX),
+            format!("Pow2Lt, {SHORT_M_BITS} bits"),
+        ),
         named(AddDown::default(), "AddDown".to_string()),
     ]
 }
