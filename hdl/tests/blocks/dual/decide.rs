@@ -10,6 +10,7 @@ use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
 use sw_renderer::intersect::MtQuery;
 
+use super::common::{lint_clean, named};
 use super::round::{raw, stream, Clocked};
 
 /// One decision's inputs: det and N_u, N_v, N_t with their margins, and t_min.
@@ -308,12 +309,7 @@ fn decisions_of_filter_queries_equal_the_model() {
 /// Verilator sees as a loop although no signal depends on itself.
 #[test]
 fn verilog_passes_verilator_lint() {
-    let (name, verilog) = verilog();
-    if let Err(e) =
-        hdl::verilog::verilator_lint_waiving(&verilog, hdl::verilog::UNIT_VERILATOR_WAIVERS)
-    {
-        panic!("{name}: verilator lint failed:\n{e}");
-    }
+    lint_clean(&[verilog()], hdl::verilog::UNIT_VERILATOR_WAIVERS);
 }
 
 /// yosys xc7 resources of the decisions:
@@ -325,10 +321,7 @@ fn decide_resources() {
 }
 
 fn verilog() -> (String, String) {
-    let mut uut = Decide::default();
-    uut.connect_all();
-    (
-        format!("Decide, det {DET_BITS} bits, numerators {NUM_BITS} bits"),
-        generate_verilog(&uut),
-    )
+    named(Decide::default(), "Decide", |_| {
+        format!("det {DET_BITS} bits, numerators {NUM_BITS} bits")
+    })
 }

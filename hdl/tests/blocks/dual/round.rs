@@ -12,6 +12,8 @@ use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
 
+use super::common::{lint_clean, named};
+
 /// Sign-extends the low `width` bits of `raw`.
 pub fn signed(raw: u64, width: usize) -> i128 {
     let shift = 64 - width;
@@ -289,11 +291,7 @@ fn add_down_equals_the_model_bit_for_bit() {
 /// Their Verilog is what Vivado would read: Verilator lints it clean.
 #[test]
 fn verilog_passes_verilator_lint() {
-    for (name, verilog) in verilogs() {
-        if let Err(e) = hdl::verilog::verilator_lint(&verilog) {
-            panic!("{name}: verilator lint failed:\n{e}");
-        }
-    }
+    lint_clean(&verilogs(), &[]);
 }
 
 /// yosys xc7 resources of the normalisers, the comparator and the adder:
@@ -305,24 +303,21 @@ fn round_resources() {
 }
 
 fn verilogs() -> Vec<(String, String)> {
-    fn named<L: Block>(mut uut: L, name: String) -> (String, String) {
-        uut.connect_all();
-        (name, generate_verilog(&uut))
-    }
     vec![
-        named(
-            Round::<NUM_SUM_BITS, true>::default(),
-            format!("Round up, {NUM_SUM_BITS} → {SHORT_M_BITS} bits"),
-        ),
+        named(Round::<NUM_SUM_BITS, true>::default(), "Round up", |_| {
+            format!("{NUM_SUM_BITS} → {SHORT_M_BITS} bits")
+        }),
         named(
             Round::<NUM_SUM_BITS, false>::default(),
-            format!("Round down, {NUM_SUM_BITS} → {SHORT_M_BITS} bits"),
+            "Round down",
+            |_| format!("{NUM_SUM_BITS} → {SHORT_M_BITS} bits"),
         ),
-        named(Lt::default(), format!("ShortLt, {SHORT_M_BITS} bits")),
-        named(
-            Pow2Lt::new(QUOTIENT_MAX),
-            format!("Pow2Lt, {SHORT_M_BITS} bits"),
-        ),
-        named(AddDown::default(), "AddDown".to_string()),
+        named(Lt::default(), "ShortLt", |_| format!("{SHORT_M_BITS} bits")),
+        named(Pow2Lt::new(QUOTIENT_MAX), "Pow2Lt", |_| {
+            format!("{SHORT_M_BITS} bits")
+        }),
+        named(AddDown::default(), "AddDown", |_| {
+            format!("{SHORT_M_BITS}-bit sums")
+        }),
     ]
 }
