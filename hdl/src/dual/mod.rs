@@ -5,6 +5,7 @@ pub mod add_down;
 pub mod cross_block;
 pub mod decide;
 pub mod dot;
+pub mod filter;
 pub mod margin;
 pub mod pow2_lt;
 pub mod round;

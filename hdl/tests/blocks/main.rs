@@ -8,6 +8,7 @@ mod dual {
     mod cross_block;
     mod decide;
     mod dot;
+    mod filter;
     mod margin;
     mod round;
     mod to_block;
