@@ -1,6 +1,8 @@
 //! What the dual block tests share: each block's Verilog as a (label, Verilog) pair, the
 //! one form that both the lint check ([`lint_clean`]) and `hdl::synth::markdown_table` read.
 
+use rand::rngs::StdRng;
+use rand::Rng;
 use rust_hdl::prelude::*;
 
 /// The connected block's label, "`name`, `shape`" (`shape` reads the block, e.g. its
@@ -24,6 +26,21 @@ pub(super) fn lint_clean(verilogs: &[(String, String)], extra: &[&str]) {
             panic!("{label}: verilator lint failed:\n{e}");
         }
     }
+}
+
+/// A direction nearly in the plane of triangle `v`: e1 scaled, plus up to 2^-40 of the
+/// normal, so det is tiny against its terms (the filter's near-parallel case).
+pub(super) fn near_parallel(rng: &mut StdRng, v: [[f32; 3]; 3]) -> [f32; 3] {
+    let [v0, v1, v2] = v;
+    let e1: [f32; 3] = std::array::from_fn(|k| v1[k] - v0[k]);
+    let e2: [f32; 3] = std::array::from_fn(|k| v2[k] - v0[k]);
+    let n = [
+        e1[1] * e2[2] - e1[2] * e2[1],
+        e1[2] * e2[0] - e1[0] * e2[2],
+        e1[0] * e2[1] - e1[1] * e2[0],
+    ];
+    let off = rng.gen_range(-1.0f32..1.0) * 2f32.powi(-rng.gen_range(0..40));
+    std::array::from_fn(|k| e1[k] * rng.gen_range(0.5..2.0) + n[k] * off)
 }
 
 /// A top whose output nothing drives: Verilator's UNDRIVEN warning, which no waiver of

@@ -10,7 +10,7 @@ use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
 use sw_renderer::intersect::MtQuery;
 
-use super::common::{lint_clean, named};
+use super::common::{lint_clean, named, near_parallel};
 use super::round::{raw, stream, Clocked};
 
 /// One decision's inputs: det and N_u, N_v, N_t with their margins, and t_min.
@@ -205,15 +205,7 @@ fn query(rng: &mut StdRng) -> MtQuery {
     match rng.gen_range(0..6) {
         // Near-parallel: the direction in the plane plus a little of the normal.
         0 | 1 => {
-            let e1: [f32; 3] = std::array::from_fn(|k| v1[k] - v0[k]);
-            let e2: [f32; 3] = std::array::from_fn(|k| v2[k] - v0[k]);
-            let n = [
-                e1[1] * e2[2] - e1[2] * e2[1],
-                e1[2] * e2[0] - e1[0] * e2[2],
-                e1[0] * e2[1] - e1[1] * e2[0],
-            ];
-            let off = rng.gen_range(-1.0f32..1.0) * 2f32.powi(-rng.gen_range(0..40));
-            q.dir = std::array::from_fn(|k| e1[k] * rng.gen_range(0.5..2.0) + n[k] * off);
+            q.dir = near_parallel(rng, [v0, v1, v2]);
         }
         // The origin a few ulps off the plane: t near 0.
         2 => {

@@ -13,6 +13,8 @@ use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
 use sw_renderer::intersect::MtQuery;
 
+use super::common::{lint_clean, named, near_parallel};
+
 /// Why the model's `values` refuses a query (the filter forwards it).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Cause {
@@ -212,15 +214,7 @@ fn shaped(rng: &mut StdRng) -> MtQuery {
     match rng.gen_range(0..6) {
         // Near-parallel: along e1 plus a little of the normal.
         0 => {
-            let e1: [f32; 3] = std::array::from_fn(|k| v1[k] - v0[k]);
-            let e2: [f32; 3] = std::array::from_fn(|k| v2[k] - v0[k]);
-            let n = [
-                e1[1] * e2[2] - e1[2] * e2[1],
-                e1[2] * e2[0] - e1[0] * e2[2],
-                e1[0] * e2[1] - e1[1] * e2[0],
-            ];
-            let off = rng.gen_range(-1.0f32..1.0) * 2f32.powi(-rng.gen_range(0..40));
-            q.dir = std::array::from_fn(|k| e1[k] * rng.gen_range(0.5..2.0) + n[k] * off);
+            q.dir = near_parallel(rng, [v0, v1, v2]);
         }
         // The origin a hair off the plane: t near 0.
         1 => {
@@ -353,12 +347,7 @@ fn no_margin_overflows_at_the_filter_width() {
 /// outputs, which Verilator sees as a loop although every path crosses a register).
 #[test]
 fn verilog_passes_verilator_lint() {
-    let (name, verilog) = verilog();
-    if let Err(e) =
-        hdl::verilog::verilator_lint_waiving(&verilog, hdl::verilog::UNIT_VERILATOR_WAIVERS)
-    {
-        panic!("{name}: verilator lint failed:\n{e}");
-    }
+    lint_clean(&[verilog()], hdl::verilog::UNIT_VERILATOR_WAIVERS);
 }
 
 /// yosys xc7 resources of the whole lane:
@@ -370,10 +359,7 @@ fn bfp_filter_resources() {
 }
 
 fn verilog() -> (String, String) {
-    let mut uut = BfpFilter::default();
-    uut.connect_all();
-    (
-        format!("BfpFilter, bfp{WIDTH}/fp32, latency {LATENCY}"),
-        generate_verilog(&uut),
-    )
+    named(BfpFilter::default(), "BfpFilter", |_| {
+        format!("bfp{WIDTH}/fp32, latency {LATENCY}")
+    })
 }
