@@ -272,7 +272,7 @@ impl Default for Decide {
             lo_x_reg: Default::default(),
             // The inputs' exponents reach the sums.
             det_e_delay: Delay::new(SUMS),
-            num_e_delay: std::array::from_fn(|_| Delay::new(SUMS)),
+            num_e_delay: Delay::lines(SUMS),
             tau_reg: Default::default(),
             // From τ' (cycle TAU) and t_min's exponent (cycle 1) to the bound (SHORT).
             tau_abs_delay: Delay::new(SHORT - TAU),

@@ -110,7 +110,7 @@ pub struct BfpFilter {
     e2_sub: [Translate; 3],
     s_sub: [Translate; 3],
     /// dir has no translation: its components wait for the others'.
-    dir_line: Vec<Delay<Bits<32>>>,
+    dir_line: [Delay<Bits<32>>; 3],
     /// Step 2.
     dir_block: DirToBlock,
     e1_block: EdgeToBlock,
@@ -120,10 +120,10 @@ pub struct BfpFilter {
     /// N_t = e2·q̂; the mantissas of dir, e1, e2 and s wait for the cut.
     p_cross: PCross,
     q_cross: QCross,
-    dir_m: Vec<Delay<DirM>>,
-    e1_m: Vec<Delay<EdgeM>>,
-    e2_m: Vec<Delay<EdgeM>>,
-    s_m: Vec<Delay<SM>>,
+    dir_m: [Delay<DirM>; 3],
+    e1_m: [Delay<EdgeM>; 3],
+    e2_m: [Delay<EdgeM>; 3],
+    s_m: [Delay<SM>; 3],
     det_dot: DetDot,
     nu_dot: NuDot,
     nv_dot: NvDot,
@@ -191,11 +191,6 @@ pub struct BfpFilter {
     sum_low: Signal<Local, Bit>,
 }
 
-/// `n` delay lines of `cycles` clocks.
-fn delays<T: Synth>(n: usize, cycles: usize) -> Vec<Delay<T>> {
-    (0..n).map(|_| Delay::new(cycles)).collect()
-}
-
 impl Default for BfpFilter {
     fn default() -> Self {
         let bits = |v: usize| -> u64 { v as u64 };
@@ -232,17 +227,17 @@ impl Default for BfpFilter {
             e1_sub: Default::default(),
             e2_sub: Default::default(),
             s_sub: Default::default(),
-            dir_line: delays(3, translate::LATENCY),
+            dir_line: Delay::lines(translate::LATENCY),
             dir_block: Default::default(),
             e1_block: Default::default(),
             e2_block: Default::default(),
             s_block: Default::default(),
             p_cross: Default::default(),
             q_cross: Default::default(),
-            dir_m: delays(3, cross_block::LATENCY),
-            e1_m: delays(3, cross_block::LATENCY),
-            e2_m: delays(3, cross_block::LATENCY),
-            s_m: delays(3, cross_block::LATENCY),
+            dir_m: Delay::lines(cross_block::LATENCY),
+            e1_m: Delay::lines(cross_block::LATENCY),
+            e2_m: Delay::lines(cross_block::LATENCY),
+            s_m: Delay::lines(cross_block::LATENCY),
             det_dot: Default::default(),
             nu_dot: Default::default(),
             nv_dot: Default::default(),

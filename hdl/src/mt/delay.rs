@@ -52,6 +52,11 @@ impl<T: Synth> Delay<T> {
             tap: Default::default(),
         }
     }
+
+    /// `N` lines of `cycles` clocks each (one per component of a vector, say).
+    pub fn lines<const N: usize>(cycles: usize) -> [Self; N] {
+        std::array::from_fn(|_| Self::new(cycles))
+    }
 }
 
 impl<T: Synth> Logic for Delay<T> {

@@ -241,11 +241,6 @@ pub struct BoxTest {
     frac_mask: Constant<Word>,
 }
 
-/// `N` word delay lines of `cycles` each.
-fn delays<const N: usize>(cycles: usize) -> [Delay<Word>; N] {
-    std::array::from_fn(|_| Delay::new(cycles))
-}
-
 impl BoxTest {
     pub fn new(depth: usize) -> Self {
         let s = schedule(depth);
@@ -267,23 +262,23 @@ impl BoxTest {
             near: Default::default(),
             first: Default::default(),
             slabs: std::array::from_fn(|_| Slab::new(&s)),
-            inv_at_slab: delays(s.inv_to_slab()),
+            inv_at_slab: Delay::lines(s.inv_to_slab()),
             t_hi_at_fold: Delay::new(s.t_hi_to_fold()),
             lo_at_step: to_step(),
             hi_at_step: to_step(),
             near_step: std::array::from_fn(|_| Lt::new(s.lt)),
             far_step: std::array::from_fn(|_| Lt::new(s.lt)),
-            lo_at_keep: delays(s.lt),
-            hi_at_keep: delays(s.lt),
-            near_at_keep: delays(s.lt),
-            far_at_keep: delays(s.lt),
+            lo_at_keep: Delay::lines(s.lt),
+            hi_at_keep: Delay::lines(s.lt),
+            near_at_keep: Delay::lines(s.lt),
+            far_at_keep: Delay::lines(s.lt),
             running_near: Default::default(),
             running_far: Default::default(),
             far_before_near: std::array::from_fn(|_| Lt::new(s.lt)),
             near_order: Lt::new(s.lt),
-            near_at_out: delays(s.lt),
+            near_at_out: Delay::lines(s.lt),
             far_nan: Default::default(),
-            far_nan_at_out: std::array::from_fn(|_| Delay::new(s.lt)),
+            far_nan_at_out: Delay::lines(s.lt),
             valid_at_out: Delay::new(s.latency),
             tag_at_out: Delay::new(s.latency),
             zero: Constant::new(0.into()),

@@ -204,11 +204,6 @@ pub struct RaySetupUnit {
     minus_huge: Constant<Word>,
 }
 
-/// `N` word delay lines of `cycles` each.
-fn delays<const N: usize>(cycles: usize) -> [Delay<Word>; N] {
-    std::array::from_fn(|_| Delay::new(cycles))
-}
-
 impl RaySetupUnit {
     pub fn new(depth: usize) -> Self {
         let s = schedule(depth);
@@ -229,23 +224,23 @@ impl RaySetupUnit {
             t_hi: Default::default(),
             abs_at_step: std::array::from_fn(|k| Delay::new(s.axis_to_step(k))),
             magnitude_step: std::array::from_fn(|_| Lt::new(s.lt)),
-            abs_at_keep: delays(s.lt),
-            running_at_keep: delays(s.lt),
+            abs_at_keep: Delay::lines(s.lt),
+            running_at_keep: Delay::lines(s.lt),
             running: Default::default(),
             scale: Mul::new(s.mul),
-            orig_at_pad: delays(s.orig_to_pad()),
+            orig_at_pad: Delay::lines(s.orig_to_pad()),
             lo: std::array::from_fn(|_| Add::new(s.add)),
             hi: std::array::from_fn(|_| Sub::new(s.sub)),
             recip: std::array::from_fn(|_| Recip::new(s.recip)),
-            sign_at_inv: std::array::from_fn(|_| Delay::new(s.sign_to_inv())),
+            sign_at_inv: Delay::lines(s.sign_to_inv()),
             slope: Default::default(),
             bound_at_far: Delay::new(s.t_bound),
             valid_at_far: Delay::new(s.t_bound),
             tag_at_far: Delay::new(s.t_bound),
             far: FarEnd::with_late_pad(depth, s.pad_after_bound()),
-            orig_lo_at_out: delays(s.to_out(s.t_orig_lo)),
-            orig_hi_at_out: delays(s.to_out(s.t_orig_hi)),
-            inv_at_out: delays(s.to_out(s.t_inv)),
+            orig_lo_at_out: Delay::lines(s.to_out(s.t_orig_lo)),
+            orig_hi_at_out: Delay::lines(s.to_out(s.t_orig_hi)),
+            inv_at_out: Delay::lines(s.to_out(s.t_inv)),
             pad_at_out: Delay::new(s.to_out(s.t_pad)),
             t_hi_at_out: Delay::new(s.to_out(s.t_hi)),
             valid_at_out: Delay::new(s.to_out(s.t_hi)),
