@@ -4,6 +4,7 @@
 pub mod accel_model;
 pub mod axil_master;
 pub mod cosim_error;
+pub mod dual_pair;
 pub mod error;
 pub mod hw_intersector;
 pub mod projection;

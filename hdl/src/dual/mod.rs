@@ -7,9 +7,11 @@ pub mod decide;
 pub mod dot;
 pub mod filter;
 pub mod margin;
+pub mod pair;
 pub mod pow2_lt;
 pub mod round;
 pub mod short_lt;
+pub mod slot;
 pub mod to_block;
 pub mod translate;
 

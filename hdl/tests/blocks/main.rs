@@ -10,6 +10,7 @@ mod dual {
     mod dot;
     mod filter;
     mod margin;
+    mod pair;
     mod round;
     mod to_block;
     mod translate;

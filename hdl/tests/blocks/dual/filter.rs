@@ -156,7 +156,7 @@ fn float(rng: &mut StdRng, lo: i32, hi: i32) -> f32 {
 }
 
 /// Coordinates at random, in one scale or in wildly mixed ones.
-fn random(rng: &mut StdRng) -> MtQuery {
+pub(super) fn random(rng: &mut StdRng) -> MtQuery {
     let (lo, hi) = if rng.gen() {
         let e = rng.gen_range(-20..20);
         (e - 3, e + 3)
@@ -198,7 +198,7 @@ fn t_min(rng: &mut StdRng) -> f32 {
 /// A query shaped like the filter's work: rays aimed near the triangle's edges (hits and
 /// misses), near-parallel rays, origins just off the plane, rays behind their origin;
 /// scenes from 2^-12 to 2^12 units, thin and large triangles.
-fn shaped(rng: &mut StdRng) -> MtQuery {
+pub(super) fn shaped(rng: &mut StdRng) -> MtQuery {
     let size = 2f32.powi(rng.gen_range(-12..=12));
     let v0 = point(rng, size);
     let spread = size * 2f32.powi(-rng.gen_range(0..8));
@@ -243,7 +243,7 @@ fn scaled(q: MtQuery, k: i32) -> MtQuery {
 /// A shaped query made to meet one of `values`' refusals: a non-finite coordinate, a zero
 /// vector, coordinates beyond the exponent range either way, or triples below SUM_MIN with
 /// every vector in range.
-fn refused(rng: &mut StdRng) -> MtQuery {
+pub(super) fn refused(rng: &mut StdRng) -> MtQuery {
     let mut q = shaped(rng);
     let k = rng.gen_range(0..3);
     match rng.gen_range(0..8) {
