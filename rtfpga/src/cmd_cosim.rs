@@ -10,6 +10,7 @@ use anyhow::{bail, Context, Result};
 use clap::{Args as ClapArgs, ValueEnum};
 use sim::accel_model::VcdWindow;
 use sim::axil_master::Completion;
+use sim::dual_pair::{PairConfig, PairIntersector};
 use sim::hw_intersector::{HwIntersector, Mode};
 use sim::traversal_unit::{Traffic, UnitEngine};
 use sw_renderer::compare;
@@ -73,7 +74,7 @@ pub struct Args {
 /// The spawn policy by name and the policy itself, as `render --engine hw|traversal` in the
 /// same format resolves them. The hardware takes its queries unscaled.
 fn spawn(a: &Args) -> Result<(&'static str, SpawnPolicy)> {
-    let format = a.hw.single_format()?;
+    let format = a.hw.answer_format();
     let choice = a.spawn.choice(a.unit.engine(), &format);
     Ok((choice.name(), choice.policy(&format, 0)))
 }
@@ -85,6 +86,9 @@ pub fn run(a: Args) -> Result<()> {
         return run_traversal(&a, &scene);
     }
     let (spawn_name, spawn) = spawn(&a)?;
+    if let Some(pair) = a.hw.pair_config()? {
+        return run_pair(&a, &scene, &pair, spawn_name, spawn);
+    }
     let config = a.hw.top_config()?;
     let mode = match a.mode {
         ModeArg::Stream => Mode::Stream,
@@ -151,6 +155,44 @@ pub fn run(a: Args) -> Result<()> {
             a.vcd_from + a.vcd_cycles
         );
     }
+    print_comparison(&out, &sw)
+}
+
+/// `--format bfp18/fp32`: the render's queries through the Verilated dual-precision pair,
+/// the share the filters forwarded to the fp32 lane and the tests per cycle.
+fn run_pair(
+    a: &Args,
+    scene: &Scene,
+    pair: &PairConfig,
+    spawn_name: &str,
+    spawn: SpawnPolicy,
+) -> Result<()> {
+    if a.mode != ModeArg::Stream || a.vcd.is_some() {
+        bail!("--format {}: the dual-precision pair is driven at its ports (no AXI bus: --mode stream, no --vcd)", a.hw.format);
+    }
+    let hw = PairIntersector::new(pair)?;
+    println!(
+        "model {} ({:.1} s)",
+        hw.name(),
+        hw.build_time().as_secs_f64()
+    );
+    let out = render(scene, &hw, &options(a, spawn))
+        .with_context(|| format!("co-simulating {}", hw.name()))?;
+    let sw = save_and_render_software(a, scene, &out)?;
+    let s = hw.stats();
+    println!(
+        "scene={} size={}x{} engine=\"{}\" spawn={spawn_name} tests={} forwarded={} forwarded_share={:.4} cycles={} tests_per_cycle={:.4} stall_cycles={}",
+        scene.name,
+        out.image.width(),
+        out.image.height(),
+        hw.name(),
+        s.tests,
+        s.forwarded,
+        s.forwarded_share(),
+        s.cycles,
+        s.tests_per_cycle(),
+        s.stall_cycles
+    );
     print_comparison(&out, &sw)
 }
 

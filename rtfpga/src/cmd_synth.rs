@@ -1,16 +1,19 @@
 //! `rtfpga synth`: yosys Xilinx 7-series resources and logic depth of the whole accelerator,
 //! of one operator or of the traversal unit (`--unit traversal`), and whether it fits an
-//! XC7Z020 (for the accelerator also how many lanes would).
+//! XC7Z020 (for the accelerator also how many lanes would, for a dual-precision pair how many
+//! filter slots).
 
 use anyhow::{bail, Result};
 use clap::Args as ClapArgs;
 
 use crate::engine::{HwConfig, UnitAdvanceArgs, UnitKind};
+use hdl::dual::pair::{forward_latency, MISS_LATENCY};
 use hdl::operator::Op;
 use hdl::synth::{synthesize, SynthOptions, SynthReport};
 use hdl::top::fit::{fit_from, synthesize_top, LaneFit, Usage, XC7Z020};
 use hdl::top::TopConfig;
 use hdl::traversal::unit::unit_verilog;
+use sim::dual_pair::{pair_verilog, PairConfig};
 
 #[derive(ClapArgs)]
 pub struct Args {
@@ -64,6 +67,9 @@ pub fn run(a: Args) -> Result<()> {
         let label = format!("{} {} stages={}", format, op, a.stages);
         return print(&label, &report, Some(rtl.latency), None, a.json);
     }
+    if let Some(pair) = a.hw.pair_config()? {
+        return synth_pair(&a, &pair, &options);
+    }
     let config = a.hw.top_config()?;
     config.validate()?;
     let report = synthesize_top(&config, &options)?;
@@ -92,6 +98,40 @@ pub fn run(a: Args) -> Result<()> {
         fit,
         a.json,
     )
+}
+
+/// `--format bfp18/fp32`: the dual-precision pair, and how many filter slots would fit
+/// beside its one fp32 lane (from the 1- and 2-slot designs).
+fn synth_pair(a: &Args, pair: &PairConfig, options: &SynthOptions) -> Result<()> {
+    if a.op.is_some() {
+        bail!(
+            "--op synthesises one operator of a single-format lane, not of a dual-precision pair"
+        );
+    }
+    let synth = |slots: usize| -> Result<SynthReport> {
+        let verilog = pair_verilog(&PairConfig { slots, ..*pair })?;
+        Ok(synthesize(&verilog, hdl::verilog::TOP, options)?)
+    };
+    let report = synth(pair.slots)?;
+    let fit = if a.no_fit {
+        None
+    } else {
+        let at = |slots: usize| -> Result<Usage> {
+            if slots == pair.slots {
+                return Ok(Usage::of(&report));
+            }
+            Ok(Usage::of(&synth(slots)?))
+        };
+        Some(fit_from(at(1)?, at(2)?, &XC7Z020))
+    };
+    if !a.json {
+        println!(
+            "latency: {} cycles to a certain miss, {} to a forwarded query's answer (queue empty, fp32 lane free); the lanes below are filter slots, the fixed part is the fp32 lane",
+            MISS_LATENCY,
+            forward_latency(pair.depth)
+        );
+    }
+    print(&pair.to_string(), &report, None, fit, a.json)
 }
 
 fn print(

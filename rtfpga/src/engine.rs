@@ -8,11 +8,13 @@ use hdl::top::TopConfig;
 use hdl::traversal::scene_memory;
 use hdl::traversal::unit::UnitConfig;
 use hw_model::dual::{
-    BoundArith, DualIntersector, Filter, FilterFormat, FilterKind, FormatChoice, HW_BOUND_BITS,
+    BoundArith, DualIntersector, Filter, FilterFormat, FilterKind, FormatChoice, FormatPair,
+    HW_BOUND_BITS,
 };
 use hw_model::precision::{auto_scale_exp, SceneRange, SpawnChoice};
 use hw_model::traversal::{SceneCapacity, SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
 use hw_model::{Advance, Edges, Format, ModelIntersector, NamedChoice};
+use sim::dual_pair::{PairConfig, PairIntersector, SLOTS};
 use sim::hw_intersector::{HwIntersector, Mode};
 use sw_renderer::intersect::F32Intersector;
 use sw_renderer::rays::RayEngine;
@@ -58,13 +60,15 @@ impl UnitKind {
 pub struct HwConfig {
     /// Number format of the datapath: a catalogue name (`rtfpga formats`), or for the model
     /// engine any spelling such as e8m14 or fx<24,8>, or a dual-precision pair
-    /// FILTER/FALLBACK such as fp16/fp32 (docs/precision.md).
+    /// FILTER/FALLBACK such as fp16/fp32 (docs/precision.md; the model engine, and
+    /// bfp18/fp32 also in hardware: `--engine hw`, `cosim`).
     #[arg(long, default_value = "fp32")]
     pub format: FormatChoice,
     /// Pipeline registers per operator.
     #[arg(long, default_value_t = 1)]
     pub depth: usize,
-    /// Parallel MT lanes.
+    /// Parallel MT lanes (a dual-precision pair in hardware: its filter slots, which share
+    /// one fp32 lane).
     #[arg(long, default_value_t = 1)]
     pub lanes: usize,
     /// Ray slots of the traversal unit (`--engine traversal`: its schedule model's cycles).
@@ -138,6 +142,12 @@ pub fn make_scaled(
         return Ok(Made {
             engine: Box::new(dual.clone()),
             dual: Some(dual),
+        });
+    }
+    if let (EngineKind::Hw, Some(pair)) = (kind, hw.pair_config()?) {
+        return Ok(Made {
+            engine: Box::new(PairIntersector::new(&pair)?),
+            dual: None,
         });
     }
     let engine: Box<dyn RayEngine> = match kind {
@@ -392,14 +402,50 @@ fn parse_capacity(s: &str) -> Result<SceneCapacity, String> {
 }
 
 impl HwConfig {
-    /// The datapath's one format: a pair is an error here, dual precision is model-only.
+    /// The datapath's one format: a pair is an error here (the model engine and the
+    /// Möller-Trumbore hardware take one, [`HwConfig::pair_config`]).
     pub fn single_format(&self) -> Result<Format> {
         match self.format {
             FormatChoice::Single(format) => Ok(format),
             FormatChoice::Pair(pair) => bail!(
-                "--format {pair}: dual precision is model-only so far (render or bench with --engine model); no hardware, traversal unit or co-simulation takes a format pair yet"
+                "--format {pair}: one format only here; dual-precision pairs are model-only (--engine model) but for bfp{}/fp32, which the Möller-Trumbore hardware also builds (render --engine hw, cosim, synth)",
+                hdl::dual::WIDTH
             ),
         }
+    }
+
+    /// The format the answers are in: the one format, or a pair's fallback.
+    pub fn answer_format(&self) -> Format {
+        match self.format {
+            FormatChoice::Single(format) => format,
+            FormatChoice::Pair(pair) => pair.fallback,
+        }
+    }
+
+    /// The dual-precision pair in hardware (`None` for one format): `--lanes` bfp filter
+    /// slots sharing one fp32 lane at `--depth`. Only the pair built in rust-hdl is: its
+    /// filter width (`hdl::dual::WIDTH`), its bfp filter, 1 to 4 slots.
+    pub fn pair_config(&self) -> Result<Option<PairConfig>> {
+        let FormatChoice::Pair(pair) = self.format else {
+            return Ok(None);
+        };
+        let built = FormatPair::parse(&format!("bfp{}/fp32", hdl::dual::WIDTH))?;
+        let filter = self.dual_filter.unwrap_or(DualFilter::Bfp);
+        if pair != built || filter != DualFilter::Bfp {
+            bail!("--format {pair} --dual-filter {filter:?}: the hardware pair is {built} with its bfp filter; other pairs and filters are model-only (--engine model)");
+        }
+        if !SLOTS.contains(&self.lanes) {
+            bail!(
+                "--format {pair} --lanes {}: a pair is built with {} to {} filter slots (--lanes) sharing one fp32 lane",
+                self.lanes,
+                SLOTS.start(),
+                SLOTS.end()
+            );
+        }
+        Ok(Some(PairConfig {
+            slots: self.lanes,
+            depth: self.depth,
+        }))
     }
 
     /// The traversal unit's model in this configuration, its Möller-Trumbore queries scaled

@@ -449,7 +449,7 @@ fn format_pairs_are_checked_and_model_only() {
         args.extend(extra);
         fails(&args, 1, &["bfp18/fp32", needle]);
     }
-    let model_only = "dual precision is model-only";
+    let model_only = "model-only";
     for engine in ["hw", "traversal"] {
         let args = render("fp16/fp32", engine);
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
@@ -476,6 +476,56 @@ fn format_pairs_are_checked_and_model_only() {
         &[model_only],
     );
     assert!(!out_png.exists());
+}
+
+/// The pair built in hardware, bfp18/fp32, co-simulates: the image is fp32's (PSNR inf
+/// against the software render) and the forwarded share is printed. The configurations it
+/// is not built in are errors naming what is.
+#[test]
+fn the_hardware_pair_cosimulates_as_fp32() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_png = dir.path().join("pair.png");
+    let cosim = |extra: &[&str]| -> Vec<String> {
+        let base = [
+            "cosim",
+            "--scene",
+            "simple_plane",
+            "--width",
+            "12",
+            "--height",
+            "8",
+            "--format",
+            "bfp18/fp32",
+            "--out",
+            s(&out_png),
+            "--quiet",
+        ];
+        base.iter().chain(extra).map(|a| a.to_string()).collect()
+    };
+    for (extra, needles) in [
+        (
+            &["--lanes", "5"][..],
+            &["--lanes 5", "1 to 4 filter slots"][..],
+        ),
+        (&["--lanes", "2", "--mode", "register"], &["at its ports"]),
+        (
+            &["--lanes", "2", "--dual-filter", "quotient"],
+            &["the hardware pair is bfp18/fp32", "model-only"],
+        ),
+    ] {
+        let args = cosim(extra);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        fails(&args, 1, needles);
+    }
+    assert!(!out_png.exists());
+    // Two slots at depth 1: the model sim's tests build (cached on disk).
+    let args = cosim(&["--lanes", "2", "--depth", "1"]);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let out = ok(&args);
+    assert!(out.contains("engine=\"hw bfp18/fp32 pair s2 d1\""), "{out}");
+    assert!(out.contains(" forwarded_share=0."), "{out}");
+    assert_eq!(last_line(&out), "psnr_db=inf", "{out}");
+    assert_eq!(read_png(&out_png).dimensions(), (12, 8));
 }
 
 /// `--advance leaf-box` reaches the traversal unit's model: the CLI's image is the library's

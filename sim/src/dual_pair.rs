@@ -316,6 +316,11 @@ impl PairIntersector {
         self.model.config
     }
 
+    /// Time spent generating the Verilog and building (or loading) the model.
+    pub fn build_time(&self) -> Duration {
+        self.model.build_time
+    }
+
     pub fn stats(&self) -> PairStats {
         *self.stats.lock().unwrap_or_else(|p| p.into_inner())
     }

@@ -590,3 +590,57 @@ points = ["fx16_13_d0_l1"]
     assert!(again.synth_cached);
     assert_eq!(again.synth, Some(synth));
 }
+
+/// The pair built in hardware, bfp18/fp32, is co-simulated at every built slot count, its
+/// images the fallback's; `cargo test --release -p sim --test sweep -- --ignored` (four
+/// Verilator builds of the pair, about a minute each; its synthesis, ~30 min, is not run).
+#[test]
+#[ignore]
+fn the_hardware_pair_is_cosimulated_at_every_slot_count() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = r#"
+formats = ["fp32"]
+depths = [1]
+lanes = [1]
+pairs = ["bfp18/fp32"]
+policies = ["thesis"]
+scenes = ["simple_plane"]
+width = 32
+height = 18
+stages = ["quality", "cosim"]
+"#;
+    let config = sweep::load(&config_file(dir.path(), "pair.toml", text)).unwrap();
+    let out = dir.path().join("out");
+    let layout = Layout::new(&out);
+    let results = sweep::run_local(&config, &out, &local(1)).unwrap();
+    let dual: DualResult =
+        read_json(&layout.dual_result("bfp18/fp32", SpawnChoice::Thesis)).unwrap();
+    let hw = dual.hardware.expect("bfp18/fp32 is built in hardware");
+    assert!(hw.synth.is_empty() && hw.fit().is_none());
+    let slots: Vec<usize> = hw.cosim.iter().map(|c| c.slots).collect();
+    assert_eq!(slots, [1, 2, 3, 4]);
+    for c in &hw.cosim {
+        assert_eq!(c.differing_from_fallback, 0, "{c:?}");
+        assert_eq!(c.tests, dual.scenes[0].tests, "{c:?}");
+        assert_eq!(c.forwarded, dual.scenes[0].forwarded, "{c:?}");
+        // At most one query per slot and cycle (this image's batches are too small to
+        // fill the pipeline: no lower bound).
+        let rate = hw.tests_per_cycle(c.slots).unwrap();
+        assert!(rate > 0.0 && rate <= c.slots as f64, "{c:?}");
+    }
+    let md = sweep::table::markdown(&results).unwrap();
+    assert!(md.contains("### bfp18/fp32 in hardware"), "{md}");
+    assert!(md.contains("Not synthesised"), "{md}");
+    // A format and the hardware-less pair have no hardware record.
+    let float: DualResult = {
+        let text = text
+            .replace("bfp18/fp32", "bfp16/fp32")
+            .replace("\"cosim\"", "");
+        let text = text.replace("[\"quality\", ]", "[\"quality\"]");
+        let config = sweep::load(&config_file(dir.path(), "model.toml", &text)).unwrap();
+        let out = dir.path().join("out2");
+        sweep::run_local(&config, &out, &local(1)).unwrap();
+        read_json(&Layout::new(&out).dual_result("bfp16/fp32", SpawnChoice::Thesis)).unwrap()
+    };
+    assert_eq!(float.hardware, None);
+}

@@ -61,6 +61,9 @@ pub struct DualPair<const N: usize> {
     lane: fp32::MtLane,
     /// The tag waits beside the fp32 lane.
     lane_tag: Delay<Bits<TAG>>,
+    /// Slot i's bit in the arbiter's vectors, 1 << i (rust-hdl emits a bit select of a
+    /// one-bit vector, which Verilog does not take, so the slots' bits are masks).
+    slot_bit: Vec<Constant<Bits<N>>>,
     has_room: Signal<Local, Bit>,
     /// The slots whose queue holds a query (a local: a block's input does not accumulate
     /// in rust-hdl's simulation).
@@ -71,7 +74,10 @@ pub struct DualPair<const N: usize> {
 
 impl<const N: usize> DualPair<N> {
     pub fn new(depth: usize) -> Self {
-        assert!(N >= 1, "a dual pair needs at least one filter slot");
+        assert!(
+            (1..=64).contains(&N),
+            "a dual pair has 1 to 64 filter slots"
+        );
         Self {
             clock: Default::default(),
             valid: crate::defaults(N),
@@ -90,6 +96,9 @@ impl<const N: usize> DualPair<N> {
             arbiter: Default::default(),
             lane: fp32::MtLane::new(depth),
             lane_tag: Delay::new(fp32::MtLane::latency(depth)),
+            slot_bit: (0..N)
+                .map(|i| Constant::new((1u64 << i).to_bits()))
+                .collect(),
             has_room: Default::default(),
             requests: Default::default(),
             granted: Default::default(),
@@ -117,17 +126,16 @@ impl<const N: usize> Logic for DualPair<N> {
             self.slots[i].tag.next = self.tag[i].val();
             self.miss_valid[i].next = self.slots[i].miss_valid.val();
             self.miss_tag[i].next = self.slots[i].miss_tag.val();
-            self.requests.next = self
-                .requests
-                .val()
-                .replace_bit(i, self.slots[i].has_query.val());
+            if self.slots[i].has_query.val() {
+                self.requests.next = self.requests.val() | self.slot_bit[i].val();
+            }
         }
         // The fp32 lane takes the granted slot's head.
         self.arbiter.request.next = self.requests.val();
         self.granted.next = 0.into();
         for i in 0..N {
-            self.slots[i].read.next = self.arbiter.grant.val().get_bit(i);
-            if self.arbiter.grant.val().get_bit(i) {
+            self.slots[i].read.next = (self.arbiter.grant.val() & self.slot_bit[i].val()).any();
+            if (self.arbiter.grant.val() & self.slot_bit[i].val()).any() {
                 self.granted.next = self.slots[i].head.val();
             }
         }

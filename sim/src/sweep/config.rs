@@ -114,8 +114,9 @@ pub struct SweepConfig {
     /// Origin advances of the model lane the quality stage renders each format with
     /// ([`SweepConfig::variants`] says under which policies).
     pub advances: Vec<Advance>,
-    /// Dual-precision pairs (`FILTER/FALLBACK`, as `FormatPair` prints them): model only, no
-    /// hardware yet, so quality and the forwarded share but no points.
+    /// Dual-precision pairs (`FILTER/FALLBACK`, as `FormatPair` prints them): quality and the
+    /// forwarded share; the pair built in hardware also its resources and co-simulation
+    /// (`sweep::dual`), not as a point.
     pub pairs: Vec<String>,
     /// Write every point's generated files to its directory (else only their size is kept).
     pub keep_verilog: bool,
@@ -420,11 +421,12 @@ fn check_formats(
     let mut out = Vec::new();
     for f in src.non_empty(list, key)? {
         if f.get_ref().contains('/') {
-            // A valid pair is still refused here: it has no hardware, only the model.
+            // A valid pair is still refused here: a point is an accelerator of one format.
             let why = match FormatPair::parse(f.get_ref()) {
                 Ok(pair) => format!(
-                    "`{pair}` is a dual-precision pair, which has no hardware yet (model only): \
-                     list it under `pairs`, which gives its quality and forwarded share"
+                    "`{pair}` is a dual-precision pair, not an accelerator format: list it \
+                     under `pairs`, which gives its quality and forwarded share (and for the \
+                     pair built in hardware its resources and co-simulation)"
                 ),
                 Err(e) => e.to_string(),
             };

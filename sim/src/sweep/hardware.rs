@@ -88,7 +88,7 @@ pub fn run(config: &SweepConfig, layout: &Layout, point: &Point) -> Result<Point
             generated.write_to(&layout.point_dir(&id).join("verilog"))?;
         }
         if config.synthesises(point) {
-            let (record, cached) = synthesize_cached(layout, &id, verilog)
+            let (record, cached) = synthesize_cached(layout, &id, hdl::top::wrapper::TOP, verilog)
                 .with_context(|| format!("synthesising {id}"))?;
             synth = Some(record);
             synth_cached = cached;

@@ -1,5 +1,5 @@
 //! The sweep as independent jobs: `prepare` (the f32 reference renders), then one job per
-//! format (model-engine quality), one per dual-precision pair (model only) and one per point
+//! format (model-engine quality), one per dual-precision pair (its model, and its hardware if built) and one per point
 //! (hardware), in any order or on any machine
 //! sharing the output directory, then `merge`. The manifest lists each as a command line, and
 //! `jobs.txt` holds the middle stage one per line for `parallel < jobs.txt` or a Slurm array.

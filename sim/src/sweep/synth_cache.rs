@@ -6,7 +6,6 @@ use std::time::Instant;
 use anyhow::Result;
 use hdl::synth::{synthesize, SynthOptions};
 use hdl::top::fit::Usage;
-use hdl::top::wrapper;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
@@ -46,9 +45,15 @@ fn sha256_hex(text: &str) -> String {
         .collect()
 }
 
-/// The report of point `id` with Verilog `verilog`: from the cache when the Verilog is the
-/// same, else from yosys (then cached). Returns the record and whether it was cached.
-pub fn synthesize_cached(layout: &Layout, id: &str, verilog: &str) -> Result<(SynthRecord, bool)> {
+/// The report of design `id` with Verilog `verilog`, top module `top`: from the cache when
+/// the Verilog is the same, else from yosys (then cached). Returns the record and whether it
+/// was cached.
+pub fn synthesize_cached(
+    layout: &Layout,
+    id: &str,
+    top: &str,
+    verilog: &str,
+) -> Result<(SynthRecord, bool)> {
     let sha = sha256_hex(verilog);
     let path = layout.synth_cache(id);
     if path.exists() {
@@ -58,7 +63,7 @@ pub fn synthesize_cached(layout: &Layout, id: &str, verilog: &str) -> Result<(Sy
         }
     }
     let start = Instant::now();
-    let report = synthesize(verilog, wrapper::TOP, &SynthOptions::default())?;
+    let report = synthesize(verilog, top, &SynthOptions::default())?;
     let usage = Usage::of(&report);
     let record = SynthRecord {
         lut: usage.lut,

@@ -75,7 +75,7 @@ pub struct Results {
     pub variants: Vec<Variant>,
     /// One per format and variant.
     pub quality: Vec<QualityResult>,
-    /// One per dual-precision pair and policy (model only).
+    /// One per dual-precision pair and policy.
     pub dual: Vec<DualResult>,
     /// Formats of `quality` that have no hardware (model engine only).
     pub model_formats: Vec<String>,
@@ -323,7 +323,7 @@ pub fn markdown(results: &Results) -> Result<String> {
     if !results.dual.is_empty() {
         writeln!(
             s,
-            "\n## Dual precision (model only: no hardware, so no points or resources; the hardware's lane, advance none)\n"
+            "\n## Dual precision (the model; the pair built in hardware below; the hardware's lane, advance none)\n"
         )?;
         writeln!(s, "Share of each scene's Möller-Trumbore tests the filter forwards to the fallback; all = over every scene's tests; = fallback: every image equals the fallback format's model render under the same policy; min PSNR against f32.\n")?;
         scene_table_head(
@@ -346,6 +346,103 @@ pub fn markdown(results: &Results) -> Result<String> {
                 Psnr(d.min_psnr_db())
             )?;
         }
+        pair_hardware(&mut s, results)?;
     }
     Ok(s)
+}
+
+/// The per-lane LUTs (with SRL) of fp32 at `depth` from its synthesised 1- and 2-lane points.
+fn fp32_lane_lut(results: &Results, depth: usize) -> Option<u64> {
+    let lut = |lanes: usize| {
+        let id = format!("fp32_d{depth}_l{lanes}");
+        let row = results.rows.iter().find(|r| r.id == id)?;
+        (row.resources == Some(ResourceSource::Yosys)).then_some(row.lut?)
+    };
+    Some(lut(2)? - lut(1)?)
+}
+
+/// The pairs built in hardware: resources, the slots that fit, tests per cycle and per LUT
+/// against fp32 lanes.
+fn pair_hardware(s: &mut String, results: &Results) -> Result<()> {
+    let built: Vec<&DualResult> = results
+        .dual
+        .iter()
+        .filter(|d| d.hardware.is_some())
+        .collect();
+    let Some(first) = built.first() else {
+        return Ok(());
+    };
+    let hw = first.hardware.as_ref().expect("filtered");
+    writeln!(
+        s,
+        "\n### {} in hardware: filter slots sharing one fp32 lane (depth {})\n",
+        first.pair, hw.depth
+    )?;
+    if hw.synth.is_empty() {
+        writeln!(s, "Not synthesised (no `synth` stage).")?;
+    } else {
+        writeln!(
+            s,
+            "| slots | LUT | FF | DSP | BRAM18 | CARRY4 | logic depth | yosys s |"
+        )?;
+        writeln!(s, "|---:|---:|---:|---:|---:|---:|---:|---:|")?;
+        for p in &hw.synth {
+            let r = &p.synth;
+            writeln!(
+                s,
+                "| {} | {} | {} | {} | {} | {} | {} | {}{} |",
+                p.slots,
+                r.lut,
+                r.ff,
+                r.dsp48e1,
+                r.bram18,
+                r.carry4,
+                r.logic_depth,
+                r.seconds,
+                if p.cached { " (cached)" } else { "" }
+            )?;
+        }
+        if let Some(f) = hw.fit() {
+            writeln!(
+                s,
+                "\nPer slot {} LUT, {} FF, {} DSP48E1; fixed part (the fp32 lane, the arbiter) {} LUT, {} DSP48E1: **{} slots fit an XC7Z020** (limited by {}).",
+                f.per_lane.lut, f.per_lane.ff, f.per_lane.dsp48e1, f.fixed.lut, f.fixed.dsp48e1, f.lanes, f.limit
+            )?;
+        }
+    }
+    if hw.cosim.is_empty() {
+        return Ok(writeln!(s, "\nNot co-simulated (no `cosim` stage).")?);
+    }
+    let lane_lut = fp32_lane_lut(results, hw.depth);
+    writeln!(s, "\nCo-simulated on the co-simulation scenes: tests per cycle; per LUT against fp32 lanes at depth {} (1 test per cycle per lane; their per-lane LUTs from the fp32 1- and 2-lane synthesis; – without it or the pair's).\n", hw.depth)?;
+    writeln!(s, "| policy | slots | tests/cycle | forwarded | stall cycles | = fallback | LUT | tests/cycle/LUT vs fp32 |")?;
+    writeln!(s, "|---|---:|---:|---:|---:|---|---:|---:|")?;
+    for d in &built {
+        let hw = d.hardware.as_ref().expect("filtered");
+        let fit = hw.fit();
+        for slots in crate::dual_pair::SLOTS {
+            let runs: Vec<_> = hw.cosim.iter().filter(|c| c.slots == slots).collect();
+            let Some(rate) = hw.tests_per_cycle(slots) else {
+                continue;
+            };
+            let tests: u64 = runs.iter().map(|c| c.tests).sum();
+            let forwarded: u64 = runs.iter().map(|c| c.forwarded).sum();
+            let stalls: u64 = runs.iter().map(|c| c.stall_cycles).sum();
+            let exact = runs.iter().all(|c| c.differing_from_fallback == 0);
+            let lut = fit.map(|f| f.fixed.lut + slots as u64 * f.per_lane.lut);
+            let versus = match (lut, lane_lut) {
+                (Some(lut), Some(lane)) => format!("{:.2}×", rate / lut as f64 * lane as f64),
+                _ => "–".into(),
+            };
+            writeln!(
+                s,
+                "| {} | {slots} | {rate:.3} | {:.4} | {stalls} | {} | {} | {versus} |",
+                d.policy,
+                forwarded as f64 / tests.max(1) as f64,
+                if exact { "yes" } else { "NO" },
+                lut.map_or("–".into(), |l| l.to_string()),
+            )?;
+        }
+    }
+    Ok(())
 }

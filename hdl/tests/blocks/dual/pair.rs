@@ -269,10 +269,12 @@ fn isolated_queries_take_the_documented_latencies() {
     assert_eq!(latency(&run.fates[1][0]), forward_latency(DEPTH));
 }
 
-/// Its Verilog is what Vivado would read (the traversal unit's waiver, as for the filter).
+/// Its Verilog is what Vivado would read (the traversal unit's waiver, as for the filter),
+/// also with one slot, whose one-bit vectors take no bit select.
 #[test]
 fn verilog_passes_verilator_lint() {
-    lint_clean(&[verilog(DEPTH)], hdl::verilog::UNIT_VERILATOR_WAIVERS);
+    let verilogs = [verilog::<1>(DEPTH), verilog::<N>(DEPTH)];
+    lint_clean(&verilogs, hdl::verilog::UNIT_VERILATOR_WAIVERS);
 }
 
 /// yosys xc7 resources of two filters sharing an fp32 lane at depth 5 (the depth of the
@@ -281,13 +283,16 @@ fn verilog_passes_verilator_lint() {
 #[test]
 #[ignore]
 fn dual_pair_resources() {
-    println!("{}", hdl::synth::markdown_table(&[verilog(5)]).unwrap());
+    println!(
+        "{}",
+        hdl::synth::markdown_table(&[verilog::<N>(5)]).unwrap()
+    );
 }
 
-fn verilog(depth: usize) -> (String, String) {
+fn verilog<const S: usize>(depth: usize) -> (String, String) {
     hdl::top::with_build_stack(move || {
-        named(DualPair::<N>::new(depth), "DualPair", |_| {
-            format!("{N} bfp{WIDTH} filters, fp32 depth {depth}")
+        named(DualPair::<S>::new(depth), "DualPair", |_| {
+            format!("{S} bfp{WIDTH} filters, fp32 depth {depth}")
         })
     })
 }
