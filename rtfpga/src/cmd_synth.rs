@@ -72,25 +72,15 @@ pub fn run(a: Args) -> Result<()> {
     }
     let config = a.hw.top_config()?;
     config.validate()?;
-    let report = synthesize_top(&config, &options)?;
-    let fit = if a.no_fit {
-        None
-    } else {
-        // The fit needs the 1- and 2-lane designs; reuse the report when it is one of them.
-        let at = |lanes: usize| -> Result<Usage> {
-            if lanes == config.lanes {
-                return Ok(Usage::of(&report));
-            }
-            Ok(Usage::of(&synthesize_top(
-                &TopConfig {
-                    lanes,
-                    ..config.clone()
-                },
-                &options,
-            )?))
+    let synth = |lanes: usize| -> Result<SynthReport> {
+        let config = TopConfig {
+            lanes,
+            ..config.clone()
         };
-        Some(fit_from(at(1)?, at(2)?, &XC7Z020))
+        Ok(synthesize_top(&config, &options)?)
     };
+    let report = synth(config.lanes)?;
+    let fit = lane_fit(&a, config.lanes, &report, synth)?;
     print(
         &config.dir_name(),
         &report,
@@ -113,17 +103,7 @@ fn synth_pair(a: &Args, pair: &PairConfig, options: &SynthOptions) -> Result<()>
         Ok(synthesize(&verilog, hdl::verilog::TOP, options)?)
     };
     let report = synth(pair.slots)?;
-    let fit = if a.no_fit {
-        None
-    } else {
-        let at = |slots: usize| -> Result<Usage> {
-            if slots == pair.slots {
-                return Ok(Usage::of(&report));
-            }
-            Ok(Usage::of(&synth(slots)?))
-        };
-        Some(fit_from(at(1)?, at(2)?, &XC7Z020))
-    };
+    let fit = lane_fit(a, pair.slots, &report, synth)?;
     if !a.json {
         println!(
             "latency: {} cycles to a certain miss, {} to a forwarded query's answer (queue empty, fp32 lane free); the lanes below are filter slots, the fixed part is the fp32 lane",
@@ -132,6 +112,26 @@ fn synth_pair(a: &Args, pair: &PairConfig, options: &SynthOptions) -> Result<()>
         );
     }
     print(&pair.to_string(), &report, None, fit, a.json)
+}
+
+/// The lanes (or slots) that fit, from the 1- and 2-lane designs (`synth(lanes)`), reusing
+/// `report` of the `lanes` asked for when it is one of them; `None` with `--no-fit`.
+fn lane_fit(
+    a: &Args,
+    lanes: usize,
+    report: &SynthReport,
+    synth: impl Fn(usize) -> Result<SynthReport>,
+) -> Result<Option<LaneFit>> {
+    if a.no_fit {
+        return Ok(None);
+    }
+    let at = |n: usize| -> Result<Usage> {
+        if n == lanes {
+            return Ok(Usage::of(report));
+        }
+        Ok(Usage::of(&synth(n)?))
+    };
+    Ok(Some(fit_from(at(1)?, at(2)?, &XC7Z020)))
 }
 
 fn print(

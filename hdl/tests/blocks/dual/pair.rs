@@ -161,10 +161,10 @@ fn model() -> DualIntersector {
 fn assert_model(queries: &[Vec<MtQuery>; N], run: &Run) -> usize {
     let model = model();
     let mut forwarded = 0;
-    for s in 0..N {
-        let mut want = vec![MtResult::default(); queries[s].len()];
-        model.intersect_batch(&queries[s], &mut want).unwrap();
-        for (i, (q, fate)) in queries[s].iter().zip(&run.fates[s]).enumerate() {
+    for (s, (slot, fates)) in queries.iter().zip(&run.fates).enumerate() {
+        let mut want = vec![MtResult::default(); slot.len()];
+        model.intersect_batch(slot, &mut want).unwrap();
+        for (i, (q, fate)) in slot.iter().zip(fates).enumerate() {
             let miss = model.filter.certain_miss(q, 1.0);
             assert_eq!(fate.forwarded, !miss, "slot {s} query {i}: {q:?}");
             assert!(
