@@ -382,7 +382,7 @@ fn bad_configurations_are_rejected_with_file_line_and_key() {
     let e = rejection(&with(r#"formats = ["fp32", "fp16/fp32"]"#));
     assert_eq!((e.line, e.key.as_str()), (2, "formats"));
     assert!(
-        e.message.contains("dual-precision pair") && e.message.contains("model"),
+        e.message.contains("dual-precision pair") && e.message.contains("list it under `pairs`"),
         "{e}"
     );
     let e = rejection(&with(r#"formats = ["fp32/fp16"]"#));
