@@ -1,20 +1,19 @@
 //! Engine selection shared by the subcommands that render: which `RayEngine` answers the
 //! renderer's rays.
 
-use anyhow::{bail, Result};
+use anyhow::{bail, Context, Result};
 use clap::builder::TypedValueParser;
 use clap::{Args as ClapArgs, ValueEnum};
 use hdl::top::TopConfig;
 use hdl::traversal::scene_memory;
 use hdl::traversal::unit::UnitConfig;
 use hw_model::dual::{
-    BoundArith, DualIntersector, Filter, FilterFormat, FilterKind, FormatChoice, FormatPair,
-    HW_BOUND_BITS,
+    BoundArith, DualIntersector, Filter, FilterFormat, FilterKind, FormatChoice, HW_BOUND_BITS,
 };
 use hw_model::precision::{auto_scale_exp, SceneRange, SpawnChoice};
 use hw_model::traversal::{SceneCapacity, SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
 use hw_model::{Advance, Edges, Format, ModelIntersector, NamedChoice};
-use sim::dual_pair::{PairConfig, PairIntersector, SLOTS};
+use sim::dual_pair::{built_pair, PairConfig, PairIntersector};
 use sim::hw_intersector::{HwIntersector, Mode};
 use sw_renderer::intersect::F32Intersector;
 use sw_renderer::rays::RayEngine;
@@ -408,8 +407,8 @@ impl HwConfig {
         match self.format {
             FormatChoice::Single(format) => Ok(format),
             FormatChoice::Pair(pair) => bail!(
-                "--format {pair}: one format only here; dual-precision pairs are model-only (--engine model) but for bfp{}/fp32, which the Möller-Trumbore hardware also builds (render --engine hw, cosim, synth)",
-                hdl::dual::WIDTH
+                "--format {pair}: one format only here; dual-precision pairs are model-only (--engine model) but for {}, which the Möller-Trumbore hardware also builds (render --engine hw, cosim, synth)",
+                built_pair()
             ),
         }
     }
@@ -429,23 +428,23 @@ impl HwConfig {
         let FormatChoice::Pair(pair) = self.format else {
             return Ok(None);
         };
-        let built = FormatPair::parse(&format!("bfp{}/fp32", hdl::dual::WIDTH))?;
+        let built = built_pair();
         let filter = self.dual_filter.unwrap_or(DualFilter::Bfp);
         if pair != built || filter != DualFilter::Bfp {
-            bail!("--format {pair} --dual-filter {filter:?}: the hardware pair is {built} with its bfp filter; other pairs and filters are model-only (--engine model)");
+            let asked = self.dual_filter.and_then(|f| f.to_possible_value());
+            let asked = asked.map_or(String::new(), |v| {
+                format!(" --dual-filter {}", v.get_name())
+            });
+            bail!("--format {pair}{asked}: the hardware pair is {built} with its bfp filter; other pairs and filters are model-only (--engine model)");
         }
-        if !SLOTS.contains(&self.lanes) {
-            bail!(
-                "--format {pair} --lanes {}: a pair is built with {} to {} filter slots (--lanes) sharing one fp32 lane",
-                self.lanes,
-                SLOTS.start(),
-                SLOTS.end()
-            );
-        }
-        Ok(Some(PairConfig {
+        let config = PairConfig {
             slots: self.lanes,
             depth: self.depth,
-        }))
+        };
+        config.check().with_context(|| {
+            format!("--format {pair} --lanes {} (its filter slots)", self.lanes)
+        })?;
+        Ok(Some(config))
     }
 
     /// The traversal unit's model in this configuration, its Möller-Trumbore queries scaled

@@ -14,6 +14,7 @@ use hdl::dual::pair::{dual_pair_verilog, TAG};
 use hdl::dual::WIDTH;
 use hdl::mt::query_words;
 use hdl::regmap::OPERAND_COUNT;
+use hw_model::dual::FormatPair;
 use hw_model::{MtQuery, MtResult};
 use sw_renderer::intersect::Intersector;
 use sw_renderer::rays::EngineError;
@@ -25,6 +26,11 @@ use crate::{build, BuildOptions, Model, ModelSpec, SimError, VerilatedModel};
 /// The filter slots a pair is built with (one Verilog per count).
 pub const SLOTS: std::ops::RangeInclusive<usize> = 1..=4;
 
+/// The one pair built in hardware: the bfp filter at `hdl::dual::WIDTH` before fp32.
+pub fn built_pair() -> FormatPair {
+    FormatPair::parse(&format!("bfp{WIDTH}/fp32")).expect("hdl::dual::WIDTH is a bfp width")
+}
+
 /// A pair's shape: `slots` bfp filters in front of one fp32 lane at pipeline `depth`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PairConfig {
@@ -35,7 +41,18 @@ pub struct PairConfig {
 impl std::fmt::Display for PairConfig {
     /// "bfp18/fp32 pair s2 d5".
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "bfp{WIDTH}/fp32 pair s{} d{}", self.slots, self.depth)
+        write!(f, "{} pair s{} d{}", built_pair(), self.slots, self.depth)
+    }
+}
+
+impl PairConfig {
+    /// An error unless the slot count is one a pair is built with.
+    pub fn check(&self) -> Result<(), PairError> {
+        if SLOTS.contains(&self.slots) {
+            Ok(())
+        } else {
+            Err(PairError::Slots(self.slots))
+        }
     }
 }
 
@@ -55,13 +72,14 @@ impl From<SimError> for PairError {
 
 /// The pair's Verilog (top module `top`).
 pub fn pair_verilog(config: &PairConfig) -> Result<String, PairError> {
+    config.check()?;
     let depth = config.depth;
     Ok(match config.slots {
         1 => dual_pair_verilog::<1>(depth),
         2 => dual_pair_verilog::<2>(depth),
         3 => dual_pair_verilog::<3>(depth),
         4 => dual_pair_verilog::<4>(depth),
-        n => return Err(PairError::Slots(n)),
+        n => unreachable!("check() admits {SLOTS:?}, not {n}"),
     })
 }
 

@@ -24,7 +24,7 @@ use super::layout::{parent_dir, write_json, Layout};
 use super::quality::Psnr;
 use super::render_job::{reference, render_scene};
 use super::synth_cache::{synthesize_cached, SynthRecord};
-use crate::dual_pair::{pair_verilog, PairConfig, PairIntersector, SLOTS};
+use crate::dual_pair::{built_pair, pair_verilog, PairConfig, PairIntersector, SLOTS};
 
 /// One scene through one pair.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -104,11 +104,6 @@ impl PairHardware {
     }
 }
 
-/// Whether `pair` is built in hardware (`sim::dual_pair`).
-pub fn in_hardware(pair: &FormatPair) -> bool {
-    FormatPair::parse(&format!("bfp{}/fp32", hdl::dual::WIDTH)).is_ok_and(|built| built == *pair)
-}
-
 /// The fp32 lane's depth of the sweep's pair: fp32's deepest pipeline, as the sweep
 /// synthesises the formats.
 fn pair_depth() -> usize {
@@ -122,7 +117,10 @@ fn synthesise_pair(layout: &Layout, depth: usize) -> Result<Vec<PairSynth>> {
         .map(|slots| {
             let config = PairConfig { slots, depth };
             let verilog = pair_verilog(&config)?;
-            let id = format!("pair_bfp{}_fp32_d{depth}_s{slots}", hdl::dual::WIDTH);
+            let id = format!(
+                "pair_{}_d{depth}_s{slots}",
+                built_pair().to_string().replace('/', "_")
+            );
             let (synth, cached) = synthesize_cached(layout, &id, hdl::verilog::TOP, &verilog)
                 .with_context(|| format!("synthesising {config}"))?;
             Ok(PairSynth {
@@ -159,7 +157,7 @@ impl DualResult {
 pub fn run(config: &SweepConfig, layout: &Layout, pair: &str) -> Result<Vec<DualResult>> {
     let parsed = FormatPair::parse(pair)?;
     let fallback = ModelIntersector::new(parsed.fallback);
-    let hardware = in_hardware(&parsed);
+    let hardware = parsed == built_pair();
     let depth = pair_depth();
     let synth = if hardware && config.runs(Stage::Synth) {
         synthesise_pair(layout, depth)?
