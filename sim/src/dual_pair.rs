@@ -7,8 +7,8 @@
 //! exactly once: a doubled or unknown tag is a protocol error, and a pair that stops
 //! answering is a timeout, never a silent miss.
 
-use std::sync::{Arc, Mutex, OnceLock};
-use std::time::{Duration, Instant};
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
 
 use hdl::dual::pair::{dual_pair_verilog, TAG};
 use hdl::dual::WIDTH;
@@ -20,8 +20,8 @@ use sw_renderer::intersect::Intersector;
 use sw_renderer::rays::EngineError;
 
 use crate::cosim_error::CosimError;
-use crate::verilator::Direction;
-use crate::{build, BuildOptions, Model, ModelSpec, SimError, VerilatedModel};
+use crate::verilator::{BuiltModel, BuiltModels, Direction};
+use crate::{SimError, VerilatedModel};
 
 /// The filter slots a pair is built with (one Verilog per count).
 pub const SLOTS: std::ops::RangeInclusive<usize> = 1..=4;
@@ -84,31 +84,12 @@ pub fn pair_verilog(config: &PairConfig) -> Result<String, PairError> {
 }
 
 /// A built model of a pair and what it was built from.
-pub struct PairModel {
-    pub config: PairConfig,
-    pub model: Model,
-    /// Time spent generating the Verilog and building (or loading) the model.
-    pub build_time: Duration,
-}
+pub type PairModel = BuiltModel<PairConfig>;
 
 /// The pair of `config`, built (or taken from the builder's cache) once per process.
 pub fn pair_model(config: &PairConfig) -> Result<Arc<PairModel>, PairError> {
-    static BUILT: OnceLock<Mutex<Vec<Arc<PairModel>>>> = OnceLock::new();
-    let mut built = (BUILT.get_or_init(Default::default).lock())
-        .unwrap_or_else(|poisoned| poisoned.into_inner());
-    if let Some(m) = built.iter().find(|m| m.config == *config) {
-        return Ok(m.clone());
-    }
-    let start = Instant::now();
-    let verilog = pair_verilog(config)?;
-    let model = build(&ModelSpec::rust_hdl(verilog), &BuildOptions::default())?;
-    let m = Arc::new(PairModel {
-        config: *config,
-        model,
-        build_time: start.elapsed(),
-    });
-    built.push(m.clone());
-    Ok(m)
+    static BUILT: BuiltModels<PairConfig> = BuiltModels::new();
+    BUILT.get(config, pair_verilog)
 }
 
 /// What a pair did.

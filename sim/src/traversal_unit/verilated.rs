@@ -2,43 +2,22 @@
 //! configuration and process (the builder's disk cache spans processes), its ports found by
 //! name in the packed cycle buffers.
 
-use std::sync::{Arc, Mutex, OnceLock};
-use std::time::{Duration, Instant};
+use std::sync::Arc;
 
 use hdl::traversal::unit::{unit_verilog, UnitConfig};
 use hw_model::traversal::packet::{HIT_WORDS, RAY_WORDS};
 
 use super::{In, Out, UnitError, UnitPorts, HIT_TDATA, IN_NAMES, OUT_NAMES, RAY_TDATA};
-use crate::verilator::Direction;
-use crate::{build, BuildOptions, Model, ModelSpec, SimError, VerilatedModel};
+use crate::verilator::{BuiltModel, BuiltModels, Direction};
+use crate::{SimError, VerilatedModel};
 
 /// A built model of the unit and what it was built from.
-pub struct UnitModel {
-    pub config: UnitConfig,
-    pub model: Model,
-    /// Time spent generating the Verilog and building (or loading) the model.
-    pub build_time: Duration,
-}
+pub type UnitModel = BuiltModel<UnitConfig>;
 
-/// The unit of `config`, built (or taken from the builder's cache) once per process. Builds
-/// are serialised: each one already uses every core.
+/// The unit of `config`, built (or taken from the builder's cache) once per process.
 pub fn unit_model(config: &UnitConfig) -> Result<Arc<UnitModel>, UnitError> {
-    static BUILT: OnceLock<Mutex<Vec<Arc<UnitModel>>>> = OnceLock::new();
-    let mut built = (BUILT.get_or_init(Default::default).lock())
-        .unwrap_or_else(|poisoned| poisoned.into_inner());
-    if let Some(m) = built.iter().find(|m| m.config == *config) {
-        return Ok(m.clone());
-    }
-    let start = Instant::now();
-    let verilog = unit_verilog(config)?;
-    let model = build(&ModelSpec::rust_hdl(verilog), &BuildOptions::default())?;
-    let m = Arc::new(UnitModel {
-        config: *config,
-        model,
-        build_time: start.elapsed(),
-    });
-    built.push(m.clone());
-    Ok(m)
+    static BUILT: BuiltModels<UnitConfig> = BuiltModels::new();
+    BUILT.get(config, |c| Ok(unit_verilog(c)?))
 }
 
 /// One simulated unit: the inputs held for the next cycle and the outputs of the last.

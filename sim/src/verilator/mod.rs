@@ -5,6 +5,7 @@
 //! cached on disk by a SHA-256 of everything that goes into them, and Verilator's runtime is
 //! compiled once per toolchain and reused.
 
+mod built;
 mod cache;
 mod compile;
 mod interface;
@@ -14,6 +15,7 @@ mod ports;
 mod shim;
 mod toolchain;
 
+pub use built::{BuiltModel, BuiltModels};
 pub use cache::default_dir as default_cache_dir;
 pub use interface::Interface;
 pub use model::{Model, VerilatedModel};
