@@ -321,7 +321,6 @@ fn bad_path() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../sweeps/bad.toml")
 }
 
-/// The error of `text` (a tiny config with one change).
 #[test]
 fn synthesis_selection_is_the_product_of_its_subsets_plus_the_listed_points() {
     let text =
@@ -337,6 +336,34 @@ fn synthesis_selection_is_the_product_of_its_subsets_plus_the_listed_points() {
     assert_eq!(chosen, ["fp32_d1_l1", "fp32_d1_l2", "fx16_10_d1_l1"]);
 }
 
+#[test]
+fn the_pair_built_in_hardware_is_queued_first_when_it_is_synthesised() {
+    let ids = |stages: &str| {
+        let text = format!("{TINY}pairs = [\"fp16/fp32\", \"bfp18/fp32\"]\n[synth]\nlanes = [1]\n")
+            .replace("[\"quality\", \"projection\"]", stages);
+        let config = sweep::parse(&text, &bad_path()).unwrap();
+        sweep::manifest::jobs(&config)
+            .iter()
+            .map(Job::id)
+            .collect::<Vec<_>>()
+    };
+    // Its job synthesises two designs: the longest, so ahead of the points' syntheses.
+    let synth = ids("[\"synth\", \"quality\"]");
+    assert_eq!(
+        synth[..4],
+        [
+            "dual/bfp18/fp32",
+            "point/fp32_d1_l1",
+            "point/fx16_10_d1_l1",
+            "dual/fp16/fp32"
+        ]
+    );
+    // Without synth or cosim it only renders: a pair job like the others, in file order.
+    let model = ids("[\"quality\"]");
+    assert_eq!(model[..2], ["dual/fp16/fp32", "dual/bfp18/fp32"]);
+}
+
+/// The error of `text` (a tiny config with one change).
 fn rejection(text: &str) -> ConfigError {
     sweep::parse(text, &bad_path()).expect_err(text)
 }

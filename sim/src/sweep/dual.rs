@@ -153,11 +153,17 @@ impl DualResult {
     }
 }
 
+/// Whether `pair` (as the sweep file spells it) is the pair built in hardware, whose job
+/// also synthesises and co-simulates it.
+pub fn has_hardware(pair: &str) -> bool {
+    FormatPair::parse(pair).is_ok_and(|p| p == built_pair())
+}
+
 /// Every policy of the sweep through `pair`, each written to its result file.
 pub fn run(config: &SweepConfig, layout: &Layout, pair: &str) -> Result<Vec<DualResult>> {
     let parsed = FormatPair::parse(pair)?;
     let fallback = ModelIntersector::new(parsed.fallback);
-    let hardware = parsed == built_pair();
+    let hardware = has_hardware(pair);
     let depth = pair_depth();
     let synth = if hardware && config.runs(Stage::Synth) {
         synthesise_pair(layout, depth)?

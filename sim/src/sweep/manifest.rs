@@ -10,6 +10,7 @@ use anyhow::{bail, Context, Result};
 use serde::{Deserialize, Serialize};
 
 use super::config::{Stage, SweepConfig};
+use super::dual;
 use super::layout::{write_json, Layout};
 
 /// One unit of work.
@@ -73,7 +74,8 @@ pub struct Manifest {
 }
 
 /// The jobs of a configuration after `prepare`, the longest first so that a queue of
-/// workers finishes together: syntheses (wide formats and more lanes first), co-simulations,
+/// workers finishes together: the pair built in hardware when it is synthesised or
+/// co-simulated, syntheses (wide formats and more lanes first), co-simulations, the other
 /// dual-precision renders (two per scene and policy), quality renders, then the points that
 /// only need their latency.
 pub fn jobs(config: &SweepConfig) -> Vec<Job> {
@@ -95,9 +97,19 @@ pub fn jobs(config: &SweepConfig) -> Vec<Job> {
     let (slow, fast): (Vec<_>, Vec<_>) = points
         .into_iter()
         .partition(|p| config.synthesises(p) || config.cosimulates(p));
-    let mut jobs: Vec<Job> = slow.into_iter().map(|p| Job::Point(p.id())).collect();
+    // The pair built in hardware synthesises two designs and co-simulates four in its job:
+    // with those stages it is the longest job of all.
+    let (built, model): (Vec<_>, Vec<_>) = if config.runs(Stage::Quality) {
+        config.pairs.iter().cloned().partition(|pair| {
+            dual::has_hardware(pair) && (config.runs(Stage::Synth) || config.runs(Stage::Cosim))
+        })
+    } else {
+        Default::default()
+    };
+    let mut jobs: Vec<Job> = built.into_iter().map(Job::Dual).collect();
+    jobs.extend(slow.into_iter().map(|p| Job::Point(p.id())));
+    jobs.extend(model.into_iter().map(Job::Dual));
     if config.runs(Stage::Quality) {
-        jobs.extend(config.pairs.iter().cloned().map(Job::Dual));
         jobs.extend(config.quality_formats().into_iter().map(Job::Quality));
     }
     jobs.extend(fast.into_iter().map(|p| Job::Point(p.id())));
