@@ -258,13 +258,28 @@ impl Accel {
         self.lane_latency
     }
 
-    /// Holds `ap_rst_n` low for a few cycles with every valid low, then releases it.
+    /// Holds `ap_rst_n` low for a few cycles with every valid low, releases it, and idles
+    /// until the stream front end is ready. After reset it refuses beats for a lane latency
+    /// (the lanes may still hold queries from before), a cost a board pays once at start-up;
+    /// left to the first batch, it was charged once per simulated instance, so a render's
+    /// cycles depended on how many threads rayon gave it.
     pub fn reset(&mut self) -> Result<(), CosimError> {
         self.input.fill(0);
         for _ in 0..RESET_CYCLES {
             self.cycle()?;
         }
         self.set(In::RstN, 1);
+        let budget = 2 * self.lane_latency as u64 + 2 * RESET_CYCLES + 8;
+        let released = self.cycles();
+        while self.get(Out::STReady) == 0 {
+            if self.cycles() - released > budget {
+                return Err(CosimError::Timeout {
+                    what: "s_axis_tready after reset".into(),
+                    cycles: budget,
+                });
+            }
+            self.cycle()?;
+        }
         Ok(())
     }
 

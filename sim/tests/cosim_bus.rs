@@ -136,6 +136,20 @@ fn back_pressure_and_odd_batches_lose_nothing() {
     assert!(one[0].same_bits(&got[0]));
 }
 
+/// The front end's wait after reset is the reset's, not the first batch's: otherwise each
+/// simulated instance charged it once and a render's cycles depended on rayon's threads.
+#[test]
+fn a_fresh_instance_streams_a_batch_in_the_cycles_of_a_used_one() {
+    let top = top_model(&config(), false).unwrap();
+    let qs = queries(200, 5);
+    let mut got = vec![MtResult::default(); qs.len()];
+    let mut accel = Accel::new(&top).unwrap();
+    let fresh = stream_batch(&mut accel, &qs, &mut got, &mut || true).unwrap();
+    let used = stream_batch(&mut accel, &qs, &mut got, &mut || true).unwrap();
+    assert_eq!(fresh, used);
+    assert_model_exact("fp32", &qs, &got);
+}
+
 #[test]
 fn bus_errors_are_reported_not_ignored() {
     let top = top_model(&config(), false).unwrap();
