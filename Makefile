@@ -45,8 +45,8 @@ golden: build
 verilog: build
 	$(RTFPGA) verilog --defaults --out generated-verilog
 
-# Design-space sweep of sweeps/default.toml into sweep-out/ (about 55 min on the 2 shared
-# cores: yosys 41 min, renders and co-simulation 15 min; a re-run reuses the cached syntheses):
+# Design-space sweep of sweeps/default.toml into sweep-out/ (about 37 min on 2 cores, most
+# of it yosys; a re-run reuses the cached syntheses, 4 min):
 # results.md/csv/json, quality.csv, plots/, grids/. docs/sweep.md reports it.
 sweep: build
 	$(RTFPGA) sweep --config sweeps/default.toml --out sweep-out
