@@ -97,6 +97,9 @@ pub enum DualFilter {
     Quotient,
     /// Block floating point, for a bfpW/FALLBACK pair: exact integers, margins per width.
     Bfp,
+    /// Block floating point in Plücker form, for a bfpW/FALLBACK pair: per-ray and
+    /// per-triangle blocks, no translation per test (model only).
+    Plucker,
 }
 
 impl DualFilter {
@@ -106,6 +109,7 @@ impl DualFilter {
             DualFilter::LinearExact => FilterKind::Linear(BoundArith::Exact),
             DualFilter::Quotient => FilterKind::Quotient,
             DualFilter::Bfp => FilterKind::Bfp,
+            DualFilter::Plucker => FilterKind::Plucker,
         }
     }
 }

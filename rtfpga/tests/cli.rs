@@ -355,6 +355,7 @@ fn render_model_with_a_format_pair_writes_the_fallbacks_image() {
             "linear-exact",
         ),
         ("bfp18/fp32", &[][..], "bfp"),
+        ("bfp18/fp32", &["--dual-filter", "plucker"][..], "plucker"),
     ] {
         let mut cmd = vec![
             "render",

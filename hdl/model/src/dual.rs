@@ -18,6 +18,7 @@ use crate::mt::{mt_model, mt_traced, scale_query, DET_EPSILON};
 
 pub mod bfp;
 mod linear;
+pub mod plucker;
 use crate::{catalogue, lookup, Format, FormatError};
 
 #[derive(Debug, Error, PartialEq, Eq)]
@@ -596,6 +597,10 @@ pub enum FilterKind {
     /// Block floating point ([`bfp`]): the pair's `bfpW` filter, integer products, margins
     /// from the bits actually dropped, decisions on short floats rounded outward.
     Bfp,
+    /// Plücker form ([`plucker`]), for a `bfpW` filter: det and the numerators as dot
+    /// products of per-ray and per-triangle blocks, no translation per test, margins from
+    /// block exponents, the division-free decisions. A model, not built in hardware.
+    Plucker,
 }
 
 impl FilterKind {
@@ -618,6 +623,7 @@ impl fmt::Display for FilterKind {
             FilterKind::Linear(BoundArith::Coarse(HW_BOUND_BITS)) => f.write_str("linear"),
             FilterKind::Linear(BoundArith::Coarse(bits)) => write!(f, "linear-coarse{bits}"),
             FilterKind::Bfp => f.write_str("bfp"),
+            FilterKind::Plucker => f.write_str("plucker"),
         }
     }
 }
@@ -639,8 +645,8 @@ pub struct Filter {
 }
 
 impl Filter {
-    /// `kind` must fit the pair's filter: [`FilterKind::Bfp`] for a `bfpW` filter (unscaled),
-    /// a float kind for a float filter.
+    /// `kind` must fit the pair's filter: [`FilterKind::Bfp`] or [`FilterKind::Plucker`] for
+    /// a `bfpW` filter (unscaled), a float kind for a float filter.
     pub fn new(pair: FormatPair, scale_exp: i32, kind: FilterKind) -> Result<Filter, DualError> {
         let mismatch = |needs| DualError::Kind {
             pair: pair.to_string(),
@@ -648,15 +654,15 @@ impl Filter {
             needs,
         };
         match (pair.filter, kind) {
-            (FilterFormat::Bfp(_), FilterKind::Bfp) if scale_exp != 0 => {
+            (FilterFormat::Bfp(_), FilterKind::Bfp | FilterKind::Plucker) if scale_exp != 0 => {
                 return Err(DualError::BfpScaled {
                     pair: pair.to_string(),
                     scale_exp,
                 })
             }
-            (FilterFormat::Bfp(_), FilterKind::Bfp) => {}
+            (FilterFormat::Bfp(_), FilterKind::Bfp | FilterKind::Plucker) => {}
             (FilterFormat::Bfp(_), _) => return Err(mismatch("a float filter such as fp16")),
-            (FilterFormat::Float(_), FilterKind::Bfp) => {
+            (FilterFormat::Float(_), FilterKind::Bfp | FilterKind::Plucker) => {
                 return Err(mismatch("a block-floating-point filter such as bfp18"))
             }
             (FilterFormat::Float(_), _) => {}
@@ -696,6 +702,7 @@ impl Filter {
             FilterKind::Quotient => self.decide_quotient(q, margin_scale),
             FilterKind::Linear(arith) => self.decide_linear(q, margin_scale, arith),
             FilterKind::Bfp => self.decide_bfp(q, margin_scale),
+            FilterKind::Plucker => self.decide_plucker(q, margin_scale),
         }
     }
 

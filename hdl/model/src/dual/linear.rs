@@ -90,8 +90,6 @@ impl Filter {
             &cb,
         )?;
         let (_, x) = mt_traced(&filter, &fed_query);
-        // The filter computes no t, u, v: a certain miss answers zeros.
-        let miss = Some(MtResult::default());
         // det and the numerators are of degree 3 in lengths: back to scene units.
         let unscale = c.powi(-3);
         let margin = |a: Bounded, b: Bounded| (a.err * unscale + b.err) * margin_scale * F64_SLACK;
@@ -99,6 +97,22 @@ impl Filter {
         let e_d = margin(det_a, det_b);
         let n = x.num.map(|v| v * unscale);
         let e: [f64; 3] = std::array::from_fn(|k| margin(num_a[k], num_b[k]));
+        self.decide_numerators(q, d, e_d, n, e)
+    }
+
+    /// The fallback's tests decided from a filter's det `d` and numerators `n` of u, v, t
+    /// (scene units), each within `e_d`, `e` of the fallback's (the table of
+    /// [`Filter::decide_linear`]); a certain miss answers zeros (the filter computes no t,
+    /// u, v).
+    pub(super) fn decide_numerators(
+        &self,
+        q: &MtQuery,
+        d: f64,
+        e_d: f64,
+        n: [f64; 3],
+        e: [f64; 3],
+    ) -> Option<MtResult> {
+        let miss = Some(MtResult::default());
         if certainly_below(d.abs() + e_d, self.eps_b) {
             return miss;
         }

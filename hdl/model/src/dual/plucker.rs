@@ -1,0 +1,410 @@
+//! The Plücker filter (docs/precision.md, "The Plücker filter"): det and the numerators of
+//! u, v, t as dot products of per-ray and per-triangle block vectors, so a test needs no
+//! translation and no conversion from fp32, only 18 integer products. With s = orig − v0,
+//! n = e1 × e2 and the ray's moment m = orig × dir:
+//! - det = e1·(dir × e2) = −dir·n;
+//! - N_u = s·(dir × e2) = e2·m + dir·(v0 × e2);
+//! - N_v = dir·(s × e1) = −(e1·m + dir·(v0 × e1));
+//! - N_t = e2·(s × e1) = orig·n − v0·n.
+//!
+//! Per ray the filter holds dir, m and orig as blocks, per triangle n, e1, e2, v0 × e1,
+//! v0 × e2 and the scalar v0·n; each is computed once (here in f64, within a tracked
+//! error) and truncated to W-bit mantissas on one grid per vector. The margins come from
+//! block exponents only, and the decisions are the division-free filter's
+//! ([`Filter::decide_numerators`]). A model of the filter's arithmetic and bound, not yet a
+//! bit-exact hardware specification: the sum of two dots is taken in f64, and the bound
+//! covers the truncation a hardware adder would make when it aligns them.
+
+use sw_renderer::intersect::{MtQuery, MtResult};
+
+use super::{coords, product_bounds, Bounded, Ctx, Filter, FilterFormat, BV, F64_SLACK};
+
+/// f64's unit roundoff.
+const F64_UNIT: f64 = f64::EPSILON / 2.0;
+
+/// Block exponents the filter covers (an 8-bit field); outside, the query is forwarded.
+pub const EXP_RANGE: std::ops::RangeInclusive<i32> = -128..=127;
+
+/// Extra mantissa bits of the t test's vectors, orig and n (25 bits at W = 18, a DSP48E1's
+/// wide port): N_t = orig·n − v0·n cancels when a ray starts near a triangle's plane, as
+/// spawned rays do beside the surface they leave, and at W bits the t test decided almost
+/// none of the queries whose ray line passes inside the edges behind the origin.
+pub const T_EXTRA_BITS: u32 = 7;
+
+/// Bits of the coarse subtraction that bounds |s| = |orig − v0| for the fallback's bound:
+/// orig and v0 aligned to the larger block exponent E and cut to this many bits, so the
+/// difference is within 2^(E − S_BOUND_BITS + 2) of |s| (two truncations).
+pub const S_BOUND_BITS: i32 = 9;
+
+/// A value computed in f64 within `err` of the exact value it stands for.
+#[derive(Clone, Copy, Debug)]
+struct Approx {
+    v: f64,
+    err: f64,
+}
+
+impl Approx {
+    fn exact(v: f64) -> Approx {
+        Approx { v, err: 0.0 }
+    }
+
+    /// |ãb̃ − ab| ≤ |ã|·δb + |b̃|·δa + δa·δb, before the product's own rounding.
+    fn product_err(a: Approx, b: Approx) -> f64 {
+        a.v.abs() * b.err + b.v.abs() * a.err + a.err * b.err
+    }
+
+    /// a − b of two exact values: one rounding.
+    fn difference(a: f64, b: f64) -> Approx {
+        let v = a - b;
+        Approx {
+            v,
+            err: F64_UNIT * v.abs(),
+        }
+    }
+}
+
+/// a × b in f64: per component two products and a difference, each rounded (at most 3
+/// roundings of the terms' magnitudes, bounded by 4u), plus the operands' errors carried.
+fn cross(a: [Approx; 3], b: [Approx; 3]) -> [Approx; 3] {
+    std::array::from_fn(|i| {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let (x, y) = (a[j].v * b[k].v, a[k].v * b[j].v);
+        Approx {
+            v: x - y,
+            err: Approx::product_err(a[j], b[k])
+                + Approx::product_err(a[k], b[j])
+                + 4.0 * F64_UNIT * (x.abs() + y.abs()),
+        }
+    })
+}
+
+/// a·b in f64: three products and two sums (at most 5 roundings of the terms' magnitudes,
+/// bounded by 6u), plus the operands' errors carried.
+fn dot_f64(a: [Approx; 3], b: [Approx; 3]) -> Approx {
+    let p: [f64; 3] = std::array::from_fn(|k| a[k].v * b[k].v);
+    Approx {
+        v: (p[0] + p[1]) + p[2],
+        err: (0..3).map(|k| Approx::product_err(a[k], b[k])).sum::<f64>()
+            + 6.0 * F64_UNIT * p.iter().map(|x| x.abs()).sum::<f64>(),
+    }
+}
+
+/// N values as the filter stores them: W-bit signed mantissas on one grid 2^`lsb`, the
+/// block exponent `lsb` + W − 1 bounding every component (|x| < 2^E), each mantissa times
+/// 2^`lsb` within `delta` of the exact value.
+#[derive(Clone, Copy, Debug)]
+struct Block<const N: usize> {
+    m: [i64; N],
+    lsb: i32,
+    delta: f64,
+    width: u32,
+}
+
+impl<const N: usize> Block<N> {
+    /// Truncated toward zero onto the grid of the smallest E with every |v| < 2^E; `None`
+    /// if E leaves [`EXP_RANGE`] or a value is not finite. A zero vector has all mantissas 0
+    /// and E = [`EXP_RANGE`]'s low end.
+    fn new(v: [Approx; N], width: u32) -> Option<Block<N>> {
+        if v.iter().any(|x| !x.v.is_finite() || !x.err.is_finite()) {
+            return None;
+        }
+        let top = v.iter().map(|x| x.v.abs()).fold(0.0, f64::max);
+        let e = if top == 0.0 {
+            *EXP_RANGE.start()
+        } else {
+            // top = f·2^k, f in [1, 2): the smallest E with top < 2^E is k + 1.
+            ((top.to_bits() >> 52) & 0x7ff) as i32 - 1023 + 1
+        };
+        if !EXP_RANGE.contains(&e) {
+            return None;
+        }
+        let lsb = e - (width as i32 - 1);
+        let step = 2f64.powi(lsb);
+        let m = v.map(|x| (x.v / step).trunc() as i64);
+        let err = v.iter().map(|x| x.err).fold(0.0, f64::max);
+        Some(Block {
+            m,
+            lsb,
+            delta: step + err,
+            width,
+        })
+    }
+
+    /// The bound 2^E of every component.
+    fn top(&self) -> f64 {
+        2f64.powi(self.lsb + self.width as i32 - 1)
+    }
+
+    fn value(&self, k: usize) -> f64 {
+        self.m[k] as f64 * 2f64.powi(self.lsb)
+    }
+}
+
+/// Σ ã_k·b̃_k, exact in integers, within
+/// Σ_k (2^Ea·δb + 2^Eb·δa + δa·δb) of the exact Σ a_k·b_k: the bound from block exponents,
+/// which is what a hardware margin knows.
+fn dot(a: &Block<3>, b: &Block<3>) -> Approx {
+    let sum: i128 = (0..3).map(|k| a.m[k] as i128 * b.m[k] as i128).sum();
+    let v = sum as f64 * 2f64.powi(a.lsb + b.lsb);
+    Approx {
+        v,
+        // Above 53 bits (W > 19 on the t test's wide vectors) f64 rounds the sum once.
+        err: 3.0 * (a.top() * b.delta + b.top() * a.delta + a.delta * b.delta) + F64_UNIT * v.abs(),
+    }
+}
+
+/// x ± y of two dots: hardware aligns the finer onto the coarser grid (truncating, less
+/// than one unit of it); here f64 adds them (one rounding).
+fn combine(x: Approx, y: Approx, lsbs: [i32; 2]) -> Approx {
+    let v = x.v + y.v;
+    Approx {
+        v,
+        err: x.err + y.err + 2f64.powi(lsbs[0].max(lsbs[1])) + F64_UNIT * v.abs(),
+    }
+}
+
+/// What the filter holds of a ray.
+struct Ray {
+    dir: Block<3>,
+    moment: Block<3>,
+    orig: Block<3>,
+}
+
+/// What the filter holds of a triangle.
+struct Triangle {
+    n: Block<3>,
+    e1: Block<3>,
+    e2: Block<3>,
+    v0_e1: Block<3>,
+    v0_e2: Block<3>,
+    /// v0·n.
+    offset: Block<1>,
+    /// The bound 2^E of v0's components (for the fallback's |s|).
+    v0_top: f64,
+}
+
+fn exact3(v: [f64; 3]) -> [Approx; 3] {
+    v.map(Approx::exact)
+}
+
+impl Ray {
+    fn new(orig: [f64; 3], dir: [f64; 3], width: u32) -> Option<Ray> {
+        Some(Ray {
+            dir: Block::new(exact3(dir), width)?,
+            moment: Block::new(cross(exact3(orig), exact3(dir)), width)?,
+            orig: Block::new(exact3(orig), width + T_EXTRA_BITS)?,
+        })
+    }
+}
+
+impl Triangle {
+    /// n takes W + [`T_EXTRA_BITS`] bits, as orig does, and v0·n the width of their
+    /// products: it is compared with orig·n, and the two cancel when the ray starts near the
+    /// triangle's plane.
+    fn new(v0: [f64; 3], v1: [f64; 3], v2: [f64; 3], width: u32) -> Option<Triangle> {
+        let wide = width + T_EXTRA_BITS;
+        let e1: [Approx; 3] = std::array::from_fn(|k| Approx::difference(v1[k], v0[k]));
+        let e2: [Approx; 3] = std::array::from_fn(|k| Approx::difference(v2[k], v0[k]));
+        let n = cross(e1, e2);
+        let v0_block = Block::new(exact3(v0), width)?;
+        Some(Triangle {
+            n: Block::new(n, wide)?,
+            e1: Block::new(e1, width)?,
+            e2: Block::new(e2, width)?,
+            v0_e1: Block::new(cross(exact3(v0), e1), width)?,
+            v0_e2: Block::new(cross(exact3(v0), e2), width)?,
+            offset: Block::new([dot_f64(exact3(v0), n)], 2 * wide - 1)?,
+            v0_top: v0_block.top(),
+        })
+    }
+}
+
+/// A bound on every |s_k| = |orig_k − v0_k| as the coarse subtraction gives it at its
+/// worst ([`S_BOUND_BITS`]): |s| plus twice its truncations' 2^(E − S_BOUND_BITS + 2).
+fn s_top(orig: [f64; 3], v0: [f64; 3], ray: &Ray, tri: &Triangle) -> f64 {
+    let cut = ray.orig.top().max(tri.v0_top) * 2f64.powi(2 - S_BOUND_BITS);
+    let s = (0..3).map(|k| (orig[k] - v0[k]).abs()).fold(0.0, f64::max);
+    s * (1.0 + f64::EPSILON) + 2.0 * cut
+}
+
+impl Filter {
+    /// [`Filter::decide`] for [`super::FilterKind::Plucker`]: det and the numerators from
+    /// the blocks (the module's identities), each within its dots' bounds, the alignment's
+    /// unit and the fallback's error bound evaluated on the blocks' exponent bounds (|dir_k|
+    /// ≤ 2^E_dir, |e1_k| ≤ 2^E_e1, |s_k| ≤ [`s_top`]), then the division-free filter's
+    /// decisions.
+    pub(super) fn decide_plucker(&self, q: &MtQuery, margin_scale: f64) -> Option<MtResult> {
+        let FilterFormat::Bfp(width) = self.pair.filter else {
+            unreachable!("Filter::new pairs the plucker kind with a bfpW filter")
+        };
+        let [orig, dir, v0, v1, v2] = coords(q);
+        if [orig, dir, v0, v1, v2]
+            .iter()
+            .flatten()
+            .any(|x| !x.is_finite())
+        {
+            return None;
+        }
+        let ray = Ray::new(orig, dir, width)?;
+        let tri = Triangle::new(v0, v1, v2, width)?;
+        let lsb = |a: &Block<3>, b: &Block<3>| a.lsb + b.lsb;
+        let det = dot(&ray.dir, &tri.n);
+        let nu = combine(
+            dot(&tri.e2, &ray.moment),
+            dot(&ray.dir, &tri.v0_e2),
+            [lsb(&tri.e2, &ray.moment), lsb(&ray.dir, &tri.v0_e2)],
+        );
+        let nv = combine(
+            dot(&tri.e1, &ray.moment),
+            dot(&ray.dir, &tri.v0_e1),
+            [lsb(&tri.e1, &ray.moment), lsb(&ray.dir, &tri.v0_e1)],
+        );
+        let offset = Approx {
+            v: -tri.offset.value(0),
+            err: tri.offset.delta,
+        };
+        let nt = combine(
+            dot(&ray.orig, &tri.n),
+            offset,
+            [lsb(&ray.orig, &tri.n), tri.offset.lsb],
+        );
+        let (det_b, num_b) = self.fallback_bounds(&ray, &tri, s_top(orig, v0, &ray, &tri))?;
+        let margin = |a: Approx, b: Bounded| (a.err + b.err) * margin_scale * F64_SLACK;
+        self.decide_numerators(
+            q,
+            -det.v,
+            margin(det, det_b),
+            [nu.v, -nv.v, nt.v],
+            [
+                margin(nu, num_b[0]),
+                margin(nv, num_b[1]),
+                margin(nt, num_b[2]),
+            ],
+        )
+    }
+
+    /// The fallback's error bounds of det and the numerators from the blocks' exponent
+    /// bounds and [`s_top`]: it holds dir as given, and e1, e2, s as one rounding of their
+    /// exact values.
+    fn fallback_bounds(
+        &self,
+        ray: &Ray,
+        tri: &Triangle,
+        s_top: f64,
+    ) -> Option<(Bounded, [Bounded; 3])> {
+        let c = Ctx::exact(self.b);
+        let vector = |mag: f64, rounded: bool| -> BV {
+            let err = if rounded { c.error(mag) } else { 0.0 };
+            [c.bounded(mag, err); 3]
+        };
+        product_bounds(
+            [
+                vector(ray.dir.top(), false),
+                vector(tri.e1.top(), true),
+                vector(tri.e2.top(), true),
+                vector(s_top, true),
+            ],
+            &[],
+            &c,
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn coordinate() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            1 => Just(0.0),
+            10 => (-1000.0f32..1000.0).prop_map(f64::from),
+            3 => (-1e-3f32..1e-3).prop_map(f64::from),
+        ]
+    }
+
+    fn vector() -> impl Strategy<Value = [f64; 3]> {
+        proptest::array::uniform3(coordinate())
+    }
+
+    /// |a − b| ≤ err, checked in exact rational arithmetic of f64 pairs: a and b are sums
+    /// of f64 products, compared here through their f64 difference with its own rounding.
+    fn within(a: f64, b: f64, err: f64) -> bool {
+        (a - b).abs() <= err + (a.abs() + b.abs()) * f64::EPSILON
+    }
+
+    /// An exact triple product from f32-sized inputs: products of two f32s are exact in
+    /// f64; the third factor is an f64 difference of f32s, exact for these magnitudes.
+    fn cross_exact(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+        std::array::from_fn(|i| {
+            let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+            a[j] * b[k] - a[k] * b[j]
+        })
+    }
+
+    proptest! {
+        /// A block's mantissas fit W signed bits, every component is below 2^E, E is the
+        /// smallest such, and each mantissa is within one step (plus the tracked error).
+        #[test]
+        fn blocks_truncate_within_their_delta(v in vector(), w in 8u32..=24) {
+            let b = Block::new(exact3(v), w).unwrap();
+            let step = 2f64.powi(b.lsb);
+            for k in 0..3 {
+                prop_assert!(b.m[k].unsigned_abs() < 1 << (w - 1));
+                prop_assert!(v[k].abs() < b.top());
+                prop_assert!((v[k] - b.value(k)).abs() < step);
+                prop_assert!(b.value(k).abs() <= v[k].abs());
+            }
+            prop_assert_eq!(b.delta, step);
+            if v.iter().any(|x| *x != 0.0) {
+                prop_assert!(v.iter().any(|x| x.abs() >= b.top() / 2.0));
+            }
+        }
+
+        /// The identities and the dot bound: det and N_u from the blocks are within their
+        /// bounds of the same quantities computed the Möller-Trumbore way in f64 (exact
+        /// within f64's few roundings for these f32-sized inputs).
+        #[test]
+        fn plucker_numerators_are_within_their_bounds(
+            orig in vector(), dir in vector(), v0 in vector(), v1 in vector(), v2 in vector(),
+            w in 8u32..=24,
+        ) {
+            let ray = Ray::new(orig, dir, w).unwrap();
+            let tri = Triangle::new(v0, v1, v2, w).unwrap();
+            let sub = |a: [f64; 3], b: [f64; 3]| -> [f64; 3] { std::array::from_fn(|k| a[k] - b[k]) };
+            let dotf = |a: [f64; 3], b: [f64; 3]| (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2];
+            let (e1, e2, s) = (sub(v1, v0), sub(v2, v0), sub(orig, v0));
+            let p = cross_exact(dir, e2);
+            let want_det = dotf(e1, p);
+            let want_nu = dotf(s, p);
+            // f64's own error of the reference: products of terms up to 2^33.
+            let slack = 1e-12 * (1.0 + want_det.abs() + want_nu.abs())
+                + 1e-15 * dotf(s.map(f64::abs), p.map(f64::abs)) * 16.0
+                + 1e-15 * dotf(e1.map(f64::abs), p.map(f64::abs)) * 16.0;
+            let det = dot(&ray.dir, &tri.n);
+            prop_assert!(within(-det.v, want_det, det.err + slack), "det {} {} {}", -det.v, want_det, det.err);
+            let nu = combine(
+                dot(&tri.e2, &ray.moment),
+                dot(&ray.dir, &tri.v0_e2),
+                [tri.e2.lsb + ray.moment.lsb, ray.dir.lsb + tri.v0_e2.lsb],
+            );
+            prop_assert!(within(nu.v, want_nu, nu.err + slack), "nu {} {} {}", nu.v, want_nu, nu.err);
+            let q = cross_exact(s, e1);
+            let (want_nv, want_nt) = (dotf(dir, q), dotf(e2, q));
+            let slack = slack + 1e-15 * 16.0 * (dotf(dir.map(f64::abs), q.map(f64::abs))
+                + dotf(e2.map(f64::abs), q.map(f64::abs)));
+            let nv = combine(
+                dot(&tri.e1, &ray.moment),
+                dot(&ray.dir, &tri.v0_e1),
+                [tri.e1.lsb + ray.moment.lsb, ray.dir.lsb + tri.v0_e1.lsb],
+            );
+            prop_assert!(within(-nv.v, want_nv, nv.err + slack), "nv {} {} {}", -nv.v, want_nv, nv.err);
+            let nt = combine(
+                dot(&ray.orig, &tri.n),
+                Approx { v: -tri.offset.value(0), err: tri.offset.delta },
+                [ray.orig.lsb + tri.n.lsb, tri.offset.lsb],
+            );
+            prop_assert!(within(nt.v, want_nt, nt.err + slack), "nt {} {} {}", nt.v, want_nt, nt.err);
+        }
+    }
+}
