@@ -240,3 +240,20 @@ module bfp_cut #(parameter IW = 37, W = 18) (
         dz <= (x0[L-1:0] | x1[L-1:0] | x2[L-1:0]) == 0;
     end
 endmodule
+
+// The Plücker filter (docs/precision.md, "The Plücker filter"): a * 2^ea + b * 2^eb of two
+// N-bit dots, the finer one shifted onto the coarser grid by an arithmetic shift (its lost
+// bits truncated; beyond N bits only its sign is left). Out: s * 2^e.
+module bfp_align_add #(parameter N = 38) (
+    input clk, input signed [N-1:0] a, b, input signed [9:0] ea, eb,
+    output reg signed [N:0] s, output reg signed [9:0] e);
+    wire a_up = ea >= eb;
+    wire signed [9:0] d = a_up ? ea - eb : eb - ea;
+    wire [6:0] sh = d > N - 1 ? N - 1 : d[6:0];
+    wire signed [N-1:0] fine = a_up ? b : a;
+    wire signed [N-1:0] coarse = a_up ? a : b;
+    always @(posedge clk) begin
+        s <= coarse + (fine >>> sh);
+        e <= a_up ? ea : eb;
+    end
+endmodule

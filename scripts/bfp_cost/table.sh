@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every block row of docs/precision.md "Tests per cycle per LUT (estimate)" for the bfp18
-# filter (yosys 0.23 synth_xilinx; LUT counts LUT + SRL): scripts/bfp_cost/table.sh
+# filter, and the Plücker filter's three extra blocks ("The Plücker filter"; yosys 0.23
+# synth_xilinx; LUT counts LUT + SRL): scripts/bfp_cost/table.sh
 set -euo pipefail
 dir=$(cd "$(dirname "$0")" && pwd)
 echo "| block | LUT | FF | DSP48E1 | CARRY4 |"
@@ -31,4 +32,7 @@ bfp_round IW=47 M=10 UP=0
 bfp_round IW=36 M=10 UP=0
 bfp_scmp M=11
 bfp_sadd M=11
+bfp_mul A=25 B=25
+bfp_align_add N=38
+bfp_align_add N=52
 ROWS
