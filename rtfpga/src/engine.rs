@@ -8,7 +8,8 @@ use hdl::top::TopConfig;
 use hdl::traversal::scene_memory;
 use hdl::traversal::unit::UnitConfig;
 use hw_model::dual::{
-    BoundArith, DualIntersector, Filter, FilterFormat, FilterKind, FormatChoice, HW_BOUND_BITS,
+    BoundArith, DualIntersector, Filter, FilterFormat, FilterKind, FormatChoice, PluckerDecisions,
+    HW_BOUND_BITS,
 };
 use hw_model::precision::{auto_scale_exp, SceneRange, SpawnChoice};
 use hw_model::traversal::{SceneCapacity, SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
@@ -98,8 +99,10 @@ pub enum DualFilter {
     /// Block floating point, for a bfpW/FALLBACK pair: exact integers, margins per width.
     Bfp,
     /// Block floating point in Plücker form, for a bfpW/FALLBACK pair: per-ray and
-    /// per-triangle blocks, no translation per test (model only).
+    /// per-triangle blocks, no translation per test, sign decisions (model only).
     Plucker,
+    /// The Plücker filter with the division-free filter's decisions (model only).
+    PluckerLinear,
 }
 
 impl DualFilter {
@@ -109,7 +112,8 @@ impl DualFilter {
             DualFilter::LinearExact => FilterKind::Linear(BoundArith::Exact),
             DualFilter::Quotient => FilterKind::Quotient,
             DualFilter::Bfp => FilterKind::Bfp,
-            DualFilter::Plucker => FilterKind::Plucker,
+            DualFilter::Plucker => FilterKind::Plucker(PluckerDecisions::Signs),
+            DualFilter::PluckerLinear => FilterKind::Plucker(PluckerDecisions::Linear),
         }
     }
 }

@@ -356,6 +356,11 @@ fn render_model_with_a_format_pair_writes_the_fallbacks_image() {
         ),
         ("bfp18/fp32", &[][..], "bfp"),
         ("bfp18/fp32", &["--dual-filter", "plucker"][..], "plucker"),
+        (
+            "bfp18/fp32",
+            &["--dual-filter", "plucker-linear"][..],
+            "plucker-linear",
+        ),
     ] {
         let mut cmd = vec![
             "render",

@@ -599,8 +599,18 @@ pub enum FilterKind {
     Bfp,
     /// Plücker form ([`plucker`]), for a `bfpW` filter: det and the numerators as dot
     /// products of per-ray and per-triangle blocks, no translation per test, margins from
-    /// block exponents, the division-free decisions. A model, not built in hardware.
-    Plucker,
+    /// block exponents. A model, not built in hardware.
+    Plucker(PluckerDecisions),
+}
+
+/// How the Plücker filter decides.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PluckerDecisions {
+    /// The division-free filter's tests on the values and their margins.
+    Linear,
+    /// Signs against power-of-two margins, u + v > 1 from the third edge's value: what
+    /// leading-one detectors and exponent comparisons decide.
+    Signs,
 }
 
 impl FilterKind {
@@ -623,7 +633,8 @@ impl fmt::Display for FilterKind {
             FilterKind::Linear(BoundArith::Coarse(HW_BOUND_BITS)) => f.write_str("linear"),
             FilterKind::Linear(BoundArith::Coarse(bits)) => write!(f, "linear-coarse{bits}"),
             FilterKind::Bfp => f.write_str("bfp"),
-            FilterKind::Plucker => f.write_str("plucker"),
+            FilterKind::Plucker(PluckerDecisions::Signs) => f.write_str("plucker"),
+            FilterKind::Plucker(PluckerDecisions::Linear) => f.write_str("plucker-linear"),
         }
     }
 }
@@ -654,15 +665,15 @@ impl Filter {
             needs,
         };
         match (pair.filter, kind) {
-            (FilterFormat::Bfp(_), FilterKind::Bfp | FilterKind::Plucker) if scale_exp != 0 => {
+            (FilterFormat::Bfp(_), FilterKind::Bfp | FilterKind::Plucker(_)) if scale_exp != 0 => {
                 return Err(DualError::BfpScaled {
                     pair: pair.to_string(),
                     scale_exp,
                 })
             }
-            (FilterFormat::Bfp(_), FilterKind::Bfp | FilterKind::Plucker) => {}
+            (FilterFormat::Bfp(_), FilterKind::Bfp | FilterKind::Plucker(_)) => {}
             (FilterFormat::Bfp(_), _) => return Err(mismatch("a float filter such as fp16")),
-            (FilterFormat::Float(_), FilterKind::Bfp | FilterKind::Plucker) => {
+            (FilterFormat::Float(_), FilterKind::Bfp | FilterKind::Plucker(_)) => {
                 return Err(mismatch("a block-floating-point filter such as bfp18"))
             }
             (FilterFormat::Float(_), _) => {}
@@ -702,7 +713,7 @@ impl Filter {
             FilterKind::Quotient => self.decide_quotient(q, margin_scale),
             FilterKind::Linear(arith) => self.decide_linear(q, margin_scale, arith),
             FilterKind::Bfp => self.decide_bfp(q, margin_scale),
-            FilterKind::Plucker => self.decide_plucker(q, margin_scale),
+            FilterKind::Plucker(decisions) => self.decide_plucker(q, margin_scale, decisions),
         }
     }
 

@@ -5,7 +5,7 @@
 
 use hw_model::dual::{
     BoundArith, DualError, DualIntersector, Filter, FilterFormat, FilterKind, FormatChoice,
-    FormatPair, DEFAULT_FILTER,
+    FormatPair, PluckerDecisions, DEFAULT_FILTER,
 };
 use hw_model::precision::SpawnChoice;
 use hw_model::{lookup, mt_model, FormatError, ModelIntersector, MtQuery, MtResult};
@@ -173,8 +173,8 @@ const fn float_case(kind: FilterKind) -> Case {
 
 /// The filters under test: the division-free one with the hardware's coarse bound, the
 /// quotient filter, the division-free one with an exact bound, block floating point, and
-/// block floating point in Plücker form.
-const CASES: [Case; 5] = [
+/// block floating point in Plücker form with either decisions.
+const CASES: [Case; 6] = [
     float_case(DEFAULT_FILTER),
     float_case(FilterKind::Quotient),
     float_case(FilterKind::Linear(BoundArith::Exact)),
@@ -186,20 +186,25 @@ const CASES: [Case; 5] = [
         largest: &["bfp14/fp32", "bfp16/fp32", "bfp18/fp32", "bfp20/fp32"],
         rejects_at: 0.2,
     },
+    plucker_case(PluckerDecisions::Linear),
+    plucker_case(PluckerDecisions::Signs),
+];
+
+const fn plucker_case(decisions: PluckerDecisions) -> Case {
     Case {
-        kind: FilterKind::Plucker,
+        kind: FilterKind::Plucker(decisions),
         main: "bfp18/fp32",
         extra: &[("bfp14/fp32", 0), ("bfp8/fp32", 0), ("bfp24/fp32", 0)],
         margin: &["bfp18/fp32", "bfp14/fp32"],
         largest: &["bfp14/fp32", "bfp18/fp32", "bfp24/fp32"],
         rejects_at: 0.2,
-    },
-];
+    }
+}
 
 /// The engines' filters and the Plücker filter (the candidate for hardware) take the
 /// million queries; the others a fifth of them.
 fn long_run(kind: FilterKind) -> bool {
-    kind == DEFAULT_FILTER || kind == FilterKind::Bfp || kind == FilterKind::Plucker
+    kind == DEFAULT_FILTER || matches!(kind, FilterKind::Bfp | FilterKind::Plucker(_))
 }
 
 fn filter(p: &str, scale_exp: i32, kind: FilterKind) -> Filter {
@@ -454,20 +459,28 @@ fn bad_bfp_spellings_are_clear_errors() {
         kind_err("bfp18/fp32", -2, FilterKind::Bfp),
         DualError::BfpScaled { scale_exp: -2, .. }
     ));
-    let e = kind_err("fp16/fp32", 0, FilterKind::Plucker);
+    let e = kind_err("fp16/fp32", 0, FilterKind::Plucker(PluckerDecisions::Signs));
     assert!(
         e.to_string()
             .contains("the plucker filter needs a block-floating-point filter"),
         "{e}"
     );
     assert!(matches!(
-        kind_err("bfp18/fp32", 3, FilterKind::Plucker),
+        kind_err(
+            "bfp18/fp32",
+            3,
+            FilterKind::Plucker(PluckerDecisions::Linear)
+        ),
         DualError::BfpScaled { scale_exp: 3, .. }
     ));
     assert_eq!(
-        filter("bfp14/fp32", 0, FilterKind::Plucker)
-            .kind
-            .to_string(),
+        filter(
+            "bfp14/fp32",
+            0,
+            FilterKind::Plucker(PluckerDecisions::Signs)
+        )
+        .kind
+        .to_string(),
         "plucker"
     );
 }
@@ -481,14 +494,18 @@ struct Floors {
     forwarded: std::sync::atomic::AtomicU64,
     hits: std::sync::atomic::AtomicU64,
     inside: std::sync::atomic::AtomicU64,
-    plucker_forwarded: std::sync::atomic::AtomicU64,
-    plucker_rejected_hits: std::sync::atomic::AtomicU64,
+    /// Per filter of [`FloorCounter::others`]: tests it would forward, fp32 hits it would
+    /// have rejected.
+    others: [[std::sync::atomic::AtomicU64; 2]; PLUCKER.len()],
 }
 
-/// bfp18/fp32 with [`Floors`] counted beside it, and what the Plücker filter would forward.
+/// The filters the floors are measured against beside bfp18/fp32.
+const PLUCKER: [PluckerDecisions; 2] = [PluckerDecisions::Linear, PluckerDecisions::Signs];
+
+/// bfp18/fp32 with [`Floors`] counted beside it, and what the Plücker filters would forward.
 struct FloorCounter {
     dual: DualIntersector,
-    plucker: Filter,
+    others: [Filter; PLUCKER.len()],
     floors: Floors,
 }
 
@@ -536,19 +553,14 @@ impl Intersector for FloorCounter {
             .zip(results.iter())
             .filter(|(q, r)| r.hit || inside_edges(q))
             .count() as u64;
-        let plucker: Vec<bool> = queries
-            .iter()
-            .map(|q| self.plucker.certain_miss(q, 1.0))
-            .collect();
-        let plucker_forwarded = plucker.iter().filter(|m| !**m).count() as u64;
-        let rejected = results
-            .iter()
-            .zip(&plucker)
-            .filter(|(r, m)| r.hit && **m)
-            .count() as u64;
         let f = &self.floors;
-        f.plucker_forwarded.fetch_add(plucker_forwarded, Relaxed);
-        f.plucker_rejected_hits.fetch_add(rejected, Relaxed);
+        for (other, [forwarded, rejected]) in self.others.iter().zip(&f.others) {
+            for (q, r) in queries.iter().zip(results.iter()) {
+                let miss = other.certain_miss(q, 1.0);
+                forwarded.fetch_add(u64::from(!miss), Relaxed);
+                rejected.fetch_add(u64::from(miss && r.hit), Relaxed);
+            }
+        }
         f.tests.fetch_add(queries.len() as u64, Relaxed);
         f.forwarded.fetch_add(forwarded, Relaxed);
         f.hits.fetch_add(hits, Relaxed);
@@ -569,9 +581,9 @@ fn forwarding_floors_on_the_thesis_scenes() {
         return;
     };
     println!(
-        "| policy | scene | tests | fp32 hits | hits or inside the edges | bfp18/fp32 forwards | Plücker bfp18/fp32 forwards |"
+        "| policy | scene | tests | fp32 hits | hits or inside the edges | bfp18/fp32 forwards | Plücker, division-free decisions | Plücker, sign decisions |"
     );
-    println!("|---|---|---:|---:|---:|---:|---:|");
+    println!("|---|---|---:|---:|---:|---:|---:|---:|");
     for choice in [SpawnChoice::Thesis, SpawnChoice::FormatAware] {
         let opts = RenderOptions {
             width: Some(320),
@@ -579,43 +591,48 @@ fn forwarding_floors_on_the_thesis_scenes() {
             spawn: choice.policy(&lookup("fp32").unwrap(), 0),
             ..Default::default()
         };
-        let mut total = [0u64; 5];
-        let row = |scene: &str, n: [u64; 5]| {
+        let mut total = [0u64; 6];
+        let row = |scene: &str, n: [u64; 6]| {
             let share = |k: usize| n[k] as f64 / n[0].max(1) as f64;
             println!(
-                "| {choice} | {scene} | {} | {:.4} | {:.4} | {:.4} | {:.4} |",
+                "| {choice} | {scene} | {} | {:.4} | {:.4} | {:.4} | {:.4} | {:.4} |",
                 n[0],
                 share(1),
                 share(2),
                 share(3),
-                share(4)
+                share(4),
+                share(5)
             );
         };
         for name in thesis_scenes::SCENE_DIRS {
             let scene = Scene::load(root.join(name).to_str().unwrap()).unwrap();
             let counter = FloorCounter {
                 dual: DualIntersector::new(pair("bfp18/fp32"), 0).unwrap(),
-                plucker: filter("bfp18/fp32", 0, FilterKind::Plucker),
+                others: PLUCKER.map(|d| filter("bfp18/fp32", 0, FilterKind::Plucker(d))),
                 floors: Floors::default(),
             };
             render(&scene, &counter, &opts).unwrap();
             let f = &counter.floors;
+            let [linear, signs] = &f.others;
             let n = [
                 &f.tests,
                 &f.hits,
                 &f.inside,
                 &f.forwarded,
-                &f.plucker_forwarded,
+                &linear[0],
+                &signs[0],
             ]
             .map(|c| c.load(Relaxed));
             // The floors are floors: a filter that forwarded less would have dropped a hit.
             assert!(
-                n[1] <= n[2] && n[1] <= n[3] && n[1] <= n[4],
+                n[3..].iter().all(|&k| n[1] <= k) && n[1] <= n[2],
                 "{name}: {n:?}"
             );
-            assert_eq!(f.plucker_rejected_hits.load(Relaxed), 0, "{name}");
+            for [_, rejected] in &f.others {
+                assert_eq!(rejected.load(Relaxed), 0, "{name}: an fp32 hit rejected");
+            }
             row(name, n);
-            for k in 0..5 {
+            for k in 0..6 {
                 total[k] += n[k];
             }
         }

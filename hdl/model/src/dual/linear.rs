@@ -13,7 +13,7 @@ use super::{
 use crate::mt::mt_traced;
 
 /// `a < b` even after f64's roundings of the products and sums that formed them.
-fn certainly_below(a: f64, b: f64) -> bool {
+pub(super) fn certainly_below(a: f64, b: f64) -> bool {
     a < b - (a.abs() + b.abs()) * 1e-12
 }
 

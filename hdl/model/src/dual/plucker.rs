@@ -17,7 +17,11 @@
 
 use sw_renderer::intersect::{MtQuery, MtResult};
 
-use super::{coords, product_bounds, Bounded, Ctx, Filter, FilterFormat, BV, F64_SLACK};
+use super::linear::certainly_below;
+use super::{
+    coords, product_bounds, round_up_to_bits, Bounded, Ctx, Filter, FilterFormat, PluckerDecisions,
+    Rounding, BV, F64_SLACK, HW_BOUND_BITS,
+};
 
 /// f64's unit roundoff.
 const F64_UNIT: f64 = f64::EPSILON / 2.0;
@@ -177,6 +181,9 @@ struct Triangle {
     e2: Block<3>,
     v0_e1: Block<3>,
     v0_e2: Block<3>,
+    /// e3 = v2 − v1 and v1 × e3: the third edge's value N_w = w·det (the sign decisions).
+    e3: Block<3>,
+    v1_e3: Block<3>,
     /// v0·n.
     offset: Block<1>,
     /// The bound 2^E of v0's components (for the fallback's |s|).
@@ -205,6 +212,7 @@ impl Triangle {
         let wide = width + T_EXTRA_BITS;
         let e1: [Approx; 3] = std::array::from_fn(|k| Approx::difference(v1[k], v0[k]));
         let e2: [Approx; 3] = std::array::from_fn(|k| Approx::difference(v2[k], v0[k]));
+        let e3: [Approx; 3] = std::array::from_fn(|k| Approx::difference(v2[k], v1[k]));
         let n = cross(e1, e2);
         let v0_block = Block::new(exact3(v0), width)?;
         Some(Triangle {
@@ -213,6 +221,8 @@ impl Triangle {
             e2: Block::new(e2, width)?,
             v0_e1: Block::new(cross(exact3(v0), e1), width)?,
             v0_e2: Block::new(cross(exact3(v0), e2), width)?,
+            e3: Block::new(e3, width)?,
+            v1_e3: Block::new(cross(exact3(v1), e3), width)?,
             offset: Block::new([dot_f64(exact3(v0), n)], 2 * wide - 1)?,
             v0_top: v0_block.top(),
         })
@@ -227,16 +237,74 @@ fn s_top(orig: [f64; 3], v0: [f64; 3], ray: &Ray, tri: &Triangle) -> f64 {
     s * (1.0 + f64::EPSILON) + 2.0 * cut
 }
 
+/// The filter's values and the fallback's error bounds of one query: det = −dir·n and
+/// the numerators, N_w = w·det = −(e3·m + dir·(v1 × e3)) beside them.
+struct Values {
+    det: Approx,
+    nu: Approx,
+    nv: Approx,
+    nw: Approx,
+    nt: Approx,
+    det_b: Bounded,
+    num_b: [Bounded; 3],
+}
+
+/// The smallest power of two ≥ x (0 stays 0): a margin as a leading-one position.
+fn up2(x: f64) -> f64 {
+    if x == 0.0 {
+        return 0.0;
+    }
+    let p = 2f64.powi(((x.to_bits() >> 52) & 0x7ff) as i32 - 1023);
+    if p == x {
+        x
+    } else {
+        2.0 * p
+    }
+}
+
+/// A bound of a sum as a hardware margin network forms it: each term and each partial sum
+/// rounded up to a float of [`HW_BOUND_BITS`] fraction bits (the division-free filter's
+/// coarse grid), so a margin is a short float compared with a value's top bits.
+fn coarse_sum(terms: &[f64]) -> f64 {
+    let up = |x: f64| round_up_to_bits(x, HW_BOUND_BITS);
+    terms.iter().fold(0.0, |acc, &t| up(acc + up(t)))
+}
+
 impl Filter {
     /// [`Filter::decide`] for [`super::FilterKind::Plucker`]: det and the numerators from
     /// the blocks (the module's identities), each within its dots' bounds, the alignment's
     /// unit and the fallback's error bound evaluated on the blocks' exponent bounds (|dir_k|
-    /// ≤ 2^E_dir, |e1_k| ≤ 2^E_e1, |s_k| ≤ [`s_top`]), then the division-free filter's
-    /// decisions.
-    pub(super) fn decide_plucker(&self, q: &MtQuery, margin_scale: f64) -> Option<MtResult> {
+    /// ≤ 2^E_dir, |e1_k| ≤ 2^E_e1, |s_k| ≤ [`s_top`]), then `decisions`.
+    pub(super) fn decide_plucker(
+        &self,
+        q: &MtQuery,
+        margin_scale: f64,
+        decisions: PluckerDecisions,
+    ) -> Option<MtResult> {
         let FilterFormat::Bfp(width) = self.pair.filter else {
             unreachable!("Filter::new pairs the plucker kind with a bfpW filter")
         };
+        let x = self.plucker_values(q, width)?;
+        match decisions {
+            PluckerDecisions::Linear => {
+                let margin = |a: Approx, b: Bounded| (a.err + b.err) * margin_scale * F64_SLACK;
+                self.decide_numerators(
+                    q,
+                    -x.det.v,
+                    margin(x.det, x.det_b),
+                    [x.nu.v, -x.nv.v, x.nt.v],
+                    [
+                        margin(x.nu, x.num_b[0]),
+                        margin(x.nv, x.num_b[1]),
+                        margin(x.nt, x.num_b[2]),
+                    ],
+                )
+            }
+            PluckerDecisions::Signs => self.decide_signs(q, &x, margin_scale),
+        }
+    }
+
+    fn plucker_values(&self, q: &MtQuery, width: u32) -> Option<Values> {
         let [orig, dir, v0, v1, v2] = coords(q);
         if [orig, dir, v0, v1, v2]
             .iter()
@@ -247,40 +315,105 @@ impl Filter {
         }
         let ray = Ray::new(orig, dir, width)?;
         let tri = Triangle::new(v0, v1, v2, width)?;
-        let lsb = |a: &Block<3>, b: &Block<3>| a.lsb + b.lsb;
-        let det = dot(&ray.dir, &tri.n);
-        let nu = combine(
-            dot(&tri.e2, &ray.moment),
-            dot(&ray.dir, &tri.v0_e2),
-            [lsb(&tri.e2, &ray.moment), lsb(&ray.dir, &tri.v0_e2)],
-        );
-        let nv = combine(
-            dot(&tri.e1, &ray.moment),
-            dot(&ray.dir, &tri.v0_e1),
-            [lsb(&tri.e1, &ray.moment), lsb(&ray.dir, &tri.v0_e1)],
-        );
+        // A value a·m + dir·b of an edge vector a and its moment b.
+        let edge = |a: &Block<3>, b: &Block<3>| {
+            combine(
+                dot(a, &ray.moment),
+                dot(&ray.dir, b),
+                [a.lsb + ray.moment.lsb, ray.dir.lsb + b.lsb],
+            )
+        };
         let offset = Approx {
             v: -tri.offset.value(0),
             err: tri.offset.delta,
         };
-        let nt = combine(
-            dot(&ray.orig, &tri.n),
-            offset,
-            [lsb(&ray.orig, &tri.n), tri.offset.lsb],
-        );
         let (det_b, num_b) = self.fallback_bounds(&ray, &tri, s_top(orig, v0, &ray, &tri))?;
-        let margin = |a: Approx, b: Bounded| (a.err + b.err) * margin_scale * F64_SLACK;
-        self.decide_numerators(
-            q,
-            -det.v,
-            margin(det, det_b),
-            [nu.v, -nv.v, nt.v],
-            [
-                margin(nu, num_b[0]),
-                margin(nv, num_b[1]),
-                margin(nt, num_b[2]),
-            ],
-        )
+        Some(Values {
+            det: dot(&ray.dir, &tri.n),
+            nu: edge(&tri.e2, &tri.v0_e2),
+            nv: edge(&tri.e1, &tri.v0_e1),
+            nw: edge(&tri.e3, &tri.v1_e3),
+            nt: combine(
+                dot(&ray.orig, &tri.n),
+                offset,
+                [ray.orig.lsb + tri.n.lsb, tri.offset.lsb],
+            ),
+            det_b,
+            num_b,
+        })
+    }
+
+    /// The sign decisions ([`PluckerDecisions::Signs`]): every margin a short float
+    /// ([`coarse_sum`]), every test the sign of a value whose magnitude exceeds its margin
+    /// (a comparison of its top bits), a value's magnitude in a margin its leading one
+    /// (up2), one product for t_min > 0. With σ = sign(D), D = −det_A, n_x = σ·N_x, M_x the
+    /// margins (filter plus fallback; N_w's: its own, det's filter error and whole margin,
+    /// the fallback's of N_u and N_v, and the fallback's quotient roundings; derived in
+    /// docs/precision.md, "The Plücker filter"), and |D| ≥ 2M_D (so |D|/2 ≤ L ≤ H ≤ 2|D|,
+    /// else forward):
+    /// - up2(|D|) + M_D < eps: the parallel test fires;
+    /// - no reciprocal overflows or flushes and no quotient of u, v, t overflows (exponent
+    ///   comparisons against |D|), else forward;
+    /// - u < 0: n_u < −M_u and |n_u| > 16λ·up2(|D|) (not flushed to −0); v likewise;
+    /// - u + v > 1: n_w < −M_w (u > 1 is left to v and w: v + w = 1 − u);
+    /// - t ≤ t_min: n_t + M_t < τ·(|D| − M_D) for τ = t_min − λ ≥ 0 (one product), else
+    ///   n_t + M_t < 2τ·up2(|D|) (for t_min = 0 a sign and an exponent comparison).
+    fn decide_signs(&self, q: &MtQuery, x: &Values, margin_scale: f64) -> Option<MtResult> {
+        let miss = Some(MtResult::default());
+        let Rounding { unit: u, tiny, max } = self.b;
+        let margin = |terms: &[f64]| coarse_sum(terms) * margin_scale * F64_SLACK;
+        let d = -x.det.v;
+        let m_d = margin(&[x.det.err, x.det_b.err]);
+        let (dd, ud) = (d.abs(), up2(d.abs()));
+        if ud + m_d < self.eps_b {
+            return miss;
+        }
+        if dd < 2.0 * m_d {
+            return None;
+        }
+        let sigma = d.signum();
+        let [nu, nv, nw, nt] = [x.nu.v, -x.nv.v, -x.nw.v, x.nt.v].map(|v| sigma * v);
+        let m_u = margin(&[x.nu.err, x.num_b[0].err]);
+        let m_v = margin(&[x.nv.err, x.num_b[1].err]);
+        let m_t = margin(&[x.nt.err, x.num_b[2].err]);
+        // |n| + M ≤ 2·max(up2(|n|), M): no reciprocal overflows or flushes, no quotient
+        // overflows.
+        let reach = |n: f64, m: f64| 2.0 * up2(n.abs()).max(m);
+        let in_range = 4.0 < dd * max
+            && 4.0 * tiny * ud < 1.0
+            && [(nu, m_u), (nv, m_v), (nt, m_t)]
+                .iter()
+                .all(|&(n, m)| reach(n, m) < dd * max / 8.0);
+        if !in_range {
+            return None;
+        }
+        let below_zero = |n: f64, m: f64| n < -m && -n > 16.0 * tiny * ud;
+        let m_w = margin(&[
+            x.nw.err,
+            x.det.err,
+            m_d,
+            x.num_b[0].err,
+            x.num_b[1].err,
+            3.0 * u * (reach(nu, m_u) + reach(nv, m_v)),
+            2.0 * ud * (u + 4.0 * tiny),
+        ]);
+        let t_min = self
+            .pair
+            .fallback
+            .to_f64(self.pair.fallback.from_f32(q.t_min));
+        let tau = t_min - tiny;
+        let m_tq = margin(&[m_t, 3.0 * u * reach(nt, m_t)]);
+        let t_below = t_min.is_finite()
+            && certainly_below(
+                nt + m_tq,
+                tau * if tau >= 0.0 { dd - m_d } else { 2.0 * ud },
+            );
+        let certain = below_zero(nu, m_u) || below_zero(nv, m_v) || nw < -m_w || t_below;
+        if certain {
+            miss
+        } else {
+            None
+        }
     }
 
     /// The fallback's error bounds of det and the numerators from the blocks' exponent
@@ -349,11 +482,11 @@ mod tests {
         fn blocks_truncate_within_their_delta(v in vector(), w in 8u32..=24) {
             let b = Block::new(exact3(v), w).unwrap();
             let step = 2f64.powi(b.lsb);
-            for k in 0..3 {
+            for (k, x) in v.iter().enumerate() {
                 prop_assert!(b.m[k].unsigned_abs() < 1 << (w - 1));
-                prop_assert!(v[k].abs() < b.top());
-                prop_assert!((v[k] - b.value(k)).abs() < step);
-                prop_assert!(b.value(k).abs() <= v[k].abs());
+                prop_assert!(x.abs() < b.top());
+                prop_assert!((x - b.value(k)).abs() < step);
+                prop_assert!(b.value(k).abs() <= x.abs());
             }
             prop_assert_eq!(b.delta, step);
             if v.iter().any(|x| *x != 0.0) {
@@ -405,6 +538,14 @@ mod tests {
                 [ray.orig.lsb + tri.n.lsb, tri.offset.lsb],
             );
             prop_assert!(within(nt.v, want_nt, nt.err + slack), "nt {} {} {}", nt.v, want_nt, nt.err);
+            // w·det = det − N_u − N_v = −(e3·m + dir·(v1 × e3)).
+            let want_nw = want_det - want_nu - want_nv;
+            let nw = combine(
+                dot(&tri.e3, &ray.moment),
+                dot(&ray.dir, &tri.v1_e3),
+                [tri.e3.lsb + ray.moment.lsb, ray.dir.lsb + tri.v1_e3.lsb],
+            );
+            prop_assert!(within(-nw.v, want_nw, nw.err + 3.0 * slack), "nw {} {} {}", -nw.v, want_nw, nw.err);
         }
     }
 }
