@@ -257,3 +257,34 @@ module bfp_align_add #(parameter N = 38) (
         e <= a_up ? ea : eb;
     end
 endmodule
+
+// The Plücker filter's |s| bound for the fallback's margin: orig and v0 components cut to
+// their top 9 bits at their block exponents, aligned to the larger, subtracted; the
+// largest |difference| (plus the cuts' units, a constant) as an exponent: its leading one.
+module plucker_s_bound (
+    input clk, input signed [8:0] o0, o1, o2, v0, v1, v2, input signed [9:0] eo, ev,
+    output reg [4:0] top, output reg signed [9:0] e);
+    wire o_up = eo >= ev;
+    wire signed [9:0] d = o_up ? eo - ev : ev - eo;
+    wire [3:0] sh = d > 9 ? 4'd9 : d[3:0];
+    function signed [9:0] diff(input signed [8:0] o, v);
+        diff = o_up ? o - (v >>> sh) : (o >>> sh) - v;
+    endfunction
+    function [9:0] mag(input signed [9:0] x);
+        mag = x[9] ? -x : x;
+    endfunction
+    wire [9:0] a0 = mag(diff(o0, v0)), a1 = mag(diff(o1, v1)), a2 = mag(diff(o2, v2));
+    wire [9:0] m = a0 | a1 | a2;
+    function [4:0] lead(input [9:0] x);
+        integer i;
+        begin
+            lead = 0;
+            for (i = 0; i < 10; i = i + 1)
+                if (x[i]) lead = i + 1;
+        end
+    endfunction
+    always @(posedge clk) begin
+        top <= lead(m);
+        e <= o_up ? eo : ev;
+    end
+endmodule

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Every block row of docs/precision.md "Tests per cycle per LUT (estimate)" for the bfp18
-# filter, and the Plücker filter's three extra blocks ("The Plücker filter"; yosys 0.23
+# filter, and the Plücker filter's blocks ("The Plücker filter"; yosys 0.23
 # synth_xilinx; LUT counts LUT + SRL): scripts/bfp_cost/table.sh
 set -euo pipefail
 dir=$(cd "$(dirname "$0")" && pwd)
@@ -35,4 +35,12 @@ bfp_sadd M=11
 bfp_mul A=25 B=25
 bfp_align_add N=38
 bfp_align_add N=52
+bfp_round IW=45 M=6 UP=1
+bfp_round IW=39 M=6 UP=1
+bfp_round IW=53 M=6 UP=1
+bfp_sadd M=5
+bfp_scmp M=6
+bfp_add N=10
+bfp_mul A=6 B=6
+plucker_s_bound
 ROWS

@@ -147,23 +147,37 @@ impl<const N: usize> Block<N> {
 /// Σ ã_k·b̃_k, exact in integers, within
 /// Σ_k (2^Ea·δb + 2^Eb·δa + δa·δb) of the exact Σ a_k·b_k: the bound from block exponents,
 /// which is what a hardware margin knows.
-fn dot(a: &Block<3>, b: &Block<3>) -> Approx {
+fn dot(a: &Block<3>, b: &Block<3>) -> Value {
     let sum: i128 = (0..3).map(|k| a.m[k] as i128 * b.m[k] as i128).sum();
     let v = sum as f64 * 2f64.powi(a.lsb + b.lsb);
-    Approx {
+    // Above 53 bits (W > 19 on the t test's wide vectors) f64 rounds the sum once.
+    let err =
+        3.0 * (a.top() * b.delta + b.top() * a.delta + a.delta * b.delta) + F64_UNIT * v.abs();
+    Value {
         v,
-        // Above 53 bits (W > 19 on the t test's wide vectors) f64 rounds the sum once.
-        err: 3.0 * (a.top() * b.delta + b.top() * a.delta + a.delta * b.delta) + F64_UNIT * v.abs(),
+        err,
+        parts: [err, 0.0, 0.0],
     }
+}
+
+/// A value of the filter within `err` of the exact one; `parts` are the terms of `err`
+/// as a hardware margin network adds them (each dot's bound, the alignment's unit).
+#[derive(Clone, Copy, Debug)]
+struct Value {
+    v: f64,
+    err: f64,
+    parts: [f64; 3],
 }
 
 /// x ± y of two dots: hardware aligns the finer onto the coarser grid (truncating, less
 /// than one unit of it); here f64 adds them (one rounding).
-fn combine(x: Approx, y: Approx, lsbs: [i32; 2]) -> Approx {
+fn combine(x: Value, y: Value, lsbs: [i32; 2]) -> Value {
     let v = x.v + y.v;
-    Approx {
+    let unit = 2f64.powi(lsbs[0].max(lsbs[1])) + F64_UNIT * v.abs();
+    Value {
         v,
-        err: x.err + y.err + 2f64.powi(lsbs[0].max(lsbs[1])) + F64_UNIT * v.abs(),
+        err: x.err + y.err + unit,
+        parts: [x.err, y.err, unit],
     }
 }
 
@@ -240,11 +254,11 @@ fn s_top(orig: [f64; 3], v0: [f64; 3], ray: &Ray, tri: &Triangle) -> f64 {
 /// The filter's values and the fallback's error bounds of one query: det = −dir·n and
 /// the numerators, N_w = w·det = −(e3·m + dir·(v1 × e3)) beside them.
 struct Values {
-    det: Approx,
-    nu: Approx,
-    nv: Approx,
-    nw: Approx,
-    nt: Approx,
+    det: Value,
+    nu: Value,
+    nv: Value,
+    nw: Value,
+    nt: Value,
     det_b: Bounded,
     num_b: [Bounded; 3],
 }
@@ -287,7 +301,7 @@ impl Filter {
         let x = self.plucker_values(q, width)?;
         match decisions {
             PluckerDecisions::Linear => {
-                let margin = |a: Approx, b: Bounded| (a.err + b.err) * margin_scale * F64_SLACK;
+                let margin = |a: Value, b: Bounded| (a.err + b.err) * margin_scale * F64_SLACK;
                 self.decide_numerators(
                     q,
                     -x.det.v,
@@ -323,9 +337,10 @@ impl Filter {
                 [a.lsb + ray.moment.lsb, ray.dir.lsb + b.lsb],
             )
         };
-        let offset = Approx {
+        let offset = Value {
             v: -tri.offset.value(0),
             err: tri.offset.delta,
+            parts: [tri.offset.delta, 0.0, 0.0],
         };
         let (det_b, num_b) = self.fallback_bounds(&ray, &tri, s_top(orig, v0, &ray, &tri))?;
         Some(Values {
@@ -363,7 +378,9 @@ impl Filter {
         let Rounding { unit: u, tiny, max } = self.b;
         let margin = |terms: &[f64]| coarse_sum(terms) * margin_scale * F64_SLACK;
         let d = -x.det.v;
-        let m_d = margin(&[x.det.err, x.det_b.err]);
+        // Each margin adds its value's parts and the fallback's bound, in this order.
+        let of = |x: &Value, b: &Bounded| margin(&[x.parts[0], x.parts[1], x.parts[2], b.err]);
+        let m_d = of(&x.det, &x.det_b);
         let (dd, ud) = (d.abs(), up2(d.abs()));
         if ud + m_d < self.eps_b {
             return miss;
@@ -373,9 +390,9 @@ impl Filter {
         }
         let sigma = d.signum();
         let [nu, nv, nw, nt] = [x.nu.v, -x.nv.v, -x.nw.v, x.nt.v].map(|v| sigma * v);
-        let m_u = margin(&[x.nu.err, x.num_b[0].err]);
-        let m_v = margin(&[x.nv.err, x.num_b[1].err]);
-        let m_t = margin(&[x.nt.err, x.num_b[2].err]);
+        let m_u = of(&x.nu, &x.num_b[0]);
+        let m_v = of(&x.nv, &x.num_b[1]);
+        let m_t = of(&x.nt, &x.num_b[2]);
         // |n| + M ≤ 2·max(up2(|n|), M): no reciprocal overflows or flushes, no quotient
         // overflows.
         let reach = |n: f64, m: f64| 2.0 * up2(n.abs()).max(m);
@@ -389,7 +406,9 @@ impl Filter {
         }
         let below_zero = |n: f64, m: f64| n < -m && -n > 16.0 * tiny * ud;
         let m_w = margin(&[
-            x.nw.err,
+            x.nw.parts[0],
+            x.nw.parts[1],
+            x.nw.parts[2],
             x.det.err,
             m_d,
             x.num_b[0].err,
@@ -534,7 +553,7 @@ mod tests {
             prop_assert!(within(-nv.v, want_nv, nv.err + slack), "nv {} {} {}", -nv.v, want_nv, nv.err);
             let nt = combine(
                 dot(&ray.orig, &tri.n),
-                Approx { v: -tri.offset.value(0), err: tri.offset.delta },
+                Value { v: -tri.offset.value(0), err: tri.offset.delta, parts: [0.0; 3] },
                 [ray.orig.lsb + tri.n.lsb, tri.offset.lsb],
             );
             prop_assert!(within(nt.v, want_nt, nt.err + slack), "nt {} {} {}", nt.v, want_nt, nt.err);
