@@ -17,6 +17,7 @@
 
 use sw_renderer::intersect::{MtQuery, MtResult};
 
+use super::bfp::Fx;
 use super::linear::certainly_below;
 use super::{
     coords, product_bounds, round_up_to_bits, Bounded, Ctx, Filter, FilterFormat, PluckerDecisions,
@@ -144,41 +145,60 @@ impl<const N: usize> Block<N> {
     }
 }
 
-/// Σ ã_k·b̃_k, exact in integers, within
+/// Σ ã_k·b̃_k, exact in integers (a + b + 1 bits for a- and b-bit mantissas), within
 /// Σ_k (2^Ea·δb + 2^Eb·δa + δa·δb) of the exact Σ a_k·b_k: the bound from block exponents,
 /// which is what a hardware margin knows.
 fn dot(a: &Block<3>, b: &Block<3>) -> Value {
     let sum: i128 = (0..3).map(|k| a.m[k] as i128 * b.m[k] as i128).sum();
-    let v = sum as f64 * 2f64.powi(a.lsb + b.lsb);
-    // Above 53 bits (W > 19 on the t test's wide vectors) f64 rounds the sum once.
-    let err =
-        3.0 * (a.top() * b.delta + b.top() * a.delta + a.delta * b.delta) + F64_UNIT * v.abs();
+    let fx = Fx::new(sum, a.lsb + b.lsb);
+    // Above 53 bits (W > 19 on the t test's wide vectors) f64 rounds the value once.
+    let err = 3.0 * (a.top() * b.delta + b.top() * a.delta + a.delta * b.delta)
+        + F64_UNIT * fx.to_f64().abs();
     Value {
-        v,
+        fx,
+        bits: a.width + b.width + 1,
+        v: fx.to_f64(),
         err,
         parts: [err, 0.0, 0.0],
     }
 }
 
-/// A value of the filter within `err` of the exact one; `parts` are the terms of `err`
-/// as a hardware margin network adds them (each dot's bound, the alignment's unit).
+/// A value of the datapath: `fx` on its grid in `bits` two's-complement bits (`v` its f64),
+/// within `err` of the exact one; `parts` are the terms of `err` as a hardware margin
+/// network adds them (each dot's bound, the alignment's unit).
 #[derive(Clone, Copy, Debug)]
 struct Value {
+    fx: Fx,
+    bits: u32,
     v: f64,
     err: f64,
     parts: [f64; 3],
 }
 
-/// x ± y of two dots: hardware aligns the finer onto the coarser grid (truncating, less
-/// than one unit of it); here f64 adds them (one rounding).
-fn combine(x: Value, y: Value, lsbs: [i32; 2]) -> Value {
-    let v = x.v + y.v;
-    let unit = 2f64.powi(lsbs[0].max(lsbs[1])) + F64_UNIT * v.abs();
+/// x + y of two values on their grids as a hardware adder takes them ([`align_add`]),
+/// within one unit of the coarser grid more.
+fn combine(x: Value, y: Value) -> Value {
+    let (fx, bits) = align_add((x.fx, x.bits), (y.fx, y.bits));
+    let v = fx.to_f64();
+    let unit = 2f64.powi(fx.e) + F64_UNIT * v.abs();
     Value {
+        fx,
+        bits,
         v,
         err: x.err + y.err + unit,
         parts: [x.err, y.err, unit],
     }
+}
+
+/// The sum of two N-bit two's-complement values a·2^ea and b·2^eb on the coarser grid: the
+/// finer shifted right arithmetically by the exponent difference, at most N − 1 (beyond, it
+/// is its sign, 0 or −1, either way), so the sum is floor-truncated, below the exact one by
+/// less than one unit; N + 1 bits, N the wider operand's width.
+pub fn align_add((a, a_bits): (Fx, u32), (b, b_bits): (Fx, u32)) -> (Fx, u32) {
+    let n = a_bits.max(b_bits);
+    let (coarse, fine) = if a.e >= b.e { (a, b) } else { (b, a) };
+    let shift = (coarse.e - fine.e).min(n as i32 - 1);
+    (Fx::new(coarse.m + (fine.m >> shift), coarse.e), n + 1)
 }
 
 /// What the filter holds of a ray.
@@ -284,6 +304,87 @@ fn coarse_sum(terms: &[f64]) -> f64 {
     terms.iter().fold(0.0, |acc, &t| up(acc + up(t)))
 }
 
+/// The datapath's values from the blocks: dir·n (det = −dir·n), N_u, e1·m + dir·(v0 × e1)
+/// (N_v is its negative), e3·m + dir·(v1 × e3) (N_w is its negative), N_t.
+fn values_of(ray: &Ray, tri: &Triangle) -> [Value; 5] {
+    // A value a·m + dir·b of an edge vector a and its moment b.
+    let edge = |a: &Block<3>, b: &Block<3>| combine(dot(a, &ray.moment), dot(&ray.dir, b));
+    let offset = Value {
+        fx: Fx::new(-(tri.offset.m[0] as i128), tri.offset.lsb),
+        bits: tri.offset.width,
+        v: -tri.offset.value(0),
+        err: tri.offset.delta,
+        parts: [tri.offset.delta, 0.0, 0.0],
+    };
+    [
+        dot(&ray.dir, &tri.n),
+        edge(&tri.e2, &tri.v0_e2),
+        edge(&tri.e1, &tri.v0_e1),
+        edge(&tri.e3, &tri.v1_e3),
+        combine(dot(&ray.orig, &tri.n), offset),
+    ]
+}
+
+/// A stored block as hardware reads it: the mantissas and the exponent of their last bit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BlockBits<const N: usize> {
+    pub m: [i64; N],
+    pub lsb: i32,
+}
+
+impl<const N: usize> From<&Block<N>> for BlockBits<N> {
+    fn from(b: &Block<N>) -> BlockBits<N> {
+        BlockBits { m: b.m, lsb: b.lsb }
+    }
+}
+
+/// What the datapath reads for one test: the ray's blocks (dir, m = orig × dir at W bits,
+/// orig at W + [`T_EXTRA_BITS`]) and the triangle's (n at W + [`T_EXTRA_BITS`], the edge
+/// vectors and their moments at W bits, −v0·n at 2(W + [`T_EXTRA_BITS`]) − 1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Operands {
+    pub dir: BlockBits<3>,
+    pub moment: BlockBits<3>,
+    pub orig: BlockBits<3>,
+    pub n: BlockBits<3>,
+    /// e1, e2, e3.
+    pub edges: [BlockBits<3>; 3],
+    /// v0 × e1, v0 × e2, v1 × e3.
+    pub moments: [BlockBits<3>; 3],
+    /// −v0·n (stored negated: the datapath adds it).
+    pub offset: BlockBits<1>,
+}
+
+/// The Plücker datapath of a `bfpW` filter, bit for bit what hardware computes: the
+/// operands of `q` and the five values ([`values_of`]: dir·n, N_u, −N_v, −N_w, N_t), each an
+/// exact integer on its grid; `None` where the filter forwards before any arithmetic (a
+/// non-finite coordinate, a block exponent outside [`EXP_RANGE`]).
+pub fn datapath(q: &MtQuery, width: u32) -> Option<(Operands, [Fx; 5])> {
+    let [orig, dir, v0, v1, v2] = coords(q);
+    if [orig, dir, v0, v1, v2]
+        .iter()
+        .flatten()
+        .any(|x| !x.is_finite())
+    {
+        return None;
+    }
+    let ray = Ray::new(orig, dir, width)?;
+    let tri = Triangle::new(v0, v1, v2, width)?;
+    let operands = Operands {
+        dir: (&ray.dir).into(),
+        moment: (&ray.moment).into(),
+        orig: (&ray.orig).into(),
+        n: (&tri.n).into(),
+        edges: [&tri.e1, &tri.e2, &tri.e3].map(BlockBits::from),
+        moments: [&tri.v0_e1, &tri.v0_e2, &tri.v1_e3].map(BlockBits::from),
+        offset: BlockBits {
+            m: [-tri.offset.m[0]],
+            lsb: tri.offset.lsb,
+        },
+    };
+    Some((operands, values_of(&ray, &tri).map(|v| v.fx)))
+}
+
 impl Filter {
     /// [`Filter::decide`] for [`super::FilterKind::Plucker`]: det and the numerators from
     /// the blocks (the module's identities), each within its dots' bounds, the alignment's
@@ -329,30 +430,14 @@ impl Filter {
         }
         let ray = Ray::new(orig, dir, width)?;
         let tri = Triangle::new(v0, v1, v2, width)?;
-        // A value a·m + dir·b of an edge vector a and its moment b.
-        let edge = |a: &Block<3>, b: &Block<3>| {
-            combine(
-                dot(a, &ray.moment),
-                dot(&ray.dir, b),
-                [a.lsb + ray.moment.lsb, ray.dir.lsb + b.lsb],
-            )
-        };
-        let offset = Value {
-            v: -tri.offset.value(0),
-            err: tri.offset.delta,
-            parts: [tri.offset.delta, 0.0, 0.0],
-        };
         let (det_b, num_b) = self.fallback_bounds(&ray, &tri, s_top(orig, v0, &ray, &tri))?;
+        let [det, nu, nv, nw, nt] = values_of(&ray, &tri);
         Some(Values {
-            det: dot(&ray.dir, &tri.n),
-            nu: edge(&tri.e2, &tri.v0_e2),
-            nv: edge(&tri.e1, &tri.v0_e1),
-            nw: edge(&tri.e3, &tri.v1_e3),
-            nt: combine(
-                dot(&ray.orig, &tri.n),
-                offset,
-                [ray.orig.lsb + tri.n.lsb, tri.offset.lsb],
-            ),
+            det,
+            nu,
+            nv,
+            nw,
+            nt,
             det_b,
             num_b,
         })
@@ -513,6 +598,24 @@ mod tests {
             }
         }
 
+        /// The alignment floors: the sum on the coarser grid is at most the exact sum and
+        /// less than one unit below it, in N + 1 bits.
+        #[test]
+        fn align_add_floors_onto_the_coarser_grid(
+            a in -(1i128 << 36)..(1i128 << 36), b in -(1i128 << 36)..(1i128 << 36),
+            ea in -40i32..40, eb in -40i32..40,
+        ) {
+            let (sum, bits) = align_add((Fx::new(a, ea), 37), (Fx::new(b, eb), 37));
+            prop_assert_eq!(bits, 38);
+            prop_assert_eq!(sum.e, ea.max(eb));
+            prop_assert!(sum.m >= -(1i128 << 37) && sum.m < 1i128 << 37);
+            // Everything on the grid 2^(min − 0): exact integers.
+            let low = ea.min(eb);
+            let exact = (a << (ea - low)) + (b << (eb - low));
+            let got = sum.m << (sum.e - low);
+            prop_assert!(got <= exact && exact - got < 1i128 << (sum.e - low), "{} {}", got, exact);
+        }
+
         /// The identities and the dot bound: det and N_u from the blocks are within their
         /// bounds of the same quantities computed the Möller-Trumbore way in f64 (exact
         /// within f64's few roundings for these f32-sized inputs).
@@ -533,37 +636,17 @@ mod tests {
             let slack = 1e-12 * (1.0 + want_det.abs() + want_nu.abs())
                 + 1e-15 * dotf(s.map(f64::abs), p.map(f64::abs)) * 16.0
                 + 1e-15 * dotf(e1.map(f64::abs), p.map(f64::abs)) * 16.0;
-            let det = dot(&ray.dir, &tri.n);
+            let [det, nu, nv, nw, nt] = values_of(&ray, &tri);
             prop_assert!(within(-det.v, want_det, det.err + slack), "det {} {} {}", -det.v, want_det, det.err);
-            let nu = combine(
-                dot(&tri.e2, &ray.moment),
-                dot(&ray.dir, &tri.v0_e2),
-                [tri.e2.lsb + ray.moment.lsb, ray.dir.lsb + tri.v0_e2.lsb],
-            );
             prop_assert!(within(nu.v, want_nu, nu.err + slack), "nu {} {} {}", nu.v, want_nu, nu.err);
             let q = cross_exact(s, e1);
             let (want_nv, want_nt) = (dotf(dir, q), dotf(e2, q));
             let slack = slack + 1e-15 * 16.0 * (dotf(dir.map(f64::abs), q.map(f64::abs))
                 + dotf(e2.map(f64::abs), q.map(f64::abs)));
-            let nv = combine(
-                dot(&tri.e1, &ray.moment),
-                dot(&ray.dir, &tri.v0_e1),
-                [tri.e1.lsb + ray.moment.lsb, ray.dir.lsb + tri.v0_e1.lsb],
-            );
             prop_assert!(within(-nv.v, want_nv, nv.err + slack), "nv {} {} {}", -nv.v, want_nv, nv.err);
-            let nt = combine(
-                dot(&ray.orig, &tri.n),
-                Value { v: -tri.offset.value(0), err: tri.offset.delta, parts: [0.0; 3] },
-                [ray.orig.lsb + tri.n.lsb, tri.offset.lsb],
-            );
             prop_assert!(within(nt.v, want_nt, nt.err + slack), "nt {} {} {}", nt.v, want_nt, nt.err);
             // w·det = det − N_u − N_v = −(e3·m + dir·(v1 × e3)).
             let want_nw = want_det - want_nu - want_nv;
-            let nw = combine(
-                dot(&tri.e3, &ray.moment),
-                dot(&ray.dir, &tri.v1_e3),
-                [tri.e3.lsb + ray.moment.lsb, ray.dir.lsb + tri.v1_e3.lsb],
-            );
             prop_assert!(within(-nw.v, want_nw, nw.err + 3.0 * slack), "nw {} {} {}", -nw.v, want_nw, nw.err);
         }
     }
