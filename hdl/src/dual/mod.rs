@@ -1,13 +1,18 @@
 //! The block-floating-point dual-precision filter (docs/precision.md, "The block-floating-point
-//! filter"), one block per file, each bit for bit its `hw_model::dual::bfp` function.
+//! filter"), one block per file, each bit for bit its `hw_model::dual::bfp` function; and the
+//! Plücker filter's datapath ("The Plücker filter"; `align_add`, `edge_value`, `plucker`), bit
+//! for bit `hw_model::dual::plucker::datapath`.
 
 pub mod add_down;
+pub mod align_add;
 pub mod cross_block;
 pub mod decide;
 pub mod dot;
+pub mod edge_value;
 pub mod filter;
 pub mod margin;
 pub mod pair;
+pub mod plucker;
 pub mod pow2_lt;
 pub mod round;
 pub mod short_lt;

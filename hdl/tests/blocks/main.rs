@@ -11,6 +11,7 @@ mod dual {
     mod filter;
     mod margin;
     mod pair;
+    mod plucker;
     mod round;
     mod to_block;
     mod translate;

@@ -36,6 +36,17 @@ pub const EXP_RANGE: std::ops::RangeInclusive<i32> = -128..=127;
 /// none of the queries whose ray line passes inside the edges behind the origin.
 pub const T_EXTRA_BITS: u32 = 7;
 
+/// The width of the t test's vectors (orig and n) in a `bfpW` Plücker filter.
+pub const fn wide(width: u32) -> u32 {
+    width + T_EXTRA_BITS
+}
+
+/// The width of the stored −v0·n: that of orig·n's products, 2·[`wide`] − 1 (its sign
+/// shared), so it cancels against orig·n without a coarser grid.
+pub const fn offset_bits(width: u32) -> u32 {
+    2 * wide(width) - 1
+}
+
 /// Bits of the coarse subtraction that bounds |s| = |orig − v0| for the fallback's bound:
 /// orig and v0 aligned to the larger block exponent E and cut to this many bits, so the
 /// difference is within 2^(E − S_BOUND_BITS + 2) of |s| (two truncations).
@@ -233,31 +244,30 @@ impl Ray {
         Some(Ray {
             dir: Block::new(exact3(dir), width)?,
             moment: Block::new(cross(exact3(orig), exact3(dir)), width)?,
-            orig: Block::new(exact3(orig), width + T_EXTRA_BITS)?,
+            orig: Block::new(exact3(orig), wide(width))?,
         })
     }
 }
 
 impl Triangle {
-    /// n takes W + [`T_EXTRA_BITS`] bits, as orig does, and v0·n the width of their
+    /// n takes [`wide`] bits, as orig does, and v0·n [`offset_bits`], the width of their
     /// products: it is compared with orig·n, and the two cancel when the ray starts near the
     /// triangle's plane.
     fn new(v0: [f64; 3], v1: [f64; 3], v2: [f64; 3], width: u32) -> Option<Triangle> {
-        let wide = width + T_EXTRA_BITS;
         let e1: [Approx; 3] = std::array::from_fn(|k| Approx::difference(v1[k], v0[k]));
         let e2: [Approx; 3] = std::array::from_fn(|k| Approx::difference(v2[k], v0[k]));
         let e3: [Approx; 3] = std::array::from_fn(|k| Approx::difference(v2[k], v1[k]));
         let n = cross(e1, e2);
         let v0_block = Block::new(exact3(v0), width)?;
         Some(Triangle {
-            n: Block::new(n, wide)?,
+            n: Block::new(n, wide(width))?,
             e1: Block::new(e1, width)?,
             e2: Block::new(e2, width)?,
             v0_e1: Block::new(cross(exact3(v0), e1), width)?,
             v0_e2: Block::new(cross(exact3(v0), e2), width)?,
             e3: Block::new(e3, width)?,
             v1_e3: Block::new(cross(exact3(v1), e3), width)?,
-            offset: Block::new([dot_f64(exact3(v0), n)], 2 * wide - 1)?,
+            offset: Block::new([dot_f64(exact3(v0), n)], offset_bits(width))?,
             v0_top: v0_block.top(),
         })
     }
