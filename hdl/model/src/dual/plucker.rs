@@ -365,11 +365,9 @@ pub struct Operands {
     pub offset: BlockBits<1>,
 }
 
-/// The Plücker datapath of a `bfpW` filter, bit for bit what hardware computes: the
-/// operands of `q` and the five values ([`values_of`]: dir·n, N_u, −N_v, −N_w, N_t), each an
-/// exact integer on its grid; `None` where the filter forwards before any arithmetic (a
-/// non-finite coordinate, a block exponent outside [`EXP_RANGE`]).
-pub fn datapath(q: &MtQuery, width: u32) -> Option<(Operands, [Fx; 5])> {
+/// The ray's and the triangle's blocks of `q`; `None` for a non-finite coordinate or a
+/// block exponent outside [`EXP_RANGE`] (the filter forwards such a query).
+fn blocks(q: &MtQuery, width: u32) -> Option<(Ray, Triangle)> {
     let [orig, dir, v0, v1, v2] = coords(q);
     if [orig, dir, v0, v1, v2]
         .iter()
@@ -378,8 +376,18 @@ pub fn datapath(q: &MtQuery, width: u32) -> Option<(Operands, [Fx; 5])> {
     {
         return None;
     }
-    let ray = Ray::new(orig, dir, width)?;
-    let tri = Triangle::new(v0, v1, v2, width)?;
+    Some((
+        Ray::new(orig, dir, width)?,
+        Triangle::new(v0, v1, v2, width)?,
+    ))
+}
+
+/// The Plücker datapath of a `bfpW` filter, bit for bit what hardware computes: the
+/// operands of `q` and the five values ([`values_of`]: dir·n, N_u, −N_v, −N_w, N_t), each an
+/// exact integer on its grid; `None` where the filter forwards before any arithmetic (a
+/// non-finite coordinate, a block exponent outside [`EXP_RANGE`]).
+pub fn datapath(q: &MtQuery, width: u32) -> Option<(Operands, [Fx; 5])> {
+    let (ray, tri) = blocks(q, width)?;
     let operands = Operands {
         dir: (&ray.dir).into(),
         moment: (&ray.moment).into(),
@@ -430,16 +438,8 @@ impl Filter {
     }
 
     fn plucker_values(&self, q: &MtQuery, width: u32) -> Option<Values> {
-        let [orig, dir, v0, v1, v2] = coords(q);
-        if [orig, dir, v0, v1, v2]
-            .iter()
-            .flatten()
-            .any(|x| !x.is_finite())
-        {
-            return None;
-        }
-        let ray = Ray::new(orig, dir, width)?;
-        let tri = Triangle::new(v0, v1, v2, width)?;
+        let (ray, tri) = blocks(q, width)?;
+        let [orig, _, v0, _, _] = coords(q);
         let (det_b, num_b) = self.fallback_bounds(&ray, &tri, s_top(orig, v0, &ray, &tri))?;
         let [det, nu, nv, nw, nt] = values_of(&ray, &tri);
         Some(Values {

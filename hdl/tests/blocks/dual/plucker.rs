@@ -100,8 +100,8 @@ fn drive<const N: usize, const M: usize>(
     e: &mut Signal<In, Bits<10>>,
     block: &BlockBits<N>,
 ) {
-    for k in 0..3 {
-        ports[k].next = field(block.m[k] as i128);
+    for (port, m) in ports.iter_mut().zip(block.m) {
+        port.next = field(m as i128);
     }
     e.next = exp_field(block.lsb);
 }
