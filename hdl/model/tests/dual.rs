@@ -301,6 +301,69 @@ fn a_fraction_of_the_margin_rejects_hits() {
     }
 }
 
+/// Queries where the exact u (or v) is negative but so small that the fallback's quotient
+/// flushes to −0, so fp32 hits: v0 = (λ, 0, 0), e1 = (2s, 0, 0), e2 = (0, 2s, 0), the ray
+/// along z through x = 0, a hair outside the u = 0 edge: det = −4s², N_u = 2sλ, u = −λ/(2s),
+/// v = 0, t = s; with v and u swapped, and mirrored.
+fn flushed_quotients() -> Vec<MtQuery> {
+    let tiny = f32::MIN_POSITIVE;
+    let mut qs = Vec::new();
+    for k in [0, 3, 6, 9] {
+        let s = 2f32.powi(k);
+        let base = MtQuery {
+            orig: [0.0, 0.0, -s],
+            dir: [0.0, 0.0, 1.0],
+            v0: [tiny, 0.0, 0.0],
+            v1: [2.0 * s, 0.0, 0.0],
+            v2: [tiny, 2.0 * s, 0.0],
+            t_min: 0.0,
+        };
+        let swapped = MtQuery {
+            v1: base.v2,
+            v2: base.v1,
+            ..base
+        };
+        let mirrored = |q: MtQuery| MtQuery {
+            orig: [-q.orig[0], q.orig[1], q.orig[2]],
+            v0: [-q.v0[0], q.v0[1], q.v0[2]],
+            v1: [-q.v1[0], q.v1[1], q.v1[2]],
+            v2: [-q.v2[0], q.v2[1], q.v2[2]],
+            ..q
+        };
+        qs.extend([base, swapped, mirrored(base), mirrored(swapped)]);
+    }
+    qs
+}
+
+/// A flushed quotient makes the fallback hit where exact arithmetic misses; every filter
+/// must leave such a query to the fallback. (Here the margins already cover N_u, so this
+/// does not show the flush guards of the u < 0 and v < 0 tests necessary: removing the
+/// linear or the Plücker filter's guard still passes. With 1/1000 of its margin the bfp
+/// filter does reject these hits.)
+#[test]
+fn flushed_quotients_are_left_to_the_fallback() {
+    let qs = flushed_quotients();
+    let fp32 = lookup("fp32").unwrap();
+    assert!(
+        qs.iter().all(|q| mt_model(&fp32, q).hit),
+        "the fallback should hit every flushed-quotient query"
+    );
+    for case in &CASES {
+        let pairs = std::iter::once((case.main, 0))
+            .chain(case.extra.iter().copied())
+            .chain(case.margin.iter().chain(case.largest).map(|&p| (p, 0)));
+        for (p, k) in pairs {
+            let filter = filter(p, k, case.kind);
+            for q in &qs {
+                assert!(!filter.certain_miss(q, 1.0), "{p} {:?}: {q:?}", case.kind);
+            }
+        }
+    }
+    // Not vacuous: the hits are close enough calls that a too-small margin rejects them.
+    let bfp = filter("bfp18/fp32", 0, FilterKind::Bfp);
+    assert!(qs.iter().any(|q| bfp.certain_miss(q, 1e-3)));
+}
+
 /// How much of the bound the worst of these queries needs: the largest margin scale (on a
 /// grid of 1/100, then 1/1000 below 0.01) at which some fallback hit is rejected.
 /// `--ignored`: it prints the numbers docs/precision.md reports.
