@@ -608,8 +608,8 @@ pub enum FilterKind {
 pub enum PluckerDecisions {
     /// The division-free filter's tests on the values and their margins.
     Linear,
-    /// Signs against power-of-two margins, u + v > 1 from the third edge's value: what
-    /// leading-one detectors and exponent comparisons decide.
+    /// Signs against short-float margins (a coarse-grid margin network), u + v > 1 from
+    /// the third edge's value: what normalisers, short adders and comparators decide.
     Signs,
 }
 
@@ -688,6 +688,12 @@ impl Filter {
         })
     }
 
+    /// The query's t_min as the fallback holds it: the fallback's hit needs t > this.
+    fn fallback_t_min(&self, q: &MtQuery) -> f64 {
+        let fallback = &self.pair.fallback;
+        fallback.to_f64(fallback.from_f32(q.t_min))
+    }
+
     /// A float filter's format and rounding (the float kinds' decisions).
     fn float_filter(&self) -> (Format, Rounding) {
         let FilterFormat::Float(format) = self.pair.filter else {
@@ -761,10 +767,8 @@ impl Filter {
             quotient_errors(&n, &det, a, b)
         };
         let ((u_a, u_b), (v_a, v_b), (t_a, t_b)) = (errors(0)?, errors(1)?, errors(2)?);
-        // The fallback's hit needs t > t_min as the fallback holds it; a NaN t_min is left
-        // to the fallback, −∞ rules nothing out.
-        let fallback = &self.pair.fallback;
-        let t_min = fallback.to_f64(fallback.from_f32(q.t_min));
+        // A NaN t_min is left to the fallback, −∞ rules nothing out.
+        let t_min = self.fallback_t_min(q);
         // u + v: both quotients' errors, then one rounding in each format.
         let uv_a = u_a + v_a + a.error(x.u.abs() + x.v.abs());
         let uv_b = u_b + v_b + b.error(x.u.abs() + u_a + u_b + x.v.abs() + v_a + v_b);

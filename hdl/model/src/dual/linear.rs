@@ -136,10 +136,7 @@ impl Filter {
         };
         let above_one = |n: f64, e: f64| certainly_below(high * (1.0 + 3.0 * u), n - e);
         let uv_low = nu + nv - e[0] - e[1] - 3.0 * u * (nu.abs() + nv.abs() + e[0] + e[1]);
-        let t_min = self
-            .pair
-            .fallback
-            .to_f64(self.pair.fallback.from_f32(q.t_min));
+        let t_min = self.fallback_t_min(q);
         let tau = t_min - tiny;
         let t_high = nt + e[2] + 3.0 * u * (nt.abs() + e[2]);
         let certain = below_zero(nu, e[0])

@@ -1,19 +1,20 @@
 //! The Plücker filter (docs/precision.md, "The Plücker filter"): det and the numerators of
 //! u, v, t as dot products of per-ray and per-triangle block vectors, so a test needs no
-//! translation and no conversion from fp32, only 18 integer products. With s = orig − v0,
-//! n = e1 × e2 and the ray's moment m = orig × dir:
+//! translation and no conversion from fp32, only 27 integer products at W = 18. With
+//! s = orig − v0, n = e1 × e2, e3 = v2 − v1 and the ray's moment m = orig × dir:
 //! - det = e1·(dir × e2) = −dir·n;
 //! - N_u = s·(dir × e2) = e2·m + dir·(v0 × e2);
 //! - N_v = dir·(s × e1) = −(e1·m + dir·(v0 × e1));
+//! - N_w = det − N_u − N_v = −(e3·m + dir·(v1 × e3));
 //! - N_t = e2·(s × e1) = orig·n − v0·n.
 //!
-//! Per ray the filter holds dir, m and orig as blocks, per triangle n, e1, e2, v0 × e1,
-//! v0 × e2 and the scalar v0·n; each is computed once (here in f64, within a tracked
-//! error) and truncated to W-bit mantissas on one grid per vector. The margins come from
-//! block exponents only, and the decisions are the division-free filter's
-//! ([`Filter::decide_numerators`]). A model of the filter's arithmetic and bound, not yet a
-//! bit-exact hardware specification: the sum of two dots is taken in f64, and the bound
-//! covers the truncation a hardware adder would make when it aligns them.
+//! Per ray the filter holds dir, m and orig as blocks, per triangle n, e1, e2, e3, v0 × e1,
+//! v0 × e2, v1 × e3 and the scalar v0·n; each is computed once (here in f64, within a tracked
+//! error) and truncated to W-bit mantissas on one grid per vector. The values are exact
+//! integers, a sum of two dots floored onto the coarser grid ([`align_add`]): [`datapath`]
+//! is what hardware computes, bit for bit. The margins come from block exponents only; the
+//! decisions are the division-free filter's ([`Filter::decide_numerators`]) or sign tests
+//! against short-float margins ([`PluckerDecisions::Signs`], in f64, not yet bit-exact).
 
 use sw_renderer::intersect::{MtQuery, MtResult};
 
@@ -51,6 +52,11 @@ pub const fn offset_bits(width: u32) -> u32 {
 /// orig and v0 aligned to the larger block exponent E and cut to this many bits, so the
 /// difference is within 2^(E − S_BOUND_BITS + 2) of |s| (two truncations).
 pub const S_BOUND_BITS: i32 = 9;
+
+/// k with x = f·2^k, f in [1, 2), for a positive normal x.
+fn exponent(x: f64) -> i32 {
+    ((x.to_bits() >> 52) & 0x7ff) as i32 - 1023
+}
 
 /// A value computed in f64 within `err` of the exact value it stands for.
 #[derive(Clone, Copy, Debug)]
@@ -128,8 +134,8 @@ impl<const N: usize> Block<N> {
         let e = if top == 0.0 {
             *EXP_RANGE.start()
         } else {
-            // top = f·2^k, f in [1, 2): the smallest E with top < 2^E is k + 1.
-            ((top.to_bits() >> 52) & 0x7ff) as i32 - 1023 + 1
+            // The smallest E with top < 2^E.
+            exponent(top) + 1
         };
         if !EXP_RANGE.contains(&e) {
             return None;
@@ -298,7 +304,7 @@ fn up2(x: f64) -> f64 {
     if x == 0.0 {
         return 0.0;
     }
-    let p = 2f64.powi(((x.to_bits() >> 52) & 0x7ff) as i32 - 1023);
+    let p = 2f64.powi(exponent(x));
     if p == x {
         x
     } else {
@@ -365,18 +371,17 @@ pub struct Operands {
     pub offset: BlockBits<1>,
 }
 
-/// The ray's and the triangle's blocks of `q`; `None` for a non-finite coordinate or a
-/// block exponent outside [`EXP_RANGE`] (the filter forwards such a query).
-fn blocks(q: &MtQuery, width: u32) -> Option<(Ray, Triangle)> {
-    let [orig, dir, v0, v1, v2] = coords(q);
-    if [orig, dir, v0, v1, v2]
-        .iter()
-        .flatten()
-        .any(|x| !x.is_finite())
-    {
+/// The ray's and the triangle's blocks of `q`, beside its coordinates (orig, dir, v0, v1,
+/// v2); `None` for a non-finite coordinate or a block exponent outside [`EXP_RANGE`] (the
+/// filter forwards such a query).
+fn blocks(q: &MtQuery, width: u32) -> Option<([[f64; 3]; 5], Ray, Triangle)> {
+    let given = coords(q);
+    if given.iter().flatten().any(|x| !x.is_finite()) {
         return None;
     }
+    let [orig, dir, v0, v1, v2] = given;
     Some((
+        given,
         Ray::new(orig, dir, width)?,
         Triangle::new(v0, v1, v2, width)?,
     ))
@@ -387,7 +392,7 @@ fn blocks(q: &MtQuery, width: u32) -> Option<(Ray, Triangle)> {
 /// exact integer on its grid; `None` where the filter forwards before any arithmetic (a
 /// non-finite coordinate, a block exponent outside [`EXP_RANGE`]).
 pub fn datapath(q: &MtQuery, width: u32) -> Option<(Operands, [Fx; 5])> {
-    let (ray, tri) = blocks(q, width)?;
+    let (_, ray, tri) = blocks(q, width)?;
     let operands = Operands {
         dir: (&ray.dir).into(),
         moment: (&ray.moment).into(),
@@ -438,8 +443,7 @@ impl Filter {
     }
 
     fn plucker_values(&self, q: &MtQuery, width: u32) -> Option<Values> {
-        let (ray, tri) = blocks(q, width)?;
-        let [orig, _, v0, _, _] = coords(q);
+        let ([orig, _, v0, _, _], ray, tri) = blocks(q, width)?;
         let (det_b, num_b) = self.fallback_bounds(&ray, &tri, s_top(orig, v0, &ray, &tri))?;
         let [det, nu, nv, nw, nt] = values_of(&ray, &tri);
         Some(Values {
@@ -511,10 +515,7 @@ impl Filter {
             3.0 * u * (reach(nu, m_u) + reach(nv, m_v)),
             2.0 * ud * (u + 4.0 * tiny),
         ]);
-        let t_min = self
-            .pair
-            .fallback
-            .to_f64(self.pair.fallback.from_f32(q.t_min));
+        let t_min = self.fallback_t_min(q);
         let tau = t_min - tiny;
         let m_tq = margin(&[m_t, 3.0 * u * reach(nt, m_t)]);
         let t_below = t_min.is_finite()

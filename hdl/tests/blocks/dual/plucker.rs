@@ -14,7 +14,7 @@ use rust_hdl::prelude::*;
 use sw_renderer::intersect::MtQuery;
 
 use super::common::{lint_clean, named};
-use super::cross_block::{field, signed, tick, Clocked};
+use super::cross_block::{extremes, field, mantissa, signed, tick, Clocked};
 use super::filter::{random, shaped};
 
 impl<const N: usize, const O: usize> Clocked for AlignAdd<N, O> {
@@ -39,14 +39,12 @@ fn exp_of(raw: Bits<10>) -> i32 {
     raw.to_u128() as i32 - EXP_BIAS as i32
 }
 
-/// An N-bit operand: an extreme, small, or random.
+/// An N-bit operand: an extreme or a mantissa of random bit count.
 fn operand(rng: &mut StdRng, n: usize) -> i128 {
-    let top = 1i128 << (n - 1);
-    match rng.gen_range(0..8) {
-        0 => -top,
-        1 => top - 1,
-        2 => rng.gen_range(-2..=1),
-        _ => rng.gen_range(-top..top),
+    if rng.gen_range(0..4) == 0 {
+        extremes(n)[rng.gen_range(0..4)]
+    } else {
+        mantissa(rng, n)
     }
 }
 
