@@ -99,10 +99,11 @@ pub enum DualFilter {
     /// Block floating point, for a bfpW/FALLBACK pair: exact integers, margins per width.
     Bfp,
     /// Block floating point in Plücker form, for a bfpW/FALLBACK pair: per-ray and
-    /// per-triangle blocks, no translation per test, sign decisions (model only).
+    /// per-triangle blocks, no translation per test, the bfp filter's decisions (the
+    /// model of the rust-hdl filter).
     Plucker,
-    /// The Plücker filter with the division-free filter's decisions (model only).
-    PluckerLinear,
+    /// The Plücker filter with sign decisions against short-float margins (model only).
+    PluckerSigns,
 }
 
 impl DualFilter {
@@ -112,8 +113,8 @@ impl DualFilter {
             DualFilter::LinearExact => FilterKind::Linear(BoundArith::Exact),
             DualFilter::Quotient => FilterKind::Quotient,
             DualFilter::Bfp => FilterKind::Bfp,
-            DualFilter::Plucker => FilterKind::Plucker(PluckerDecisions::Signs),
-            DualFilter::PluckerLinear => FilterKind::Plucker(PluckerDecisions::Linear),
+            DualFilter::Plucker => FilterKind::Plucker(PluckerDecisions::Table),
+            DualFilter::PluckerSigns => FilterKind::Plucker(PluckerDecisions::Signs),
         }
     }
 }

@@ -358,8 +358,8 @@ fn render_model_with_a_format_pair_writes_the_fallbacks_image() {
         ("bfp18/fp32", &["--dual-filter", "plucker"][..], "plucker"),
         (
             "bfp18/fp32",
-            &["--dual-filter", "plucker-linear"][..],
-            "plucker-linear",
+            &["--dual-filter", "plucker-signs"][..],
+            "plucker-signs",
         ),
     ] {
         let mut cmd = vec![

@@ -599,15 +599,17 @@ pub enum FilterKind {
     Bfp,
     /// Plücker form ([`plucker`]), for a `bfpW` filter: det and the numerators as dot
     /// products of per-ray and per-triangle blocks, no translation per test, margins from
-    /// block exponents. A model, not built in hardware.
+    /// block exponents.
     Plucker(PluckerDecisions),
 }
 
 /// How the Plücker filter decides.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PluckerDecisions {
-    /// The division-free filter's tests on the values and their margins.
-    Linear,
+    /// The bfp filter's step 5 (`bfp::decide`: the division-free filter's tests on short
+    /// floats rounded outward) on the values and their integer margins, bit for bit what
+    /// hardware decides.
+    Table,
     /// Signs against short-float margins (a coarse-grid margin network), u + v > 1 from
     /// the third edge's value: what normalisers, short adders and comparators decide.
     Signs,
@@ -633,8 +635,8 @@ impl fmt::Display for FilterKind {
             FilterKind::Linear(BoundArith::Coarse(HW_BOUND_BITS)) => f.write_str("linear"),
             FilterKind::Linear(BoundArith::Coarse(bits)) => write!(f, "linear-coarse{bits}"),
             FilterKind::Bfp => f.write_str("bfp"),
-            FilterKind::Plucker(PluckerDecisions::Signs) => f.write_str("plucker"),
-            FilterKind::Plucker(PluckerDecisions::Linear) => f.write_str("plucker-linear"),
+            FilterKind::Plucker(PluckerDecisions::Table) => f.write_str("plucker"),
+            FilterKind::Plucker(PluckerDecisions::Signs) => f.write_str("plucker-signs"),
         }
     }
 }

@@ -186,7 +186,7 @@ const CASES: [Case; 6] = [
         largest: &["bfp14/fp32", "bfp16/fp32", "bfp18/fp32", "bfp20/fp32"],
         rejects_at: 0.2,
     },
-    plucker_case(PluckerDecisions::Linear),
+    plucker_case(PluckerDecisions::Table),
     plucker_case(PluckerDecisions::Signs),
 ];
 
@@ -522,7 +522,7 @@ fn bad_bfp_spellings_are_clear_errors() {
         kind_err("bfp18/fp32", -2, FilterKind::Bfp),
         DualError::BfpScaled { scale_exp: -2, .. }
     ));
-    let e = kind_err("fp16/fp32", 0, FilterKind::Plucker(PluckerDecisions::Signs));
+    let e = kind_err("fp16/fp32", 0, FilterKind::Plucker(PluckerDecisions::Table));
     assert!(
         e.to_string()
             .contains("the plucker filter needs a block-floating-point filter"),
@@ -532,7 +532,7 @@ fn bad_bfp_spellings_are_clear_errors() {
         kind_err(
             "bfp18/fp32",
             3,
-            FilterKind::Plucker(PluckerDecisions::Linear)
+            FilterKind::Plucker(PluckerDecisions::Table)
         ),
         DualError::BfpScaled { scale_exp: 3, .. }
     ));
@@ -544,7 +544,7 @@ fn bad_bfp_spellings_are_clear_errors() {
         )
         .kind
         .to_string(),
-        "plucker"
+        "plucker-signs"
     );
 }
 
@@ -563,7 +563,7 @@ struct Floors {
 }
 
 /// The filters the floors are measured against beside bfp18/fp32.
-const PLUCKER: [PluckerDecisions; 2] = [PluckerDecisions::Linear, PluckerDecisions::Signs];
+const PLUCKER: [PluckerDecisions; 2] = [PluckerDecisions::Table, PluckerDecisions::Signs];
 
 /// bfp18/fp32 with [`Floors`] counted beside it, and what the Plücker filters would forward.
 struct FloorCounter {
@@ -644,7 +644,7 @@ fn forwarding_floors_on_the_thesis_scenes() {
         return;
     };
     println!(
-        "| policy | scene | tests | fp32 hits | hits or inside the edges | bfp18/fp32 forwards | Plücker, division-free decisions | Plücker, sign decisions |"
+        "| policy | scene | tests | fp32 hits | hits or inside the edges | bfp18/fp32 forwards | Plücker, bfp decisions (bit-exact) | Plücker, sign decisions (f64) |"
     );
     println!("|---|---|---:|---:|---:|---:|---:|---:|");
     for choice in [SpawnChoice::Thesis, SpawnChoice::FormatAware] {

@@ -7,7 +7,7 @@
 //! (`margin_terms`) shifted right by its dropped distance `below` (`ToBlock::below`), rounded
 //! up. Five constants, four 7-bit shifters and an adder tree; one register stage.
 
-use hw_model::dual::bfp::{margin_terms, value_shift, Vector, DET, N_T, N_U, N_V, QUOTIENT_RANGE};
+use hw_model::dual::bfp::{self, margin_terms, Vector, DET, N_T, N_U, N_V};
 use rust_hdl::prelude::*;
 
 use super::to_block::BELOW_BITS;
@@ -16,14 +16,10 @@ use super::WIDTH;
 /// Cycles from `below` to `margin`.
 pub const LATENCY: usize = 1;
 
-/// Bits of the margin of `value` at [`WIDTH`], in units of the value's last bit 2^(ΣE − K):
-/// the model bounds |value| + margin by `QUOTIENT_RANGE`·2^ΣE = `QUOTIENT_RANGE`·2^K units.
+/// Bits of the margin of `value` at [`WIDTH`], in units of the value's last bit
+/// (`hw_model::dual::bfp::margin_bits`).
 pub const fn margin_bits(value: [Vector; 4]) -> usize {
-    let mut range_bits = 0;
-    while ((1u64 << range_bits) as f64) < QUOTIENT_RANGE {
-        range_bits += 1;
-    }
-    (value_shift(WIDTH, value) + range_bits) as usize
+    bfp::margin_bits(WIDTH, value) as usize
 }
 
 /// det = e1·trunc(dir × e2).

@@ -1,8 +1,8 @@
 //! The Plücker filter's datapath (docs/precision.md, "The Plücker filter"), bit for bit
-//! `hw_model::dual::plucker::datapath` at W = [`super::WIDTH`]: the five values dir·n
-//! (det = −dir·n), N_u, −N_v, −N_w and N_t from the ray's blocks (dir, its moment
-//! m = orig × dir, orig) and the triangle's (n, the edge vectors e1, e2, e3, their moments
-//! v0 × e1, v0 × e2, v1 × e3, −v0·n), each an exact integer on its grid. No translation and
+//! `hw_model::dual::plucker::datapath` at W = [`super::WIDTH`]: the five values −det,
+//! −N_u, −N_v, −N_w and −N_t from the ray's stored vectors (dir, its moment m = orig × dir,
+//! −orig) and the triangle's (n, the edge vectors e1, −e2, e3, their moments v0 × e1,
+//! −(v0 × e2), v1 × e3, ṽ0·ñ), each an exact integer on its grid. No translation and
 //! no conversion: 27 products, 12 adders and 4 alignments. Every value leaves
 //! [`LATENCY`] cycles after its operands.
 
@@ -19,16 +19,17 @@ use crate::mt::delay::Delay;
 pub const W: usize = WIDTH as usize;
 /// The mantissa width of orig and n (the t test's vectors).
 pub const WT: usize = wide(WIDTH) as usize;
-/// The stored −v0·n.
+/// The stored ṽ0·ñ: the exact dot of two wide blocks, as wide as orig·n.
 pub const OFFSET_BITS: usize = offset_bits(WIDTH) as usize;
 /// An edge's dots and their sum.
 pub const EDGE_DOT_BITS: usize = dot_bits(W, W);
 pub const EDGE_VALUE_BITS: usize = EDGE_DOT_BITS + 1;
 /// dir·n.
 pub const DET_BITS: usize = dot_bits(W, WT);
-/// orig·n and its sum with −v0·n.
+/// orig·n and its sum with ṽ0·ñ.
 pub const NT_DOT_BITS: usize = dot_bits(WT, WT);
 pub const NT_BITS: usize = NT_DOT_BITS + 1;
+const _: () = assert!(OFFSET_BITS == NT_DOT_BITS);
 
 /// Cycles from the operands to the values.
 pub const LATENCY: usize = dot::LATENCY + align_add::LATENCY;
@@ -52,27 +53,28 @@ pub struct PluckerDatapath {
     pub e2_e: Signal<In, Bits<EXP_BITS>>,
     pub e3: [Signal<In, Bits<W>>; 3],
     pub e3_e: Signal<In, Bits<EXP_BITS>>,
-    /// v0 × e1, v0 × e2, v1 × e3.
+    /// v0 × e1, −(v0 × e2), v1 × e3 (e2 is stored as −e2).
     pub m1: [Signal<In, Bits<W>>; 3],
     pub m1_e: Signal<In, Bits<EXP_BITS>>,
     pub m2: [Signal<In, Bits<W>>; 3],
     pub m2_e: Signal<In, Bits<EXP_BITS>>,
     pub m3: [Signal<In, Bits<W>>; 3],
     pub m3_e: Signal<In, Bits<EXP_BITS>>,
-    /// −v0·n.
+    /// ṽ0·ñ.
     pub offset: Signal<In, Bits<OFFSET_BITS>>,
     pub offset_e: Signal<In, Bits<EXP_BITS>>,
-    /// dir·n.
+    /// dir·n = −det.
     pub det: Signal<Out, Bits<DET_BITS>>,
     pub det_e: Signal<Out, Bits<EXP_BITS>>,
-    /// N_u = e2·m + dir·(v0 × e2), −N_v = e1·m + dir·(v0 × e1), −N_w = e3·m + dir·(v1 × e3).
+    /// −N_u = (−e2)·m + dir·(−(v0 × e2)), −N_v = e1·m + dir·(v0 × e1),
+    /// −N_w = e3·m + dir·(v1 × e3).
     pub nu: Signal<Out, Bits<EDGE_VALUE_BITS>>,
     pub nu_e: Signal<Out, Bits<EXP_BITS>>,
     pub nv: Signal<Out, Bits<EDGE_VALUE_BITS>>,
     pub nv_e: Signal<Out, Bits<EXP_BITS>>,
     pub nw: Signal<Out, Bits<EDGE_VALUE_BITS>>,
     pub nw_e: Signal<Out, Bits<EXP_BITS>>,
-    /// N_t = orig·n − v0·n.
+    /// −N_t = (−orig)·n + ṽ0·ñ.
     pub nt: Signal<Out, Bits<NT_BITS>>,
     pub nt_e: Signal<Out, Bits<EXP_BITS>>,
     det_dot: Dot<W, WT, { W + WT }, DET_BITS>,
@@ -86,13 +88,10 @@ pub struct PluckerDatapath {
     edge_w: EdgeValue,
     on_dot: Dot<WT, WT, { 2 * WT }, NT_DOT_BITS>,
     on_e: Delay<Bits<EXP_BITS>>,
-    /// −v0·n sign-extended to orig·n's width, waiting for the dot.
-    offset_wide: Signal<Local, Bits<NT_DOT_BITS>>,
-    offset_delay: Delay<Bits<NT_DOT_BITS>>,
+    /// ṽ0·ñ, waiting for orig·n.
+    offset_delay: Delay<Bits<OFFSET_BITS>>,
     offset_e_delay: Delay<Bits<EXP_BITS>>,
     nt_sum: AlignAdd<NT_DOT_BITS, NT_BITS>,
-    offset_sign: Constant<Bits<OFFSET_BITS>>,
-    offset_extension: Constant<Bits<NT_DOT_BITS>>,
     bias: Constant<Bits<EXP_BITS>>,
 }
 
@@ -140,12 +139,9 @@ impl Default for PluckerDatapath {
             edge_w: Default::default(),
             on_dot: Default::default(),
             on_e: Delay::new(dot::LATENCY),
-            offset_wide: Default::default(),
             offset_delay: Delay::new(dot::LATENCY),
             offset_e_delay: Delay::new(dot::LATENCY),
             nt_sum: Default::default(),
-            offset_sign: Constant::new(Bits::<OFFSET_BITS>::from(1) << (OFFSET_BITS as u64 - 1)),
-            offset_extension: Constant::new(!Bits::<NT_DOT_BITS>::default() << OFFSET_BITS as u64),
             bias: Constant::new(EXP_BIAS.to_bits()),
         }
     }
@@ -199,13 +195,9 @@ impl Logic for PluckerDatapath {
         // dir·n: its exponent beside it, then one more stage to meet the sums.
         self.det_e_delay.d.next = self.dir_e.val() + self.n_e.val() - self.bias.val();
         self.det_delay.d.next = self.det_dot.v.val();
-        // N_t = orig·n + (−v0·n).
+        // −N_t = (−orig)·n + ṽ0·ñ.
         self.on_e.d.next = self.orig_e.val() + self.n_e.val() - self.bias.val();
-        self.offset_wide.next = bit_cast::<NT_DOT_BITS, OFFSET_BITS>(self.offset.val());
-        if (self.offset.val() & self.offset_sign.val()).any() {
-            self.offset_wide.next = self.offset_wide.val() | self.offset_extension.val();
-        }
-        self.offset_delay.d.next = self.offset_wide.val();
+        self.offset_delay.d.next = self.offset.val();
         self.offset_e_delay.d.next = self.offset_e.val();
         self.nt_sum.a.next = self.on_dot.v.val();
         self.nt_sum.ea.next = self.on_e.q.val();

@@ -66,9 +66,9 @@ impl Fx {
     }
 
     /// The exact sum; `None` if aligning would overflow (a zero's exponent never counts).
-    /// What [`add_down`] is tested against.
-    #[cfg(test)]
-    fn add(self, other: Fx) -> Option<Fx> {
+    /// What [`add_down`] is tested against, and how the Plücker filter's per-ray and
+    /// per-triangle vectors are formed exactly.
+    pub fn add(self, other: Fx) -> Option<Fx> {
         if other.m == 0 {
             return Some(self);
         }
@@ -160,7 +160,7 @@ pub struct Block {
 pub const DROP_WINDOW: i32 = 64;
 
 /// The exponent of x's leading bit (of x XOR its sign) plus one: x lies in [−2^t, 2^t).
-fn top(x: Fx) -> i32 {
+pub fn top(x: Fx) -> i32 {
     x.e + (128 - (x.m ^ (x.m >> 127)).leading_zeros()) as i32
 }
 
@@ -277,7 +277,7 @@ pub const fn widths(width: u32) -> [u32; 6] {
 pub const CONSTANT_BITS: i32 = 5;
 
 /// c rounded up to [`CONSTANT_BITS`] significant bits, times 2^shift.
-fn constant(c: f64, shift: i32) -> Fx {
+pub fn constant(c: f64, shift: i32) -> Fx {
     let e = c.log2().floor() as i32 - (CONSTANT_BITS - 1);
     // f64's own roundings (a few of 2^-53) are covered 10^4 times over before rounding up.
     let m = (c * (1.0 + 1e-12) * 2f64.powi(-e)).ceil() as i128;
@@ -306,17 +306,24 @@ struct Constants {
 
 fn constants() -> Constants {
     let tau = tau();
-    let u = FP32_ROUNDING.unit;
-    let gamma7 = 7.0 * u / (1.0 - 7.0 * u);
     let hadamard = 3f64.powf(1.5);
     Constants {
         dropped: hadamard * (1.0 + tau).powi(2),
         product: 3.0,
-        fixed: 3.0 * hadamard * tau * (1.0 + tau).powi(2)
-            + 6.0 * gamma7 * (1.0 + tau).powi(3)
-            + 2f64.powi(-39)
-            + 3.0 * u * QUOTIENT_RANGE,
+        fixed: 3.0 * hadamard * tau * (1.0 + tau).powi(2) + fallback_constant(),
     }
+}
+
+/// The fp32 fallback's part of a margin, times 2^(E_a + E_b + E_c) of a value a·(b × c)
+/// whose vectors have block exponents in [`EXP_MIN`, `EXP_MAX`] and a sum of at least
+/// [`SUM_MIN`] (each |x_k| ≤ 2^E(1 + τ)): 6γ₇(1 + τ)³ (seven roundings on each of the six
+/// terms), 2^-39 (its flushes inside the exponent range) and its quotient roundings folded
+/// in as 3u·[`QUOTIENT_RANGE`]. Shared with the Plücker filter, whose fallback is the same.
+pub fn fallback_constant() -> f64 {
+    let tau = tau();
+    let u = FP32_ROUNDING.unit;
+    let gamma7 = 7.0 * u / (1.0 - 7.0 * u);
+    6.0 * gamma7 * (1.0 + tau).powi(3) + 2f64.powi(-39) + 3.0 * u * QUOTIENT_RANGE
 }
 
 /// A bound on |value| + margin in units of 2^(E_a + E_b + E_c) (the Hadamard bound 3√3 of
@@ -333,6 +340,29 @@ pub const fn value_shift(width: u32, value: [Vector; 4]) -> i32 {
     let w = widths(width);
     let (a, x) = (w[value[0] as usize] as i32, w[value[3] as usize] as i32);
     (a - 1) + (x - 1) - CROSS_HEADROOM
+}
+
+/// The width of a value a·trunc(b × c) at step 5's input: its dot's exact width.
+pub const fn value_bits(width: u32, value: [Vector; 4]) -> u32 {
+    let w = widths(width);
+    w[value[0] as usize] + w[value[3] as usize] + 1
+}
+
+/// The width of a value's margin in units of its last bit: |value| + margin is at most
+/// [`QUOTIENT_RANGE`]·2^ΣE = [`QUOTIENT_RANGE`]·2^K units ([`value_shift`]).
+pub const fn margin_bits(width: u32, value: [Vector; 4]) -> u32 {
+    let mut range_bits = 0;
+    while ((1u64 << range_bits) as f64) < QUOTIENT_RANGE {
+        range_bits += 1;
+    }
+    value_shift(width, value) as u32 + range_bits
+}
+
+/// The exponents of a value's last bit that step 5 receives: ΣE − K for ΣE in
+/// [[`SUM_MIN`], 3·[`EXP_MAX`]].
+pub const fn lsb_range(width: u32, value: [Vector; 4]) -> RangeInclusive<i32> {
+    let k = value_shift(width, value);
+    SUM_MIN - k..=3 * EXP_MAX - k
 }
 
 /// One wired term of a margin in units of the value's last bit: `m`·2^(`shift` − below),
