@@ -68,7 +68,7 @@ impl Fx {
     /// The exact sum; `None` if aligning would overflow (a zero's exponent never counts).
     /// What [`add_down`] is tested against, and how the Plücker filter's per-ray and
     /// per-triangle vectors are formed exactly.
-    pub fn add(self, other: Fx) -> Option<Fx> {
+    pub fn checked_add(self, other: Fx) -> Option<Fx> {
         if other.m == 0 {
             return Some(self);
         }
@@ -491,7 +491,7 @@ pub const FLUSH_SHIFT: i32 = -124;
 /// x + y rounded down ([`round`]) by a short adder: the operands (short floats, at most
 /// [`SHORT_BITS`] + 1 bits with the sign) aligned at [`ADD_GUARD_BITS`] bits below the
 /// larger one's short mantissa, the smaller floored to that grid (an arithmetic shift),
-/// then added and rounded down. Equal to `round(x.add(y), false)` wherever the exact
+/// then added and rounded down. Equal to `round(x.checked_add(y), false)` wherever the exact
 /// `Fx::add` does not overflow: a floored operand lies more than two bits below the larger
 /// one, so the sum's last short bit is above the grid, and flooring below it does not
 /// change a floor. Defined at any exponents (no i128 shift can overflow), where the model
@@ -737,7 +737,7 @@ mod tests {
         ) {
             let (x, y) = (Fx::new(a, ea), Fx::new(b, eb));
             prop_assert_eq!(x.lt(y), x.to_f64() < y.to_f64());
-            prop_assert_eq!(x.add(y).unwrap().to_f64(), x.to_f64() + y.to_f64());
+            prop_assert_eq!(x.checked_add(y).unwrap().to_f64(), x.to_f64() + y.to_f64());
         }
     }
 
@@ -780,7 +780,7 @@ mod tests {
     /// Exact a·(b × c) of exact vectors (exponents small enough for i128).
     fn triple(a: [Fx; 3], b: [Fx; 3], c: [Fx; 3]) -> Fx {
         let mul = |x: Fx, y: Fx| Fx::new(x.m * y.m, x.e + y.e);
-        let sub = |x: Fx, y: Fx| x.add(Fx::new(-y.m, y.e)).unwrap();
+        let sub = |x: Fx, y: Fx| x.checked_add(Fx::new(-y.m, y.e)).unwrap();
         let bc = [
             sub(mul(b[1], c[2]), mul(b[2], c[1])),
             sub(mul(b[2], c[0]), mul(b[0], c[2])),
@@ -788,7 +788,7 @@ mod tests {
         ];
         (0..3)
             .map(|k| mul(a[k], bc[k]))
-            .try_fold(Fx::new(0, 0), Fx::add)
+            .try_fold(Fx::new(0, 0), Fx::checked_add)
             .unwrap()
     }
 
@@ -819,7 +819,7 @@ mod tests {
             }
         }
 
-        /// The short adder: its rounded-down sum is `round(x.add(y), false)` for any
+        /// The short adder: its rounded-down sum is `round(x.checked_add(y), false)` for any
         /// short floats (rounded either way), at near and far exponents.
         #[test]
         fn the_short_adder_rounds_the_exact_sum_down(
@@ -830,7 +830,7 @@ mod tests {
             let x = round(Fx::new(i128::from(a >> shift), ea), ua);
             let y = round(Fx::new(i128::from(b), eb), ub);
             // Far apart, the exact sum overflows i128 (add_down does not).
-            let Some(sum) = x.add(y) else { return Ok(()); };
+            let Some(sum) = x.checked_add(y) else { return Ok(()); };
             let want = round(sum, false);
             let got = add_down(x, y);
             prop_assert!(!got.lt(want) && !want.lt(got), "{x:?} + {y:?}: {got:?} {want:?}");
@@ -888,18 +888,18 @@ mod tests {
             let value = DET;
             let filter = Fx::new(dot(&ab.m, &xb.m), ab.lsb + xb.lsb);
             let want = triple(exact(a), exact(b), exact(c));
-            let err = filter.add(Fx::new(-want.m, want.e)).unwrap();
+            let err = filter.checked_add(Fx::new(-want.m, want.e)).unwrap();
             // The fallback's part (the fixed constant) is not the filter's: leave it out.
             let fixed = constant(constants().fixed, ab.e + bb.e + cb.e);
             // The value's last bit is 2^(ΣE − K), K fixed per kind and width.
             prop_assert_eq!(filter.e, ab.e + bb.e + cb.e - value_shift(w, value));
             let below = [ab, bb, cb, xb].map(|v| v.dropped.map(|d| v.e - d));
             let e = Fx::new(margin_units(w, value, below, 1.0).unwrap(), filter.e);
-            let filter_terms = e.add(Fx::new(-fixed.m, fixed.e)).unwrap();
+            let filter_terms = e.checked_add(Fx::new(-fixed.m, fixed.e)).unwrap();
             prop_assert!(!filter_terms.lt(Fx::new(err.m.abs(), err.e)), "{err:?} > {filter_terms:?}");
             let sum = ab.e + bb.e + cb.e;
             let range = Fx::new(QUOTIENT_RANGE as i128, sum);
-            prop_assert!(Fx::new(filter.m.abs(), filter.e).add(e).unwrap().lt(range));
+            prop_assert!(Fx::new(filter.m.abs(), filter.e).checked_add(e).unwrap().lt(range));
         }
 
         /// The truncated cross product's own term: |a·(trunc(b × c) − b × c)| ≤ 3·2^(E_a+D_x).
@@ -913,7 +913,7 @@ mod tests {
             let Some(xb) = to_block(x.map(|m| Fx::new(m, -40)), w) else { return Ok(()); };
             let full = Fx::new(dot(&ab.m, &x), ab.lsb - 40);
             let cut = Fx::new(dot(&ab.m, &xb.m), ab.lsb + xb.lsb);
-            let err = cut.add(Fx::new(-full.m, full.e)).unwrap();
+            let err = cut.checked_add(Fx::new(-full.m, full.e)).unwrap();
             match xb.dropped {
                 None => prop_assert_eq!(err.m, 0),
                 Some(d) => prop_assert!(Fx::new(err.m.abs(), err.e).lt(Fx::new(3, ab.e + d)) || err.m == 0),

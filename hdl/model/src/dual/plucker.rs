@@ -80,7 +80,7 @@ fn mul(a: Fx, b: Fx) -> Option<Fx> {
 }
 
 fn sub(a: Fx, b: Fx) -> Option<Fx> {
-    a.add(Fx::new(-b.m, b.e))
+    a.checked_add(Fx::new(-b.m, b.e))
 }
 
 fn neg(v: V3) -> V3 {
