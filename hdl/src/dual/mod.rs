@@ -1,7 +1,8 @@
 //! The block-floating-point dual-precision filter (docs/precision.md, "The block-floating-point
 //! filter"), one block per file, each bit for bit its `hw_model::dual::bfp` function; and the
-//! Plücker filter's datapath ("The Plücker filter"; `align_add`, `edge_value`, `plucker`), bit
-//! for bit `hw_model::dual::plucker::datapath`.
+//! Plücker filter ("The Plücker filter"; `align_add`, `edge_value`, `plucker` its datapath,
+//! `s_bound`, `plucker_margin`, and `plucker_filter` the whole lane with bfp's `decide`), bit
+//! for bit `hw_model::dual::plucker`.
 
 pub mod add_down;
 pub mod align_add;
@@ -13,8 +14,11 @@ pub mod filter;
 pub mod margin;
 pub mod pair;
 pub mod plucker;
+pub mod plucker_filter;
+pub mod plucker_margin;
 pub mod pow2_lt;
 pub mod round;
+pub mod s_bound;
 pub mod short_lt;
 pub mod slot;
 pub mod to_block;

@@ -12,6 +12,7 @@ mod dual {
     mod margin;
     mod pair;
     mod plucker;
+    mod plucker_filter;
     mod round;
     mod to_block;
     mod translate;

@@ -450,6 +450,37 @@ fn fitted(
     Some((Fx::new(v.fx.m >> k, lsb), margin))
 }
 
+/// What a hardware margin wires for one value: its dots' bounds ([`dot_bound`]; 0 for no
+/// second dot) and its units (one for a floored sum, one for a floor onto step 5's width).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MarginConstants {
+    pub dots: [i128; 2],
+    pub units: i128,
+}
+
+/// The margin constants of −det, −N_u, −N_v, −N_t at width W: what [`fitted`] charges them
+/// (a test checks it against the values).
+pub fn margin_constants(width: u32) -> [MarginConstants; 4] {
+    let (w, wt) = (width, wide(width));
+    let fit = |bits: u32, kind| i128::from(bits > value_bits(width, kind));
+    let edge = MarginConstants {
+        dots: [dot_bound(w, w); 2],
+        units: 1 + fit(2 * w + 2, N_U),
+    };
+    [
+        MarginConstants {
+            dots: [dot_bound(w, wt), 0],
+            units: fit(w + wt + 1, DET),
+        },
+        edge,
+        edge,
+        MarginConstants {
+            dots: [dot_bound(wt, wt); 2],
+            units: 1 + fit(offset_bits(width) + 1, N_T),
+        },
+    ]
+}
+
 /// Step 5's inputs of a `bfpW` Plücker filter: −det, −N_u, −N_v, −N_t, each fitted with its
 /// margin ([`fitted`]); `None` forwards the query (before any arithmetic, as [`datapath`];
 /// or the fallback's exponents outside the range its constant covers,
@@ -794,6 +825,33 @@ mod tests {
                 let unit = 2f64.powi(fx.e);
                 prop_assert!(a <= b && b - a < unit, "{} {}", a, b);
                 prop_assert!(Approx::of(&v).err() + (b - a) <= *margin as f64 * unit * (1.0 + 1e-12));
+            }
+        }
+    }
+
+    /// The wired constants are what `fitted` charges each value.
+    #[test]
+    fn margin_constants_are_the_values_own() {
+        let exact3 = |v: [f32; 3]| v.map(|x| split(x).unwrap());
+        for w in bfp::WIDTHS {
+            let ray = Ray::new(exact3([1.0, 2.0, 3.0]), exact3([0.5, -1.0, 0.25]), w).unwrap();
+            let tri = Triangle::new(
+                exact3([1.0, 0.0, 0.0]),
+                exact3([0.0, 1.5, 0.0]),
+                exact3([0.0, 0.0, 3.0]),
+                w,
+            )
+            .unwrap();
+            let [det, nu, nv, _, nt] = values_of(&ray, &tri);
+            let kinds = [DET, N_U, N_V, N_T];
+            for ((v, kind), c) in [det, nu, nv, nt].iter().zip(kinds).zip(margin_constants(w)) {
+                let k = v.bits.saturating_sub(value_bits(w, kind));
+                assert_eq!(v.dots.map(|d| d.1), c.dots, "W = {w}");
+                assert_eq!(
+                    i128::from(v.aligned) + i128::from(k > 0),
+                    c.units,
+                    "W = {w}"
+                );
             }
         }
     }

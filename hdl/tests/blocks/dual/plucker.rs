@@ -30,12 +30,12 @@ impl Clocked for PluckerDatapath {
 }
 
 /// A grid exponent as its biased field.
-fn exp_field(e: i32) -> Bits<10> {
+pub(super) fn exp_field(e: i32) -> Bits<10> {
     field::<10>(e as i128 + EXP_BIAS as i128)
 }
 
 /// A field read back as a grid exponent.
-fn exp_of(raw: Bits<10>) -> i32 {
+pub(super) fn exp_of(raw: Bits<10>) -> i32 {
     raw.to_u128() as i32 - EXP_BIAS as i32
 }
 
@@ -93,7 +93,7 @@ fn align_add_floors_onto_the_coarser_grid_as_the_model() {
 }
 
 /// Drives one block's mantissas and exponent field.
-fn drive<const N: usize, const M: usize>(
+pub(super) fn drive<const N: usize, const M: usize>(
     ports: &mut [Signal<In, Bits<M>>; 3],
     e: &mut Signal<In, Bits<10>>,
     block: &BlockBits<N>,
@@ -104,21 +104,26 @@ fn drive<const N: usize, const M: usize>(
     e.next = exp_field(block.lsb);
 }
 
-/// The datapath's operands of `q`.
-fn set(uut: &mut PluckerDatapath, o: &Operands) {
-    drive(&mut uut.dir, &mut uut.dir_e, &o.dir);
-    drive(&mut uut.moment, &mut uut.moment_e, &o.moment);
-    drive(&mut uut.orig, &mut uut.orig_e, &o.orig);
-    drive(&mut uut.n, &mut uut.n_e, &o.n);
-    drive(&mut uut.e1, &mut uut.e1_e, &o.edges[0]);
-    drive(&mut uut.e2, &mut uut.e2_e, &o.edges[1]);
-    drive(&mut uut.e3, &mut uut.e3_e, &o.edges[2]);
-    drive(&mut uut.m1, &mut uut.m1_e, &o.moments[0]);
-    drive(&mut uut.m2, &mut uut.m2_e, &o.moments[1]);
-    drive(&mut uut.m3, &mut uut.m3_e, &o.moments[2]);
-    uut.offset.next = field(o.offset.m[0] as i128);
-    uut.offset_e.next = exp_field(o.offset.lsb);
+/// Drives the datapath's operands into `$uut` (the datapath, or the filter: the same
+/// ports).
+macro_rules! set_operands {
+    ($uut:expr, $o:expr) => {{
+        let (uut, o) = ($uut, $o);
+        drive(&mut uut.dir, &mut uut.dir_e, &o.dir);
+        drive(&mut uut.moment, &mut uut.moment_e, &o.moment);
+        drive(&mut uut.orig, &mut uut.orig_e, &o.orig);
+        drive(&mut uut.n, &mut uut.n_e, &o.n);
+        drive(&mut uut.e1, &mut uut.e1_e, &o.edges[0]);
+        drive(&mut uut.e2, &mut uut.e2_e, &o.edges[1]);
+        drive(&mut uut.e3, &mut uut.e3_e, &o.edges[2]);
+        drive(&mut uut.m1, &mut uut.m1_e, &o.moments[0]);
+        drive(&mut uut.m2, &mut uut.m2_e, &o.moments[1]);
+        drive(&mut uut.m3, &mut uut.m3_e, &o.moments[2]);
+        uut.offset.next = field(o.offset.m[0] as i128);
+        uut.offset_e.next = exp_field(o.offset.lsb);
+    }};
 }
+pub(super) use set_operands;
 
 /// The five values as the datapath gives them.
 fn values(uut: &PluckerDatapath) -> [Fx; 5] {
@@ -142,7 +147,7 @@ fn stream(queries: &[MtQuery]) -> usize {
     uut.connect_all();
     for i in 0..cases.len() + LATENCY {
         if let Some((operands, _)) = cases.get(i) {
-            set(&mut uut, operands);
+            set_operands!(&mut uut, operands);
         }
         tick(&mut uut);
         let Some(j) = (i + 1).checked_sub(LATENCY) else {

@@ -1,0 +1,253 @@
+//! `hdl::dual::s_bound`, `hdl::dual::plucker_margin` and `hdl::dual::plucker_filter`: the
+//! Plücker filter's |s| bound and margins against the model's, and the whole lane streamed
+//! one test per cycle, bit for bit `Filter::certain_miss(q, 1.0)` for bfp18/fp32 with the
+//! Plücker filter (`plucker::decide_inputs`, then `bfp::decide`).
+
+use hdl::dual::decide::{DET_MARGIN_BITS, NUM_MARGIN_BITS};
+use hdl::dual::plucker::W;
+use hdl::dual::plucker_filter::{PluckerFilter, LATENCY};
+use hdl::dual::plucker_margin::{self, PluckerMargin, Y_BIAS};
+use hdl::dual::s_bound::{self, SBound};
+use hdl::dual::WIDTH;
+use hw_model::dual::bfp::Term;
+use hw_model::dual::plucker::{
+    datapath, decide_inputs, fallback_term, margin_constants, s_exponent,
+};
+use hw_model::dual::{Filter, FilterKind, FormatPair, PluckerDecisions};
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+use rust_hdl::prelude::*;
+use sw_renderer::intersect::MtQuery;
+
+use super::common::{lint_clean, named};
+use super::cross_block::{field, tick, Clocked};
+use super::filter::{random, refused, shaped};
+use super::plucker::{drive, exp_field, exp_of, set_operands};
+
+impl Clocked for SBound {
+    fn set_clock(&mut self, clk: bool) {
+        self.clock.next = Clock { clk };
+    }
+}
+
+impl<const MB: usize> Clocked for PluckerMargin<MB> {
+    fn set_clock(&mut self, clk: bool) {
+        self.clock.next = Clock { clk };
+    }
+}
+
+/// Random and filter-shaped queries, a third made to be refused.
+fn queries(seed: u64, n: usize) -> Vec<MtQuery> {
+    let mut rng = StdRng::seed_from_u64(seed);
+    (0..n)
+        .map(|i| match i % 6 {
+            0 => random(&mut rng),
+            1 | 2 => refused(&mut rng),
+            _ => shaped(&mut rng),
+        })
+        .collect()
+}
+
+#[test]
+fn the_s_bound_is_the_models() {
+    let cases: Vec<_> = queries(31, 3000)
+        .iter()
+        .filter_map(|q| datapath(q, WIDTH))
+        .map(|(o, _)| o)
+        .collect();
+    assert!(cases.len() > 2000, "{}", cases.len());
+    let mut uut = SBound::default();
+    uut.connect_all();
+    for i in 0..cases.len() + s_bound::LATENCY {
+        if let Some(o) = cases.get(i) {
+            drive(&mut uut.orig, &mut uut.orig_e, &o.orig);
+            for k in 0..3 {
+                uut.cut[k].next = field(o.v0_cut.m[k] as i128);
+            }
+            uut.cut_e.next = exp_field(o.v0_cut.lsb);
+        }
+        tick(&mut uut);
+        let Some(j) = (i + 1).checked_sub(s_bound::LATENCY) else {
+            continue;
+        };
+        if let Some(o) = cases.get(j) {
+            let want = s_exponent(&o.orig, &o.v0_cut, WIDTH);
+            assert_eq!(exp_of(uut.e.val()), want, "{o:?}");
+        }
+    }
+}
+
+/// The margin's specification from the model's terms: each dot's bound C·2^-below rounded
+/// up, the units, the fallback's m_F·2^y rounded up; `None` (over) once that reaches
+/// 2^(MB − 1).
+fn margin_spec(mb: usize, dots: [i128; 2], units: i128, below: [u32; 2], y: i32) -> Option<i128> {
+    let f = fallback_term();
+    if y + (128 - f.m.leading_zeros()) as i32 >= mb as i32 {
+        return None;
+    }
+    let terms: i128 = dots
+        .iter()
+        .zip(below)
+        .filter(|(c, _)| **c > 0)
+        .map(|(&c, b)| Term { m: c, shift: 0 }.units(b as i32).unwrap())
+        .sum();
+    Some(terms + units + Term { m: f.m, shift: 0 }.units(-y).unwrap())
+}
+
+fn stream_margin<const MB: usize>(dots: [i128; 2], units: i128, seed: u64) {
+    let mut rng = StdRng::seed_from_u64(seed);
+    let cases: Vec<([u32; 2], i32)> = (0..4000)
+        .map(|_| {
+            let mut below = || match rng.gen_range(0..4) {
+                0 => 0,
+                1 => rng.gen_range(0..64),
+                2 => rng.gen_range(64..1 << plucker_margin::BELOW_BITS),
+                _ => rng.gen_range(20..40),
+            };
+            let below = [below(), below()];
+            (below, rng.gen_range(-200..MB as i32 + 8))
+        })
+        .collect();
+    let mut uut = PluckerMargin::<MB>::new(dots, units);
+    uut.connect_all();
+    for i in 0..cases.len() + plucker_margin::LATENCY {
+        if let Some(&(below, y)) = cases.get(i) {
+            for (port, b) in uut.below.iter_mut().zip(below) {
+                port.next = (b as u64).to_bits();
+            }
+            uut.y.next = ((y as i64 + Y_BIAS) as u64).to_bits();
+        }
+        tick(&mut uut);
+        let Some(j) = (i + 1).checked_sub(plucker_margin::LATENCY) else {
+            continue;
+        };
+        if let Some(&(below, y)) = cases.get(j) {
+            let want = margin_spec(MB, dots, units, below, y);
+            assert_eq!(uut.over.val(), want.is_none(), "{below:?} {y}");
+            if let Some(want) = want {
+                assert_eq!(uut.margin.val().to_u128() as i128, want, "{below:?} {y}");
+            }
+        }
+    }
+}
+
+/// Each of the lane's four margins (the model's `margin_constants`).
+#[test]
+fn the_margins_are_their_specification() {
+    let [det, u, v, t] = margin_constants(WIDTH);
+    stream_margin::<DET_MARGIN_BITS>(det.dots, det.units, 41);
+    for (c, seed) in [(u, 42), (v, 43), (t, 44)] {
+        stream_margin::<NUM_MARGIN_BITS>(c.dots, c.units, seed);
+    }
+}
+
+/// What the stream saw: misses, decided forwards, tests with no stored vectors, and tests
+/// the model refuses after storing them (exponents out of range, a fallback term too big).
+#[derive(Default, Debug)]
+struct Seen {
+    miss: usize,
+    forward: usize,
+    unstored: usize,
+    refused: usize,
+}
+
+fn bits(x: f32) -> Bits<32> {
+    u64::from(x.to_bits()).to_bits()
+}
+
+/// Streams `qs` through the lane one per cycle (then LATENCY idle cycles) and compares
+/// every answer with the model's.
+fn stream(qs: &[MtQuery]) -> Seen {
+    let filter = Filter::new(
+        FormatPair::parse(&format!("bfp{WIDTH}/fp32")).unwrap(),
+        0,
+        FilterKind::Plucker(PluckerDecisions::Table),
+    )
+    .unwrap();
+    let mut seen = Seen::default();
+    let mut uut = PluckerFilter::default();
+    uut.connect_all();
+    for cycle in 0..qs.len() + LATENCY {
+        let q = qs.get(cycle);
+        uut.valid.next = q.is_some();
+        let operands = q.and_then(|q| datapath(q, WIDTH)).map(|(o, _)| o);
+        uut.stored.next = operands.is_some();
+        if let Some(o) = &operands {
+            set_operands!(&mut uut, o);
+            for k in 0..3 {
+                uut.cut[k].next = field(o.v0_cut.m[k] as i128);
+            }
+            uut.cut_e.next = exp_field(o.v0_cut.lsb);
+        }
+        uut.t_min.next = bits(q.map_or(0.0, |q| q.t_min));
+        tick(&mut uut);
+        let Some(i) = (cycle + 1).checked_sub(LATENCY) else {
+            assert!(!uut.valid_out.val(), "valid out before any query");
+            continue;
+        };
+        assert_eq!(uut.valid_out.val(), i < qs.len(), "cycle {cycle}");
+        let Some(q) = qs.get(i) else { continue };
+        let want = filter.certain_miss(q, 1.0);
+        assert_eq!(
+            (uut.miss.val(), uut.forward.val()),
+            (want, !want),
+            "query {i}: {q:?}"
+        );
+        if datapath(q, WIDTH).is_none() {
+            seen.unstored += 1;
+        } else if decide_inputs(q, WIDTH, 1.0).is_none() {
+            seen.refused += 1;
+        } else if want {
+            seen.miss += 1;
+        } else {
+            seen.forward += 1;
+        }
+    }
+    seen
+}
+
+impl Clocked for PluckerFilter {
+    fn set_clock(&mut self, clk: bool) {
+        self.clock.next = Clock { clk };
+    }
+}
+
+#[test]
+fn the_filter_is_the_models_bit_for_bit() {
+    let seen = stream(&queries(51, 3000));
+    println!("{seen:?}");
+    assert!(
+        seen.miss > 500 && seen.forward > 200 && seen.unstored > 50 && seen.refused > 50,
+        "{seen:?}"
+    );
+}
+
+fn verilogs() -> Vec<(String, String)> {
+    let u = margin_constants(WIDTH)[1];
+    vec![
+        named(SBound::default(), "SBound", |_| format!("W = {W}")),
+        named(
+            PluckerMargin::<NUM_MARGIN_BITS>::new(u.dots, u.units),
+            "PluckerMargin",
+            |_| "an edge value".to_string(),
+        ),
+        named(PluckerFilter::default(), "PluckerFilter", |_| {
+            format!("bfp{WIDTH}/fp32, latency {LATENCY}")
+        }),
+    ]
+}
+
+/// Verilator lints it clean but for UNOPTFLAT, the traversal unit's waiver (as the bfp
+/// filter's lane).
+#[test]
+fn the_filter_lints_clean() {
+    lint_clean(&verilogs(), hdl::verilog::UNIT_VERILATOR_WAIVERS);
+}
+
+/// yosys xc7 resources of the whole lane and its new blocks:
+/// `cargo test --release -p hdl --test blocks -- --ignored --nocapture plucker_filter_resources`
+#[test]
+#[ignore]
+fn plucker_filter_resources() {
+    println!("{}", hdl::synth::markdown_table(&verilogs()).unwrap());
+}
