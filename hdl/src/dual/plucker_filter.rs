@@ -105,8 +105,8 @@ pub struct PluckerFilter {
     v_margin: PluckerMargin<NUM_MARGIN_BITS>,
     t_margin: PluckerMargin<NUM_MARGIN_BITS>,
     decide: Decide,
-    /// Stage 1: each value's grid L (det, N_u, N_v, N_t; fitted: + k), each dot's distance
-    /// below it (N_u, N_v, N_t: two each), the block exponents of dir, e1, −e2, and whether
+    /// Stage 1: each value's grid L (det, N_u, N_v, N_t; fitted: + k), the finer dot's
+    /// distance below it (N_u, N_v, N_t), the block exponents of dir, e1, −e2, and whether
     /// a grid is out of `Decide`'s reach or nothing is stored.
     l1u: Signal<Local, Bits<L_BITS>>,
     l2u: Signal<Local, Bits<L_BITS>>,
@@ -115,8 +115,9 @@ pub struct PluckerFilter {
     l1t: Signal<Local, Bits<L_BITS>>,
     l2t: Signal<Local, Bits<L_BITS>>,
     l: [Signal<Local, Bits<L_BITS>>; 4],
+    fine: [Signal<Local, Bits<L_BITS>>; 3],
     l_reg: [DFF<Bits<L_BITS>>; 4],
-    below_reg: [DFF<Bits<BELOW_BITS>>; 6],
+    below_reg: [DFF<Bits<BELOW_BITS>>; 3],
     e_reg: [DFF<Exp>; 3],
     refuse1: DFF<Bit>,
     /// Stage 2: ΣE of each value, y, and whether an exponent is outside the fallback
@@ -125,7 +126,7 @@ pub struct PluckerFilter {
     sum_y: [Signal<Local, Bits<Y_BITS>>; 4],
     l_y: [Signal<Local, Bits<Y_BITS>>; 4],
     y_reg: [DFF<Bits<Y_BITS>>; 4],
-    below2_reg: [DFF<Bits<BELOW_BITS>>; 6],
+    below2_reg: [DFF<Bits<BELOW_BITS>>; 3],
     l2_reg: [DFF<Bits<L_BITS>>; 4],
     refuse2: DFF<Bit>,
     /// Stage 3 (`Decide`'s inputs): the exponents, and every refusal.
@@ -141,7 +142,7 @@ pub struct PluckerFilter {
     edge_extension: Constant<Bits<NUM_BITS>>,
     k_det: Constant<Bits<L_BITS>>,
     k_t: Constant<Bits<L_BITS>>,
-    k_det_below: Constant<Bits<BELOW_BITS>>,
+    /// det has no finer dot: its margin's shifter idles.
     zero_below: Constant<Bits<BELOW_BITS>>,
     offset_bias: Constant<Bits<L_BITS>>,
     /// Block exponent field = last bit's field + W − 1.
@@ -166,7 +167,6 @@ impl Default for PluckerFilter {
         // y + Y_BIAS = ΣE field − L field + (Y_BIAS + f.shift − SUM_BIAS + L_BIAS).
         let y_offset = Y_BIAS + fallback_term().shift as i64 - SUM_BIAS + L_BIAS;
         assert!((0..1 << Y_BITS).contains(&y_offset));
-        let below = |v: usize| Constant::new((v as u64).to_bits());
         let [det_c, u_c, v_c, t_c] = margin_constants(super::WIDTH);
         Self {
             clock: Default::default(),
@@ -202,10 +202,10 @@ impl Default for PluckerFilter {
             forward: Default::default(),
             datapath: Default::default(),
             s_bound: Default::default(),
-            det_margin: PluckerMargin::new(det_c.dots, det_c.units),
-            u_margin: PluckerMargin::new(u_c.dots, u_c.units),
-            v_margin: PluckerMargin::new(v_c.dots, v_c.units),
-            t_margin: PluckerMargin::new(t_c.dots, t_c.units),
+            det_margin: PluckerMargin::new(det_c),
+            u_margin: PluckerMargin::new(u_c),
+            v_margin: PluckerMargin::new(v_c),
+            t_margin: PluckerMargin::new(t_c),
             decide: Default::default(),
             l1u: Default::default(),
             l2u: Default::default(),
@@ -214,6 +214,7 @@ impl Default for PluckerFilter {
             l1t: Default::default(),
             l2t: Default::default(),
             l: Default::default(),
+            fine: Default::default(),
             l_reg: Default::default(),
             below_reg: Default::default(),
             e_reg: Default::default(),
@@ -238,8 +239,7 @@ impl Default for PluckerFilter {
             edge_extension: Constant::new(!Bits::<NUM_BITS>::default() << EDGE_VALUE_BITS as u64),
             k_det: Constant::new((K_DET as u64).to_bits()),
             k_t: Constant::new((K_T as u64).to_bits()),
-            k_det_below: below(K_DET),
-            zero_below: below(0),
+            zero_below: Constant::new(0u64.to_bits()),
             offset_bias: Constant::new(EXP_BIAS.to_bits()),
             last_to_top: Constant::new(((W - 1) as u64).to_bits()),
             det_low: l_field(*det_range.start() as i64),
@@ -270,11 +270,9 @@ impl Logic for PluckerFilter {
             self.l2_reg[k].clock.next = self.clock.val();
             self.l3_reg[k].clock.next = self.clock.val();
         }
-        for k in 0..6 {
+        for k in 0..3 {
             self.below_reg[k].clock.next = self.clock.val();
             self.below2_reg[k].clock.next = self.clock.val();
-        }
-        for k in 0..3 {
             self.e_reg[k].clock.next = self.clock.val();
         }
         self.refuse1.clock.next = self.clock.val();
@@ -330,27 +328,34 @@ impl Logic for PluckerFilter {
         self.l1t.next = bit_cast::<L_BITS, EXP_BITS>(self.orig_e.val())
             + bit_cast::<L_BITS, EXP_BITS>(self.n_e.val());
         self.l2t.next = bit_cast::<L_BITS, EXP_BITS>(self.offset_e.val()) + self.offset_bias.val();
+        // Each value on its coarser dot's grid; the finer dot's distance below it.
         self.l[1].next = self.l1u.val();
+        self.fine[0].next = self.l2u.val();
         if self.l2u.val() > self.l1u.val() {
             self.l[1].next = self.l2u.val();
+            self.fine[0].next = self.l1u.val();
         }
         self.l[2].next = self.l1v.val();
+        self.fine[1].next = self.l2v.val();
         if self.l2v.val() > self.l1v.val() {
             self.l[2].next = self.l2v.val();
+            self.fine[1].next = self.l1v.val();
         }
         self.l[3].next = self.l1t.val() + self.k_t.val();
+        self.fine[2].next = self.l2t.val();
         if self.l2t.val() > self.l1t.val() {
             self.l[3].next = self.l2t.val() + self.k_t.val();
+            self.fine[2].next = self.l1t.val();
         }
         for k in 0..4 {
             self.l_reg[k].d.next = self.l[k].val();
         }
-        self.below_reg[0].d.next = bit_cast::<BELOW_BITS, L_BITS>(self.l[1].val() - self.l1u.val());
-        self.below_reg[1].d.next = bit_cast::<BELOW_BITS, L_BITS>(self.l[1].val() - self.l2u.val());
-        self.below_reg[2].d.next = bit_cast::<BELOW_BITS, L_BITS>(self.l[2].val() - self.l1v.val());
-        self.below_reg[3].d.next = bit_cast::<BELOW_BITS, L_BITS>(self.l[2].val() - self.l2v.val());
-        self.below_reg[4].d.next = bit_cast::<BELOW_BITS, L_BITS>(self.l[3].val() - self.l1t.val());
-        self.below_reg[5].d.next = bit_cast::<BELOW_BITS, L_BITS>(self.l[3].val() - self.l2t.val());
+        self.below_reg[0].d.next =
+            bit_cast::<BELOW_BITS, L_BITS>(self.l[1].val() - self.fine[0].val());
+        self.below_reg[1].d.next =
+            bit_cast::<BELOW_BITS, L_BITS>(self.l[2].val() - self.fine[1].val());
+        self.below_reg[2].d.next =
+            bit_cast::<BELOW_BITS, L_BITS>(self.l[3].val() - self.fine[2].val());
         self.e_reg[0].d.next = self.dir_e.val() + self.last_to_top.val();
         self.e_reg[1].d.next = self.e1_e.val() + self.last_to_top.val();
         self.e_reg[2].d.next = self.e2_e.val() + self.last_to_top.val();
@@ -391,7 +396,7 @@ impl Logic for PluckerFilter {
             self.y_reg[k].d.next = self.sum_y[k].val() + self.y_offset.val() - self.l_y[k].val();
             self.l2_reg[k].d.next = self.l_reg[k].q.val();
         }
-        for k in 0..6 {
+        for k in 0..3 {
             self.below2_reg[k].d.next = self.below_reg[k].q.val();
         }
         self.refuse2.d.next = self.refuse1.q.val()
@@ -409,17 +414,13 @@ impl Logic for PluckerFilter {
             || self.sum[3].val() < self.sum_low.val();
 
         // The margins (ready at stage 3, with the values).
-        self.det_margin.below[0].next = self.k_det_below.val();
-        self.det_margin.below[1].next = self.zero_below.val();
+        self.det_margin.below.next = self.zero_below.val();
         self.det_margin.y.next = self.y_reg[0].q.val();
-        self.u_margin.below[0].next = self.below2_reg[0].q.val();
-        self.u_margin.below[1].next = self.below2_reg[1].q.val();
+        self.u_margin.below.next = self.below2_reg[0].q.val();
         self.u_margin.y.next = self.y_reg[1].q.val();
-        self.v_margin.below[0].next = self.below2_reg[2].q.val();
-        self.v_margin.below[1].next = self.below2_reg[3].q.val();
+        self.v_margin.below.next = self.below2_reg[1].q.val();
         self.v_margin.y.next = self.y_reg[2].q.val();
-        self.t_margin.below[0].next = self.below2_reg[4].q.val();
-        self.t_margin.below[1].next = self.below2_reg[5].q.val();
+        self.t_margin.below.next = self.below2_reg[2].q.val();
         self.t_margin.y.next = self.y_reg[3].q.val();
         for k in 0..4 {
             self.l3_reg[k].d.next = self.l2_reg[k].q.val();

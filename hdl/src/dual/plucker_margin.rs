@@ -1,11 +1,11 @@
 //! The margin of one Plücker value at `Decide`'s input, in units of its last bit L, bit for
-//! bit the margin of `hw_model::dual::plucker::decide_inputs`: each dot's bound C (a wired
-//! constant, `plucker::dot_bound`) shifted right by its grid's distance below L and rounded
-//! up, the wired units (a floored sum's, a fitted value's), and the fallback's term
-//! m_F·2^y (`plucker::fallback_term`, y = its shift + ΣE − L) rounded up; `over` when that
-//! term would reach 2^(MB − 1) (the model forwards). One register stage.
+//! bit the margin of `hw_model::dual::plucker::decide_inputs`: the wired fixed part
+//! (`plucker::MarginConstants`: the coarser dot's bound and the units), the finer dot's
+//! bound C shifted right by its grid's distance below L and rounded up, and the fallback's
+//! term m_F·2^y (`plucker::fallback_term`, y = its shift + ΣE − L) rounded up; `over` when
+//! that term would reach 2^(MB − 1) (the model forwards). One register stage.
 
-use hw_model::dual::plucker::fallback_term;
+use hw_model::dual::plucker::{fallback_term, MarginConstants};
 use rust_hdl::prelude::*;
 
 use super::align_add::EXP_BITS;
@@ -23,33 +23,32 @@ pub const LATENCY: usize = 1;
 #[derive(LogicBlock)]
 pub struct PluckerMargin<const MB: usize> {
     pub clock: Signal<In, Clock>,
-    /// Each dot's distance below the value's last bit.
-    pub below: [Signal<In, Bits<BELOW_BITS>>; 2],
+    /// The finer dot's distance below the value's last bit.
+    pub below: Signal<In, Bits<BELOW_BITS>>,
     /// y + [`Y_BIAS`].
     pub y: Signal<In, Bits<Y_BITS>>,
     pub margin: Signal<Out, Bits<MB>>,
     pub over: Signal<Out, Bit>,
     margin_reg: DFF<Bits<MB>>,
     over_reg: DFF<Bit>,
-    /// C − 1 of each dot: ceil(C·2^-d) = ((C − 1) >> d) + 1 for C ≥ 1; a value of one dot
-    /// has no second.
-    less: [Constant<Bits<MB>>; 2],
-    present: [Constant<Bit>; 2],
-    units: Constant<Bits<MB>>,
+    /// The finer dot's C − 1: ceil(C·2^-d) = ((C − 1) >> d) + 1 for C ≥ 1; a value of one
+    /// dot has none.
+    less: Constant<Bits<MB>>,
+    present: Constant<Bit>,
+    fixed: Constant<Bits<MB>>,
     one: Constant<Bits<MB>>,
     /// m_F and m_F − 1; y = 0 and the first y whose term reaches 2^(MB − 1).
     f_m: Constant<Bits<MB>>,
     f_less: Constant<Bits<MB>>,
     y_zero: Constant<Bits<Y_BITS>>,
     y_over: Constant<Bits<Y_BITS>>,
-    term: [Signal<Local, Bits<MB>>; 2],
+    term: Signal<Local, Bits<MB>>,
     fallback: Signal<Local, Bits<MB>>,
 }
 
 impl<const MB: usize> PluckerMargin<MB> {
-    /// The margin of a value whose dots have the bounds `dots` (0: no such dot) and which
-    /// carries `units` more.
-    pub fn new(dots: [i128; 2], units: i128) -> Self {
+    /// The margin of a value with the wired constants `c`.
+    pub fn new(c: MarginConstants) -> Self {
         let wire = |v: i128| -> Constant<Bits<MB>> {
             assert!((0..1i128 << MB).contains(&v), "{v} does not fit {MB} bits");
             Constant::new((v as u64).to_bits())
@@ -65,9 +64,9 @@ impl<const MB: usize> PluckerMargin<MB> {
             over: Default::default(),
             margin_reg: Default::default(),
             over_reg: Default::default(),
-            less: dots.map(|c| wire((c - 1).max(0))),
-            present: dots.map(|c| Constant::new(c > 0)),
-            units: wire(units),
+            less: wire((c.fine - 1).max(0)),
+            present: Constant::new(c.fine > 0),
+            fixed: wire(c.fixed),
             one: wire(1),
             f_m: wire(f.m),
             f_less: wire(f.m - 1),
@@ -84,11 +83,9 @@ impl<const MB: usize> Logic for PluckerMargin<MB> {
     fn update(&mut self) {
         self.margin_reg.clock.next = self.clock.val();
         self.over_reg.clock.next = self.clock.val();
-        for k in 0..2 {
-            self.term[k].next = 0.into();
-            if self.present[k].val() {
-                self.term[k].next = (self.less[k].val() >> self.below[k].val()) + self.one.val();
-            }
+        self.term.next = 0.into();
+        if self.present.val() {
+            self.term.next = (self.less.val() >> self.below.val()) + self.one.val();
         }
         // m_F·2^y rounded up, while below 2^(MB − 1).
         self.over_reg.d.next = self.y.val() >= self.y_over.val();
@@ -101,8 +98,7 @@ impl<const MB: usize> Logic for PluckerMargin<MB> {
                     (self.f_less.val() >> (self.y_zero.val() - self.y.val())) + self.one.val();
             }
         }
-        self.margin_reg.d.next =
-            self.term[0].val() + self.term[1].val() + self.units.val() + self.fallback.val();
+        self.margin_reg.d.next = self.fixed.val() + self.term.val() + self.fallback.val();
         self.margin.next = self.margin_reg.q.val();
         self.over.next = self.over_reg.q.val();
     }

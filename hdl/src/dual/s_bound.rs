@@ -1,7 +1,9 @@
 //! The Plücker filter's bound on |s| = |orig − v0| for the fallback's margin, bit for bit
 //! `hw_model::dual::plucker::s_exponent`: −orig's block and v0's cut floored onto the grid
-//! G = max(E_orig, E_v0) − [`CUT_BITS`] + 1 (arithmetic shifts), added per component to c_k,
-//! B = max_k |c_k + 2| + 2, and E_s = G + ⌈log₂B⌉ (the bit length of B − 1). One register
+//! G = max(E_orig, E_v0) − [`CUT_BITS`] + 1, added per component to c_k,
+//! B = max_k |c_k + 2| + 2, and E_s = G + ⌈log₂B⌉ (the bit length of B − 1). orig is cut to its top
+//! [`CUT_BITS`] first (wires: floors compose), so of the two floors only the operand with
+//! the smaller exponent moves: one CUT_BITS-bit arithmetic shifter a component. One register
 //! stage.
 
 use hw_model::dual::plucker::S_BOUND_BITS;
@@ -33,26 +35,30 @@ pub struct SBound {
     pub cut_e: Signal<In, Bits<EXP_BITS>>,
     pub e: Signal<Out, Bits<EXP_BITS>>,
     e_reg: DFF<Bits<EXP_BITS>>,
-    /// WT − 1 and CUT_BITS − 1: a field's last bit to its block exponent, and the largest
-    /// shifts that still matter.
+    /// WT − 1 and CUT_BITS − 1: a field's last bit to its block exponent (the latter also
+    /// the largest shift that still matters); WT − CUT_BITS, orig's fixed cut.
     orig_top: Constant<Bits<EXP_BITS>>,
     cut_top: Constant<Bits<EXP_BITS>>,
-    orig_sign: Constant<Bits<WT>>,
+    orig_cut: Constant<Bits<EXP_BITS>>,
     cut_sign: Constant<Bits<CUT_BITS>>,
     c_sign: Constant<Bits<C_BITS>>,
-    cut_extension: Constant<Bits<C_BITS>>,
+    extension: Constant<Bits<C_BITS>>,
     two: Constant<Bits<C_BITS>>,
     one: Constant<Bits<C_BITS>>,
     len_one: Constant<Bits<LEN_BITS>>,
-    /// The larger block exponent field, G's field, and the two shifts onto G.
-    larger: Signal<Local, Bits<EXP_BITS>>,
+    /// The block exponent fields, G's field and the smaller operand's shift onto G.
+    orig_exp: Signal<Local, Bits<EXP_BITS>>,
+    cut_exp: Signal<Local, Bits<EXP_BITS>>,
     grid: Signal<Local, Bits<EXP_BITS>>,
-    orig_shift: Signal<Local, Bits<EXP_BITS>>,
-    cut_shift: Signal<Local, Bits<EXP_BITS>>,
-    orig_floor: [Signal<Local, Bits<WT>>; 3],
-    cut_floor: [Signal<Local, Bits<CUT_BITS>>; 3],
-    cut_wide: [Signal<Local, Bits<C_BITS>>; 3],
-    orig_low: [Signal<Local, Bits<C_BITS>>; 3],
+    shift: Signal<Local, Bits<EXP_BITS>>,
+    /// orig's top CUT_BITS; the larger operand (on G already) and the smaller, floored onto
+    /// G, both sign-extended.
+    orig_cut_m: [Signal<Local, Bits<CUT_BITS>>; 3],
+    large: [Signal<Local, Bits<CUT_BITS>>; 3],
+    small: [Signal<Local, Bits<CUT_BITS>>; 3],
+    small_floor: [Signal<Local, Bits<CUT_BITS>>; 3],
+    large_wide: [Signal<Local, Bits<C_BITS>>; 3],
+    small_wide: [Signal<Local, Bits<C_BITS>>; 3],
     /// c_k + 2, then |c_k + 2| + 2.
     c: [Signal<Local, Bits<C_BITS>>; 3],
     mag: [Signal<Local, Bits<C_BITS>>; 3],
@@ -74,21 +80,23 @@ impl Default for SBound {
             e_reg: Default::default(),
             orig_top: field(WT - 1),
             cut_top: field(CUT_BITS - 1),
-            orig_sign: Constant::new(Bits::<WT>::from(1) << (WT as u64 - 1)),
+            orig_cut: field(WT - CUT_BITS),
             cut_sign: Constant::new(Bits::<CUT_BITS>::from(1) << (CUT_BITS as u64 - 1)),
             c_sign: Constant::new(Bits::<C_BITS>::from(1) << (C_BITS as u64 - 1)),
-            cut_extension: Constant::new(!Bits::<C_BITS>::default() << CUT_BITS as u64),
+            extension: Constant::new(!Bits::<C_BITS>::default() << CUT_BITS as u64),
             two: Constant::new(2u64.to_bits()),
             one: Constant::new(1u64.to_bits()),
             len_one: Constant::new(1u64.to_bits()),
-            larger: Default::default(),
+            orig_exp: Default::default(),
+            cut_exp: Default::default(),
             grid: Default::default(),
-            orig_shift: Default::default(),
-            cut_shift: Default::default(),
-            orig_floor: Default::default(),
-            cut_floor: Default::default(),
-            cut_wide: Default::default(),
-            orig_low: Default::default(),
+            shift: Default::default(),
+            orig_cut_m: Default::default(),
+            large: Default::default(),
+            small: Default::default(),
+            small_floor: Default::default(),
+            large_wide: Default::default(),
+            small_wide: Default::default(),
             c: Default::default(),
             mag: Default::default(),
             b: Default::default(),
@@ -102,45 +110,57 @@ impl Logic for SBound {
     #[hdl_gen]
     fn update(&mut self) {
         self.e_reg.clock.next = self.clock.val();
-        // Block exponent fields: last bit + width − 1. G = max − (CUT_BITS − 1).
-        self.larger.next = self.orig_e.val() + self.orig_top.val();
-        if self.cut_e.val() + self.cut_top.val() > self.larger.val() {
-            self.larger.next = self.cut_e.val() + self.cut_top.val();
+        // orig's top CUT_BITS (a constant shift: wires). (bit_cast of a loop-indexed signal
+        // does not generate: written out.)
+        self.orig_cut_m[0].next =
+            bit_cast::<CUT_BITS, WT>(self.orig[0].val() >> self.orig_cut.val());
+        self.orig_cut_m[1].next =
+            bit_cast::<CUT_BITS, WT>(self.orig[1].val() >> self.orig_cut.val());
+        self.orig_cut_m[2].next =
+            bit_cast::<CUT_BITS, WT>(self.orig[2].val() >> self.orig_cut.val());
+        // Block exponent fields: last bit + width − 1. G = max − (CUT_BITS − 1): the larger
+        // operand is on G, the other shifts by the difference.
+        self.orig_exp.next = self.orig_e.val() + self.orig_top.val();
+        self.cut_exp.next = self.cut_e.val() + self.cut_top.val();
+        if self.orig_exp.val() >= self.cut_exp.val() {
+            self.grid.next = self.orig_exp.val() - self.cut_top.val();
+            self.shift.next = self.orig_exp.val() - self.cut_exp.val();
+            for k in 0..3 {
+                self.large[k].next = self.orig_cut_m[k].val();
+                self.small[k].next = self.cut[k].val();
+            }
+        } else {
+            self.grid.next = self.cut_exp.val() - self.cut_top.val();
+            self.shift.next = self.cut_exp.val() - self.orig_exp.val();
+            for k in 0..3 {
+                self.large[k].next = self.cut[k].val();
+                self.small[k].next = self.orig_cut_m[k].val();
+            }
         }
-        self.grid.next = self.larger.val() - self.cut_top.val();
-        self.orig_shift.next = self.grid.val() - self.orig_e.val();
-        if self.orig_shift.val() > self.orig_top.val() {
-            self.orig_shift.next = self.orig_top.val();
-        }
-        self.cut_shift.next = self.grid.val() - self.cut_e.val();
-        if self.cut_shift.val() > self.cut_top.val() {
-            self.cut_shift.next = self.cut_top.val();
+        if self.shift.val() > self.cut_top.val() {
+            self.shift.next = self.cut_top.val();
         }
         for k in 0..3 {
-            // Floors: arithmetic shifts (a negative value's complement shifts in zeros).
-            self.orig_floor[k].next = self.orig[k].val() >> self.orig_shift.val();
-            if (self.orig[k].val() & self.orig_sign.val()).any() {
-                self.orig_floor[k].next = !(!self.orig[k].val() >> self.orig_shift.val());
-            }
-            self.cut_floor[k].next = self.cut[k].val() >> self.cut_shift.val();
-            if (self.cut[k].val() & self.cut_sign.val()).any() {
-                self.cut_floor[k].next = !(!self.cut[k].val() >> self.cut_shift.val());
+            // The floor: an arithmetic shift (a negative value's complement shifts in zeros).
+            self.small_floor[k].next = self.small[k].val() >> self.shift.val();
+            if (self.small[k].val() & self.cut_sign.val()).any() {
+                self.small_floor[k].next = !(!self.small[k].val() >> self.shift.val());
             }
         }
-        // (bit_cast of a loop-indexed signal does not generate: written out.) orig's floor
-        // fits C_BITS (its shift is at least WT − CUT_BITS): its low bits are its two's
-        // complement.
-        self.cut_wide[0].next = bit_cast::<C_BITS, CUT_BITS>(self.cut_floor[0].val());
-        self.cut_wide[1].next = bit_cast::<C_BITS, CUT_BITS>(self.cut_floor[1].val());
-        self.cut_wide[2].next = bit_cast::<C_BITS, CUT_BITS>(self.cut_floor[2].val());
-        self.orig_low[0].next = bit_cast::<C_BITS, WT>(self.orig_floor[0].val());
-        self.orig_low[1].next = bit_cast::<C_BITS, WT>(self.orig_floor[1].val());
-        self.orig_low[2].next = bit_cast::<C_BITS, WT>(self.orig_floor[2].val());
+        self.large_wide[0].next = bit_cast::<C_BITS, CUT_BITS>(self.large[0].val());
+        self.large_wide[1].next = bit_cast::<C_BITS, CUT_BITS>(self.large[1].val());
+        self.large_wide[2].next = bit_cast::<C_BITS, CUT_BITS>(self.large[2].val());
+        self.small_wide[0].next = bit_cast::<C_BITS, CUT_BITS>(self.small_floor[0].val());
+        self.small_wide[1].next = bit_cast::<C_BITS, CUT_BITS>(self.small_floor[1].val());
+        self.small_wide[2].next = bit_cast::<C_BITS, CUT_BITS>(self.small_floor[2].val());
         for k in 0..3 {
-            if (self.cut_floor[k].val() & self.cut_sign.val()).any() {
-                self.cut_wide[k].next = self.cut_wide[k].val() | self.cut_extension.val();
+            if (self.large[k].val() & self.cut_sign.val()).any() {
+                self.large_wide[k].next = self.large_wide[k].val() | self.extension.val();
             }
-            self.c[k].next = self.orig_low[k].val() + self.cut_wide[k].val() + self.two.val();
+            if (self.small_floor[k].val() & self.cut_sign.val()).any() {
+                self.small_wide[k].next = self.small_wide[k].val() | self.extension.val();
+            }
+            self.c[k].next = self.large_wide[k].val() + self.small_wide[k].val() + self.two.val();
             self.mag[k].next = self.c[k].val() + self.two.val();
             if (self.c[k].val() & self.c_sign.val()).any() {
                 self.mag[k].next = self.two.val() - self.c[k].val();

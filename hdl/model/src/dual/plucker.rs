@@ -450,34 +450,42 @@ fn fitted(
     Some((Fx::new(v.fx.m >> k, lsb), margin))
 }
 
-/// What a hardware margin wires for one value: its dots' bounds ([`dot_bound`]; 0 for no
-/// second dot) and its units (one for a floored sum, one for a floor onto step 5's width).
+/// What a hardware margin wires for one value. Both dots of a sum have the same bound C
+/// (W × W for the edges, wide × wide for N_t), so the coarser's term is a constant on the
+/// fitted grid and only the finer's shifts: the margin is `fixed` + ceil(`fine`·2^-b) +
+/// the fallback's term, b the finer dot's distance below the fitted last bit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct MarginConstants {
-    pub dots: [i128; 2],
-    pub units: i128,
+    /// ceil(C·2^-k) of the coarser (or only) dot, k the floor onto step 5's width, plus the
+    /// units: one for a floored sum, one for k > 0.
+    pub fixed: i128,
+    /// The finer dot's C (0: a single dot).
+    pub fine: i128,
 }
 
 /// The margin constants of −det, −N_u, −N_v, −N_t at width W: what [`fitted`] charges them
 /// (a test checks it against the values).
 pub fn margin_constants(width: u32) -> [MarginConstants; 4] {
     let (w, wt) = (width, wide(width));
-    let fit = |bits: u32, kind| i128::from(bits > value_bits(width, kind));
-    let edge = MarginConstants {
-        dots: [dot_bound(w, w); 2],
-        units: 1 + fit(2 * w + 2, N_U),
+    let k = |bits: u32, kind| bits.saturating_sub(value_bits(width, kind)) as i32;
+    let up = |c: i128, k: i32| Term { m: c, shift: 0 }.units(k).expect("a right shift");
+    let sum = |c: i128, bits: u32, kind| {
+        let k = k(bits, kind);
+        MarginConstants {
+            fixed: up(c, k) + 1 + i128::from(k > 0),
+            fine: c,
+        }
     };
+    let det_k = k(w + wt + 1, DET);
+    let edge = sum(dot_bound(w, w), 2 * w + 2, N_U);
     [
         MarginConstants {
-            dots: [dot_bound(w, wt), 0],
-            units: fit(w + wt + 1, DET),
+            fixed: up(dot_bound(w, wt), det_k) + i128::from(det_k > 0),
+            fine: 0,
         },
         edge,
         edge,
-        MarginConstants {
-            dots: [dot_bound(wt, wt); 2],
-            units: 1 + fit(offset_bits(width) + 1, N_T),
-        },
+        sum(dot_bound(wt, wt), offset_bits(width) + 1, N_T),
     ]
 }
 
@@ -829,29 +837,26 @@ mod tests {
         }
     }
 
-    /// The wired constants are what `fitted` charges each value.
-    #[test]
-    fn margin_constants_are_the_values_own() {
-        let exact3 = |v: [f32; 3]| v.map(|x| split(x).unwrap());
-        for w in bfp::WIDTHS {
-            let ray = Ray::new(exact3([1.0, 2.0, 3.0]), exact3([0.5, -1.0, 0.25]), w).unwrap();
-            let tri = Triangle::new(
-                exact3([1.0, 0.0, 0.0]),
-                exact3([0.0, 1.5, 0.0]),
-                exact3([0.0, 0.0, 3.0]),
-                w,
-            )
-            .unwrap();
+    proptest! {
+        /// The wired constants charge each value what `fitted` charges it: the fixed part
+        /// and the finer dot's bound at its distance below the fitted last bit.
+        #[test]
+        fn margin_constants_are_the_values_own(
+            orig in vector(), dir in vector(), v0 in vector(), v1 in vector(), v2 in vector(),
+            w in 8u32..=24,
+        ) {
+            let ray = Ray::new(exact(orig), exact(dir), w).unwrap();
+            let tri = Triangle::new(exact(v0), exact(v1), exact(v2), w).unwrap();
             let [det, nu, nv, _, nt] = values_of(&ray, &tri);
             let kinds = [DET, N_U, N_V, N_T];
             for ((v, kind), c) in [det, nu, nv, nt].iter().zip(kinds).zip(margin_constants(w)) {
-                let k = v.bits.saturating_sub(value_bits(w, kind));
-                assert_eq!(v.dots.map(|d| d.1), c.dots, "W = {w}");
-                assert_eq!(
-                    i128::from(v.aligned) + i128::from(k > 0),
-                    c.units,
-                    "W = {w}"
-                );
+                let k = v.bits.saturating_sub(value_bits(w, kind)) as i32;
+                let lsb = v.fx.e + k;
+                let up = |(l, c): (i32, i128)| Term { m: c, shift: 0 }.units(lsb - l).unwrap();
+                let charged = up(v.dots[0]) + up(v.dots[1]) + i128::from(v.aligned) + i128::from(k > 0);
+                let fine = v.dots.iter().map(|d| d.0).min().unwrap();
+                let wired = c.fixed + Term { m: c.fine, shift: 0 }.units(lsb - fine).unwrap();
+                prop_assert_eq!(charged, wired, "W = {}", w);
             }
         }
     }

@@ -11,7 +11,7 @@ use hdl::dual::s_bound::{self, SBound};
 use hdl::dual::WIDTH;
 use hw_model::dual::bfp::Term;
 use hw_model::dual::plucker::{
-    datapath, decide_inputs, fallback_term, margin_constants, s_exponent,
+    datapath, decide_inputs, fallback_term, margin_constants, s_exponent, MarginConstants,
 };
 use hw_model::dual::{Filter, FilterKind, FormatPair, PluckerDecisions};
 use rand::rngs::StdRng;
@@ -77,44 +77,41 @@ fn the_s_bound_is_the_models() {
     }
 }
 
-/// The margin's specification from the model's terms: each dot's bound C·2^-below rounded
-/// up, the units, the fallback's m_F·2^y rounded up; `None` (over) once that reaches
-/// 2^(MB − 1).
-fn margin_spec(mb: usize, dots: [i128; 2], units: i128, below: [u32; 2], y: i32) -> Option<i128> {
+/// The margin's specification from the model's terms: the fixed part, the finer dot's
+/// bound C·2^-below rounded up, the fallback's m_F·2^y rounded up; `None` (over) once that
+/// reaches 2^(MB − 1).
+fn margin_spec(mb: usize, c: MarginConstants, below: u32, y: i32) -> Option<i128> {
     let f = fallback_term();
     if y + (128 - f.m.leading_zeros()) as i32 >= mb as i32 {
         return None;
     }
-    let terms: i128 = dots
-        .iter()
-        .zip(below)
-        .filter(|(c, _)| **c > 0)
-        .map(|(&c, b)| Term { m: c, shift: 0 }.units(b as i32).unwrap())
-        .sum();
-    Some(terms + units + Term { m: f.m, shift: 0 }.units(-y).unwrap())
+    let fine = Term {
+        m: c.fine,
+        shift: 0,
+    }
+    .units(below as i32)
+    .unwrap();
+    Some(c.fixed + fine + Term { m: f.m, shift: 0 }.units(-y).unwrap())
 }
 
-fn stream_margin<const MB: usize>(dots: [i128; 2], units: i128, seed: u64) {
+fn stream_margin<const MB: usize>(c: MarginConstants, seed: u64) {
     let mut rng = StdRng::seed_from_u64(seed);
-    let cases: Vec<([u32; 2], i32)> = (0..4000)
+    let cases: Vec<(u32, i32)> = (0..4000)
         .map(|_| {
-            let mut below = || match rng.gen_range(0..4) {
+            let below = match rng.gen_range(0..4) {
                 0 => 0,
                 1 => rng.gen_range(0..64),
                 2 => rng.gen_range(64..1 << plucker_margin::BELOW_BITS),
                 _ => rng.gen_range(20..40),
             };
-            let below = [below(), below()];
             (below, rng.gen_range(-200..MB as i32 + 8))
         })
         .collect();
-    let mut uut = PluckerMargin::<MB>::new(dots, units);
+    let mut uut = PluckerMargin::<MB>::new(c);
     uut.connect_all();
     for i in 0..cases.len() + plucker_margin::LATENCY {
         if let Some(&(below, y)) = cases.get(i) {
-            for (port, b) in uut.below.iter_mut().zip(below) {
-                port.next = (b as u64).to_bits();
-            }
+            uut.below.next = (below as u64).to_bits();
             uut.y.next = ((y as i64 + Y_BIAS) as u64).to_bits();
         }
         tick(&mut uut);
@@ -122,10 +119,10 @@ fn stream_margin<const MB: usize>(dots: [i128; 2], units: i128, seed: u64) {
             continue;
         };
         if let Some(&(below, y)) = cases.get(j) {
-            let want = margin_spec(MB, dots, units, below, y);
-            assert_eq!(uut.over.val(), want.is_none(), "{below:?} {y}");
+            let want = margin_spec(MB, c, below, y);
+            assert_eq!(uut.over.val(), want.is_none(), "{below} {y}");
             if let Some(want) = want {
-                assert_eq!(uut.margin.val().to_u128() as i128, want, "{below:?} {y}");
+                assert_eq!(uut.margin.val().to_u128() as i128, want, "{below} {y}");
             }
         }
     }
@@ -135,9 +132,9 @@ fn stream_margin<const MB: usize>(dots: [i128; 2], units: i128, seed: u64) {
 #[test]
 fn the_margins_are_their_specification() {
     let [det, u, v, t] = margin_constants(WIDTH);
-    stream_margin::<DET_MARGIN_BITS>(det.dots, det.units, 41);
+    stream_margin::<DET_MARGIN_BITS>(det, 41);
     for (c, seed) in [(u, 42), (v, 43), (t, 44)] {
-        stream_margin::<NUM_MARGIN_BITS>(c.dots, c.units, seed);
+        stream_margin::<NUM_MARGIN_BITS>(c, seed);
     }
 }
 
@@ -227,7 +224,7 @@ fn verilogs() -> Vec<(String, String)> {
     vec![
         named(SBound::default(), "SBound", |_| format!("W = {W}")),
         named(
-            PluckerMargin::<NUM_MARGIN_BITS>::new(u.dots, u.units),
+            PluckerMargin::<NUM_MARGIN_BITS>::new(u),
             "PluckerMargin",
             |_| "an edge value".to_string(),
         ),
