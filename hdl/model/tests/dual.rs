@@ -676,13 +676,13 @@ fn forwarding_floors_on_the_thesis_scenes() {
             };
             render(&scene, &counter, &opts).unwrap();
             let f = &counter.floors;
-            let [linear, signs] = &f.others;
+            let [table, signs] = &f.others;
             let n = [
                 &f.tests,
                 &f.hits,
                 &f.inside,
                 &f.forwarded,
-                &linear[0],
+                &table[0],
                 &signs[0],
             ]
             .map(|c| c.load(Relaxed));

@@ -14,10 +14,15 @@ use hw_model::dual::plucker::{
     datapath, decide_inputs, fallback_term, margin_constants, s_exponent, MarginConstants,
 };
 use hw_model::dual::{Filter, FilterKind, FormatPair, PluckerDecisions};
+use hw_model::precision::SpawnChoice;
+use hw_model::{lookup, ModelIntersector, MtResult};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
-use sw_renderer::intersect::MtQuery;
+use sw_renderer::intersect::{Intersector, MtQuery};
+use sw_renderer::render::{render, RenderOptions};
+use sw_renderer::scene::Scene;
+use sw_renderer::thesis_scenes;
 
 use super::common::{lint_clean, named};
 use super::cross_block::{field, tick, Clocked};
@@ -216,6 +221,78 @@ fn the_filter_is_the_models_bit_for_bit() {
     assert!(
         seen.miss > 500 && seen.forward > 200 && seen.unstored > 50 && seen.refused > 50,
         "{seen:?}"
+    );
+}
+
+/// An fp32 intersector that keeps every query whose bits hash to 0 modulo `every`: a sample
+/// of a render's tests that does not depend on how the renderer's threads split the work.
+struct Sampler {
+    fp32: ModelIntersector,
+    every: u32,
+    kept: std::sync::Mutex<Vec<MtQuery>>,
+}
+
+impl Intersector for Sampler {
+    fn name(&self) -> String {
+        "sampled fp32".into()
+    }
+
+    fn intersect_batch(
+        &self,
+        queries: &[MtQuery],
+        results: &mut [MtResult],
+    ) -> Result<(), sw_renderer::rays::EngineError> {
+        self.fp32.intersect_batch(queries, results)?;
+        let hash = |q: &MtQuery| {
+            [q.orig, q.dir, q.v0, q.v1, q.v2]
+                .iter()
+                .flatten()
+                .fold(0u32, |h, x| h.rotate_left(5) ^ x.to_bits())
+                .wrapping_mul(0x9e37_79b9)
+        };
+        let sampled = queries.iter().filter(|q| hash(q) % self.every == 0);
+        self.kept.lock().unwrap().extend(sampled);
+        Ok(())
+    }
+}
+
+/// The lane on real work: a sixteenth of the tests of the 7 thesis scenes at 64×36 under
+/// both spawn policies (the format-aware one gives spawned rays t_min > 0), against the
+/// model.
+#[test]
+fn the_filter_is_the_models_on_the_thesis_scenes() {
+    let Some(root) = thesis_scenes::for_test(
+        "dual::plucker_filter::the_filter_is_the_models_on_the_thesis_scenes",
+    ) else {
+        return;
+    };
+    let fp32 = lookup("fp32").unwrap();
+    let mut qs = Vec::new();
+    for choice in [SpawnChoice::Thesis, SpawnChoice::FormatAware] {
+        let opts = RenderOptions {
+            width: Some(64),
+            height: Some(36),
+            progress: false,
+            spawn: choice.policy(&fp32, 0),
+            ..Default::default()
+        };
+        for name in thesis_scenes::SCENE_DIRS {
+            let scene = Scene::load(root.join(name).to_str().unwrap()).unwrap();
+            let sampler = Sampler {
+                fp32: ModelIntersector::new(fp32.clone()),
+                every: 16,
+                kept: Default::default(),
+            };
+            render(&scene, &sampler, &opts).unwrap();
+            qs.extend(sampler.kept.into_inner().unwrap());
+        }
+    }
+    let spawned = qs.iter().filter(|q| q.t_min > 0.0).count();
+    let seen = stream(&qs);
+    println!("{} tests, {spawned} with t_min > 0: {seen:?}", qs.len());
+    assert!(
+        seen.miss > 1000 && seen.forward > 100 && spawned > 100,
+        "{spawned} with t_min > 0: {seen:?}"
     );
 }
 
