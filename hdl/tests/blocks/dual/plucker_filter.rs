@@ -279,7 +279,7 @@ fn the_filter_is_the_models_on_the_thesis_scenes() {
         for name in thesis_scenes::SCENE_DIRS {
             let scene = Scene::load(root.join(name).to_str().unwrap()).unwrap();
             let sampler = Sampler {
-                fp32: ModelIntersector::new(fp32.clone()),
+                fp32: ModelIntersector::new(fp32),
                 every: 16,
                 kept: Default::default(),
             };
