@@ -13,7 +13,7 @@
 //! product, and shorter branches wait in [`Delay`] lines.
 
 use hw_model::dual::bfp::{
-    det_epsilon, split, widths, Vector, DET, FLUSH_SHIFT, N_T, N_U, N_V, QUOTIENT_MAX,
+    det_epsilon, split, value_bits, widths, Vector, DET, FLUSH_SHIFT, N_T, N_U, N_V, QUOTIENT_MAX,
     RECIPROCAL_MIN, SHORT_BITS,
 };
 use rust_hdl::prelude::*;
@@ -36,13 +36,16 @@ const fn width(v: Vector) -> usize {
     W[v as usize] as usize
 }
 
-/// det = e1·p̂ at its dot's exact width ([`dot_bits`]).
-pub const DET_BITS: usize = dot_bits(width(Vector::E1), width(Vector::P));
+/// det = e1·p̂ at its dot's exact width (`bfp::value_bits`, the widths the Plücker filter
+/// fits its values to; [`dot_bits`] of the `Dot` that computes it).
+pub const DET_BITS: usize = value_bits(WIDTH, DET) as usize;
 /// N_u = s·p̂, N_v = dir·q̂, N_t = e2·q̂: the same, at the wider pair (all three equal).
-pub const NUM_BITS: usize = dot_bits(width(Vector::S), width(Vector::P));
+pub const NUM_BITS: usize = value_bits(WIDTH, N_U) as usize;
 const _: () = assert!(
-    NUM_BITS == dot_bits(width(Vector::Dir), width(Vector::Q))
-        && NUM_BITS == dot_bits(width(Vector::E2), width(Vector::Q))
+    DET_BITS == dot_bits(width(Vector::E1), width(Vector::P))
+        && NUM_BITS == dot_bits(width(Vector::S), width(Vector::P))
+        && NUM_BITS == value_bits(WIDTH, N_V) as usize
+        && NUM_BITS == value_bits(WIDTH, N_T) as usize
 );
 
 /// The margins in units of their value's last bit, at step 4's widths ([`margin_bits`]).

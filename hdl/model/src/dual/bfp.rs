@@ -492,7 +492,7 @@ pub const FLUSH_SHIFT: i32 = -124;
 /// [`SHORT_BITS`] + 1 bits with the sign) aligned at [`ADD_GUARD_BITS`] bits below the
 /// larger one's short mantissa, the smaller floored to that grid (an arithmetic shift),
 /// then added and rounded down. Equal to `round(x.checked_add(y), false)` wherever the exact
-/// `Fx::add` does not overflow: a floored operand lies more than two bits below the larger
+/// `Fx::checked_add` does not overflow: a floored operand lies more than two bits below the larger
 /// one, so the sum's last short bit is above the grid, and flooring below it does not
 /// change a floor. Defined at any exponents (no i128 shift can overflow), where the model
 /// used to forward a query whose exact sum overflowed i128.

@@ -416,14 +416,16 @@ pub fn fallback_term() -> Term {
 /// A value at step 5's input for its `kind` (bfp's [`DET`] for det, [`N_U`] for the
 /// numerators, whose widths `Decide` takes): the value floored by k = its width − the
 /// kind's ([`value_bits`]; 0 if narrower, sign-extended), and its margin in units of the
-/// new last bit L: each dot's bound C·2^(L_dot − L) rounded up, one unit for a floored sum,
-/// one for k > 0, and the fallback's term C_F·2^(ΣE − L) rounded up (`sum_e` = ΣE). `None`
-/// (forwarded) if L is outside what step 5 receives from bfp ([`lsb_range`]) or the
-/// fallback's term reaches 2^(MB − 1), MB the kind's [`margin_bits`] (an exponent
-/// comparison in hardware; the dots' part stays below 2^(MB − 2), so the margin fits MB
-/// bits). `margin_scale` scales the margin (1: the derived bound; tests shrink it).
+/// new last bit L as hardware wires it: the value's [`MarginConstants`] `c` (its fixed part,
+/// and the finer dot's bound C·2^(L_fine − L) rounded up) and the fallback's term
+/// C_F·2^(ΣE − L) rounded up (`sum_e` = ΣE). `None` (forwarded) if L is outside what step 5
+/// receives from bfp ([`lsb_range`]) or the fallback's term reaches 2^(MB − 1), MB the kind's
+/// [`margin_bits`] (an exponent comparison in hardware; the dots' part stays below
+/// 2^(MB − 2), so the margin fits MB bits). `margin_scale` scales the margin (1: the derived
+/// bound; tests shrink it).
 fn fitted(
     v: &Value,
+    c: MarginConstants,
     kind: [Vector; 4],
     sum_e: i32,
     width: u32,
@@ -439,12 +441,15 @@ fn fitted(
     if f_top >= margin_bits(width, kind) as i32 {
         return None;
     }
-    let dots: i128 = v
-        .dots
-        .iter()
-        .map(|&(l, c)| Term { m: c, shift: 0 }.units(lsb - l).expect("below 2^c"))
-        .sum();
-    let units = dots + i128::from(v.aligned) + i128::from(k > 0) + f.units(lsb - sum_e)?;
+    let fine = v.dots.iter().map(|d| d.0).min().expect("two grids");
+    let units = c.fixed
+        + Term {
+            m: c.fine,
+            shift: 0,
+        }
+        .units(lsb - fine)
+        .expect("a right shift")
+        + f.units(lsb - sum_e)?;
     // Exact at margin_scale = 1: a margin is below 2^MB ≤ 2^53.
     let margin = (units as f64 * margin_scale).ceil() as i128;
     Some((Fx::new(v.fx.m >> k, lsb), margin))
@@ -463,8 +468,8 @@ pub struct MarginConstants {
     pub fine: i128,
 }
 
-/// The margin constants of −det, −N_u, −N_v, −N_t at width W: what [`fitted`] charges them
-/// (a test checks it against the values).
+/// The margin constants of −det, −N_u, −N_v, −N_t at width W, which [`fitted`] charges
+/// (a test checks them against each value's own dot bounds and units).
 pub fn margin_constants(width: u32) -> [MarginConstants; 4] {
     let (w, wt) = (width, wide(width));
     let k = |bits: u32, kind| bits.saturating_sub(value_bits(width, kind)) as i32;
@@ -501,12 +506,13 @@ pub fn decide_inputs(q: &MtQuery, width: u32, margin_scale: f64) -> Option<[(Fx,
     }
     let [det, nu, nv, _, nt] = values_of(&ray, &tri);
     let [sd, su, sv, st] = exps.sums();
-    let fit = |v: &Value, kind, sum_e| fitted(v, kind, sum_e, width, margin_scale);
+    let [cd, cu, cv, ct] = margin_constants(width);
+    let fit = |v: &Value, c, kind, sum_e| fitted(v, c, kind, sum_e, width, margin_scale);
     Some([
-        fit(&det, DET, sd)?,
-        fit(&nu, N_U, su)?,
-        fit(&nv, N_V, sv)?,
-        fit(&nt, N_T, st)?,
+        fit(&det, cd, DET, sd)?,
+        fit(&nu, cu, N_U, su)?,
+        fit(&nv, cv, N_V, sv)?,
+        fit(&nt, ct, N_T, st)?,
     ])
 }
 
@@ -838,8 +844,9 @@ mod tests {
     }
 
     proptest! {
-        /// The wired constants charge each value what `fitted` charges it: the fixed part
-        /// and the finer dot's bound at its distance below the fitted last bit.
+        /// The wired constants charge each value its own bound: each dot's bound on the
+        /// fitted grid rounded up, a unit for a floored sum and one for a floor, equal to the
+        /// fixed part and the finer dot's bound at its distance below the fitted last bit.
         #[test]
         fn margin_constants_are_the_values_own(
             orig in vector(), dir in vector(), v0 in vector(), v1 in vector(), v2 in vector(),

@@ -66,10 +66,7 @@ fn the_s_bound_is_the_models() {
     for i in 0..cases.len() + s_bound::LATENCY {
         if let Some(o) = cases.get(i) {
             drive(&mut uut.orig, &mut uut.orig_e, &o.orig);
-            for k in 0..3 {
-                uut.cut[k].next = field(o.v0_cut.m[k] as i128);
-            }
-            uut.cut_e.next = exp_field(o.v0_cut.lsb);
+            drive(&mut uut.cut, &mut uut.cut_e, &o.v0_cut);
         }
         tick(&mut uut);
         let Some(j) = (i + 1).checked_sub(s_bound::LATENCY) else {
@@ -176,10 +173,7 @@ fn stream(qs: &[MtQuery]) -> Seen {
         uut.stored.next = operands.is_some();
         if let Some(o) = &operands {
             set_operands!(&mut uut, o);
-            for k in 0..3 {
-                uut.cut[k].next = field(o.v0_cut.m[k] as i128);
-            }
-            uut.cut_e.next = exp_field(o.v0_cut.lsb);
+            drive(&mut uut.cut, &mut uut.cut_e, &o.v0_cut);
         }
         uut.t_min.next = bits(q.map_or(0.0, |q| q.t_min));
         tick(&mut uut);
