@@ -19,6 +19,7 @@ use crate::mt::{mt_model, mt_traced, scale_query, DET_EPSILON};
 pub mod bfp;
 mod linear;
 pub mod plucker;
+pub mod signs;
 use crate::{catalogue, lookup, Format, FormatError};
 
 #[derive(Debug, Error, PartialEq, Eq)]
@@ -608,10 +609,11 @@ pub enum FilterKind {
 pub enum PluckerDecisions {
     /// The bfp filter's step 5 (`bfp::decide`: the division-free filter's tests on short
     /// floats rounded outward) on the values and their integer margins, bit for bit what
-    /// hardware decides.
+    /// the `Decide` stage computes (model only since the lane takes the sign decisions).
     Table,
-    /// Signs against short-float margins (a coarse-grid margin network), u + v > 1 from
-    /// the third edge's value: what normalisers, short adders and comparators decide.
+    /// Sign decisions ([`signs::decide`]): bfp's rows made stronger so that they compare
+    /// signs and bit lengths, u + v > 1 from the third edge's value; bit for bit what the
+    /// hardware lane decides.
     Signs,
 }
 

@@ -644,7 +644,7 @@ fn forwarding_floors_on_the_thesis_scenes() {
         return;
     };
     println!(
-        "| policy | scene | tests | fp32 hits | hits or inside the edges | bfp18/fp32 forwards | Plücker, bfp decisions (bit-exact) | Plücker, sign decisions (f64) |"
+        "| policy | scene | tests | fp32 hits | hits or inside the edges | bfp18/fp32 forwards | Plücker, bfp decisions (`plucker`) | Plücker, sign decisions (`plucker-signs`, the lane) |"
     );
     println!("|---|---|---:|---:|---:|---:|---:|---:|");
     for choice in [SpawnChoice::Thesis, SpawnChoice::FormatAware] {

@@ -6,6 +6,7 @@
 
 pub mod add_down;
 pub mod align_add;
+pub mod bit_length;
 pub mod cross_block;
 pub mod decide;
 pub mod dot;
@@ -20,6 +21,7 @@ pub mod pow2_lt;
 pub mod round;
 pub mod s_bound;
 pub mod short_lt;
+pub mod sign_decide;
 pub mod slot;
 pub mod to_block;
 pub mod translate;

@@ -1,34 +1,36 @@
 //! The whole Plücker filter, one lane: bit for bit the model's
-//! `hw_model::dual::plucker::decide_inputs` followed by `bfp::decide`
-//! (`Filter::certain_miss(q, 1.0)` for bfp18/fp32 with `--dual-filter plucker`). One test
-//! per cycle, fully pipelined.
+//! `hw_model::dual::plucker::sign_inputs` followed by `signs::decide`
+//! (`Filter::certain_miss(q, 1.0)` for bfp18/fp32 with `--dual-filter plucker-signs`). One
+//! test per cycle, fully pipelined.
 //!
 //! The ray's and the triangle's stored vectors come in (`plucker::Operands`, formed once
 //! per ray and per scene). [`PluckerDatapath`] computes −det, −N_u, −N_v, −N_w, −N_t; beside
 //! it, [`SBound`] gives E_s, an exponent stage the values' grids (hence each dot's distance
 //! below its value's last bit) and ΣE of each value, a second the fallback's shift y = its
-//! constant's shift + ΣE − L; four [`PluckerMargin`]s the margins, ready with the values.
-//! The values are fitted to `Decide`'s widths (det floored by 7 bits, N_t by 8, N_u and N_v
-//! sign-extended) and [`Decide`] decides. A query the model forwards is forwarded whatever
-//! `Decide` says: no stored vectors (`stored` low), a fallback exponent outside the range
-//! its constant covers, a value's grid outside what `Decide` receives from the bfp filter,
-//! or a fallback term of 2^(MB − 1) or more.
+//! constant's shift + ΣE − L; five [`PluckerMargin`]s the margins, ready with the values
+//! (N_w's without a fallback term). The values are fitted to the bfp filter's step-5 widths
+//! (det floored by 7 bits, N_t by 8, N_u and N_v sign-extended; N_w as it is) and
+//! [`SignDecide`] decides. A query the model forwards is forwarded whatever the decisions
+//! say: no stored vectors (`stored` low), a fallback exponent outside the range its
+//! constant covers, a value's grid outside what step 5 receives from the bfp filter, or a
+//! fallback term of 2^(MB − 1) or more.
 
 use hw_model::dual::bfp::{lsb_range, DET, EXP_MAX, EXP_MIN, N_U, SUM_MIN};
 use hw_model::dual::plucker::{fallback_term, margin_constants};
 use rust_hdl::prelude::*;
 
 use super::align_add::{EXP_BIAS, EXP_BITS};
-use super::decide::{self, Decide, DET_MARGIN_BITS, NUM_BITS, NUM_MARGIN_BITS};
+use super::decide::{self, DET_MARGIN_BITS, NUM_BITS, NUM_MARGIN_BITS};
 use super::plucker::{
     self, PluckerDatapath, DET_BITS, EDGE_VALUE_BITS, NT_BITS, OFFSET_BITS, W, WT,
 };
 use super::plucker_margin::{self, PluckerMargin, BELOW_BITS, Y_BIAS, Y_BITS};
 use super::round::SHORT_EXP_BITS;
 use super::s_bound::{self, SBound, CUT_BITS};
+use super::sign_decide::{self, SignDecide};
 use crate::mt::delay::Delay;
 
-/// The values' floors onto `Decide`'s widths.
+/// The values' floors onto step 5's widths.
 const K_DET: usize = DET_BITS - decide::DET_BITS;
 const K_T: usize = NT_BITS - NUM_BITS;
 const _: () = assert!(EDGE_VALUE_BITS <= NUM_BITS);
@@ -36,7 +38,7 @@ const _: () = assert!(EDGE_VALUE_BITS <= NUM_BITS);
 /// A value's grid, biased by 2·[`EXP_BIAS`] (two fields added).
 const L_BITS: usize = EXP_BITS + 1;
 const L_BIAS: i64 = 2 * EXP_BIAS as i64;
-/// `Decide`'s exponents are L's low bits: L_BIAS is 0 modulo 2^SHORT_EXP_BITS.
+/// Step 5's exponents are L's low bits: L_BIAS is 0 modulo 2^SHORT_EXP_BITS.
 const _: () = assert!(L_BIAS % (1 << SHORT_EXP_BITS) == 0);
 /// ΣE, biased by 3·[`EXP_BIAS`] (three block exponent fields added).
 const SUM_BITS: usize = EXP_BITS + 2;
@@ -50,7 +52,7 @@ const _: () = assert!(
 );
 
 /// Clock edges from a query to its `miss` and `forward`.
-pub const LATENCY: usize = plucker::LATENCY + decide::LATENCY;
+pub const LATENCY: usize = plucker::LATENCY + sign_decide::LATENCY;
 
 type Exp = Bits<EXP_BITS>;
 
@@ -104,20 +106,23 @@ pub struct PluckerFilter {
     u_margin: PluckerMargin<NUM_MARGIN_BITS>,
     v_margin: PluckerMargin<NUM_MARGIN_BITS>,
     t_margin: PluckerMargin<NUM_MARGIN_BITS>,
-    decide: Decide,
-    /// Stage 1: each value's grid L (det, N_u, N_v, N_t; fitted: + k), the finer dot's
-    /// distance below it (N_u, N_v, N_t), the block exponents of dir, e1, −e2, and whether
-    /// a grid is out of `Decide`'s reach or nothing is stored.
+    w_margin: PluckerMargin<NUM_MARGIN_BITS>,
+    decide: SignDecide,
+    /// Stage 1: each value's grid L (det, N_u, N_v, N_t, N_w; fitted: + k), the finer dot's
+    /// distance below it (N_u, N_v, N_t, N_w), the block exponents of dir, e1, −e2, and
+    /// whether a grid is out of step 5's reach or nothing is stored.
     l1u: Signal<Local, Bits<L_BITS>>,
     l2u: Signal<Local, Bits<L_BITS>>,
     l1v: Signal<Local, Bits<L_BITS>>,
     l2v: Signal<Local, Bits<L_BITS>>,
     l1t: Signal<Local, Bits<L_BITS>>,
     l2t: Signal<Local, Bits<L_BITS>>,
-    l: [Signal<Local, Bits<L_BITS>>; 4],
-    fine: [Signal<Local, Bits<L_BITS>>; 3],
-    l_reg: [DFF<Bits<L_BITS>>; 4],
-    below_reg: [DFF<Bits<BELOW_BITS>>; 3],
+    l1w: Signal<Local, Bits<L_BITS>>,
+    l2w: Signal<Local, Bits<L_BITS>>,
+    l: [Signal<Local, Bits<L_BITS>>; 5],
+    fine: [Signal<Local, Bits<L_BITS>>; 4],
+    l_reg: [DFF<Bits<L_BITS>>; 5],
+    below_reg: [DFF<Bits<BELOW_BITS>>; 4],
     e_reg: [DFF<Exp>; 3],
     refuse1: DFF<Bit>,
     /// Stage 2: ΣE of each value, y, and whether an exponent is outside the fallback
@@ -126,11 +131,11 @@ pub struct PluckerFilter {
     sum_y: [Signal<Local, Bits<Y_BITS>>; 4],
     l_y: [Signal<Local, Bits<Y_BITS>>; 4],
     y_reg: [DFF<Bits<Y_BITS>>; 4],
-    below2_reg: [DFF<Bits<BELOW_BITS>>; 3],
-    l2_reg: [DFF<Bits<L_BITS>>; 4],
+    below2_reg: [DFF<Bits<BELOW_BITS>>; 4],
+    l2_reg: [DFF<Bits<L_BITS>>; 5],
     refuse2: DFF<Bit>,
-    /// Stage 3 (`Decide`'s inputs): the exponents, and every refusal.
-    l3_reg: [DFF<Bits<L_BITS>>; 4],
+    /// Stage 3 (the decisions' inputs): the exponents, and every refusal.
+    l3_reg: [DFF<Bits<L_BITS>>; 5],
     refuse3: DFF<Bit>,
     refuse_line: Delay<Bit>,
     valid_line: Delay<Bit>,
@@ -206,6 +211,8 @@ impl Default for PluckerFilter {
             u_margin: PluckerMargin::new(u_c),
             v_margin: PluckerMargin::new(v_c),
             t_margin: PluckerMargin::new(t_c),
+            // The third edge has the others' constants.
+            w_margin: PluckerMargin::dots_only(u_c),
             decide: Default::default(),
             l1u: Default::default(),
             l2u: Default::default(),
@@ -213,6 +220,8 @@ impl Default for PluckerFilter {
             l2v: Default::default(),
             l1t: Default::default(),
             l2t: Default::default(),
+            l1w: Default::default(),
+            l2w: Default::default(),
             l: Default::default(),
             fine: Default::default(),
             l_reg: Default::default(),
@@ -228,7 +237,7 @@ impl Default for PluckerFilter {
             refuse2: Default::default(),
             l3_reg: Default::default(),
             refuse3: Default::default(),
-            refuse_line: Delay::new(decide::LATENCY),
+            refuse_line: Delay::new(sign_decide::LATENCY),
             valid_line: Delay::new(LATENCY),
             t_min_line: Delay::new(plucker::LATENCY),
             nu_wide: Default::default(),
@@ -263,16 +272,19 @@ impl Logic for PluckerFilter {
         self.u_margin.clock.next = self.clock.val();
         self.v_margin.clock.next = self.clock.val();
         self.t_margin.clock.next = self.clock.val();
+        self.w_margin.clock.next = self.clock.val();
         self.decide.clock.next = self.clock.val();
-        for k in 0..4 {
+        for k in 0..5 {
             self.l_reg[k].clock.next = self.clock.val();
-            self.y_reg[k].clock.next = self.clock.val();
             self.l2_reg[k].clock.next = self.clock.val();
             self.l3_reg[k].clock.next = self.clock.val();
         }
-        for k in 0..3 {
+        for k in 0..4 {
+            self.y_reg[k].clock.next = self.clock.val();
             self.below_reg[k].clock.next = self.clock.val();
             self.below2_reg[k].clock.next = self.clock.val();
+        }
+        for k in 0..3 {
             self.e_reg[k].clock.next = self.clock.val();
         }
         self.refuse1.clock.next = self.clock.val();
@@ -328,6 +340,10 @@ impl Logic for PluckerFilter {
         self.l1t.next = bit_cast::<L_BITS, EXP_BITS>(self.orig_e.val())
             + bit_cast::<L_BITS, EXP_BITS>(self.n_e.val());
         self.l2t.next = bit_cast::<L_BITS, EXP_BITS>(self.offset_e.val()) + self.offset_bias.val();
+        self.l1w.next = bit_cast::<L_BITS, EXP_BITS>(self.e3_e.val())
+            + bit_cast::<L_BITS, EXP_BITS>(self.moment_e.val());
+        self.l2w.next = bit_cast::<L_BITS, EXP_BITS>(self.dir_e.val())
+            + bit_cast::<L_BITS, EXP_BITS>(self.m3_e.val());
         // Each value on its coarser dot's grid; the finer dot's distance below it.
         self.l[1].next = self.l1u.val();
         self.fine[0].next = self.l2u.val();
@@ -347,7 +363,13 @@ impl Logic for PluckerFilter {
             self.l[3].next = self.l2t.val() + self.k_t.val();
             self.fine[2].next = self.l1t.val();
         }
-        for k in 0..4 {
+        self.l[4].next = self.l1w.val();
+        self.fine[3].next = self.l2w.val();
+        if self.l2w.val() > self.l1w.val() {
+            self.l[4].next = self.l2w.val();
+            self.fine[3].next = self.l1w.val();
+        }
+        for k in 0..5 {
             self.l_reg[k].d.next = self.l[k].val();
         }
         self.below_reg[0].d.next =
@@ -356,6 +378,8 @@ impl Logic for PluckerFilter {
             bit_cast::<BELOW_BITS, L_BITS>(self.l[2].val() - self.fine[1].val());
         self.below_reg[2].d.next =
             bit_cast::<BELOW_BITS, L_BITS>(self.l[3].val() - self.fine[2].val());
+        self.below_reg[3].d.next =
+            bit_cast::<BELOW_BITS, L_BITS>(self.l[4].val() - self.fine[3].val());
         self.e_reg[0].d.next = self.dir_e.val() + self.last_to_top.val();
         self.e_reg[1].d.next = self.e1_e.val() + self.last_to_top.val();
         self.e_reg[2].d.next = self.e2_e.val() + self.last_to_top.val();
@@ -394,10 +418,10 @@ impl Logic for PluckerFilter {
         self.l_y[3].next = bit_cast::<Y_BITS, L_BITS>(self.l_reg[3].q.val());
         for k in 0..4 {
             self.y_reg[k].d.next = self.sum_y[k].val() + self.y_offset.val() - self.l_y[k].val();
-            self.l2_reg[k].d.next = self.l_reg[k].q.val();
-        }
-        for k in 0..3 {
             self.below2_reg[k].d.next = self.below_reg[k].q.val();
+        }
+        for k in 0..5 {
+            self.l2_reg[k].d.next = self.l_reg[k].q.val();
         }
         self.refuse2.d.next = self.refuse1.q.val()
             || self.e_reg[0].q.val() < self.e_low.val()
@@ -422,13 +446,16 @@ impl Logic for PluckerFilter {
         self.v_margin.y.next = self.y_reg[2].q.val();
         self.t_margin.below.next = self.below2_reg[2].q.val();
         self.t_margin.y.next = self.y_reg[3].q.val();
-        for k in 0..4 {
+        // N_w's margin has no fallback term: y is not read.
+        self.w_margin.below.next = self.below2_reg[3].q.val();
+        self.w_margin.y.next = self.y_reg[3].q.val();
+        for k in 0..5 {
             self.l3_reg[k].d.next = self.l2_reg[k].q.val();
         }
         self.refuse3.d.next = self.refuse2.q.val();
 
-        // Stage 3: the values fitted to Decide's widths, their exponents (L's low bits),
-        // the margins, t_min; and every refusal.
+        // Stage 3: the values fitted to step 5's widths (N_w as it is), their exponents
+        // (L's low bits), the margins, t_min; and every refusal.
         self.nu_wide.next = bit_cast::<NUM_BITS, EDGE_VALUE_BITS>(self.datapath.nu.val());
         if (self.datapath.nu.val() & self.edge_sign.val()).any() {
             self.nu_wide.next = self.nu_wide.val() | self.edge_extension.val();
@@ -451,6 +478,9 @@ impl Logic for PluckerFilter {
         self.decide.num_margin[0].next = self.u_margin.margin.val();
         self.decide.num_margin[1].next = self.v_margin.margin.val();
         self.decide.num_margin[2].next = self.t_margin.margin.val();
+        self.decide.w.next = self.datapath.nw.val();
+        self.decide.w_e.next = bit_cast::<SHORT_EXP_BITS, L_BITS>(self.l3_reg[4].q.val());
+        self.decide.w_margin.next = self.w_margin.margin.val();
         self.t_min_line.d.next = self.t_min.val();
         self.decide.t_min.next = self.t_min_line.q.val();
         self.refuse_line.d.next = self.refuse3.q.val()

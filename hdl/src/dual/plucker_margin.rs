@@ -3,7 +3,8 @@
 //! (`plucker::MarginConstants`: the coarser dot's bound and the units), the finer dot's
 //! bound C shifted right by its grid's distance below L and rounded up, and the fallback's
 //! term m_F·2^y (`plucker::fallback_term`, y = its shift + ΣE − L) rounded up; `over` when
-//! that term would reach 2^(MB − 1) (the model forwards). One register stage.
+//! that term would reach 2^(MB − 1) (the model forwards). N_w, which the fallback does
+//! not compute, has no fallback term ([`PluckerMargin::dots_only`]). One register stage.
 
 use hw_model::dual::plucker::{fallback_term, MarginConstants};
 use rust_hdl::prelude::*;
@@ -35,6 +36,8 @@ pub struct PluckerMargin<const MB: usize> {
     /// dot has none.
     less: Constant<Bits<MB>>,
     present: Constant<Bit>,
+    /// The fallback's term is charged.
+    charged: Constant<Bit>,
     fixed: Constant<Bits<MB>>,
     one: Constant<Bits<MB>>,
     /// m_F and m_F − 1; y = 0 and the first y whose term reaches 2^(MB − 1).
@@ -49,6 +52,16 @@ pub struct PluckerMargin<const MB: usize> {
 impl<const MB: usize> PluckerMargin<MB> {
     /// The margin of a value with the wired constants `c`.
     pub fn new(c: MarginConstants) -> Self {
+        Self::of(c, true)
+    }
+
+    /// The margin of a value with the wired constants `c` and no fallback term (`y` unread,
+    /// `over` low).
+    pub fn dots_only(c: MarginConstants) -> Self {
+        Self::of(c, false)
+    }
+
+    fn of(c: MarginConstants, charged: bool) -> Self {
         let wire = |v: i128| -> Constant<Bits<MB>> {
             assert!((0..1i128 << MB).contains(&v), "{v} does not fit {MB} bits");
             Constant::new((v as u64).to_bits())
@@ -66,6 +79,7 @@ impl<const MB: usize> PluckerMargin<MB> {
             over_reg: Default::default(),
             less: wire((c.fine - 1).max(0)),
             present: Constant::new(c.fine > 0),
+            charged: Constant::new(charged),
             fixed: wire(c.fixed),
             one: wire(1),
             f_m: wire(f.m),
@@ -88,9 +102,9 @@ impl<const MB: usize> Logic for PluckerMargin<MB> {
             self.term.next = (self.less.val() >> self.below.val()) + self.one.val();
         }
         // m_F·2^y rounded up, while below 2^(MB − 1).
-        self.over_reg.d.next = self.y.val() >= self.y_over.val();
+        self.over_reg.d.next = self.charged.val() && self.y.val() >= self.y_over.val();
         self.fallback.next = 0.into();
-        if self.y.val() < self.y_over.val() {
+        if self.charged.val() && self.y.val() < self.y_over.val() {
             if self.y.val() >= self.y_zero.val() {
                 self.fallback.next = self.f_m.val() << (self.y.val() - self.y_zero.val());
             } else {

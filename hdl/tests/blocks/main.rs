@@ -14,6 +14,7 @@ mod dual {
     mod plucker;
     mod plucker_filter;
     mod round;
+    mod sign_decide;
     mod to_block;
     mod translate;
 }

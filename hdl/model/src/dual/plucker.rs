@@ -22,9 +22,9 @@
 //! shifted by the distance of 2^ΣE from the value's last bit, ΣE from block exponents and
 //! the exponent of |s| that a coarse subtraction gives ([`s_exponent`]). The values are
 //! fitted to the bfp filter's step-5 widths, so its decisions (`bfp::decide`, and `Decide`
-//! in rust-hdl) decide them: bit for bit what hardware computes. The sign decisions
-//! ([`PluckerDecisions::Signs`]) compare f64 values with short-float margins instead, a
-//! model of a smaller decision stage.
+//! in rust-hdl) decide them. The sign decisions ([`PluckerDecisions::Signs`],
+//! `signs::decide`, what the hardware lane builds) take the same values and margins and
+//! N_w with its own margin ([`sign_inputs`]): bit for bit what hardware computes.
 
 use std::ops::RangeInclusive;
 
@@ -34,11 +34,7 @@ use super::bfp::{
     self, constant, fallback_constant, lsb_range, margin_bits, split, top, value_bits, Fx, Term,
     Vector, DET, EXP_MAX, EXP_MIN, N_T, N_U, N_V, SUM_MIN,
 };
-use super::linear::certainly_below;
-use super::{
-    product_bounds, round_up_to_bits, Bounded, Ctx, Filter, FilterFormat, PluckerDecisions,
-    Rounding, BV, F64_SLACK, HW_BOUND_BITS,
-};
+use super::{signs, Filter, FilterFormat, PluckerDecisions};
 
 /// Block exponents a stored vector may have (a 10-bit biased field in hardware); outside,
 /// the query is forwarded.
@@ -249,14 +245,13 @@ pub fn s_exponent(orig: &BlockBits<3>, v0_cut: &BlockBits<3>, width: u32) -> i32
 }
 
 /// A value of the datapath: `fx` in `bits` two's-complement bits, with what bounds its
-/// distance from the exact value: each dot's grid and bound ([`dot_bound`], 0 for none)
-/// and whether it is a sum floored onto the coarser grid (one unit more).
+/// distance from the exact value: each dot's grid and bound ([`dot_bound`]; the second 0
+/// for a single dot; a sum of two dots is floored onto the coarser grid, one unit more).
 #[derive(Clone, Copy, Debug)]
 struct Value {
     fx: Fx,
     bits: u32,
     dots: [(i32, i128); 2],
-    aligned: bool,
 }
 
 fn dot(a: &Block<3>, b: &Block<3>) -> Value {
@@ -265,7 +260,6 @@ fn dot(a: &Block<3>, b: &Block<3>) -> Value {
         fx: Fx::new(bfp::dot(&a.m, &b.m), lsb),
         bits: a.width + b.width + 1,
         dots: [(lsb, dot_bound(a.width, b.width)), (lsb, 0)],
-        aligned: false,
     }
 }
 
@@ -276,7 +270,6 @@ fn combine(x: Value, y: Value) -> Value {
         fx,
         bits,
         dots: [x.dots[0], y.dots[0]],
-        aligned: true,
     }
 }
 
@@ -308,7 +301,6 @@ fn values_of(ray: &Ray, tri: &Triangle) -> [Value; 5] {
             (tri.offset.lsb, dot_bound(tri.v0.width, tri.n.width)),
             (tri.offset.lsb, 0),
         ],
-        aligned: false,
     };
     [
         dot(&ray.dir, &tri.n),
@@ -441,18 +433,27 @@ fn fitted(
     if f_top >= margin_bits(width, kind) as i32 {
         return None;
     }
+    let units = dots_units(v, c, lsb) + f.units(lsb - sum_e)?;
+    Some((Fx::new(v.fx.m >> k, lsb), scaled(units, margin_scale)))
+}
+
+/// A value's dots-and-alignment part of its margin on the grid 2^`lsb` (at or above its
+/// own): `c`'s fixed part and the finer dot's bound at its distance below `lsb`, rounded up.
+fn dots_units(v: &Value, c: MarginConstants, lsb: i32) -> i128 {
     let fine = v.dots.iter().map(|d| d.0).min().expect("two grids");
-    let units = c.fixed
+    c.fixed
         + Term {
             m: c.fine,
             shift: 0,
         }
         .units(lsb - fine)
         .expect("a right shift")
-        + f.units(lsb - sum_e)?;
-    // Exact at margin_scale = 1: a margin is below 2^MB ≤ 2^53.
-    let margin = (units as f64 * margin_scale).ceil() as i128;
-    Some((Fx::new(v.fx.m >> k, lsb), margin))
+}
+
+/// A margin scaled by `margin_scale` (1: the derived bound; tests shrink it), rounded up;
+/// exact at 1 (a margin is below 2^MB ≤ 2^53).
+fn scaled(units: i128, margin_scale: f64) -> i128 {
+    (units as f64 * margin_scale).ceil() as i128
 }
 
 /// What a hardware margin wires for one value. Both dots of a sum have the same bound C
@@ -499,79 +500,46 @@ pub fn margin_constants(width: u32) -> [MarginConstants; 4] {
 /// or the fallback's exponents outside the range its constant covers,
 /// [`FallbackExps::covered`]; or a value's grid or margin out of step 5's reach).
 pub fn decide_inputs(q: &MtQuery, width: u32, margin_scale: f64) -> Option<[(Fx, i128); 4]> {
+    sign_inputs(q, width, margin_scale).map(|i| i.values)
+}
+
+/// What the sign decisions take: [`decide_inputs`]' values and −N_w on its own grid with
+/// its own margin (its dots and alignment: the fallback does not compute N_w, and nothing
+/// is fitted).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SignInputs {
+    pub values: [(Fx, i128); 4],
+    pub w: (Fx, i128),
+}
+
+/// [`SignInputs`] of `q`; `None` exactly where [`decide_inputs`] is.
+pub fn sign_inputs(q: &MtQuery, width: u32, margin_scale: f64) -> Option<SignInputs> {
     let (ray, tri) = stored(q, width)?;
     let exps = FallbackExps::of(&operands(&ray, &tri), width);
     if !exps.covered() {
         return None;
     }
-    let [det, nu, nv, _, nt] = values_of(&ray, &tri);
+    let [det, nu, nv, nw, nt] = values_of(&ray, &tri);
     let [sd, su, sv, st] = exps.sums();
     let [cd, cu, cv, ct] = margin_constants(width);
     let fit = |v: &Value, c, kind, sum_e| fitted(v, c, kind, sum_e, width, margin_scale);
-    Some([
-        fit(&det, cd, DET, sd)?,
-        fit(&nu, cu, N_U, su)?,
-        fit(&nv, cv, N_V, sv)?,
-        fit(&nt, ct, N_T, st)?,
-    ])
-}
-
-/// f64's unit roundoff.
-const F64_UNIT: f64 = f64::EPSILON / 2.0;
-
-/// A value in f64 for the sign decisions: `v`, and the parts of its error as a margin
-/// network adds them (its dots' bounds, the alignment's unit; `v`'s own f64 rounding with
-/// the first).
-#[derive(Clone, Copy, Debug)]
-struct Approx {
-    v: f64,
-    parts: [f64; 3],
-}
-
-impl Approx {
-    fn of(x: &Value) -> Approx {
-        let v = x.fx.to_f64();
-        let bound = |(lsb, c): (i32, i128)| c as f64 * 2f64.powi(lsb);
-        Approx {
-            v,
-            parts: [
-                bound(x.dots[0]) + F64_UNIT * v.abs(),
-                bound(x.dots[1]),
-                if x.aligned { 2f64.powi(x.fx.e) } else { 0.0 },
-            ],
-        }
-    }
-
-    fn err(&self) -> f64 {
-        self.parts.iter().sum()
-    }
-}
-
-/// The smallest power of two ≥ x (0 stays 0): a margin as a leading-one position.
-fn up2(x: f64) -> f64 {
-    if x == 0.0 {
-        return 0.0;
-    }
-    let p = 2f64.powi(((x.to_bits() >> 52) & 0x7ff) as i32 - 1023);
-    if p == x {
-        x
-    } else {
-        2.0 * p
-    }
-}
-
-/// A bound of a sum as a hardware margin network forms it: each term and each partial sum
-/// rounded up to a float of [`HW_BOUND_BITS`] fraction bits (the division-free filter's
-/// coarse grid), so a margin is a short float compared with a value's top bits.
-fn coarse_sum(terms: &[f64]) -> f64 {
-    let up = |x: f64| round_up_to_bits(x, HW_BOUND_BITS);
-    terms.iter().fold(0.0, |acc, &t| up(acc + up(t)))
+    Some(SignInputs {
+        values: [
+            fit(&det, cd, DET, sd)?,
+            fit(&nu, cu, N_U, su)?,
+            fit(&nv, cv, N_V, sv)?,
+            fit(&nt, ct, N_T, st)?,
+        ],
+        // The third edge has the others' constants.
+        w: (nw.fx, scaled(dots_units(&nw, cu, nw.fx.e), margin_scale)),
+    })
 }
 
 impl Filter {
     /// [`Filter::decide`] for [`super::FilterKind::Plucker`]: `decisions` on the values of
-    /// [`datapath`]. [`PluckerDecisions::Table`] takes [`decide_inputs`] to the bfp
-    /// filter's step 5 (`bfp::decide`), bit for bit what hardware decides.
+    /// [`datapath`]: [`PluckerDecisions::Table`] takes [`decide_inputs`] to the bfp
+    /// filter's step 5 (`bfp::decide`), [`PluckerDecisions::Signs`] takes
+    /// [`sign_inputs`] to `signs::decide`.
     pub(super) fn decide_plucker(
         &self,
         q: &MtQuery,
@@ -587,108 +555,13 @@ impl Filter {
                 let rows = bfp::decide(det.0, det.1, [nu, nv, nt], q.t_min)?;
                 rows.miss().then_some(MtResult::default())
             }
-            PluckerDecisions::Signs => self.decide_signs(q, width, margin_scale),
+            PluckerDecisions::Signs => {
+                let SignInputs { values, w } = sign_inputs(q, width, margin_scale)?;
+                let [det, nu, nv, nt] = values;
+                let rows = signs::decide(det, [nu, nv, nt], w, q.t_min, width);
+                rows.miss().then_some(MtResult::default())
+            }
         }
-    }
-
-    /// The sign decisions ([`PluckerDecisions::Signs`]): every margin a short float
-    /// ([`coarse_sum`]), every test the sign of a value whose magnitude exceeds its margin
-    /// (a comparison of its top bits), a value's magnitude in a margin its leading one
-    /// (up2), one product for t_min > 0. The datapath's values are −det and −N; with
-    /// D = −det_A, σ = sign(D) and n_x = σ·N_x (σ flips with the values, σN does not), M_x
-    /// the margins (filter plus fallback; N_w's: its own, det's filter error and whole
-    /// margin, the fallback's of N_u and N_v, and the fallback's quotient roundings; derived
-    /// in docs/precision.md, "The Plücker filter"), and |D| ≥ 2M_D (so |D|/2 ≤ L ≤ H ≤ 2|D|,
-    /// else forward):
-    /// - up2(|D|) + M_D < eps: the parallel test fires;
-    /// - no reciprocal overflows or flushes and no quotient of u, v, t overflows (exponent
-    ///   comparisons against |D|), else forward;
-    /// - u < 0: n_u < −M_u and |n_u| > 16λ·up2(|D|) (not flushed to −0); v likewise;
-    /// - u + v > 1: n_w < −M_w (u > 1 is left to v and w: v + w = 1 − u);
-    /// - t ≤ t_min: n_t + M_t < τ·(|D| − M_D) for τ = t_min − λ ≥ 0 (one product), else
-    ///   n_t + M_t < 2τ·up2(|D|) (for t_min = 0 a sign and an exponent comparison).
-    fn decide_signs(&self, q: &MtQuery, width: u32, margin_scale: f64) -> Option<MtResult> {
-        let miss = Some(MtResult::default());
-        let (ray, tri) = stored(q, width)?;
-        let exps = FallbackExps::of(&operands(&ray, &tri), width);
-        let (det_b, num_b) = self.fallback_bounds(&exps)?;
-        let [det, nu, nv, nw, nt] = values_of(&ray, &tri).map(|v| Approx::of(&v));
-        let Rounding { unit: u, tiny, max } = self.b;
-        let margin = |terms: &[f64]| coarse_sum(terms) * margin_scale * F64_SLACK;
-        // Each margin adds its value's parts and the fallback's bound, in this order.
-        let of = |x: &Approx, b: &Bounded| margin(&[x.parts[0], x.parts[1], x.parts[2], b.err]);
-        let m_d = of(&det, &det_b);
-        let (dd, ud) = (det.v.abs(), up2(det.v.abs()));
-        if ud + m_d < self.eps_b {
-            return miss;
-        }
-        if dd < 2.0 * m_d {
-            return None;
-        }
-        let sigma = det.v.signum();
-        let [n_u, n_v, n_w, n_t] = [nu.v, nv.v, nw.v, nt.v].map(|v| sigma * v);
-        let m_u = of(&nu, &num_b[0]);
-        let m_v = of(&nv, &num_b[1]);
-        let m_t = of(&nt, &num_b[2]);
-        // |n| + M ≤ 2·max(up2(|n|), M): no reciprocal overflows or flushes, no quotient
-        // overflows.
-        let reach = |n: f64, m: f64| 2.0 * up2(n.abs()).max(m);
-        let in_range = 4.0 < dd * max
-            && 4.0 * tiny * ud < 1.0
-            && [(n_u, m_u), (n_v, m_v), (n_t, m_t)]
-                .iter()
-                .all(|&(n, m)| reach(n, m) < dd * max / 8.0);
-        if !in_range {
-            return None;
-        }
-        let below_zero = |n: f64, m: f64| n < -m && -n > 16.0 * tiny * ud;
-        let m_w = margin(&[
-            nw.parts[0],
-            nw.parts[1],
-            nw.parts[2],
-            det.err(),
-            m_d,
-            num_b[0].err,
-            num_b[1].err,
-            3.0 * u * (reach(n_u, m_u) + reach(n_v, m_v)),
-            2.0 * ud * (u + 4.0 * tiny),
-        ]);
-        let t_min = self.fallback_t_min(q);
-        let tau = t_min - tiny;
-        let m_tq = margin(&[m_t, 3.0 * u * reach(n_t, m_t)]);
-        let t_below = t_min.is_finite()
-            && certainly_below(
-                n_t + m_tq,
-                tau * if tau >= 0.0 { dd - m_d } else { 2.0 * ud },
-            );
-        let certain = below_zero(n_u, m_u) || below_zero(n_v, m_v) || n_w < -m_w || t_below;
-        if certain {
-            miss
-        } else {
-            None
-        }
-    }
-
-    /// The fallback's error bounds of det and the numerators from the exponent bounds of
-    /// dir, e1, e2 and s: it holds dir as given, and e1, e2, s as one rounding of their
-    /// exact values.
-    fn fallback_bounds(&self, exps: &FallbackExps) -> Option<(Bounded, [Bounded; 3])> {
-        let c = Ctx::exact(self.b);
-        let vector = |e: i32, rounded: bool| -> BV {
-            let mag = 2f64.powi(e);
-            let err = if rounded { c.error(mag) } else { 0.0 };
-            [c.bounded(mag, err); 3]
-        };
-        product_bounds(
-            [
-                vector(exps.dir, false),
-                vector(exps.e1, true),
-                vector(exps.e2, true),
-                vector(exps.s, true),
-            ],
-            &[],
-            &c,
-        )
     }
 }
 
@@ -711,6 +584,18 @@ mod tests {
 
     fn exact(v: [f32; 3]) -> V3 {
         v.map(|x| split(x).unwrap())
+    }
+
+    /// A sum of two dots (each with a bound) is floored onto the coarser grid.
+    fn aligned(v: &Value) -> bool {
+        v.dots[1].1 != 0
+    }
+
+    /// A value's distance bound from its exact value in f64: its dots' bounds and the
+    /// alignment's unit.
+    fn bound(v: &Value) -> f64 {
+        let dots: f64 = v.dots.iter().map(|&(l, c)| c as f64 * 2f64.powi(l)).sum();
+        dots + if aligned(v) { 2f64.powi(v.fx.e) } else { 0.0 }
     }
 
     /// |a − b| ≤ err, checked through their f64 difference with its own rounding.
@@ -810,7 +695,7 @@ mod tests {
             // f64's own error of the reference.
             let slack = 1e-14 * (dotf(abs(e1), abs(p)) + dotf(abs(s), abs(p))
                 + dotf(abs(dir), abs(q)) + dotf(abs(e2), abs(q))) + 1e-300;
-            let got = values_of(&ray, &tri).map(|v| (v.fx.to_f64(), Approx::of(&v).err()));
+            let got = values_of(&ray, &tri).map(|v| (v.fx.to_f64(), bound(&v)));
             for (name, (v, err), exact) in [
                 ("det", got[0], -want_det),
                 ("N_u", got[1], -want_nu),
@@ -838,7 +723,37 @@ mod tests {
                 let (a, b) = (fx.to_f64(), v.fx.to_f64());
                 let unit = 2f64.powi(fx.e);
                 prop_assert!(a <= b && b - a < unit, "{} {}", a, b);
-                prop_assert!(Approx::of(&v).err() + (b - a) <= *margin as f64 * unit * (1.0 + 1e-12));
+                prop_assert!(bound(&v) + (b - a) <= *margin as f64 * unit * (1.0 + 1e-12));
+            }
+        }
+    }
+
+    proptest! {
+        /// The u + v row's argument on real values: n_u − e_u + n_v − e_v − (|det| + e_D)
+        /// ≥ −(n_w + M_w), from det = N_u + N_v + N_w exactly and each fitted value within
+        /// its margin (which includes its own error) of the exact one.
+        #[test]
+        fn the_uv_margin_covers_the_identity(
+            orig in vector(), dir in vector(), v0 in vector(), v1 in vector(), v2 in vector(),
+        ) {
+            let q = query(orig, dir, v0, v1, v2);
+            let Some(SignInputs { values: [det, nu, nv, _], w }) = sign_inputs(&q, 18, 1.0) else {
+                return Ok(());
+            };
+            let others = [(det.1, det.0.e), (nu.1, nu.0.e), (nv.1, nv.0.e)];
+            let Some(m_w) = signs::uv_margin(w.1, w.0.e, others, 18) else { return Ok(()) };
+            let sigma = det.0.m.signum();
+            prop_assume!(sigma != 0);
+            let at = |m: i128, e: i32| Fx::new(m, e);
+            let sum = |xs: &[Fx]| xs.iter().try_fold(Fx::new(0, 0), |a, &x| a.checked_add(x));
+            let lhs = sum(&[
+                at(sigma * nu.0.m - nu.1, nu.0.e),
+                at(sigma * nv.0.m - nv.1, nv.0.e),
+                at(-det.0.m.abs() - det.1, det.0.e),
+            ]);
+            let rhs = at(-(sigma * w.0.m + m_w), w.0.e);
+            if let Some(lhs) = lhs {
+                prop_assert!(!lhs.lt(rhs), "{:?} < {:?}", lhs, rhs);
             }
         }
     }
@@ -860,7 +775,7 @@ mod tests {
                 let k = v.bits.saturating_sub(value_bits(w, kind)) as i32;
                 let lsb = v.fx.e + k;
                 let up = |(l, c): (i32, i128)| Term { m: c, shift: 0 }.units(lsb - l).unwrap();
-                let charged = up(v.dots[0]) + up(v.dots[1]) + i128::from(v.aligned) + i128::from(k > 0);
+                let charged = up(v.dots[0]) + up(v.dots[1]) + i128::from(aligned(v)) + i128::from(k > 0);
                 let fine = v.dots.iter().map(|d| d.0).min().unwrap();
                 let wired = c.fixed + Term { m: c.fine, shift: 0 }.units(lsb - fine).unwrap();
                 prop_assert_eq!(charged, wired, "W = {}", w);

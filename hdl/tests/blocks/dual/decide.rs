@@ -15,10 +15,10 @@ use super::round::{raw, stream, Clocked};
 
 /// One decision's inputs: det and N_u, N_v, N_t with their margins, and t_min.
 #[derive(Clone, Copy, Debug)]
-struct Input {
-    det: (Fx, i128),
-    nums: [(Fx, i128); 3],
-    t_min: f32,
+pub(super) struct Input {
+    pub det: (Fx, i128),
+    pub nums: [(Fx, i128); 3],
+    pub t_min: f32,
 }
 
 impl Clocked for Decide {
@@ -119,7 +119,7 @@ fn check_at(inputs: &[Input], latency: usize) -> Seen {
 
 /// A t_min: mostly 0, at times random of either sign, tiny (below 2^-102 and subnormal),
 /// huge, near the hits' t, or not finite.
-fn t_min(rng: &mut StdRng) -> f32 {
+pub(super) fn t_min(rng: &mut StdRng) -> f32 {
     match rng.gen_range(0..16) {
         0..=6 => 0.0,
         7 | 8 => rng.gen_range(0.0..2.0),
@@ -132,7 +132,7 @@ fn t_min(rng: &mut StdRng) -> f32 {
 }
 
 /// An integer of `width` signed bits and a random bit count.
-fn integer(rng: &mut StdRng, width: usize) -> i128 {
+pub(super) fn integer(rng: &mut StdRng, width: usize) -> i128 {
     let bits = rng.gen_range(0..=width);
     match bits {
         0 => [0, -1][rng.gen_range(0..2)],
@@ -142,18 +142,18 @@ fn integer(rng: &mut StdRng, width: usize) -> i128 {
 
 /// The values' last bits' exponents the filter produces: a triple of block exponents in
 /// range less the widest mantissa pair.
-fn exponent(rng: &mut StdRng) -> i32 {
+pub(super) fn exponent(rng: &mut StdRng) -> i32 {
     rng.gen_range(lowest_exponent()..=3 * EXP_MAX)
 }
 
 /// The lowest: SUM_MIN less the widest mantissa pair.
-fn lowest_exponent() -> i32 {
+pub(super) fn lowest_exponent() -> i32 {
     let w = widths(WIDTH);
     SUM_MIN - (w[Vector::S as usize] + w[Vector::P as usize]) as i32
 }
 
 /// Random values and margins of the block's full widths at filter exponents.
-fn random(rng: &mut StdRng) -> Input {
+pub(super) fn random(rng: &mut StdRng) -> Input {
     let e = exponent(rng);
     let margin = |rng: &mut StdRng, bits: usize| integer(rng, bits + 1).abs().min((1 << bits) - 1);
     let det = (
@@ -187,7 +187,7 @@ fn point(rng: &mut StdRng, size: f32) -> [f32; 3] {
 /// A query of the model tests' mix: aimed rays near the triangle's edges, near-parallel
 /// rays (det near the fallback's 1e-8), origins a few ulps off the plane, random rays;
 /// sizes from 2^-12 to 2^12.
-fn query(rng: &mut StdRng) -> MtQuery {
+pub(super) fn query(rng: &mut StdRng) -> MtQuery {
     let size = 2f32.powi(rng.gen_range(-12..=12));
     let v0 = point(rng, size);
     let spread = size * 2f32.powi(-rng.gen_range(0..8));

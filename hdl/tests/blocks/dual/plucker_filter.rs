@@ -1,7 +1,7 @@
 //! `hdl::dual::s_bound`, `hdl::dual::plucker_margin` and `hdl::dual::plucker_filter`: the
 //! Plücker filter's |s| bound and margins against the model's, and the whole lane streamed
 //! one test per cycle, bit for bit `Filter::certain_miss(q, 1.0)` for bfp18/fp32 with the
-//! Plücker filter (`plucker::decide_inputs`, then `bfp::decide`).
+//! Plücker filter (`plucker::sign_inputs`, then `signs::decide`).
 
 use hdl::dual::decide::{DET_MARGIN_BITS, NUM_MARGIN_BITS};
 use hdl::dual::plucker::W;
@@ -80,11 +80,11 @@ fn the_s_bound_is_the_models() {
 }
 
 /// The margin's specification from the model's terms: the fixed part, the finer dot's
-/// bound C·2^-below rounded up, the fallback's m_F·2^y rounded up; `None` (over) once that
-/// reaches 2^(MB − 1).
-fn margin_spec(mb: usize, c: MarginConstants, below: u32, y: i32) -> Option<i128> {
+/// bound C·2^-below rounded up, the fallback's m_F·2^y rounded up if `charged`; `None`
+/// (over) once that reaches 2^(MB − 1).
+fn margin_spec(mb: usize, c: MarginConstants, below: u32, y: i32, charged: bool) -> Option<i128> {
     let f = fallback_term();
-    if y + (128 - f.m.leading_zeros()) as i32 >= mb as i32 {
+    if charged && y + (128 - f.m.leading_zeros()) as i32 >= mb as i32 {
         return None;
     }
     let fine = Term {
@@ -93,10 +93,15 @@ fn margin_spec(mb: usize, c: MarginConstants, below: u32, y: i32) -> Option<i128
     }
     .units(below as i32)
     .unwrap();
-    Some(c.fixed + fine + Term { m: f.m, shift: 0 }.units(-y).unwrap())
+    let fallback = if charged {
+        Term { m: f.m, shift: 0 }.units(-y).unwrap()
+    } else {
+        0
+    };
+    Some(c.fixed + fine + fallback)
 }
 
-fn stream_margin<const MB: usize>(c: MarginConstants, seed: u64) {
+fn stream_margin<const MB: usize>(c: MarginConstants, seed: u64, charged: bool) {
     let mut rng = StdRng::seed_from_u64(seed);
     let cases: Vec<(u32, i32)> = (0..4000)
         .map(|_| {
@@ -109,7 +114,11 @@ fn stream_margin<const MB: usize>(c: MarginConstants, seed: u64) {
             (below, rng.gen_range(-200..MB as i32 + 8))
         })
         .collect();
-    let mut uut = PluckerMargin::<MB>::new(c);
+    let mut uut = if charged {
+        PluckerMargin::<MB>::new(c)
+    } else {
+        PluckerMargin::<MB>::dots_only(c)
+    };
     uut.connect_all();
     for i in 0..cases.len() + plucker_margin::LATENCY {
         if let Some(&(below, y)) = cases.get(i) {
@@ -121,7 +130,7 @@ fn stream_margin<const MB: usize>(c: MarginConstants, seed: u64) {
             continue;
         };
         if let Some(&(below, y)) = cases.get(j) {
-            let want = margin_spec(MB, c, below, y);
+            let want = margin_spec(MB, c, below, y, charged);
             assert_eq!(uut.over.val(), want.is_none(), "{below} {y}");
             if let Some(want) = want {
                 assert_eq!(uut.margin.val().to_u128() as i128, want, "{below} {y}");
@@ -130,14 +139,16 @@ fn stream_margin<const MB: usize>(c: MarginConstants, seed: u64) {
     }
 }
 
-/// Each of the lane's four margins (the model's `margin_constants`).
+/// Each of the lane's five margins (the model's `margin_constants`; N_w's has the edges'
+/// constants and no fallback term).
 #[test]
 fn the_margins_are_their_specification() {
     let [det, u, v, t] = margin_constants(WIDTH);
-    stream_margin::<DET_MARGIN_BITS>(det, 41);
+    stream_margin::<DET_MARGIN_BITS>(det, 41, true);
     for (c, seed) in [(u, 42), (v, 43), (t, 44)] {
-        stream_margin::<NUM_MARGIN_BITS>(c, seed);
+        stream_margin::<NUM_MARGIN_BITS>(c, seed, true);
     }
+    stream_margin::<NUM_MARGIN_BITS>(u, 45, false);
 }
 
 /// What the stream saw: misses, decided forwards, tests with no stored vectors, and tests
@@ -160,7 +171,7 @@ fn stream(qs: &[MtQuery]) -> Seen {
     let filter = Filter::new(
         FormatPair::parse(&format!("bfp{WIDTH}/fp32")).unwrap(),
         0,
-        FilterKind::Plucker(PluckerDecisions::Table),
+        FilterKind::Plucker(PluckerDecisions::Signs),
     )
     .unwrap();
     let mut seen = Seen::default();
