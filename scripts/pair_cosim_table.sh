@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The Verilated dual-precision pair (bfp18 filter slots sharing one fp32 lane) on the thesis'
+# The Verilated dual-precision pair (bfp18 or Plücker filter slots sharing one fp32 lane) on the thesis'
 # scenes (docs/precision.md, "The pair in hardware"): per slot count, per scene the share of
 # tests forwarded to the fp32 lane and the tests per cycle, over all scenes both again and
 # whether every image equals the software fp32 render. Prints a Markdown table.
@@ -8,13 +8,15 @@
 #
 # Environment: RTFPGA (the binary, default target/release/rtfpga), RTFPGA_THESIS_SCENES
 # (default ../shared/scenes/thesis), SIZE (default 320x180), DEPTH (the fp32 lane's, default
-# 5), OUT (work directory, default a temporary one).
+# 5), FILTER (the slots' filter, `--dual-filter`: bfp or plucker-signs, default bfp), OUT (work
+# directory, default a temporary one).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bin=${RTFPGA:-$root/target/release/rtfpga}
 scenes_dir=${RTFPGA_THESIS_SCENES:-$root/../shared/scenes/thesis}
 size=${SIZE:-320x180}
 depth=${DEPTH:-5}
+filter=${FILTER:-bfp}
 out=${OUT:-$(mktemp -d)}
 mkdir -p "$out"
 w=${size%x*}
@@ -37,7 +39,7 @@ for n in "${slot_counts[@]}"; do
     for s in "${scenes[@]}"; do
         log="$out/s${n}_$s.log"
         "$bin" cosim --scene "$scenes_dir/$s" --width "$w" --height "$h" --format bfp18/fp32 \
-            --lanes "$n" --depth "$depth" --quiet --out "$out/s${n}_$s.png" > "$log"
+            --dual-filter "$filter" --lanes "$n" --depth "$depth" --quiet --out "$out/s${n}_$s.png" > "$log"
         shares+=" $(field forwarded_share < "$log") |"
         rates+=" $(field tests_per_cycle < "$log") |"
         tests=$((tests + $(field tests < "$log")))

@@ -7,7 +7,7 @@ use anyhow::{bail, Result};
 use clap::Args as ClapArgs;
 
 use crate::engine::{HwConfig, UnitAdvanceArgs, UnitKind};
-use hdl::dual::pair::{forward_latency, MISS_LATENCY};
+use hdl::dual::pair::{forward_latency, miss_latency};
 use hdl::operator::Op;
 use hdl::synth::{synthesize, SynthOptions, SynthReport};
 use hdl::top::fit::{fit_from, synthesize_top, LaneFit, Usage, XC7Z020};
@@ -107,8 +107,8 @@ fn synth_pair(a: &Args, pair: &PairConfig, options: &SynthOptions) -> Result<()>
     if !a.json {
         println!(
             "latency: {} cycles to a certain miss, {} to a forwarded query's answer (queue empty, fp32 lane free); the lanes below are filter slots, the fixed part is the fp32 lane",
-            MISS_LATENCY,
-            forward_latency(pair.depth)
+            miss_latency(pair.filter),
+            forward_latency(pair.filter, pair.depth)
         );
     }
     print(&pair.to_string(), &report, None, fit, a.json)

@@ -4,6 +4,7 @@
 use anyhow::{bail, Context, Result};
 use clap::builder::TypedValueParser;
 use clap::{Args as ClapArgs, ValueEnum};
+use hdl::dual::pair::SlotFilter;
 use hdl::top::TopConfig;
 use hdl::traversal::scene_memory;
 use hdl::traversal::unit::UnitConfig;
@@ -430,25 +431,31 @@ impl HwConfig {
         }
     }
 
-    /// The dual-precision pair in hardware (`None` for one format): `--lanes` bfp filter
-    /// slots sharing one fp32 lane at `--depth`. Only the pair built in rust-hdl is: its
-    /// filter width (`hdl::dual::WIDTH`), its bfp filter, 1 to 4 slots.
+    /// The dual-precision pair in hardware (`None` for one format): `--lanes` filter slots
+    /// (bfp, or with `--dual-filter plucker-signs` the Plücker lane) sharing one fp32 lane at
+    /// `--depth`. Only the pairs built in rust-hdl are: its filter width
+    /// (`hdl::dual::WIDTH`), those two filters, 1 to 5 slots.
     pub fn pair_config(&self) -> Result<Option<PairConfig>> {
         let FormatChoice::Pair(pair) = self.format else {
             return Ok(None);
         };
         let built = built_pair();
-        let filter = self.dual_filter.unwrap_or(DualFilter::Bfp);
-        if pair != built || filter != DualFilter::Bfp {
+        let filter = match self.dual_filter.unwrap_or(DualFilter::Bfp) {
+            DualFilter::Bfp => Some(SlotFilter::Bfp),
+            DualFilter::PluckerSigns => Some(SlotFilter::Plucker),
+            _ => None,
+        };
+        let Some(filter) = filter.filter(|_| pair == built) else {
             let asked = self.dual_filter.and_then(|f| f.to_possible_value());
             let asked = asked.map_or(String::new(), |v| {
                 format!(" --dual-filter {}", v.get_name())
             });
-            bail!("--format {pair}{asked}: the hardware pair is {built} with its bfp filter; other pairs and filters are model-only (--engine model)");
-        }
+            bail!("--format {pair}{asked}: the hardware pairs are {built} with its bfp filter or with plucker-signs; other pairs and filters are model-only (--engine model)");
+        };
         let config = PairConfig {
             slots: self.lanes,
             depth: self.depth,
+            filter,
         };
         config.check().with_context(|| {
             format!("--format {pair} --lanes {} (its filter slots)", self.lanes)

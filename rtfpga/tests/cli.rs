@@ -510,13 +510,13 @@ fn the_hardware_pair_cosimulates_as_fp32() {
     };
     for (extra, needles) in [
         (
-            &["--lanes", "5"][..],
-            &["--lanes 5", "1 to 4 filter slots"][..],
+            &["--lanes", "6"][..],
+            &["--lanes 6", "1 to 5 filter slots"][..],
         ),
         (&["--lanes", "2", "--mode", "register"], &["at its ports"]),
         (
             &["--lanes", "2", "--dual-filter", "quotient"],
-            &["the hardware pair is bfp18/fp32", "model-only"],
+            &["the hardware pairs are bfp18/fp32", "model-only"],
         ),
     ] {
         let args = cosim(extra);

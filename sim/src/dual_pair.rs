@@ -1,5 +1,7 @@
-//! The dual-precision pair (`hdl::dual::pair`: bfp18 filter slots sharing one fp32 lane),
-//! Verilated and driven cycle by cycle as the renderer's [`Intersector`].
+//! The dual-precision pair (`hdl::dual::pair`: bfp18 or Plücker filter slots sharing one
+//! fp32 lane), Verilated and driven cycle by cycle as the renderer's [`Intersector`]. A
+//! Plücker slot is also given each query's stored vectors (`plucker::datapath`, what the
+//! scene memory and a per-ray setup would hold), packed as `hdl::dual::plucker_operands`.
 //!
 //! A batch is dealt to the slots in turn (query k to slot k mod N, tag k); each slot offers
 //! its next query every cycle and keeps it until `ready` takes it. Answers come back out of
@@ -10,11 +12,13 @@
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use hdl::dual::pair::{dual_pair_verilog, TAG};
+use hdl::dual::pair::{dual_pair_verilog, SlotFilter, TAG};
+use hdl::dual::plucker_operands::{operand_words, OPERAND_BITS, OPERAND_WORDS};
 use hdl::dual::WIDTH;
 use hdl::mt::query_words;
 use hdl::regmap::OPERAND_COUNT;
-use hw_model::dual::FormatPair;
+use hw_model::dual::plucker::datapath;
+use hw_model::dual::{FilterKind, FormatPair, PluckerDecisions};
 use hw_model::{MtQuery, MtResult};
 use sw_renderer::intersect::Intersector;
 use sw_renderer::rays::EngineError;
@@ -24,24 +28,38 @@ use crate::verilator::{BuiltModel, BuiltModels, Direction};
 use crate::{SimError, VerilatedModel};
 
 /// The filter slots a pair is built with (one Verilog per count).
-pub const SLOTS: std::ops::RangeInclusive<usize> = 1..=4;
+pub const SLOTS: std::ops::RangeInclusive<usize> = 1..=5;
 
 /// The one pair built in hardware: the bfp filter at `hdl::dual::WIDTH` before fp32.
 pub fn built_pair() -> FormatPair {
     FormatPair::parse(&format!("bfp{WIDTH}/fp32")).expect("hdl::dual::WIDTH is a bfp width")
 }
 
-/// A pair's shape: `slots` bfp filters in front of one fp32 lane at pipeline `depth`.
+/// The model's filter kind of a slot's filter lane.
+pub fn filter_kind(filter: SlotFilter) -> FilterKind {
+    match filter {
+        SlotFilter::Bfp => FilterKind::Bfp,
+        SlotFilter::Plucker => FilterKind::Plucker(PluckerDecisions::Signs),
+    }
+}
+
+/// A pair's shape: `slots` filters of kind `filter` in front of one fp32 lane at pipeline
+/// `depth`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PairConfig {
     pub slots: usize,
     pub depth: usize,
+    pub filter: SlotFilter,
 }
 
 impl std::fmt::Display for PairConfig {
-    /// "bfp18/fp32 pair s2 d5".
+    /// "bfp18/fp32 pair s2 d5", "bfp18/fp32 plucker-signs pair s5 d5".
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{} pair s{} d{}", built_pair(), self.slots, self.depth)
+        write!(f, "{} ", built_pair())?;
+        if self.filter != SlotFilter::Bfp {
+            write!(f, "{} ", filter_kind(self.filter))?;
+        }
+        write!(f, "pair s{} d{}", self.slots, self.depth)
     }
 }
 
@@ -73,12 +91,13 @@ impl From<SimError> for PairError {
 /// The pair's Verilog (top module `top`).
 pub fn pair_verilog(config: &PairConfig) -> Result<String, PairError> {
     config.check()?;
-    let depth = config.depth;
+    let (depth, kind) = (config.depth, config.filter);
     Ok(match config.slots {
-        1 => dual_pair_verilog::<1>(depth),
-        2 => dual_pair_verilog::<2>(depth),
-        3 => dual_pair_verilog::<3>(depth),
-        4 => dual_pair_verilog::<4>(depth),
+        1 => dual_pair_verilog::<1>(depth, kind),
+        2 => dual_pair_verilog::<2>(depth, kind),
+        3 => dual_pair_verilog::<3>(depth, kind),
+        4 => dual_pair_verilog::<4>(depth, kind),
+        5 => dual_pair_verilog::<5>(depth, kind),
         n => unreachable!("check() admits {SLOTS:?}, not {n}"),
     })
 }
@@ -125,6 +144,8 @@ struct SlotPorts {
     valid: usize,
     query: usize,
     tag: usize,
+    /// A Plücker slot's operands.
+    operands: Option<usize>,
     miss_valid: usize,
     miss_tag: usize,
 }
@@ -159,12 +180,18 @@ impl VerilatedPair {
         let iface = sim.interface().clone();
         let input = |name: &str, bits| iface.word_offset(Direction::Input, name, bits);
         let output = |name: &str, bits| iface.word_offset(Direction::Output, name, bits);
+        let plucker = model.config.filter == SlotFilter::Plucker;
         let slots = (0..model.config.slots)
             .map(|s| {
+                let operands = format!("operands${s}");
                 Ok(SlotPorts {
                     valid: input(&format!("valid${s}"), None)?,
                     query: input(&format!("query${s}"), Some(32 * OPERAND_COUNT as u32))?,
                     tag: input(&format!("tag${s}"), None)?,
+                    operands: match plucker {
+                        true => Some(input(&operands, Some(OPERAND_BITS as u32))?),
+                        false => None,
+                    },
                     miss_valid: output(&format!("miss_valid${s}"), None)?,
                     miss_tag: output(&format!("miss_tag${s}"), None)?,
                 })
@@ -225,6 +252,11 @@ impl VerilatedPair {
                 let words = query_words(offer.unwrap_or(&MtQuery::default()));
                 self.input[port.query..port.query + OPERAND_COUNT].copy_from_slice(&words);
                 self.input[port.tag] = next[s] as u32;
+                if let Some(at) = port.operands {
+                    let ops = offer.and_then(|q| datapath(q, WIDTH)).map(|(ops, _)| ops);
+                    self.input[at..at + OPERAND_WORDS]
+                        .copy_from_slice(&operand_words(ops.as_ref()));
+                }
             }
             self.sim.step(&self.input, &mut self.output)?;
             let cycle = self.sim.cycles();

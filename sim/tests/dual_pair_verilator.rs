@@ -1,13 +1,14 @@
-//! The Verilated dual-precision pair (`sim::dual_pair`: bfp18 filter slots sharing an fp32
-//! lane) answers bit for bit as the model's `DualIntersector`, and renders the thesis' 7
+//! The Verilated dual-precision pair (`sim::dual_pair`: bfp18 or Plücker filter slots
+//! sharing an fp32 lane) answers bit for bit as the model's `DualIntersector`, and renders the thesis' 7
 //! scenes (found by `sw_renderer::thesis_scenes`; skipped with a `SKIPPED` line on stderr
 //! when absent) exactly as fp32 does. The model builds (~2 min each) are cached on disk.
 
-use hw_model::dual::{DualIntersector, FormatPair};
+use hdl::dual::pair::SlotFilter;
+use hw_model::dual::{DualIntersector, Filter, FormatPair};
 use hw_model::{MtQuery, MtResult};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use sim::dual_pair::{pair_verilog, PairConfig, PairError, PairIntersector};
+use sim::dual_pair::{filter_kind, pair_verilog, PairConfig, PairError, PairIntersector};
 use std::path::PathBuf;
 use sw_renderer::compare::compare;
 use sw_renderer::intersect::{F32Intersector, Intersector};
@@ -15,10 +16,23 @@ use sw_renderer::render::{render, RenderOptions};
 use sw_renderer::scene::Scene;
 use sw_renderer::thesis_scenes;
 
-const PAIR: PairConfig = PairConfig { slots: 2, depth: 1 };
+/// Two slots of either filter before an fp32 lane at depth 1.
+const PAIRS: [PairConfig; 2] = [
+    PairConfig {
+        slots: 2,
+        depth: 1,
+        filter: SlotFilter::Bfp,
+    },
+    PairConfig {
+        slots: 2,
+        depth: 1,
+        filter: SlotFilter::Plucker,
+    },
+];
 
-fn model() -> DualIntersector {
-    DualIntersector::new(FormatPair::parse("bfp18/fp32").unwrap(), 0).unwrap()
+fn model(pair: &PairConfig) -> DualIntersector {
+    let formats = FormatPair::parse("bfp18/fp32").unwrap();
+    DualIntersector::with_filter(Filter::new(formats, 0, filter_kind(pair.filter)).unwrap())
 }
 
 fn point(rng: &mut StdRng, size: f32) -> [f32; 3] {
@@ -52,14 +66,20 @@ fn queries(n: usize, seed: u64) -> Vec<MtQuery> {
 
 #[test]
 fn random_queries_equal_the_model() {
-    let hw = PairIntersector::new(&PAIR).unwrap();
+    for pair in &PAIRS {
+        random_queries(pair);
+    }
+}
+
+fn random_queries(pair: &PairConfig) {
+    let hw = PairIntersector::new(pair).unwrap();
     let qs = queries(100_000, 7);
     let mut got = vec![MtResult::default(); qs.len()];
     // Batches of several sizes, the last one short.
     for (q, r) in qs.chunks(30_001).zip(got.chunks_mut(30_001)) {
         hw.intersect_batch(q, r).unwrap();
     }
-    let model = model();
+    let model = model(pair);
     let mut want = vec![MtResult::default(); qs.len()];
     model.intersect_batch(&qs, &mut want).unwrap();
     for (i, (g, w)) in got.iter().zip(&want).enumerate() {
@@ -94,15 +114,21 @@ fn thesis_scenes_render_as_fp32() {
         .iter()
         .map(|name| root.join(name))
         .collect();
-    let hw = PairIntersector::new(&PAIR).unwrap();
+    for pair in &PAIRS {
+        render_scenes(pair, &dirs);
+    }
+}
+
+fn render_scenes(pair: &PairConfig, dirs: &[PathBuf]) {
+    let hw = PairIntersector::new(pair).unwrap();
     let opts = RenderOptions {
         width: Some(64),
         height: Some(36),
         ..RenderOptions::default()
     };
-    for dir in &dirs {
+    for dir in dirs {
         let scene = Scene::load(dir.to_str().unwrap()).unwrap();
-        let (before, model) = (hw.stats(), model());
+        let (before, model) = (hw.stats(), model(pair));
         let hw_image = render(&scene, &hw, &opts).unwrap().image;
         let modelled = render(&scene, &model, &opts).unwrap();
         let sw = render(&scene, &F32Intersector, &opts).unwrap();
@@ -120,19 +146,19 @@ fn thesis_scenes_render_as_fp32() {
         assert_eq!(s.tests - before.tests, m.tests, "{}", dir.display());
         assert_eq!(s.forwarded - before.forwarded, m.forwarded());
         println!(
-            "{}: {:.1} % forwarded",
+            "{pair}, {}: {:.1} % forwarded",
             scene.name,
             100.0 * m.forwarded_share()
         );
     }
 }
 
-/// A pair of 0 or 5 slots is not built: a clear error, not a panic.
+/// A pair of 0 or 6 slots is not built: a clear error, not a panic.
 #[test]
 fn unbuilt_slot_counts_are_errors() {
-    for slots in [0, 5] {
-        let err = pair_verilog(&PairConfig { slots, depth: 1 }).unwrap_err();
+    for slots in [0, 6] {
+        let err = pair_verilog(&PairConfig { slots, ..PAIRS[0] }).unwrap_err();
         assert!(matches!(err, PairError::Slots(n) if n == slots));
-        assert!(err.to_string().contains("1 to 4 filter slots"), "{err}");
+        assert!(err.to_string().contains("1 to 5 filter slots"), "{err}");
     }
 }

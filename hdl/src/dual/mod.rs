@@ -17,12 +17,14 @@ pub mod pair;
 pub mod plucker;
 pub mod plucker_filter;
 pub mod plucker_margin;
+pub mod plucker_operands;
 pub mod pow2_lt;
 pub mod round;
 pub mod s_bound;
 pub mod short_lt;
 pub mod sign_decide;
 pub mod slot;
+pub mod slot_filter;
 pub mod to_block;
 pub mod translate;
 

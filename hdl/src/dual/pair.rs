@@ -1,10 +1,11 @@
-//! A dual-precision lane pair: `N` bfp filter lanes share one fp32 Möller-Trumbore lane.
+//! A dual-precision lane pair: `N` filter lanes (bfp, or Plücker: [`SlotFilter`]) share one
+//! fp32 Möller-Trumbore lane.
 //!
 //! Each slot ([`FilterSlot`]) takes one query a cycle. A certain miss is answered at once,
-//! [`MISS_LATENCY`] after the query, on the slot's `miss_*` port; every other query waits in
+//! [`miss_latency`] after the query, on the slot's `miss_*` port; every other query waits in
 //! its slot's forward queue for the fp32 lane, which takes one a cycle from the queues in
 //! round-robin order ([`RoundRobin`]) and answers on the `fp_*` port. The answers are the
-//! model's `DualIntersector` (pair bfp18/fp32) bit for bit: a certain miss is
+//! model's `DualIntersector` (pair bfp18/fp32, filter bfp or plucker-signs) bit for bit: a certain miss is
 //! `MtResult::default()` (no hit, t = u = v = 0), the rest the fp32 lane's result.
 //!
 //! Answers leave out of order, each with the `tag` its query came with. The fp32 lane
@@ -17,8 +18,9 @@
 
 use rust_hdl::prelude::*;
 
-use super::slot::{FilterSlot, ENTRY_BITS, QUEUED_LATENCY};
-pub use super::slot::{MISS_LATENCY, QUEUE_DEPTH, TAG};
+use super::plucker_operands::OPERAND_BITS;
+pub use super::slot::{miss_latency, SlotFilter, QUEUE_DEPTH, TAG};
+use super::slot::{queued_latency, FilterSlot, ENTRY_BITS};
 use crate::formats::fp32;
 use crate::mt::delay::Delay;
 use crate::regmap::OPERAND_COUNT;
@@ -31,11 +33,11 @@ const _: () = assert!(QUERY_BITS == 512 && TAG == 24 && OPERAND_COUNT == 16);
 /// Clock edges from a forwarded query to its answer when it finds its queue empty and the
 /// fp32 lane free (more while the lane serves other slots): to the queue's head, then the
 /// fp32 lane at `depth`.
-pub fn forward_latency(depth: usize) -> usize {
-    QUEUED_LATENCY + fp32::MtLane::latency(depth)
+pub fn forward_latency(kind: SlotFilter, depth: usize) -> usize {
+    queued_latency(kind) + fp32::MtLane::latency(depth)
 }
 
-/// `N` bfp filter slots and one fp32 lane at pipeline depth `depth` (`DualPair::new`).
+/// `N` filter slots and one fp32 lane at pipeline depth `depth` (`DualPair::new`).
 #[derive(LogicBlock)]
 pub struct DualPair<const N: usize> {
     pub clock: Signal<In, Clock>,
@@ -44,6 +46,9 @@ pub struct DualPair<const N: usize> {
     pub valid: Vec<Signal<In, Bit>>,
     pub query: Vec<Signal<In, Bits<QUERY_BITS>>>,
     pub tag: Vec<Signal<In, Bits<TAG>>>,
+    /// Per slot of a Plücker pair (none in a bfp pair): the query's operands
+    /// (`plucker_operands`).
+    pub operands: Vec<Signal<In, Bits<OPERAND_BITS>>>,
     /// Every slot has room for one more query (the same for all slots).
     pub ready: Signal<Out, Bit>,
     /// Per slot: the filter's certain misses (no hit, t = u = v = 0).
@@ -73,7 +78,7 @@ pub struct DualPair<const N: usize> {
 }
 
 impl<const N: usize> DualPair<N> {
-    pub fn new(depth: usize) -> Self {
+    pub fn new(depth: usize, kind: SlotFilter) -> Self {
         assert!(
             (1..=64).contains(&N),
             "a dual pair has 1 to 64 filter slots"
@@ -83,6 +88,7 @@ impl<const N: usize> DualPair<N> {
             valid: crate::defaults(N),
             query: crate::defaults(N),
             tag: crate::defaults(N),
+            operands: crate::defaults(if kind == SlotFilter::Plucker { N } else { 0 }),
             ready: Default::default(),
             miss_valid: crate::defaults(N),
             miss_tag: crate::defaults(N),
@@ -92,7 +98,7 @@ impl<const N: usize> DualPair<N> {
             fp_t: Default::default(),
             fp_u: Default::default(),
             fp_v: Default::default(),
-            slots: crate::defaults(N),
+            slots: (0..N).map(|_| FilterSlot::new(kind)).collect(),
             arbiter: Default::default(),
             lane: fp32::MtLane::new(depth),
             lane_tag: Delay::new(fp32::MtLane::latency(depth)),
@@ -124,11 +130,15 @@ impl<const N: usize> Logic for DualPair<N> {
             self.slots[i].valid.next = self.valid[i].val() & self.has_room.val();
             self.slots[i].query.next = self.query[i].val();
             self.slots[i].tag.next = self.tag[i].val();
+            self.slots[i].operands.next = 0.into();
             self.miss_valid[i].next = self.slots[i].miss_valid.val();
             self.miss_tag[i].next = self.slots[i].miss_tag.val();
             if self.slots[i].has_query.val() {
                 self.requests.next = self.requests.val() | self.slot_bit[i].val();
             }
+        }
+        for i in 0..self.operands.len() {
+            self.slots[i].operands.next = self.operands[i].val();
         }
         // The fp32 lane takes the granted slot's head.
         self.arbiter.request.next = self.requests.val();
@@ -153,10 +163,11 @@ impl<const N: usize> Logic for DualPair<N> {
     }
 }
 
-/// Verilog of a pair of `N` filter lanes and an fp32 lane at `depth`, top module `top`.
-pub fn dual_pair_verilog<const N: usize>(depth: usize) -> String {
+/// Verilog of a pair of `N` filter lanes of `kind` and an fp32 lane at `depth`, top module
+/// `top`.
+pub fn dual_pair_verilog<const N: usize>(depth: usize, kind: SlotFilter) -> String {
     crate::top::with_build_stack(move || {
-        let mut pair = DualPair::<N>::new(depth);
+        let mut pair = DualPair::<N>::new(depth, kind);
         pair.connect_all();
         generate_verilog(&pair)
     })

@@ -1,9 +1,11 @@
-//! One slot of a dual-precision pair ([`super::pair`]): a [`BfpFilter`] and the queue of the
-//! queries it forwards.
+//! One slot of a dual-precision pair ([`super::pair`]): a filter lane ([`SlotFilter`]: the
+//! bfp filter, or the Plücker filter fed the query's stored vectors;
+//! [`super::slot_filter`]) and the queue of the queries it forwards.
 //!
-//! A query (fp32 words, the register map's order: orig, dir, v0, v1, v2, t_min) and its tag
-//! are taken when `valid`. A certain miss comes out on `miss_valid`/`miss_tag` the filter's
-//! `LATENCY` after it; every other query joins the queue, whose head shows on `head` while
+//! A query (fp32 words, the register map's order: orig, dir, v0, v1, v2, t_min), its tag
+//! and, for a Plücker slot, its operands ([`super::plucker_operands`]) are taken when
+//! `valid`. A certain miss comes out on `miss_valid`/`miss_tag` the filter's latency
+//! ([`miss_latency`]) after it; every other query joins the queue, whose head shows on `head` while
 //! `has_query`, and leaves it on `read`. `full` says the slot holds [`QUEUE_DEPTH`] queries
 //! (in its filter and its queue together: a credit count), so a caller that takes no query
 //! while it is set never overflows the queue.
@@ -12,7 +14,9 @@
 
 use rust_hdl::prelude::*;
 
-use super::filter::{self, BfpFilter};
+use super::plucker_operands::OPERAND_BITS;
+pub use super::slot_filter::SlotFilter;
+use super::slot_filter::{BfpWords, PluckerWords};
 use crate::mt::delay::Delay;
 use crate::regmap::OPERAND_COUNT;
 use crate::top::stream::{QUERY_BITS, TAG_BITS};
@@ -33,12 +37,16 @@ const _: () = assert!(QUERY_BITS == 512 && TAG == 24 && OPERAND_COUNT == 16);
 /// The forward queue (rust-hdl's FIFO: `data_out` shows the head while not `empty`).
 type ForwardQueue = SynchronousFIFO<Bits<ENTRY_BITS>, QUEUE_ADDR_BITS, PENDING_BITS, 1>;
 
-/// Clock edges from a query to its `miss_valid`.
-pub const MISS_LATENCY: usize = filter::LATENCY;
+/// Clock edges from a query to its `miss_valid`: the filter's latency.
+pub const fn miss_latency(kind: SlotFilter) -> usize {
+    kind.latency()
+}
 
 /// Clock edges from a forwarded query to its `has_query` when the queue was empty: the
 /// filter's, then the queue's write and the read of its memory.
-pub const QUEUED_LATENCY: usize = filter::LATENCY + 2;
+pub const fn queued_latency(kind: SlotFilter) -> usize {
+    miss_latency(kind) + 2
+}
 
 #[derive(LogicBlock)]
 pub struct FilterSlot {
@@ -46,6 +54,8 @@ pub struct FilterSlot {
     pub valid: Signal<In, Bit>,
     pub query: Signal<In, Bits<QUERY_BITS>>,
     pub tag: Signal<In, Bits<TAG>>,
+    /// The query's Plücker operands (read by a Plücker slot only).
+    pub operands: Signal<In, Bits<OPERAND_BITS>>,
     /// A certain miss (no hit, t = u = v = 0) and its tag.
     pub miss_valid: Signal<Out, Bit>,
     pub miss_tag: Signal<Out, Bits<TAG>>,
@@ -55,7 +65,9 @@ pub struct FilterSlot {
     pub read: Signal<In, Bit>,
     /// The slot holds `QUEUE_DEPTH` queries: take none.
     pub full: Signal<Out, Bit>,
-    filter: BfpFilter,
+    /// The slot's one filter: a bfp filter or a Plücker filter (the other list is empty).
+    bfp: Vec<BfpWords>,
+    plucker: Vec<PluckerWords>,
     /// The query and tag wait beside the filter for its decision.
     held: Delay<Bits<ENTRY_BITS>>,
     queue: ForwardQueue,
@@ -63,27 +75,37 @@ pub struct FilterSlot {
     queue_depth: Constant<Bits<PENDING_BITS>>,
     /// The credit count while it is updated.
     count: Signal<Local, Bits<PENDING_BITS>>,
+    /// The filter's decision: out (`valid_out`), a certain miss, forwarded.
+    decided: Signal<Local, Bit>,
+    certain: Signal<Local, Bit>,
+    uncertain: Signal<Local, Bit>,
 }
 
-impl Default for FilterSlot {
-    fn default() -> Self {
+impl FilterSlot {
+    pub fn new(kind: SlotFilter) -> Self {
+        let one_if = |on: bool| usize::from(on);
         Self {
             clock: Default::default(),
             valid: Default::default(),
             query: Default::default(),
             tag: Default::default(),
+            operands: Default::default(),
             miss_valid: Default::default(),
             miss_tag: Default::default(),
             has_query: Default::default(),
             head: Default::default(),
             read: Default::default(),
             full: Default::default(),
-            filter: Default::default(),
-            held: Delay::new(filter::LATENCY),
+            bfp: crate::defaults(one_if(kind == SlotFilter::Bfp)),
+            plucker: crate::defaults(one_if(kind == SlotFilter::Plucker)),
+            held: Delay::new(miss_latency(kind)),
             queue: Default::default(),
             pending: Default::default(),
             queue_depth: Constant::new((QUEUE_DEPTH as u64).to_bits()),
             count: Default::default(),
+            decided: Default::default(),
+            certain: Default::default(),
+            uncertain: Default::default(),
         }
     }
 }
@@ -91,30 +113,33 @@ impl Default for FilterSlot {
 impl Logic for FilterSlot {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, filter, held, queue, pending);
-        self.filter.valid.next = self.valid.val();
-        self.filter.orig[0].next = self.query.val().get_bits::<32>(0);
-        self.filter.orig[1].next = self.query.val().get_bits::<32>(32);
-        self.filter.orig[2].next = self.query.val().get_bits::<32>(64);
-        self.filter.dir[0].next = self.query.val().get_bits::<32>(96);
-        self.filter.dir[1].next = self.query.val().get_bits::<32>(128);
-        self.filter.dir[2].next = self.query.val().get_bits::<32>(160);
-        self.filter.v0[0].next = self.query.val().get_bits::<32>(192);
-        self.filter.v0[1].next = self.query.val().get_bits::<32>(224);
-        self.filter.v0[2].next = self.query.val().get_bits::<32>(256);
-        self.filter.v1[0].next = self.query.val().get_bits::<32>(288);
-        self.filter.v1[1].next = self.query.val().get_bits::<32>(320);
-        self.filter.v1[2].next = self.query.val().get_bits::<32>(352);
-        self.filter.v2[0].next = self.query.val().get_bits::<32>(384);
-        self.filter.v2[1].next = self.query.val().get_bits::<32>(416);
-        self.filter.v2[2].next = self.query.val().get_bits::<32>(448);
-        self.filter.t_min.next = self.query.val().get_bits::<32>(480);
+        clock!(self, clock, held, queue, pending);
+        self.decided.next = false;
+        self.certain.next = false;
+        self.uncertain.next = false;
+        for i in 0..self.bfp.len() {
+            self.bfp[i].clock.next = self.clock.val();
+            self.bfp[i].valid.next = self.valid.val();
+            self.bfp[i].query.next = self.query.val();
+            self.decided.next = self.bfp[i].valid_out.val();
+            self.certain.next = self.bfp[i].miss.val();
+            self.uncertain.next = self.bfp[i].forward.val();
+        }
+        for i in 0..self.plucker.len() {
+            self.plucker[i].clock.next = self.clock.val();
+            self.plucker[i].valid.next = self.valid.val();
+            self.plucker[i].query.next = self.query.val();
+            self.plucker[i].operands.next = self.operands.val();
+            self.decided.next = self.plucker[i].valid_out.val();
+            self.certain.next = self.plucker[i].miss.val();
+            self.uncertain.next = self.plucker[i].forward.val();
+        }
         self.held.d.next = bit_cast::<ENTRY_BITS, QUERY_BITS>(self.query.val())
             | (bit_cast::<ENTRY_BITS, TAG>(self.tag.val()) << 512);
         // Out of the filter: a certain miss is answered, the rest queued.
-        self.miss_valid.next = self.filter.valid_out.val() & self.filter.miss.val();
+        self.miss_valid.next = self.decided.val() & self.certain.val();
         self.miss_tag.next = self.held.q.val().get_bits::<TAG>(512);
-        self.queue.write.next = self.filter.valid_out.val() & self.filter.forward.val();
+        self.queue.write.next = self.decided.val() & self.uncertain.val();
         self.queue.data_in.next = self.held.q.val();
         self.has_query.next = !self.queue.empty.val();
         self.head.next = self.queue.data_out.val();

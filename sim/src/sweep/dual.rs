@@ -24,7 +24,13 @@ use super::layout::{parent_dir, write_json, Layout};
 use super::quality::Psnr;
 use super::render_job::{reference, render_scene};
 use super::synth_cache::{synthesize_cached, SynthRecord};
-use crate::dual_pair::{built_pair, pair_verilog, PairConfig, PairIntersector, SLOTS};
+use hdl::dual::pair::SlotFilter;
+
+use crate::dual_pair::{built_pair, pair_verilog, PairConfig, PairIntersector};
+
+/// The slot counts the sweep co-simulates its bfp pair at: up to four, where the fp32 lane
+/// saturates at the thesis scenes' forwarded share (docs/precision.md).
+pub const COSIM_SLOTS: std::ops::RangeInclusive<usize> = 1..=4;
 
 /// One scene through one pair.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -115,7 +121,11 @@ fn synthesise_pair(layout: &Layout, depth: usize) -> Result<Vec<PairSynth>> {
     [1, 2]
         .into_iter()
         .map(|slots| {
-            let config = PairConfig { slots, depth };
+            let config = PairConfig {
+                slots,
+                depth,
+                filter: SlotFilter::Bfp,
+            };
             let verilog = pair_verilog(&config)?;
             let id = format!(
                 "pair_{}_d{depth}_s{slots}",
@@ -229,8 +239,12 @@ fn cosimulate(
     fallback: &ModelIntersector,
 ) -> Result<Vec<PairCosim>> {
     let mut records = Vec::new();
-    for slots in SLOTS {
-        let pair = PairConfig { slots, depth };
+    for slots in COSIM_SLOTS {
+        let pair = PairConfig {
+            slots,
+            depth,
+            filter: SlotFilter::Bfp,
+        };
         let hw = PairIntersector::new(&pair)
             .with_context(|| format!("building the Verilated {pair}"))?;
         for scene in &config.cosim_scenes {

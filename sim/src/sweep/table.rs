@@ -420,7 +420,7 @@ fn pair_hardware(s: &mut String, results: &Results) -> Result<()> {
     for d in &built {
         let hw = d.hardware.as_ref().expect("filtered");
         let fit = hw.fit();
-        for slots in crate::dual_pair::SLOTS {
+        for slots in super::dual::COSIM_SLOTS {
             let runs: Vec<_> = hw.cosim.iter().filter(|c| c.slots == slots).collect();
             let Some(rate) = hw.tests_per_cycle(slots) else {
                 continue;

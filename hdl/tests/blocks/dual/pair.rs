@@ -1,12 +1,15 @@
-//! `hdl::dual::pair`: two bfp filter lanes sharing an fp32 lane, streamed with random gaps,
-//! every answer bit for bit the model's `DualIntersector` (bfp18/fp32) and every query
-//! answered exactly once, also when the fp32 lane is the bottleneck and `ready` falls.
+//! `hdl::dual::pair`: two filter lanes (bfp, or Plücker fed the queries' stored vectors)
+//! sharing an fp32 lane, streamed with random gaps, every answer bit for bit the model's
+//! `DualIntersector` (bfp18/fp32 with that filter) and every query answered exactly once,
+//! also when the fp32 lane is the bottleneck and `ready` falls.
 
-use hdl::dual::pair::{forward_latency, DualPair, MISS_LATENCY, QUEUE_DEPTH};
+use hdl::dual::pair::{forward_latency, miss_latency, DualPair, SlotFilter, QUEUE_DEPTH};
+use hdl::dual::plucker_operands::{operand_words, OPERAND_BITS};
 use hdl::dual::WIDTH;
 use hdl::formats::fp32;
 use hdl::mt::{query_words, Lane};
-use hw_model::dual::{DualIntersector, FormatPair};
+use hw_model::dual::plucker::datapath;
+use hw_model::dual::{DualIntersector, Filter, FilterKind, FormatPair, PluckerDecisions};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
@@ -47,6 +50,16 @@ fn query_bits(q: &MtQuery) -> Bits<512> {
     bits
 }
 
+/// The Plücker operands of `q` as the pair's port takes them.
+fn operand_bits(q: &MtQuery) -> Bits<OPERAND_BITS> {
+    let ops = datapath(q, WIDTH).map(|(ops, _)| ops);
+    let mut bits = Bits::<OPERAND_BITS>::default();
+    for (k, &w) in operand_words(ops.as_ref()).iter().enumerate() {
+        bits.set_bits::<32>(32 * k, u64::from(w).to_bits());
+    }
+    bits
+}
+
 fn f32_of(bits: Bits<32>) -> f32 {
     f32::from_bits(bits.to_u64() as u32)
 }
@@ -60,12 +73,13 @@ fn tag(slot: usize, index: usize) -> usize {
 /// when `offer(cycle, s)`; each offer is held until `ready` takes it. Panics if an answer is
 /// doubled, comes for a query not taken, or some query is never answered.
 fn run(
+    kind: SlotFilter,
     queries: &[Vec<MtQuery>; N],
     mut offer: impl FnMut(usize, usize) -> bool + Send + 'static,
 ) -> Run {
     let queries = queries.clone();
     hdl::top::with_build_stack(move || {
-        let mut uut = DualPair::<N>::new(DEPTH);
+        let mut uut = DualPair::<N>::new(DEPTH, kind);
         uut.connect_all();
         let total: usize = queries.iter().map(Vec::len).sum();
         let mut next = [0; N];
@@ -87,6 +101,9 @@ fn run(
                 uut.valid[s].next = offered[s];
                 uut.query[s].next = query_bits(&q);
                 uut.tag[s].next = (tag(s, next[s]) as u64).to_bits();
+                if kind == SlotFilter::Plucker {
+                    uut.operands[s].next = operand_bits(&q);
+                }
             }
             uut.clock.next = Clock { clk: false };
             assert!(simulate(&mut uut, 10_000), "logic did not settle");
@@ -152,14 +169,22 @@ fn run(
     })
 }
 
-fn model() -> DualIntersector {
-    DualIntersector::new(FormatPair::parse(&format!("bfp{WIDTH}/fp32")).unwrap(), 0).unwrap()
+/// The model of a pair with `kind`'s filter.
+fn model(kind: SlotFilter) -> DualIntersector {
+    let pair = FormatPair::parse(&format!("bfp{WIDTH}/fp32")).unwrap();
+    let filter = match kind {
+        SlotFilter::Bfp => FilterKind::Bfp,
+        SlotFilter::Plucker => FilterKind::Plucker(PluckerDecisions::Signs),
+    };
+    DualIntersector::with_filter(Filter::new(pair, 0, filter).unwrap())
 }
+
+const KINDS: [SlotFilter; 2] = [SlotFilter::Bfp, SlotFilter::Plucker];
 
 /// Every answer is the model's bit for bit, on the port the model says (a certain miss on
 /// the slot's miss port, the rest from the fp32 lane). Returns the forwarded count.
-fn assert_model(queries: &[Vec<MtQuery>; N], run: &Run) -> usize {
-    let model = model();
+fn assert_model(kind: SlotFilter, queries: &[Vec<MtQuery>; N], run: &Run) -> usize {
+    let model = model(kind);
     let mut forwarded = 0;
     for (s, (slot, fates)) in queries.iter().zip(&run.fates).enumerate() {
         let mut want = vec![MtResult::default(); slot.len()];
@@ -186,9 +211,16 @@ fn hit(rng: &mut StdRng) -> MtQuery {
     MtQuery::aimed(p(rng), [p(rng), p(rng), p(rng)], (a, b), 0.0)
 }
 
-/// Queries of every kind, hits among them, into both slots with random gaps.
+/// Queries of every kind, hits among them, into both slots with random gaps, for either
+/// filter.
 #[test]
 fn streamed_queries_equal_the_model_and_each_is_answered_once() {
+    for kind in KINDS {
+        streamed(kind);
+    }
+}
+
+fn streamed(kind: SlotFilter) {
     let mut rng = StdRng::seed_from_u64(91);
     let queries: [Vec<MtQuery>; N] = std::array::from_fn(|_| {
         (0..600)
@@ -201,10 +233,10 @@ fn streamed_queries_equal_the_model_and_each_is_answered_once() {
             .collect()
     });
     let mut gaps = StdRng::seed_from_u64(92);
-    let run = run(&queries, move |_, _| gaps.gen_range(0..4) != 0);
-    let forwarded = assert_model(&queries, &run);
+    let run = run(kind, &queries, move |_, _| gaps.gen_range(0..4) != 0);
+    let forwarded = assert_model(kind, &queries, &run);
     println!(
-        "{} queries, {forwarded} forwarded, {} cycles, {} stall cycles",
+        "{kind:?}: {} queries, {forwarded} forwarded, {} cycles, {} stall cycles",
         2 * 600,
         run.cycles,
         run.stalls
@@ -219,8 +251,8 @@ fn a_forwarded_flood_holds_the_inputs_back_and_loses_nothing() {
     let mut rng = StdRng::seed_from_u64(93);
     let queries: [Vec<MtQuery>; N] =
         std::array::from_fn(|_| (0..300).map(|_| hit(&mut rng)).collect());
-    let run = run(&queries, |_, _| true);
-    assert_eq!(assert_model(&queries, &run), 600);
+    let run = run(SlotFilter::Bfp, &queries, |_, _| true);
+    assert_eq!(assert_model(SlotFilter::Bfp, &queries, &run), 600);
     assert!(run.stalls > 200, "{} stall cycles", run.stalls);
     // One answer a cycle from the first to the last: the lane never idles.
     let answers: Vec<usize> = run.fates.iter().flatten().map(|f| f.answered).collect();
@@ -247,34 +279,43 @@ fn a_forwarded_flood_holds_the_inputs_back_and_loses_nothing() {
     }
 }
 
-/// Alone in the pair, a certain miss is answered `MISS_LATENCY` cycles after it is taken,
-/// a forwarded query `forward_latency(depth)`.
+/// Alone in the pair, a certain miss is answered `miss_latency` cycles after it is taken,
+/// a forwarded query `forward_latency(kind, depth)`, for either filter.
 #[test]
 fn isolated_queries_take_the_documented_latencies() {
+    for kind in KINDS {
+        isolated(kind);
+    }
+}
+
+fn isolated(kind: SlotFilter) {
     let mut rng = StdRng::seed_from_u64(94);
-    let model = model();
+    let model = model(kind);
     let mut miss = shaped(&mut rng);
     while !model.filter.certain_miss(&miss, 1.0) {
         miss = shaped(&mut rng);
     }
     let queries: [Vec<MtQuery>; N] = [vec![miss, hit(&mut rng)], vec![hit(&mut rng)]];
     // Slot 0 offers at cycle 0 and 100, slot 1 at cycle 200: nothing overlaps.
-    let run = run(&queries, |cycle, s| {
+    let run = run(kind, &queries, |cycle, s| {
         cycle == [0, 200][s] || (s == 0 && cycle == 100)
     });
-    assert_model(&queries, &run);
+    assert_model(kind, &queries, &run);
     let latency = |f: &Fate| f.answered - f.taken;
-    assert_eq!(latency(&run.fates[0][0]), MISS_LATENCY);
-    assert_eq!(latency(&run.fates[0][1]), forward_latency(DEPTH));
-    assert_eq!(latency(&run.fates[1][0]), forward_latency(DEPTH));
+    assert_eq!(latency(&run.fates[0][0]), miss_latency(kind));
+    assert_eq!(latency(&run.fates[0][1]), forward_latency(kind, DEPTH));
+    assert_eq!(latency(&run.fates[1][0]), forward_latency(kind, DEPTH));
 }
 
 /// Its Verilog is what Vivado would read (the traversal unit's waiver, as for the filter),
-/// also with one slot, whose one-bit vectors take no bit select.
+/// also with one slot, whose one-bit vectors take no bit select; with either filter.
 #[test]
 fn verilog_passes_verilator_lint() {
-    let verilogs = [verilog::<1>(DEPTH), verilog::<N>(DEPTH)];
-    lint_clean(&verilogs, hdl::verilog::UNIT_VERILATOR_WAIVERS);
+    let verilogs = KINDS.map(|kind| [verilog::<1>(DEPTH, kind), verilog::<N>(DEPTH, kind)]);
+    lint_clean(
+        verilogs.as_flattened(),
+        hdl::verilog::UNIT_VERILATOR_WAIVERS,
+    );
 }
 
 /// yosys xc7 resources of two filters sharing an fp32 lane at depth 5 (the depth of the
@@ -285,14 +326,14 @@ fn verilog_passes_verilator_lint() {
 fn dual_pair_resources() {
     println!(
         "{}",
-        hdl::synth::markdown_table(&[verilog::<N>(5)]).unwrap()
+        hdl::synth::markdown_table(&[verilog::<N>(5, SlotFilter::Bfp)]).unwrap()
     );
 }
 
-fn verilog<const S: usize>(depth: usize) -> (String, String) {
+fn verilog<const S: usize>(depth: usize, kind: SlotFilter) -> (String, String) {
     hdl::top::with_build_stack(move || {
-        named(DualPair::<S>::new(depth), "DualPair", |_| {
-            format!("{S} bfp{WIDTH} filters, fp32 depth {depth}")
+        named(DualPair::<S>::new(depth, kind), "DualPair", |_| {
+            format!("{S} {kind:?} bfp{WIDTH} filters, fp32 depth {depth}")
         })
     })
 }
