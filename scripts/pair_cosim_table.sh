@@ -8,7 +8,8 @@
 #
 # Environment: RTFPGA (the binary, default target/release/rtfpga), RTFPGA_THESIS_SCENES
 # (default ../shared/scenes/thesis), SIZE (default 320x180), DEPTH (the fp32 lane's, default
-# 5), FILTER (the slots' filter, `--dual-filter`: bfp or plucker-signs, default bfp), OUT (work
+# 5), FILTER (the slots' filter, `--dual-filter`: bfp or plucker-signs, default bfp), SPAWN
+# (`--spawn`: thesis or format-aware, default cosim's: thesis for this fp32 pair), OUT (work
 # directory, default a temporary one).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -17,6 +18,7 @@ scenes_dir=${RTFPGA_THESIS_SCENES:-$root/../shared/scenes/thesis}
 size=${SIZE:-320x180}
 depth=${DEPTH:-5}
 filter=${FILTER:-bfp}
+spawn=${SPAWN:-thesis}
 out=${OUT:-$(mktemp -d)}
 mkdir -p "$out"
 w=${size%x*}
@@ -39,7 +41,7 @@ for n in "${slot_counts[@]}"; do
     for s in "${scenes[@]}"; do
         log="$out/s${n}_$s.log"
         "$bin" cosim --scene "$scenes_dir/$s" --width "$w" --height "$h" --format bfp18/fp32 \
-            --dual-filter "$filter" --lanes "$n" --depth "$depth" --quiet --out "$out/s${n}_$s.png" > "$log"
+            --dual-filter "$filter" --spawn "$spawn" --lanes "$n" --depth "$depth" --quiet --out "$out/s${n}_$s.png" > "$log"
         shares+=" $(field forwarded_share < "$log") |"
         rates+=" $(field tests_per_cycle < "$log") |"
         tests=$((tests + $(field tests < "$log")))

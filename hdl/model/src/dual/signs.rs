@@ -159,6 +159,28 @@ mod tests {
         }
     }
 
+    /// The classes' edges: every power of two and its neighbours, of either sign.
+    #[test]
+    fn tau_classes_bound_tau_at_powers_of_two() {
+        for e in -149..128 {
+            let x = 2f32.powi(e);
+            for t in [
+                x,
+                f32::from_bits(x.to_bits() + 1),
+                f32::from_bits(x.to_bits() - 1),
+            ] {
+                for t in [t, -t].into_iter().filter(|t| t.is_finite()) {
+                    let (tau, class) = (bfp::t_min_below(t).unwrap(), Tau::of(t));
+                    match class {
+                        Tau::Unknown => assert!(t < 0.0, "{t}"),
+                        Tau::Small => assert!(!tau.lt(Fx::new(-1, RECIPROCAL_MIN)), "{t}"),
+                        Tau::AtLeast(p) => assert!(!tau.lt(Fx::new(1, p)), "{t} {p}"),
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn eps_exp_is_below_eps() {
         let eps = f64::from(crate::mt::DET_EPSILON);
@@ -179,6 +201,7 @@ mod tests {
             prop_oneof![
                 Just(0.0f32),
                 Just(1e-3f32),
+                Just(0.5f32),
                 1e-6f32..10.0,
                 any::<u32>().prop_map(f32::from_bits)
             ],
