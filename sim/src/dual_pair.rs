@@ -18,7 +18,7 @@ use hdl::dual::WIDTH;
 use hdl::mt::query_words;
 use hdl::regmap::OPERAND_COUNT;
 use hw_model::dual::plucker::datapath;
-use hw_model::dual::{FilterKind, FormatPair, PluckerDecisions};
+use hw_model::dual::FormatPair;
 use hw_model::{MtQuery, MtResult};
 use sw_renderer::intersect::Intersector;
 use sw_renderer::rays::EngineError;
@@ -35,14 +35,6 @@ pub fn built_pair() -> FormatPair {
     FormatPair::parse(&format!("bfp{WIDTH}/fp32")).expect("hdl::dual::WIDTH is a bfp width")
 }
 
-/// The model's filter kind of a slot's filter lane.
-pub fn filter_kind(filter: SlotFilter) -> FilterKind {
-    match filter {
-        SlotFilter::Bfp => FilterKind::Bfp,
-        SlotFilter::Plucker => FilterKind::Plucker(PluckerDecisions::Signs),
-    }
-}
-
 /// A pair's shape: `slots` filters of kind `filter` in front of one fp32 lane at pipeline
 /// `depth`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -57,7 +49,7 @@ impl std::fmt::Display for PairConfig {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "{} ", built_pair())?;
         if self.filter != SlotFilter::Bfp {
-            write!(f, "{} ", filter_kind(self.filter))?;
+            write!(f, "{} ", self.filter.model_kind())?;
         }
         write!(f, "pair s{} d{}", self.slots, self.depth)
     }

@@ -8,7 +8,7 @@ use hw_model::dual::{DualIntersector, Filter, FormatPair};
 use hw_model::{MtQuery, MtResult};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use sim::dual_pair::{filter_kind, pair_verilog, PairConfig, PairError, PairIntersector};
+use sim::dual_pair::{pair_verilog, PairConfig, PairError, PairIntersector};
 use std::path::PathBuf;
 use sw_renderer::compare::compare;
 use sw_renderer::intersect::{F32Intersector, Intersector};
@@ -32,7 +32,7 @@ const PAIRS: [PairConfig; 2] = [
 
 fn model(pair: &PairConfig) -> DualIntersector {
     let formats = FormatPair::parse("bfp18/fp32").unwrap();
-    DualIntersector::with_filter(Filter::new(formats, 0, filter_kind(pair.filter)).unwrap())
+    DualIntersector::with_filter(Filter::new(formats, 0, pair.filter.model_kind()).unwrap())
 }
 
 fn point(rng: &mut StdRng, size: f32) -> [f32; 3] {

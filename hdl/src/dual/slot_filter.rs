@@ -4,6 +4,7 @@
 //! slot can keep either in a list (rust-hdl's Verilog takes no port array of a block in a
 //! list). Wires only.
 
+use hw_model::dual::{FilterKind, PluckerDecisions};
 use rust_hdl::prelude::*;
 
 use super::align_add::EXP_BITS;
@@ -40,6 +41,14 @@ impl SlotFilter {
         match self {
             SlotFilter::Bfp => filter::LATENCY,
             SlotFilter::Plucker => plucker_filter::LATENCY,
+        }
+    }
+
+    /// The model's filter, which the lane equals bit for bit.
+    pub fn model_kind(self) -> FilterKind {
+        match self {
+            SlotFilter::Bfp => FilterKind::Bfp,
+            SlotFilter::Plucker => FilterKind::Plucker(PluckerDecisions::Signs),
         }
     }
 }

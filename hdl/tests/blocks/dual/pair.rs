@@ -9,7 +9,7 @@ use hdl::dual::WIDTH;
 use hdl::formats::fp32;
 use hdl::mt::{query_words, Lane};
 use hw_model::dual::plucker::datapath;
-use hw_model::dual::{DualIntersector, Filter, FilterKind, FormatPair, PluckerDecisions};
+use hw_model::dual::{DualIntersector, Filter, FormatPair};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
@@ -172,11 +172,7 @@ fn run(
 /// The model of a pair with `kind`'s filter.
 fn model(kind: SlotFilter) -> DualIntersector {
     let pair = FormatPair::parse(&format!("bfp{WIDTH}/fp32")).unwrap();
-    let filter = match kind {
-        SlotFilter::Bfp => FilterKind::Bfp,
-        SlotFilter::Plucker => FilterKind::Plucker(PluckerDecisions::Signs),
-    };
-    DualIntersector::with_filter(Filter::new(pair, 0, filter).unwrap())
+    DualIntersector::with_filter(Filter::new(pair, 0, kind.model_kind()).unwrap())
 }
 
 const KINDS: [SlotFilter; 2] = [SlotFilter::Bfp, SlotFilter::Plucker];
