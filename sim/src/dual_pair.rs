@@ -30,7 +30,8 @@ use crate::{SimError, VerilatedModel};
 /// The filter slots a pair is built with (one Verilog per count).
 pub const SLOTS: std::ops::RangeInclusive<usize> = 1..=5;
 
-/// The one pair built in hardware: the bfp filter at `hdl::dual::WIDTH` before fp32.
+/// The one format pair built in hardware: bfp at `hdl::dual::WIDTH` before fp32 (its filter
+/// lane the bfp filter or the Plücker lane, [`PairConfig::filter`]).
 pub fn built_pair() -> FormatPair {
     FormatPair::parse(&format!("bfp{WIDTH}/fp32")).expect("hdl::dual::WIDTH is a bfp width")
 }
