@@ -114,18 +114,11 @@ pub const RULES: &[Rule] = &[
     },
     Rule {
         arg: "dual_filter",
-        applies: &[
-            (ModelPair, Values::Any),
-            (HwPair, Values::Only(&["bfp", "plucker-signs"])),
-        ],
+        applies: &[(ModelPair, Values::Any), (HwPair, Values::Any)],
     },
     Rule {
         arg: "scale",
-        applies: &[
-            (Model, Values::Any),
-            (ModelPair, Values::Any),
-            (UnitModel, Values::Any),
-        ],
+        applies: &[(Model, Values::Any), (UnitModel, Values::Any)],
     },
     Rule {
         arg: "edges",

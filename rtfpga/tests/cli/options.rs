@@ -136,7 +136,7 @@ fn an_option_given_where_it_does_not_act_is_refused_naming_where_it_does() {
             let values = sample(&option).unwrap_or_else(|| panic!("no sample value of {option}"));
             for target in targets {
                 let spelled = target
-                    .replace("FILTER/FALLBACK", "fp16/fp32")
+                    .replace("FILTER/FALLBACK", "bfp14/fp32")
                     .replace("hw|both", "hw")
                     .replace("--op", "--op bogus");
                 let spelled: Vec<&str> = spelled.split(' ').collect();
@@ -197,7 +197,7 @@ fn options_that_were_ignored_are_refused() {
         "--format",
         "fp16",
         "--dual-filter",
-        "plucker",
+        "plucker-signs",
     ])
     .fails(1, &["--dual-filter does not act on --engine model:"]);
     r().args(&["--engine", "hw", "--slots", "4"]).fails(
