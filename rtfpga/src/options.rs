@@ -174,8 +174,11 @@ pub const RULES: &[Rule] = &[
     },
 ];
 
-/// The targets of each subcommand (its path of names) and how its command line chooses them.
-pub const SUBCOMMANDS: &[(&[&str], &[(Target, &str)])] = &[
+/// A subcommand's targets, each with how its command line chooses it.
+pub type Targets = &'static [(Target, &'static str)];
+
+/// The targets of each subcommand (its path of names).
+pub const SUBCOMMANDS: &[(&[&str], Targets)] = &[
     (&["render"], RENDER),
     (&["bench"], RENDER),
     (
@@ -217,7 +220,7 @@ pub const SUBCOMMANDS: &[(&[&str], &[(Target, &str)])] = &[
     ),
 ];
 
-const RENDER: &[(Target, &str)] = &[
+const RENDER: Targets = &[
     (F32, "--engine f32"),
     (Model, "--engine model"),
     (ModelPair, "--engine model --format FILTER/FALLBACK"),
@@ -230,7 +233,7 @@ fn rule(arg: &str) -> Option<&'static Rule> {
     RULES.iter().find(|r| r.arg == arg)
 }
 
-fn targets_of(path: &[&str]) -> Option<&'static [(Target, &'static str)]> {
+fn targets_of(path: &[&str]) -> Option<Targets> {
     SUBCOMMANDS
         .iter()
         .find(|(p, _)| *p == path)

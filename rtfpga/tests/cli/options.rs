@@ -276,7 +276,12 @@ fn the_help_is_true() {
         !cosim.contains("model only"),
         "plucker-signs is built:\n{cosim}"
     );
-    assert!(cosim.contains("(bfp, plucker-signs)"), "{cosim}");
+    // Both filters are built: the hardware pair takes every value of --dual-filter.
+    assert!(
+        cosim.contains("[default: bfp] [applies to: --unit mt --format bfp18/fp32]")
+            && cosim.contains("- plucker-signs:"),
+        "{cosim}"
+    );
     let render = rtfpga(&["render", "--help"]).ok();
     assert!(
         !render.contains("`--unit traversal`"),
