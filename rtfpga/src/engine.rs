@@ -38,6 +38,10 @@ pub enum EngineKind {
     /// The traversal unit's bit-accurate model: the scene in its memory, rays in, hits out,
     /// Möller-Trumbore in --format; cycles from its schedule model.
     Traversal,
+    /// The frame unit's bit-accurate model (render only): ray generation, shading and pixel
+    /// sums in the hardware's fp32, rays answered by the traversal unit's model in --format
+    /// (docs/frame.md).
+    Frame,
 }
 
 impl EngineKind {
@@ -51,8 +55,16 @@ impl EngineKind {
             EngineKind::Hw if pair => Target::HwPair,
             EngineKind::Hw => Target::Accelerator,
             EngineKind::Traversal => Target::UnitModel,
+            EngineKind::Frame => Target::FrameModel,
         }
     }
+}
+
+/// The error of asking the frame model to answer the software renderer's rays.
+pub fn frame_is_not_a_ray_engine() -> anyhow::Error {
+    anyhow::anyhow!(
+        "--engine frame renders whole frames (ray generation, shading and pixels in the model), not the software renderer's rays: use it with `rtfpga render`"
+    )
 }
 
 /// Which hardware a co-simulation, Verilog or synthesis command means.
@@ -308,6 +320,7 @@ pub fn make(
         (EngineKind::Traversal, _) => {
             made.engine = Box::new(hw.traversal_engine(scale_exp, lane.advance, chunks)?);
         }
+        (EngineKind::Frame, _) => return Err(frame_is_not_a_ray_engine()),
     }
     Ok(made)
 }
@@ -362,16 +375,19 @@ pub struct Precision {
 pub struct SpawnArgs {
     /// Spawn policy of secondary and shadow rays: thesis (origin offset by the scene's bias)
     /// or format-aware (also a t_min from the format's rounding error, the triangle left
-    /// excluded) [default: thesis for the f32 engine and for fp32, else format-aware].
+    /// excluded) [default: thesis for the f32 and frame engines and for fp32, else
+    /// format-aware].
     #[arg(long, value_parser = choice::<SpawnChoice>())]
     pub spawn: Option<SpawnChoice>,
 }
 
 impl SpawnArgs {
     /// The policy asked for, else the default of `kind` answering in `answers`: the thesis'
-    /// for the f32 engine and for fp32 (they reproduce the reference), else format-aware.
+    /// for the f32 engine and for fp32 (they reproduce the reference) and for the frame
+    /// engine (the only one it has), else format-aware.
     pub fn choice(&self, kind: EngineKind, answers: &Format) -> SpawnChoice {
-        let thesis = kind == EngineKind::F32 || *answers == Format::FP32;
+        let thesis =
+            matches!(kind, EngineKind::F32 | EngineKind::Frame) || *answers == Format::FP32;
         self.spawn.unwrap_or(if thesis {
             SpawnChoice::Thesis
         } else {

@@ -24,6 +24,9 @@ pub enum Target {
     UnitModel,
     /// The traversal unit's RTL.
     Unit,
+    /// The frame unit's bit-accurate model: ray generation, shading and pixel sums around
+    /// the traversal unit's model (untimed).
+    FrameModel,
     /// One operator of a lane (`synth --op`).
     Operator,
     /// Every committed configuration (`verilog --defaults`).
@@ -60,6 +63,7 @@ pub const RULES: &[Rule] = &[
             (HwPair, Values::Any),
             (UnitModel, Values::Any),
             (Unit, Values::Any),
+            (FrameModel, Values::Any),
             (Operator, Values::Any),
             (StreamDesign, Values::Any),
             (TraversalDesign, Values::Any),
@@ -101,6 +105,7 @@ pub const RULES: &[Rule] = &[
         applies: &[
             (UnitModel, Values::Any),
             (Unit, Values::Any),
+            (FrameModel, Values::Any),
             (TraversalDesign, Values::Any),
         ],
     },
@@ -109,6 +114,7 @@ pub const RULES: &[Rule] = &[
         applies: &[
             (UnitModel, Values::Any),
             (Unit, Values::Any),
+            (FrameModel, Values::Any),
             (TraversalDesign, Values::Any),
         ],
     },
@@ -118,7 +124,25 @@ pub const RULES: &[Rule] = &[
     },
     Rule {
         arg: "scale",
-        applies: &[(Model, Values::Any), (UnitModel, Values::Any)],
+        applies: &[
+            (Model, Values::Any),
+            (UnitModel, Values::Any),
+            (FrameModel, Values::Any),
+        ],
+    },
+    Rule {
+        arg: "spawn",
+        applies: &[
+            (F32, Values::Any),
+            (Model, Values::Any),
+            (ModelPair, Values::Any),
+            (Accelerator, Values::Any),
+            (HwPair, Values::Any),
+            (UnitModel, Values::Any),
+            (Unit, Values::Any),
+            // The frame unit spawns as the thesis does: the bias, every hit counting.
+            (FrameModel, Values::Only(&["thesis"])),
+        ],
     },
     Rule {
         arg: "edges",
@@ -130,6 +154,7 @@ pub const RULES: &[Rule] = &[
             (Model, Values::Only(&["none", "triangle-box"])),
             (UnitModel, Values::Only(&["none", "leaf-box"])),
             (Unit, Values::Only(&["none", "leaf-box"])),
+            (FrameModel, Values::Only(&["none", "leaf-box"])),
         ],
     },
     Rule {
@@ -180,7 +205,7 @@ pub type Targets = &'static [(Target, &'static str)];
 /// The targets of each subcommand (its path of names).
 pub const SUBCOMMANDS: &[(&[&str], Targets)] = &[
     (&["render"], RENDER),
-    (&["bench"], RENDER),
+    (&["bench"], BENCH),
     (
         &["cosim"],
         &[
@@ -227,7 +252,15 @@ const RENDER: Targets = &[
     (Accelerator, "--engine hw"),
     (HwPair, "--engine hw --format bfp18/fp32"),
     (UnitModel, "--engine traversal"),
+    (FrameModel, "--engine frame"),
 ];
+
+/// `bench` times the renderer's ray engines: `render`'s but the frame model (its last), which
+/// renders whole frames.
+const BENCH: Targets = match RENDER.split_last() {
+    Some((_, ray_engines)) => ray_engines,
+    None => &[],
+};
 
 fn rule(arg: &str) -> Option<&'static Rule> {
     RULES.iter().find(|r| r.arg == arg)

@@ -211,8 +211,9 @@ impl FloatFormat {
     /// Correctly rounded √a (RNE, FTZ): √±0 = ±0, √+Inf = +Inf, a NaN or a value below zero
     /// gives the canonical NaN. The exact root of `sig × 2^e` is formed as the integer square
     /// root of `sig` shifted left by an even-making amount to `2·man + 6` or `2·man + 7` bits:
-    /// `man + 3` or more root bits, its remainder the sticky flag (the root of an integer is
-    /// never exactly halfway, so one rounding of root + sticky is the correct one).
+    /// `man + 3` or more root bits, its remainder the sticky flag: one rounding of root +
+    /// sticky is the correct one (and a square root is never exactly halfway between two
+    /// floats). Formats up to 28 fraction bits (the root then fits a u64).
     #[inline]
     pub fn sqrt(self, a: u64) -> u64 {
         match self.unpack(a) {
@@ -224,16 +225,13 @@ impl FloatFormat {
                 if (e - shift as i32) % 2 != 0 {
                     shift += 1;
                 }
-                let half_e = (e - shift as i32) / 2;
-                if 2 * self.man + 7 <= 64 {
-                    let x = sig << shift;
-                    let root = x.isqrt();
-                    self.round_pack(false, root, half_e, root * root != x)
-                } else {
-                    let x = (sig as u128) << shift;
-                    let root = x.isqrt();
-                    self.round_pack(false, root, half_e, root * root != x)
-                }
+                debug_assert!(
+                    2 * self.man + 7 <= 64,
+                    "sqrt's root fits a u64 up to man = 28"
+                );
+                let x = sig << shift;
+                let root = x.isqrt();
+                self.round_pack(false, root, (e - shift as i32) / 2, root * root != x)
             }
         }
     }

@@ -313,22 +313,3 @@ fn nan_and_infinity_in_scene_constants_are_refused_at_load() {
         );
     }
 }
-
-#[test]
-#[ignore]
-fn tmp_dump() {
-    let name = std::env::var("DUMP").unwrap();
-    let scene = if name.contains('/') {
-        Scene::load(&name).unwrap()
-    } else {
-        test_scene(&name)
-    };
-    let m = frame(&scene, WIDTH, HEIGHT, 32);
-    let (r, _) = software(&scene, WIDTH, HEIGHT);
-    m.image.save("/tmp/dump_model.png").unwrap();
-    r.save("/tmp/dump_sw.png").unwrap();
-    let d = sw_renderer::compare::diff_heatmap(&m.image, &r).unwrap();
-    d.save("/tmp/dump_diff.png").unwrap();
-    let c = sw_renderer::compare::compare(&m.image, &r).unwrap();
-    eprintln!("{c:?}");
-}

@@ -16,6 +16,7 @@ fn sample(option: &str) -> Option<&'static [&'static str]> {
         "--scale" => &["none"],
         "--edges" => &["exact"],
         "--advance" => &["none"],
+        "--spawn" => &["thesis"],
         "--mode" => &["stream"],
         "--vcd" => &["x.vcd"],
         "--stages" => &["1"],
@@ -86,6 +87,7 @@ fn an_option_given_where_it_does_not_act_is_refused_naming_where_it_does() {
                 "--engine hw",
                 "--engine hw --format bfp18/fp32",
                 "--engine traversal",
+                "--engine frame",
             ],
         ),
         (
@@ -206,6 +208,13 @@ fn options_that_were_ignored_are_refused() {
     );
     r().args(&["--engine", "model", "--depth", "99"])
         .fails(1, &["--depth does not act on --engine model"]);
+    // The frame model has no cycles and spawns as the thesis does.
+    r().args(&["--engine", "frame", "--lanes", "2"])
+        .fails(1, &["--lanes does not act on --engine frame"]);
+    r().args(&["--engine", "frame", "--spawn", "format-aware"])
+        .fails(1, &["--spawn format-aware: --engine frame takes thesis"]);
+    rtfpga(&["bench", "simple_plane", "--engine", "frame"])
+        .fails(1, &["--engine frame renders whole frames", "rtfpga render"]);
     // The schedule model's unit is the RTL's in depth and lanes (its slots may vary).
     r().args(&["--engine", "traversal", "--depth", "99"])
         .fails(1, &["depth = 99", "depth 0 to"]);
@@ -288,7 +297,7 @@ fn the_help_is_true() {
         "render has no --unit:\n{render}"
     );
     assert!(
-        render.contains("[applies to: --engine model (none, triangle-box), --engine traversal (none, leaf-box)]"),
+        render.contains("[applies to: --engine model (none, triangle-box), --engine traversal (none, leaf-box), --engine frame (none, leaf-box)]"),
         "{render}"
     );
     // Every option and positional argument has a description.
