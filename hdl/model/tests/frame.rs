@@ -269,7 +269,8 @@ fn scenes_beyond_the_configuration_are_errors_naming_the_sizes() {
 #[test]
 fn nan_and_infinity_in_scene_constants_are_refused_at_load() {
     let base = test_scene("phong");
-    let cases: Vec<(Box<dyn Fn(&mut Scene)>, &str)> = vec![
+    type Spoil = Box<dyn Fn(&mut Scene)>;
+    let cases: Vec<(Spoil, &str)> = vec![
         (
             Box::new(|s| s.lights[1].color.y = f32::NAN),
             "light 1 (point) colour green is NaN",
@@ -304,9 +305,9 @@ fn nan_and_infinity_in_scene_constants_are_refused_at_load() {
             "(object `cylinder`) corner 2 normal x is NaN",
         ),
     ];
-    for (break_it, message) in cases {
+    for (spoil, message) in cases {
         let mut scene = base.clone();
-        break_it(&mut scene);
+        spoil(&mut scene);
         says(
             &load_error(&scene, 32, 18),
             &[message, "scene `phong`", "must be finite"],

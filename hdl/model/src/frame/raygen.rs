@@ -33,7 +33,7 @@ mod tests {
     fn primary_rays_are_the_reference_cameras_within_a_few_ulps() {
         let m = Mat44::from_row_major([
             0.999945, 0.0, 0.0104718, 0.0, 0.00104703, 0.994989, -0.0999803, 0.0, -0.0104193,
-            0.0999858, 0.994934, 0.0, -0.978596, 17.911879, 75.483369, 1.0,
+            0.0999858, 0.994934, 0.0, -0.978596, 17.911879, 75.483_37, 1.0,
         ]);
         let (w, h, fov) = (320, 180, 36.87f32);
         let reference = Camera::new(m, fov, w, h);
