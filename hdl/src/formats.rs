@@ -5,8 +5,9 @@
 //! [`HwFormat`].
 //!
 //! rust-hdl cannot compute widths from generic parameters, so every derived width is a
-//! parameter of the operator; `float_format!` computes them from (exp, man) once, the fixed
-//! point ones come from `crate::fixed::fixed_format!`.
+//! parameter of the operator ([`crate::widths`] says why and names each); `float_format!`
+//! fills them from [`FloatWidths::of`](crate::widths::FloatWidths::of), the fixed point ones
+//! `crate::fixed::fixed_format!` from [`FixedWidths::of`](crate::widths::FixedWidths::of).
 
 use hw_model::HwFormat;
 
@@ -82,21 +83,19 @@ macro_rules! float_format {
             /// lane feeds the words to its operators and its results out unconverted (no
             /// from_f32 or to_f32 stage).
             pub const RAW_FP32: bool = $e == 8 && $m == 23;
-            // Width parameters, in the order the operators take them (see their docs):
-            // W = 1+E+M, S = M+1, X = E+2 (signed exponent), A = M+4, A1 = M+5.
-            pub type Add = FloatAdd<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $e + 2 }, { $m + 4 }, { $m + 5 }, false>;
-            pub type Sub = FloatAdd<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $e + 2 }, { $m + 4 }, { $m + 5 }, true>;
-            pub type Mul = FloatMul<$e, $m, { 1 + $e + $m }, { $m + 1 }, { 2 * $m + 2 }, { $e + 2 }>;
-            // Recip: the table and product widths of `float::recip` (its docs).
-            pub type Recip = FloatRecip<$e, $m, { 1 + $e + $m }, { $m + 1 }, { $e + 2 },
-                { recip::index_bits($m) }, { recip::d_bits($m) }, { recip::y_bits($m) },
-                { recip::b_bits($m) }, { recip::c_bits($m) }, { 2 * recip::d_bits($m) },
-                { recip::square_bits($m) }, { recip::b_bits($m) + recip::d_bits($m) },
-                { recip::c_bits($m) + recip::square_bits($m) }, { 2 * $m + 2 }>;
-            pub type Lt = FloatLt<$e, $m, { 1 + $e + $m }, { $m + 1 }>;
+            /// The operators' widths (`crate::widths`).
+            const WIDTHS: crate::widths::FloatWidths = crate::widths::FloatWidths::of($e, $m);
+            const RECIP: crate::widths::RecipWidths = WIDTHS.recip;
+            pub type Add = FloatAdd<$e, $m, { WIDTHS.word }, { WIDTHS.significand }, { WIDTHS.exponent }, { WIDTHS.aligned }, { WIDTHS.sum }, false>;
+            pub type Sub = FloatAdd<$e, $m, { WIDTHS.word }, { WIDTHS.significand }, { WIDTHS.exponent }, { WIDTHS.aligned }, { WIDTHS.sum }, true>;
+            pub type Mul = FloatMul<$e, $m, { WIDTHS.word }, { WIDTHS.significand }, { WIDTHS.product }, { WIDTHS.exponent }>;
+            pub type Recip = FloatRecip<$e, $m, { WIDTHS.word }, { WIDTHS.significand }, { WIDTHS.exponent },
+                { RECIP.index }, { RECIP.d }, { RECIP.y }, { RECIP.b }, { RECIP.c }, { RECIP.d_squared },
+                { RECIP.d_squared_kept }, { RECIP.b_product }, { RECIP.c_product }, { RECIP.rounding_product }>;
+            pub type Lt = FloatLt<$e, $m, { WIDTHS.word }, { WIDTHS.significand }>;
             // FromF32: X = 10, the signed range of fp32's exponent.
-            pub type FromF32 = FloatFromF32<$e, $m, { 1 + $e + $m }, { $m + 1 }, 10>;
-            pub type ToF32 = FloatToF32<$e, $m, { 1 + $e + $m }, { $m + 1 }>;
+            pub type FromF32 = FloatFromF32<$e, $m, { WIDTHS.word }, { WIDTHS.significand }, 10>;
+            pub type ToF32 = FloatToF32<$e, $m, { WIDTHS.word }, { WIDTHS.significand }>;
             $crate::formats::operator_table!();
         }
     };

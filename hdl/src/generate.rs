@@ -12,7 +12,7 @@ use crate::regmap;
 use crate::top::stream::{FIFO_DEPTH, IN_LANE_BITS, OUT_LANE_BITS};
 use crate::top::wrapper::{self, TopPort};
 use crate::top::{TopConfig, TopError};
-use crate::traversal::unit::{UnitConfig, UnitConfigError};
+use crate::traversal::config::{UnitConfig, UnitConfigError};
 use crate::traversal::unit_axil;
 
 /// File name of the Verilog (what constraints/ expects).

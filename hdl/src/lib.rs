@@ -5,10 +5,12 @@ pub mod fixed;
 pub mod float;
 pub mod formats;
 pub mod intmul;
+pub(crate) mod macros;
 pub mod mt;
 pub mod operator;
 pub mod pipe;
 pub mod verilog;
+pub mod widths;
 
 // AXI4-Lite slave, register map and C generation (issue 4).
 pub mod axil;

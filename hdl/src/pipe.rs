@@ -33,7 +33,7 @@ impl<T: Synth> Pipe<T> {
 impl<T: Synth> Logic for Pipe<T> {
     #[hdl_gen]
     fn update(&mut self) {
-        self.flop.clock.next = self.clock.val();
+        clock!(self, clock, flop);
         self.flop.d.next = self.d.val();
         if self.registered.val() {
             self.q.next = self.flop.q.val();

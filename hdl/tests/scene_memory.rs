@@ -141,7 +141,10 @@ impl Bench {
             self.uut.triangle_address[0].next = (k as u64).into();
             self.sample_after_edge();
             let at = HEADER_WORDS + NODE_WORDS * n + TRIANGLE_WORDS * k;
-            let mut got: Vec<u32> = (0..9).map(|i| u(self.uut.vert[i].val())).collect();
+            let vertices = self.uut.vertices[0].val();
+            let mut got: Vec<u32> = (0..9)
+                .map(|i| vertices.get_bits::<32>(32 * i).to_u64() as u32)
+                .collect();
             got.push(self.uut.global_index[0].val().to_u64() as u32);
             got.push(u32::from(self.uut.casts_shadow[0].val()));
             assert_eq!(got, words[at..at + 11], "triangle record {k}");

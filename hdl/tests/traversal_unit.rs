@@ -4,9 +4,9 @@
 //! the model's. The Verilated unit runs the larger tests (sim/tests/traversal_unit_verilator.rs).
 
 use hdl::top::with_build_stack;
+use hdl::traversal::config::{unit_verilog, UnitConfig, UnitConfigError, MAX_LANES};
 use hdl::traversal::scene_memory::zynq_address_bits;
 use hdl::traversal::scene_memory_driver::{check_before_load, status_result, LoadStatus};
-use hdl::traversal::unit::{unit_verilog, UnitConfig, UnitConfigError, MAX_LANES};
 use hdl::verilog::{verilator_lint_waiving, UNIT_VERILATOR_WAIVERS};
 use hw_model::traversal::packet::{hit_from_words, HIT_WORDS, RAY_WORDS};
 use hw_model::traversal::scene_image::SceneImage;
@@ -73,27 +73,27 @@ macro_rules! bench {
             }
 
             pub fn load(&mut self, words: &[u32]) -> LoadStatus {
-                self.uut.scene_start.next = true;
+                self.uut.control.scene_start.next = true;
                 self.cycle();
-                self.uut.scene_start.next = false;
+                self.uut.control.scene_start.next = false;
                 for (i, &w) in words.iter().enumerate() {
-                    self.uut.scene_tdata.next = u64::from(w).into();
-                    self.uut.scene_tvalid.next = true;
-                    self.uut.scene_tlast.next = i + 1 == words.len();
+                    self.uut.scene.tdata.next = u64::from(w).into();
+                    self.uut.scene.tvalid.next = true;
+                    self.uut.scene.tlast.next = i + 1 == words.len();
                     self.settle();
-                    assert!(self.uut.scene_tready.val(), "scene word {i} not taken");
+                    assert!(self.uut.scene.tready.val(), "scene word {i} not taken");
                     self.cycle();
                 }
-                self.uut.scene_tvalid.next = false;
+                self.uut.scene.tvalid.next = false;
                 self.cycle();
                 self.settle();
                 let u = &self.uut;
                 LoadStatus {
                     loading: false,
-                    loaded: u.scene_loaded.val(),
-                    error_code: u.scene_error_code.val().to_u64(),
-                    error_word: u.scene_error_word.val().to_u64() as u32,
-                    error_value: u.scene_error_value.val().to_u64() as u32,
+                    loaded: u.control.scene_loaded.val(),
+                    error_code: u.control.scene_error_code.val().to_u64(),
+                    error_word: u.control.scene_error_word.val().to_u64() as u32,
+                    error_value: u.control.scene_error_value.val().to_u64() as u32,
                     nodes: words[2],
                     triangles: words[3],
                 }
@@ -120,14 +120,14 @@ macro_rules! bench {
                                     << (32 * k) as u64);
                         }
                     }
-                    self.uut.ray_tdata.next = data;
-                    self.uut.ray_tvalid.next = next < rays.len();
-                    self.uut.hit_tready.next = !rng.gen_bool(stall);
+                    self.uut.ray.tdata.next = data;
+                    self.uut.ray.tvalid.next = next < rays.len();
+                    self.uut.hit.tready.next = !rng.gen_bool(stall);
                     self.settle();
-                    let took_ray = self.uut.ray_tvalid.val() && self.uut.ray_tready.val();
-                    let took_hit = self.uut.hit_tvalid.val() && self.uut.hit_tready.val();
+                    let took_ray = self.uut.ray.tvalid.val() && self.uut.ray.tready.val();
+                    let took_hit = self.uut.hit.tvalid.val() && self.uut.hit.tready.val();
                     if took_hit {
-                        let packet = self.uut.hit_tdata.val();
+                        let packet = self.uut.hit.tdata.val();
                         let words: [u32; HIT_WORDS] =
                             std::array::from_fn(|k| packet.get_bits::<32>(32 * k).to_u64() as u32);
                         let (id, hit) = hit_from_words(&words);
@@ -150,12 +150,12 @@ macro_rules! bench {
                 self.settle();
                 let u = &self.uut;
                 let c = |x: Bits<32>| x.to_u64();
-                assert!(!u.overflow.val(), "stack overflow reported");
+                assert!(!u.control.overflow.val(), "stack overflow reported");
                 let counters = UnitCounters {
-                    rays: c(u.count_rays.val()),
-                    node_visits: c(u.count_node_visits.val()),
-                    box_tests: c(u.count_box_tests.val()),
-                    mt_tests: c(u.count_mt_tests.val()),
+                    rays: c(u.counters.rays.val()),
+                    node_visits: c(u.counters.node_visits.val()),
+                    box_tests: c(u.counters.box_tests.val()),
+                    mt_tests: c(u.counters.mt_tests.val()),
                 };
                 (answers.into_iter().map(Option::unwrap).collect(), counters)
             }

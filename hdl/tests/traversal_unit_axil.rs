@@ -7,8 +7,8 @@
 use hdl::regmap::unit::{self as map, MemoryWord};
 use hdl::regmap::{ConfigWord, RESP_OKAY, RESP_SLVERR};
 use hdl::top::with_build_stack;
+use hdl::traversal::config::UnitConfig;
 use hdl::traversal::scene_memory::LoadError;
-use hdl::traversal::unit::UnitConfig;
 use hdl::traversal::unit_axil::{fp32::Axil4x5, unit_axil};
 use hdl::verilog::{verilator_lint_waiving, UNIT_VERILATOR_WAIVERS};
 use hw_model::traversal::packet::{hit_from_words, HIT_WORDS, RAY_WORDS};
@@ -121,13 +121,13 @@ impl Bench {
     fn load(&mut self, words: &[u32]) -> u32 {
         assert_eq!(self.write(map::CONTROL, map::LOAD_START), RESP_OKAY);
         for (i, &w) in words.iter().enumerate() {
-            self.uut.scene_tdata.next = u64::from(w).into();
-            self.uut.scene_tvalid.next = true;
-            self.uut.scene_tlast.next = i + 1 == words.len();
-            self.wait("scene_tready", |u| u.scene_tready.val());
+            self.uut.scene.tdata.next = u64::from(w).into();
+            self.uut.scene.tvalid.next = true;
+            self.uut.scene.tlast.next = i + 1 == words.len();
+            self.wait("scene tready", |u| u.scene.tready.val());
             self.cycle();
         }
-        self.uut.scene_tvalid.next = false;
+        self.uut.scene.tvalid.next = false;
         self.cycle();
         self.read(map::STATUS)
     }
@@ -139,7 +139,7 @@ impl Bench {
     /// Streams `rays` in one at a time and collects the answers by id.
     fn run(&mut self, rays: &[UnitRay]) -> Vec<Option<Hit>> {
         let mut answers: Vec<Option<Option<Hit>>> = vec![None; rays.len()];
-        self.uut.hit_tready.next = true;
+        self.uut.hit.tready.next = true;
         let (mut next, mut done, mut quiet) = (0, 0, 0);
         while done < rays.len() {
             let mut data = Bits::<{ 32 * RAY_WORDS }>::default();
@@ -150,12 +150,12 @@ impl Bench {
                             << (32 * k) as u64);
                 }
             }
-            self.uut.ray_tdata.next = data;
-            self.uut.ray_tvalid.next = next < rays.len();
+            self.uut.ray.tdata.next = data;
+            self.uut.ray.tvalid.next = next < rays.len();
             self.settle();
-            let took_ray = self.uut.ray_tvalid.val() && self.uut.ray_tready.val();
-            if self.uut.hit_tvalid.val() {
-                let packet = self.uut.hit_tdata.val();
+            let took_ray = self.uut.ray.tvalid.val() && self.uut.ray.tready.val();
+            if self.uut.hit.tvalid.val() {
+                let packet = self.uut.hit.tdata.val();
                 let words: [u32; HIT_WORDS] =
                     std::array::from_fn(|k| packet.get_bits::<32>(32 * k).to_u64() as u32);
                 let (id, hit) = hit_from_words(&words);
@@ -165,7 +165,7 @@ impl Bench {
                 );
                 done += 1;
             }
-            let moved = took_ray || self.uut.hit_tvalid.val();
+            let moved = took_ray || self.uut.hit.tvalid.val();
             self.cycle();
             next += usize::from(took_ray);
             quiet = if moved { 0 } else { quiet + 1 };
@@ -175,7 +175,7 @@ impl Bench {
                 rays.len()
             );
         }
-        self.uut.ray_tvalid.next = false;
+        self.uut.ray.tvalid.next = false;
         answers.into_iter().map(Option::unwrap).collect()
     }
 }

@@ -105,7 +105,7 @@ pub fn run(a: Args, given: &Given) -> Result<()> {
 enum Build {
     Accelerator(Mode),
     Pair(PairConfig),
-    Unit(hdl::traversal::unit::UnitConfig),
+    Unit(hdl::traversal::config::UnitConfig),
 }
 
 impl Build {
@@ -252,7 +252,11 @@ fn print_comparison(a: &Args, hw: &RenderOutput, sw: &RenderOutput) -> Result<()
 /// `--unit traversal`: the render's rays through the Verilated traversal unit (chunked
 /// passes when the scene exceeds its memory, unless `--no-chunks`), its counters and cycles
 /// per render ray.
-fn run_traversal(a: &Args, scene: &Scene, config: &hdl::traversal::unit::UnitConfig) -> Result<()> {
+fn run_traversal(
+    a: &Args,
+    scene: &Scene,
+    config: &hdl::traversal::config::UnitConfig,
+) -> Result<()> {
     let engine = UnitEngine::new(config, Traffic::FULL_SPEED, !a.chunks.no_chunks)?;
     let name = RayEngine::name(&engine);
     Verilated::of(name.clone(), engine.model()).line().print();

@@ -14,7 +14,7 @@ use hdl::operator::Op;
 use hdl::synth::{synthesize, SynthOptions, SynthReport};
 use hdl::top::fit::{fit_from, synthesize_top, LaneFit, Usage, XC7Z020};
 use hdl::top::TopConfig;
-use hdl::traversal::unit::unit_verilog;
+use hdl::traversal::config::unit_verilog;
 use sim::dual_pair::{pair_verilog, PairConfig};
 
 #[derive(ClapArgs)]

@@ -14,7 +14,7 @@ use hdl::generate::{
     default_configs, default_unit_config, generate, unit_dir_name, unit_files, write_files,
 };
 use hdl::top::TopConfig;
-use hdl::traversal::unit::UnitConfig;
+use hdl::traversal::config::UnitConfig;
 
 #[derive(ClapArgs)]
 pub struct Args {

@@ -10,8 +10,8 @@ use clap::builder::TypedValueParser;
 use clap::{Args as ClapArgs, ValueEnum};
 use hdl::dual::pair::SlotFilter;
 use hdl::top::TopConfig;
+use hdl::traversal::config::{UnitConfig, BUILT_MEMORY_BITS};
 use hdl::traversal::scene_memory;
-use hdl::traversal::unit::{UnitConfig, BUILT_MEMORY_BITS};
 use hw_model::dual::{DualIntersector, Filter, FilterKind, FormatChoice};
 use hw_model::precision::{auto_scale_exp, SceneRange, SpawnChoice};
 use hw_model::traversal::{SceneCapacity, SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
@@ -111,7 +111,7 @@ fn lanes_help() -> String {
         "Parallel Möller-Trumbore lanes: the accelerator 1 to {}, the traversal unit 1 to {}, a \
          hardware pair its filter slots ({} to {})",
         hdl::top::MAX_LANES,
-        hdl::traversal::unit::MAX_LANES,
+        hdl::traversal::config::MAX_LANES,
         slots.start(),
         slots.end()
     )

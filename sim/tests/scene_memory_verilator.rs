@@ -5,37 +5,38 @@
 //! nodes and 8,192 triangles likewise with `-- --ignored`. The rust-hdl simulation
 //! (hdl/tests/scene_memory.rs) carries the malformed images one by one.
 
-use hdl::traversal::scene_memory::{SceneMemory12x13, SceneMemory9x10};
+use hdl::traversal::scene_memory::{SceneMemory12x13, SceneMemory9x10, VERTEX_BITS};
 use hdl::traversal::scene_memory_driver::{
     check_before_load, status_result, LoadStatus, MemoryConfig,
 };
 use hw_model::traversal::scene_image::{SceneImage, HEADER_WORDS, NODE_WORDS, TRIANGLE_WORDS};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use rust_hdl::prelude::*;
+use sim::verilator::Direction;
 use sim::{build, BuildOptions, ModelSpec, VerilatedModel};
 use sw_renderer::scene::Scene;
 use sw_renderer::thesis_scenes;
 use sw_renderer::trace::PreparedScene;
 
-/// Cycles of input values by port name, run at once, outputs looked up by name.
+/// Cycles of input values by port name, run at once, outputs looked up by name in each
+/// cycle's packed output words.
 struct Run<'a> {
     sim: &'a mut VerilatedModel,
     inputs: Vec<String>,
-    outputs: Vec<String>,
     cycles: Vec<Vec<u64>>,
 }
 
 impl<'a> Run<'a> {
     fn new(sim: &'a mut VerilatedModel) -> Self {
-        let names = |ports: &[sim::verilator::Port]| ports.iter().map(|p| p.name.clone()).collect();
-        let (inputs, outputs) = (
-            names(&sim.interface().inputs),
-            names(&sim.interface().outputs),
-        );
+        let inputs = sim
+            .interface()
+            .inputs
+            .iter()
+            .map(|p| p.name.clone())
+            .collect();
         Run {
             sim,
             inputs,
-            outputs,
             cycles: Vec::new(),
         }
     }
@@ -50,8 +51,8 @@ impl<'a> Run<'a> {
         self.cycles.push(values);
     }
 
-    /// Runs the cycles so far; per cycle, a lookup of output values by name.
-    fn run(&mut self) -> Vec<Vec<u64>> {
+    /// Runs the cycles so far; per cycle, the packed output words.
+    fn run(&mut self) -> Vec<Vec<u32>> {
         let iface = self.sim.interface().clone();
         let mut words = Vec::new();
         for c in &self.cycles {
@@ -59,21 +60,19 @@ impl<'a> Run<'a> {
         }
         let mut out = vec![0; self.cycles.len() * iface.out_words()];
         self.sim.run(&words, &mut out).unwrap();
-        let per = iface.out_words();
-        let result = out
-            .chunks(per)
-            .map(|w| {
-                let mut v = vec![0; iface.outputs.len()];
-                iface.unpack_outputs(w, &mut v).unwrap();
-                v
-            })
-            .collect();
         self.cycles.clear();
-        result
+        out.chunks(iface.out_words()).map(<[u32]>::to_vec).collect()
     }
 
+    /// Where output `name` (at most 32 bits) is in a cycle's words.
     fn out(&self, name: &str) -> usize {
-        self.outputs.iter().position(|n| n == name).unwrap()
+        self.out_wide(name, None)
+    }
+
+    /// Where output `name` of `bits` bits starts in a cycle's words.
+    fn out_wide(&self, name: &str, bits: Option<u32>) -> usize {
+        let iface = self.sim.interface();
+        iface.word_offset(Direction::Output, name, bits).unwrap()
     }
 }
 
@@ -107,11 +106,11 @@ fn load(run: &mut Run, words: &[u32], rng: &mut StdRng) -> LoadStatus {
     LoadStatus {
         loading: get("loading") != 0,
         loaded: get("loaded") != 0,
-        error_code: get("error_code"),
-        error_word: get("error_word") as u32,
-        error_value: get("error_value") as u32,
-        nodes: get("nodes") as u32,
-        triangles: get("triangles") as u32,
+        error_code: u64::from(get("error_code")),
+        error_word: get("error_word"),
+        error_value: get("error_value"),
+        nodes: get("nodes"),
+        triangles: get("triangles"),
     }
 }
 
@@ -125,20 +124,21 @@ fn read_back(run: &mut Run, words: &[u32]) {
     let port = |name: &str, i: usize| run.out(&format!("{name}${i}"));
     for k in 0..n {
         let o = &out[k + 1];
-        let mut got: Vec<u32> = (0..6).map(|i| o[port("min", i)] as u32).collect();
-        got.extend((0..6).map(|i| o[port("max", i)] as u32));
+        let mut got: Vec<u32> = (0..6).map(|i| o[port("min", i)]).collect();
+        got.extend((0..6).map(|i| o[port("max", i)]));
         for c in 0..2 {
-            got.push(o[port("child_first", c)] as u32);
-            got.push(o[port("child_count", c)] as u32);
+            got.push(o[port("child_first", c)]);
+            got.push(o[port("child_count", c)]);
         }
         let at = HEADER_WORDS + NODE_WORDS * k;
         assert_eq!(got, words[at..at + NODE_WORDS], "node {k}");
     }
     for k in 0..t {
         let o = &out[k + 1];
-        let mut got: Vec<u32> = (0..9).map(|i| o[port("vert", i)] as u32).collect();
-        got.push(o[run.out("global_index$0")] as u32);
-        got.push(o[run.out("casts_shadow$0")] as u32);
+        let at = run.out_wide("vertices$0", Some(VERTEX_BITS as u32));
+        let mut got = o[at..at + VERTEX_BITS / 32].to_vec();
+        got.push(o[run.out("global_index$0")]);
+        got.push(o[run.out("casts_shadow$0")]);
         let at = HEADER_WORDS + NODE_WORDS * n + TRIANGLE_WORDS * k;
         assert_eq!(got, words[at..at + 11], "triangle record {k}");
     }

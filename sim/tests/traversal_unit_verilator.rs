@@ -13,7 +13,7 @@
 
 use std::cell::Cell;
 
-use hdl::traversal::unit::UnitConfig;
+use hdl::traversal::config::UnitConfig;
 use hw_model::precision::SpawnChoice;
 use hw_model::traversal::scene_image::{ChildBoxes, ImageNode, ImageTriangle, Link, SceneImage};
 use hw_model::traversal::strategies::{mesh, ray};

@@ -30,6 +30,7 @@
 use rust_hdl::prelude::*;
 
 use super::bus::{mask, word, AxiLiteBus, WORD_BITS};
+use crate::macros::dff_setup;
 use crate::regmap::{self, ADDR_BITS, OPERAND_COUNT};
 
 /// The AXI4-Lite port of the slave, named like Vitis' `s_axi_control_*` signals.
@@ -208,13 +209,10 @@ impl Logic for AxiLiteSlave {
             v_q
         );
         for i in 0..OPERAND_COUNT {
-            self.args[i].clock.next = self.clock.val();
-            self.args[i].d.next = self.args[i].q.val();
-            self.held[i].clock.next = self.clock.val();
-            self.held[i].d.next = self.held[i].q.val();
+            dff_setup!(self, clock, args[i], held[i]);
             self.operands[i].next = self.held[i].q.val();
         }
-        self.bus.clock.next = self.clock.val();
+        clock!(self, clock, bus);
         self.bus.reset_n.next = self.reset_n.val();
         AxiLiteSlavePort::link(&mut self.axi, &mut self.bus.axi);
         self.interrupt.next = self.gie.q.val() & (self.isr.q.val() & self.ier.q.val()).any();

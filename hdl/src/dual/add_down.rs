@@ -95,9 +95,7 @@ impl Default for AddDown {
 impl Logic for AddDown {
     #[hdl_gen]
     fn update(&mut self) {
-        self.sum_reg.clock.next = self.clock.val();
-        self.grid_reg.clock.next = self.clock.val();
-        self.round.clock.next = self.clock.val();
+        clock!(self, clock, sum_reg, grid_reg, round);
         // Sign-extended to the grid's width.
         self.x_wide.next = bit_cast::<ADD_BITS, SHORT_M_BITS>(self.xm.val());
         if (self.xm.val() & self.sign.val()).any() {

@@ -70,8 +70,7 @@ impl<const N: usize, const O: usize> Default for AlignAdd<N, O> {
 impl<const N: usize, const O: usize> Logic for AlignAdd<N, O> {
     #[hdl_gen]
     fn update(&mut self) {
-        self.s_reg.clock.next = self.clock.val();
-        self.e_reg.clock.next = self.clock.val();
+        clock!(self, clock, s_reg, e_reg);
         if self.ea.val() >= self.eb.val() {
             self.shift.next = self.ea.val() - self.eb.val();
             self.coarse.next = self.a.val();

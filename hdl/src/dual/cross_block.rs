@@ -23,6 +23,7 @@ use super::to_block::{BELOW_BITS, EXP_BITS};
 use super::translate::{FIELD_BITS, SIGNIFICAND_BITS};
 use super::WIDTH;
 use crate::intmul::SignedMul;
+use crate::macros::clock;
 
 /// Clock edges from the inputs to the block.
 pub const LATENCY: usize = 2;
@@ -153,14 +154,12 @@ impl<const XW: usize, const YW: usize, const PW: usize, const W: usize> Logic
     #[hdl_gen]
     fn update(&mut self) {
         for k in 0..6 {
-            self.product_reg[k].clock.next = self.clock.val();
+            clock!(self, clock, product_reg[k]);
         }
         for k in 0..3 {
-            self.m_reg[k].clock.next = self.clock.val();
+            clock!(self, clock, m_reg[k]);
         }
-        self.sum_reg.clock.next = self.clock.val();
-        self.e_reg.clock.next = self.clock.val();
-        self.below_reg.clock.next = self.clock.val();
+        clock!(self, clock, sum_reg, e_reg, below_reg);
         // Stage 1: the six products (signed multipliers, one DSP48E1 each at W = 18).
         self.mul[0].a.next = self.x[1].val();
         self.mul[0].b.next = self.y[2].val();

@@ -27,6 +27,7 @@ use super::short_lt::{Lt, ShortLt};
 use super::translate::SIGNIFICAND_BITS;
 use super::WIDTH;
 use crate::intmul::IntMul;
+use crate::macros::clock;
 use crate::mt::delay::Delay;
 
 const W: [u32; 6] = widths(WIDTH);
@@ -368,54 +369,66 @@ impl Default for Decide {
 impl Logic for Decide {
     #[hdl_gen]
     fn update(&mut self) {
-        self.abs_reg.clock.next = self.clock.val();
-        self.det_margin_reg.clock.next = self.clock.val();
-        self.t_e_reg.clock.next = self.clock.val();
-        self.significand_reg.clock.next = self.clock.val();
-        self.high_x_reg.clock.next = self.clock.val();
-        self.low_x_reg.clock.next = self.clock.val();
-        self.det_e_delay.clock.next = self.clock.val();
-        self.tau_reg.clock.next = self.clock.val();
-        self.tau_abs_delay.clock.next = self.clock.val();
-        self.tau_neg_delay.clock.next = self.clock.val();
-        self.t_e_delay.clock.next = self.clock.val();
-        self.finite_delay.clock.next = self.clock.val();
-        self.high.clock.next = self.clock.val();
-        self.low.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            abs_reg,
+            det_margin_reg,
+            t_e_reg,
+            significand_reg,
+            high_x_reg,
+            low_x_reg,
+            det_e_delay,
+            tau_reg,
+            tau_abs_delay,
+            tau_neg_delay,
+            t_e_delay,
+            finite_delay,
+            high,
+            low
+        );
         for k in 0..3 {
-            self.n_reg[k].clock.next = self.clock.val();
-            self.num_margin_reg[k].clock.next = self.clock.val();
-            self.hi_x_reg[k].clock.next = self.clock.val();
-            self.lo_x_reg[k].clock.next = self.clock.val();
-            self.num_e_delay[k].clock.next = self.clock.val();
-            self.hi[k].clock.next = self.clock.val();
-            self.lo[k].clock.next = self.clock.val();
+            clock!(
+                self,
+                clock,
+                n_reg[k],
+                num_margin_reg[k],
+                hi_x_reg[k],
+                lo_x_reg[k],
+                num_e_delay[k],
+                hi[k],
+                lo[k]
+            );
         }
-        self.parallel_delay.clock.next = self.clock.val();
-        self.in_range_delay.clock.next = self.clock.val();
-        self.u_below_delay.clock.next = self.clock.val();
-        self.u_above_delay.clock.next = self.clock.val();
-        self.v_below_delay.clock.next = self.clock.val();
-        self.product_reg.clock.next = self.clock.val();
-        self.product_neg_reg.clock.next = self.clock.val();
-        self.product_e_reg.clock.next = self.clock.val();
-        self.signed_reg.clock.next = self.clock.val();
-        self.signed_e_reg.clock.next = self.clock.val();
-        self.product.clock.next = self.clock.val();
-        self.sum.clock.next = self.clock.val();
-        self.high_m_delay.clock.next = self.clock.val();
-        self.high_f_delay.clock.next = self.clock.val();
-        self.uv_delay.clock.next = self.clock.val();
-        self.hi_t_m_delay.clock.next = self.clock.val();
-        self.hi_t_f_delay.clock.next = self.clock.val();
-        self.parallel_reg.clock.next = self.clock.val();
-        self.in_range_reg.clock.next = self.clock.val();
-        self.u_below_reg.clock.next = self.clock.val();
-        self.u_above_reg.clock.next = self.clock.val();
-        self.v_below_reg.clock.next = self.clock.val();
-        self.uv_above_reg.clock.next = self.clock.val();
-        self.t_below_reg.clock.next = self.clock.val();
-        self.miss_reg.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            parallel_delay,
+            in_range_delay,
+            u_below_delay,
+            u_above_delay,
+            v_below_delay,
+            product_reg,
+            product_neg_reg,
+            product_e_reg,
+            signed_reg,
+            signed_e_reg,
+            product,
+            sum,
+            high_m_delay,
+            high_f_delay,
+            uv_delay,
+            hi_t_m_delay,
+            hi_t_f_delay,
+            parallel_reg,
+            in_range_reg,
+            u_below_reg,
+            u_above_reg,
+            v_below_reg,
+            uv_above_reg,
+            t_below_reg,
+            miss_reg
+        );
 
         // Cycle 1: |det| one bit wider (det sign-extended by hand).
         self.det_wide.next = bit_cast::<DET_SUM_BITS, DET_BITS>(self.det.val());

@@ -11,6 +11,7 @@ use rust_hdl::prelude::*;
 
 use super::WIDTH;
 use crate::intmul::SignedMul;
+use crate::macros::clock;
 
 /// Clock edges from the inputs to the value.
 pub const LATENCY: usize = 2;
@@ -100,9 +101,9 @@ impl<const AW: usize, const BW: usize, const PW: usize, const OW: usize> Logic
     #[hdl_gen]
     fn update(&mut self) {
         for k in 0..3 {
-            self.product_reg[k].clock.next = self.clock.val();
+            clock!(self, clock, product_reg[k]);
         }
-        self.v_reg.clock.next = self.clock.val();
+        clock!(self, clock, v_reg);
         // Stage 1: the three products (signed multipliers, one DSP48E1 each at W = 18).
         for k in 0..3 {
             self.mul[k].a.next = self.a[k].val();

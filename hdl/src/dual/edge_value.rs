@@ -66,11 +66,7 @@ impl Default for EdgeValue {
 impl Logic for EdgeValue {
     #[hdl_gen]
     fn update(&mut self) {
-        self.am.clock.next = self.clock.val();
-        self.db.clock.next = self.clock.val();
-        self.am_e.clock.next = self.clock.val();
-        self.db_e.clock.next = self.clock.val();
-        self.sum.clock.next = self.clock.val();
+        clock!(self, clock, am, db, am_e, db_e, sum);
         for k in 0..3 {
             self.am.a[k].next = self.a[k].val();
             self.am.b[k].next = self.moment[k].val();

@@ -26,6 +26,7 @@ use super::round::SHORT_EXP_BITS;
 use super::to_block::{self, DirToBlock, EdgeToBlock, SToBlock, ToBlock, BELOW_BITS, EXP_BITS};
 use super::translate::{self, Translate, FIELD_BITS, SIGNIFICAND_BITS};
 use super::WIDTH;
+use crate::macros::clock;
 use crate::mt::delay::Delay;
 
 /// Clock edges from the inputs to the blocks of dir, e1, e2 and s (steps 1 and 2).
@@ -298,48 +299,56 @@ impl Logic for BfpFilter {
     #[hdl_gen]
     fn update(&mut self) {
         for k in 0..3 {
-            self.e1_sub[k].clock.next = self.clock.val();
-            self.e2_sub[k].clock.next = self.clock.val();
-            self.s_sub[k].clock.next = self.clock.val();
-            self.dir_line[k].clock.next = self.clock.val();
-            self.dir_m[k].clock.next = self.clock.val();
-            self.e1_m[k].clock.next = self.clock.val();
-            self.e2_m[k].clock.next = self.clock.val();
-            self.s_m[k].clock.next = self.clock.val();
+            clock!(
+                self,
+                clock,
+                e1_sub[k],
+                e2_sub[k],
+                s_sub[k],
+                dir_line[k],
+                dir_m[k],
+                e1_m[k],
+                e2_m[k],
+                s_m[k]
+            );
         }
-        self.dir_block.clock.next = self.clock.val();
-        self.e1_block.clock.next = self.clock.val();
-        self.e2_block.clock.next = self.clock.val();
-        self.s_block.clock.next = self.clock.val();
-        self.p_cross.clock.next = self.clock.val();
-        self.q_cross.clock.next = self.clock.val();
-        self.det_dot.clock.next = self.clock.val();
-        self.nu_dot.clock.next = self.clock.val();
-        self.nv_dot.clock.next = self.clock.val();
-        self.nt_dot.clock.next = self.clock.val();
-        self.dir_below.clock.next = self.clock.val();
-        self.e1_below.clock.next = self.clock.val();
-        self.e2_below.clock.next = self.clock.val();
-        self.s_below.clock.next = self.clock.val();
-        self.p_below.clock.next = self.clock.val();
-        self.q_below.clock.next = self.clock.val();
-        self.det_margin.clock.next = self.clock.val();
-        self.u_margin.clock.next = self.clock.val();
-        self.v_margin.clock.next = self.clock.val();
-        self.t_margin.clock.next = self.clock.val();
-        self.dir_e.clock.next = self.clock.val();
-        self.e1_e.clock.next = self.clock.val();
-        self.e2_e.clock.next = self.clock.val();
-        self.s_e.clock.next = self.clock.val();
-        self.det_e.clock.next = self.clock.val();
-        self.nu_e.clock.next = self.clock.val();
-        self.nv_e.clock.next = self.clock.val();
-        self.nt_e.clock.next = self.clock.val();
-        self.decide.clock.next = self.clock.val();
-        self.t_min_line.clock.next = self.clock.val();
-        self.bad_line.clock.next = self.clock.val();
-        self.refuse_line.clock.next = self.clock.val();
-        self.valid_line.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            dir_block,
+            e1_block,
+            e2_block,
+            s_block,
+            p_cross,
+            q_cross,
+            det_dot,
+            nu_dot,
+            nv_dot,
+            nt_dot,
+            dir_below,
+            e1_below,
+            e2_below,
+            s_below,
+            p_below,
+            q_below,
+            det_margin,
+            u_margin,
+            v_margin,
+            t_margin,
+            dir_e,
+            e1_e,
+            e2_e,
+            s_e,
+            det_e,
+            nu_e,
+            nv_e,
+            nt_e,
+            decide,
+            t_min_line,
+            bad_line,
+            refuse_line,
+            valid_line
+        );
 
         // On entry: the translations, dir's wait, and the non-finite inputs.
         self.non_finite.next = false;

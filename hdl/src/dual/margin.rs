@@ -109,7 +109,7 @@ impl<const MB: usize> Margin<MB> {
 impl<const MB: usize> Logic for Margin<MB> {
     #[hdl_gen]
     fn update(&mut self) {
-        self.margin_reg.clock.next = self.clock.val();
+        clock!(self, clock, margin_reg);
         // Each vector that dropped something: its constant at its distance, rounded up.
         for k in 0..4 {
             self.term[k].next = 0.into();

@@ -22,6 +22,7 @@ use super::plucker_operands::OPERAND_BITS;
 pub use super::slot::{miss_latency, SlotFilter, QUEUE_DEPTH, TAG};
 use super::slot::{queued_latency, FilterSlot, ENTRY_BITS};
 use crate::formats::fp32;
+use crate::macros::clock;
 use crate::mt::delay::Delay;
 use crate::regmap::OPERAND_COUNT;
 use crate::top::stream::QUERY_BITS;
@@ -126,7 +127,7 @@ impl<const N: usize> Logic for DualPair<N> {
         self.ready.next = self.has_room.val();
         self.requests.next = 0.into();
         for i in 0..N {
-            self.slots[i].clock.next = self.clock.val();
+            clock!(self, clock, slots[i]);
             self.slots[i].valid.next = self.valid[i].val() & self.has_room.val();
             self.slots[i].query.next = self.query[i].val();
             self.slots[i].tag.next = self.tag[i].val();

@@ -150,17 +150,21 @@ impl Default for PluckerDatapath {
 impl Logic for PluckerDatapath {
     #[hdl_gen]
     fn update(&mut self) {
-        self.det_dot.clock.next = self.clock.val();
-        self.det_delay.clock.next = self.clock.val();
-        self.det_e_delay.clock.next = self.clock.val();
-        self.on_dot.clock.next = self.clock.val();
-        self.on_e.clock.next = self.clock.val();
-        self.offset_delay.clock.next = self.clock.val();
-        self.offset_e_delay.clock.next = self.clock.val();
-        self.nt_sum.clock.next = self.clock.val();
-        self.edge_u.clock.next = self.clock.val();
-        self.edge_v.clock.next = self.clock.val();
-        self.edge_w.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            det_dot,
+            det_delay,
+            det_e_delay,
+            on_dot,
+            on_e,
+            offset_delay,
+            offset_e_delay,
+            nt_sum,
+            edge_u,
+            edge_v,
+            edge_w
+        );
         self.edge_u.dir_e.next = self.dir_e.val();
         self.edge_v.dir_e.next = self.dir_e.val();
         self.edge_w.dir_e.next = self.dir_e.val();

@@ -28,6 +28,7 @@ use super::plucker_margin::{self, PluckerMargin, BELOW_BITS, Y_BIAS, Y_BITS};
 use super::round::SHORT_EXP_BITS;
 use super::s_bound::{self, SBound, CUT_BITS};
 use super::sign_decide::{self, SignDecide};
+use crate::macros::clock;
 use crate::mt::delay::Delay;
 
 /// The values' floors onto step 5's widths.
@@ -266,33 +267,29 @@ impl Default for PluckerFilter {
 impl Logic for PluckerFilter {
     #[hdl_gen]
     fn update(&mut self) {
-        self.datapath.clock.next = self.clock.val();
-        self.s_bound.clock.next = self.clock.val();
-        self.det_margin.clock.next = self.clock.val();
-        self.u_margin.clock.next = self.clock.val();
-        self.v_margin.clock.next = self.clock.val();
-        self.t_margin.clock.next = self.clock.val();
-        self.w_margin.clock.next = self.clock.val();
-        self.decide.clock.next = self.clock.val();
+        clock!(
+            self, clock, datapath, s_bound, det_margin, u_margin, v_margin, t_margin, w_margin,
+            decide
+        );
         for k in 0..5 {
-            self.l_reg[k].clock.next = self.clock.val();
-            self.l2_reg[k].clock.next = self.clock.val();
-            self.l3_reg[k].clock.next = self.clock.val();
+            clock!(self, clock, l_reg[k], l2_reg[k], l3_reg[k]);
         }
         for k in 0..4 {
-            self.y_reg[k].clock.next = self.clock.val();
-            self.below_reg[k].clock.next = self.clock.val();
-            self.below2_reg[k].clock.next = self.clock.val();
+            clock!(self, clock, y_reg[k], below_reg[k], below2_reg[k]);
         }
         for k in 0..3 {
-            self.e_reg[k].clock.next = self.clock.val();
+            clock!(self, clock, e_reg[k]);
         }
-        self.refuse1.clock.next = self.clock.val();
-        self.refuse2.clock.next = self.clock.val();
-        self.refuse3.clock.next = self.clock.val();
-        self.refuse_line.clock.next = self.clock.val();
-        self.valid_line.clock.next = self.clock.val();
-        self.t_min_line.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            refuse1,
+            refuse2,
+            refuse3,
+            refuse_line,
+            valid_line,
+            t_min_line
+        );
 
         // The datapath and the |s| bound take the operands as they come.
         for k in 0..3 {

@@ -95,8 +95,7 @@ impl<const MB: usize> PluckerMargin<MB> {
 impl<const MB: usize> Logic for PluckerMargin<MB> {
     #[hdl_gen]
     fn update(&mut self) {
-        self.margin_reg.clock.next = self.clock.val();
-        self.over_reg.clock.next = self.clock.val();
+        clock!(self, clock, margin_reg, over_reg);
         self.term.next = 0.into();
         if self.present.val() {
             self.term.next = (self.less.val() >> self.below.val()) + self.one.val();

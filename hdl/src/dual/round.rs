@@ -110,11 +110,7 @@ impl<const IW: usize, const UP: bool> Default for Round<IW, UP> {
 impl<const IW: usize, const UP: bool> Logic for Round<IW, UP> {
     #[hdl_gen]
     fn update(&mut self) {
-        self.x_reg.clock.next = self.clock.val();
-        self.e_reg.clock.next = self.clock.val();
-        self.length_reg.clock.next = self.clock.val();
-        self.m_reg.clock.next = self.clock.val();
-        self.f_reg.clock.next = self.clock.val();
+        clock!(self, clock, x_reg, e_reg, length_reg, m_reg, f_reg);
         // Stage 1: the bit count of x XOR its sign.
         self.negative.next = (self.x.val() & self.sign.val()).any();
         self.magnitude.next = self.x.val();

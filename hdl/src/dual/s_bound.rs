@@ -109,7 +109,7 @@ impl Default for SBound {
 impl Logic for SBound {
     #[hdl_gen]
     fn update(&mut self) {
-        self.e_reg.clock.next = self.clock.val();
+        clock!(self, clock, e_reg);
         // orig's top CUT_BITS (a constant shift: wires). (bit_cast of a loop-indexed signal
         // does not generate: written out.)
         self.orig_cut_m[0].next =

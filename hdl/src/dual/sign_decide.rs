@@ -16,6 +16,7 @@ use super::decide::{DET_BITS, DET_MARGIN_BITS, NUM_BITS, NUM_MARGIN_BITS};
 use super::plucker::EDGE_VALUE_BITS;
 use super::round::SHORT_EXP_BITS;
 use super::WIDTH;
+use crate::macros::clock;
 use crate::mt::delay::Delay;
 
 /// |det| ± e_D: one bit more than det (H < 2^DET_BITS, L signed).
@@ -375,25 +376,29 @@ impl Logic for SignDecide {
         );
         clock!(self, clock, nw_delay, unknown_delay, small_delay, p_delay);
         for k in 0..3 {
-            self.n_reg[k].clock.next = self.clock.val();
-            self.a_reg[k].clock.next = self.clock.val();
-            self.nm_reg[k].clock.next = self.clock.val();
-            self.e_len_reg[k].clock.next = self.clock.val();
-            self.hi_reg[k].clock.next = self.clock.val();
-            self.reach_reg[k].clock.next = self.clock.val();
-            self.s_reg[k].clock.next = self.clock.val();
-            self.len_hi_reg[k].clock.next = self.clock.val();
-            self.len_reach_reg[k].clock.next = self.clock.val();
-            self.hi_neg_reg[k].clock.next = self.clock.val();
-            self.reach_x_reg[k].clock.next = self.clock.val();
-            self.below_x_reg[k].clock.next = self.clock.val();
-            self.hi_neg_delay[k].clock.next = self.clock.val();
+            clock!(
+                self,
+                clock,
+                n_reg[k],
+                a_reg[k],
+                nm_reg[k],
+                e_len_reg[k],
+                hi_reg[k],
+                reach_reg[k],
+                s_reg[k],
+                len_hi_reg[k],
+                len_reach_reg[k],
+                hi_neg_reg[k],
+                reach_x_reg[k],
+                below_x_reg[k],
+                hi_neg_delay[k]
+            );
         }
         for k in 0..5 {
-            self.l_reg[k].clock.next = self.clock.val();
+            clock!(self, clock, l_reg[k]);
         }
         for k in 0..4 {
-            self.l_delay[k].clock.next = self.clock.val();
+            clock!(self, clock, l_delay[k]);
         }
 
         // Cycle 1: |det| (one bit wider), σN and |N| per numerator, σN_w; σ = 0 for det = 0.

@@ -17,6 +17,7 @@ use rust_hdl::prelude::*;
 use super::plucker_operands::OPERAND_BITS;
 pub use super::slot_filter::SlotFilter;
 use super::slot_filter::{BfpWords, PluckerWords};
+use crate::macros::clock;
 use crate::mt::delay::Delay;
 use crate::regmap::OPERAND_COUNT;
 use crate::top::stream::{QUERY_BITS, TAG_BITS};
@@ -118,7 +119,7 @@ impl Logic for FilterSlot {
         self.certain.next = false;
         self.uncertain.next = false;
         for i in 0..self.bfp.len() {
-            self.bfp[i].clock.next = self.clock.val();
+            clock!(self, clock, bfp[i]);
             self.bfp[i].valid.next = self.valid.val();
             self.bfp[i].query.next = self.query.val();
             self.decided.next = self.bfp[i].valid_out.val();
@@ -126,7 +127,7 @@ impl Logic for FilterSlot {
             self.uncertain.next = self.bfp[i].forward.val();
         }
         for i in 0..self.plucker.len() {
-            self.plucker[i].clock.next = self.clock.val();
+            clock!(self, clock, plucker[i]);
             self.plucker[i].valid.next = self.valid.val();
             self.plucker[i].query.next = self.query.val();
             self.plucker[i].operands.next = self.operands.val();

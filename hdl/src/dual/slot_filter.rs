@@ -68,7 +68,7 @@ pub struct BfpWords {
 impl Logic for BfpWords {
     #[hdl_gen]
     fn update(&mut self) {
-        self.filter.clock.next = self.clock.val();
+        clock!(self, clock, filter);
         self.filter.valid.next = self.valid.val();
         self.filter.orig[0].next = self.query.val().get_bits::<32>(0);
         self.filter.orig[1].next = self.query.val().get_bits::<32>(32);
@@ -108,7 +108,7 @@ pub struct PluckerWords {
 impl Logic for PluckerWords {
     #[hdl_gen]
     fn update(&mut self) {
-        self.filter.clock.next = self.clock.val();
+        clock!(self, clock, filter);
         self.filter.valid.next = self.valid.val();
         // Each block's three words and field (`plucker_operands`).
         self.filter.stored.next = self.operands.val().get_bit(1504);

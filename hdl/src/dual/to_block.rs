@@ -15,6 +15,7 @@ use rust_hdl::prelude::*;
 
 use super::translate::{DIFF_BITS, FIELD_BITS, SIGNIFICAND_BITS};
 use super::WIDTH;
+use crate::macros::clock;
 
 /// Width of block exponents and of the distances inside the block: a field plus a
 /// component's bit count or the mantissa width, each below 2^FIELD_BITS.
@@ -136,11 +137,9 @@ impl<const IW: usize, const W: usize> Logic for ToBlock<IW, W> {
     #[hdl_gen]
     fn update(&mut self) {
         for k in 0..3 {
-            self.m_reg[k].clock.next = self.clock.val();
+            clock!(self, clock, m_reg[k]);
         }
-        self.e_reg.clock.next = self.clock.val();
-        self.below_reg.clock.next = self.clock.val();
-        self.zero_reg.clock.next = self.clock.val();
+        clock!(self, clock, e_reg, below_reg, zero_reg);
         // The block exponent: every component in [−2^(e − bias), 2^(e − bias)).
         // (bit_cast in a loop loses the loop variable: one per component.)
         self.field[0].next = bit_cast::<EXP_BITS, FIELD_BITS>(self.f[0].val());

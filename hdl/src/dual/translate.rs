@@ -76,8 +76,7 @@ impl Default for Translate {
 impl Logic for Translate {
     #[hdl_gen]
     fn update(&mut self) {
-        self.d_reg.clock.next = self.clock.val();
-        self.e_reg.clock.next = self.clock.val();
+        clock!(self, clock, d_reg, e_reg);
         self.ea.next = self.a.val().get_bits::<8>(23);
         self.eb.next = self.b.val().get_bits::<8>(23);
         // Significand with its hidden bit (0 for a zero or a flushed subnormal), signed.

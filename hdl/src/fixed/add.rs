@@ -66,14 +66,14 @@ impl<const W: usize, const W1: usize, const SAT: bool, const SUB: bool> Logic
         if (self.b.val() >> self.sign_shift.val()).any() {
             self.b_wide.next = bit_cast::<W1, W>(self.b.val()) | self.extension.val();
         }
-        self.sum.clock.next = self.clock.val();
+        clock!(self, clock, sum);
         if self.subtract.val() {
             self.sum.d.next = self.a_wide.val() - self.b_wide.val();
         } else {
             self.sum.d.next = self.a_wide.val() + self.b_wide.val();
         }
         self.fit.v.next = self.sum.q.val();
-        self.result.clock.next = self.clock.val();
+        clock!(self, clock, result);
         self.result.d.next = self.fit.y.val();
         self.y.next = self.result.q.val();
     }

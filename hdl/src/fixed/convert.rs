@@ -160,12 +160,7 @@ impl<
         }
         self.aligned.next = bit_cast::<L, 24>(self.flushed_sig.val()) << self.amount.val();
         // Cut 0.
-        self.magnitude.clock.next = self.clock.val();
-        self.round.clock.next = self.clock.val();
-        self.sticky.clock.next = self.clock.val();
-        self.negative.clock.next = self.clock.val();
-        self.nan.clock.next = self.clock.val();
-        self.inf.clock.next = self.clock.val();
+        clock!(self, clock, magnitude, round, sticky, negative, nan, inf);
         self.magnitude.d.next =
             bit_cast::<K, L>(self.aligned.val() >> self.guard.val()) & self.low_bits.val();
         if (self.aligned.val() >> self.overflow_shift.val()).any() {
@@ -183,10 +178,14 @@ impl<
         self.rounder.round.next = self.round.q.val();
         self.rounder.sticky.next = self.sticky.q.val();
         // Cut 1.
-        self.rounded.clock.next = self.clock.val();
-        self.rounded_negative.clock.next = self.clock.val();
-        self.rounded_nan.clock.next = self.clock.val();
-        self.rounded_inf.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            rounded,
+            rounded_negative,
+            rounded_nan,
+            rounded_inf
+        );
         self.rounded.d.next = self.rounder.value.val();
         self.rounded_negative.d.next = self.negative.q.val();
         self.rounded_nan.d.next = self.nan.q.val();
@@ -287,8 +286,7 @@ impl<const W: usize, const F: usize, const G: usize> Logic for FixedToF32<W, F, 
     fn update(&mut self) {
         self.sign.next = (self.a.val() >> self.msb.val()).any();
         // Cut 0: |x| (min's magnitude 2^(W-1) is right as an unsigned number).
-        self.magnitude.clock.next = self.clock.val();
-        self.magnitude_sign.clock.next = self.clock.val();
+        clock!(self, clock, magnitude, magnitude_sign);
         if self.sign.val() {
             self.magnitude.d.next = self.zero.val() - self.a.val();
         } else {
@@ -309,11 +307,15 @@ impl<const W: usize, const F: usize, const G: usize> Logic for FixedToF32<W, F, 
         self.category.next.inf = false;
         self.category.next.zero = !self.magnitude.q.val().any();
         // Cut 1.
-        self.normal_sig.clock.next = self.clock.val();
-        self.normal_round.clock.next = self.clock.val();
-        self.normal_sticky.clock.next = self.clock.val();
-        self.normal_exp.clock.next = self.clock.val();
-        self.normal_category.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            normal_sig,
+            normal_round,
+            normal_sticky,
+            normal_exp,
+            normal_category
+        );
         self.normal_sig.d.next = bit_cast::<24, G>(self.extended.val() >> self.sig_shift.val());
         self.normal_round.d.next = (self.extended.val() & self.round_bit.val()).any();
         self.normal_sticky.d.next = (self.extended.val() & self.sticky_bits.val()).any();

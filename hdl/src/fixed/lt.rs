@@ -41,7 +41,7 @@ impl<const W: usize> Logic for FixedLt<W> {
     #[hdl_gen]
     fn update(&mut self) {
         // Flipping the sign bit maps two's complement order onto unsigned order.
-        self.result.clock.next = self.clock.val();
+        clock!(self, clock, result);
         self.result.d.next =
             (self.a.val() ^ self.sign_bit.val()) < (self.b.val() ^ self.sign_bit.val());
         self.y.next = self.result.q.val();

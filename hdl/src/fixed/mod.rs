@@ -30,8 +30,6 @@ macro_rules! fixed_format {
             /// Catalogue name of the format (`hw_model::HwFormat`).
             pub const NAME: &str = stringify!($name);
             pub const WIDTH: usize = $w;
-            /// Fraction bits.
-            const F: usize = $w - $i;
             /// The MT lane converts fp32 inputs into fixed point and back (see `formats`).
             pub const RAW_FP32: bool = false;
             pub const FORMAT: hw_model::Format = hw_model::Format::Fixed {
@@ -42,16 +40,30 @@ macro_rules! fixed_format {
             };
             const RND: bool = matches!(hw_model::Quant::$quant, hw_model::Quant::Rnd);
             const SAT: bool = matches!(hw_model::Overflow::$overflow, hw_model::Overflow::Sat);
-            /// Recip's signed quotient: ±2^(2F) and every W-bit value fit.
-            const RECIP_SIGNED: usize = if 2 * F + 2 > WIDTH { 2 * F + 2 } else { WIDTH };
-            // Width parameters, in the order the operators take them (see their docs).
-            pub type Add = FixedAdd<WIDTH, { WIDTH + 1 }, SAT, false>;
-            pub type Sub = FixedAdd<WIDTH, { WIDTH + 1 }, SAT, true>;
-            pub type Mul = FixedMul<WIDTH, F, { 2 * WIDTH }, RND, SAT>;
-            pub type Recip = FixedRecip<WIDTH, F, { 2 * F + 1 }, RECIP_SIGNED, RND, SAT>;
-            pub type Lt = FixedLt<WIDTH>;
-            pub type FromF32 = FixedFromF32<WIDTH, F, { WIDTH + 49 }, { WIDTH + 3 }, RND, SAT>;
-            pub type ToF32 = FixedToF32<WIDTH, F, { WIDTH + 25 }>;
+            /// The operators' widths (`crate::widths`).
+            const WIDTHS: crate::widths::FixedWidths = crate::widths::FixedWidths::of($w, $i);
+            pub type Add = FixedAdd<{ WIDTHS.word }, { WIDTHS.sum }, SAT, false>;
+            pub type Sub = FixedAdd<{ WIDTHS.word }, { WIDTHS.sum }, SAT, true>;
+            pub type Mul = FixedMul<{ WIDTHS.word }, { WIDTHS.frac }, { WIDTHS.product }, RND, SAT>;
+            pub type Recip = FixedRecip<
+                { WIDTHS.word },
+                { WIDTHS.frac },
+                { WIDTHS.quotient },
+                { WIDTHS.signed_quotient },
+                RND,
+                SAT,
+            >;
+            pub type Lt = FixedLt<{ WIDTHS.word }>;
+            pub type FromF32 = FixedFromF32<
+                { WIDTHS.word },
+                { WIDTHS.frac },
+                { WIDTHS.from_f32_aligned },
+                { WIDTHS.from_f32_magnitude },
+                RND,
+                SAT,
+            >;
+            pub type ToF32 =
+                FixedToF32<{ WIDTHS.word }, { WIDTHS.frac }, { WIDTHS.to_f32_normalized }>;
             $crate::formats::operator_table!();
         }
     };

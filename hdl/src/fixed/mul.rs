@@ -111,21 +111,18 @@ impl<const W: usize, const F: usize, const P: usize, const RND: bool, const SAT:
             self.correction.next = self.correction.val() + self.a.val();
         }
         // Cut 0.
-        self.operand_a.clock.next = self.clock.val();
-        self.operand_b.clock.next = self.clock.val();
-        self.operand_correction.clock.next = self.clock.val();
+        clock!(self, clock, operand_a, operand_b, operand_correction);
         self.operand_a.d.next = self.a.val();
         self.operand_b.d.next = self.b.val();
         self.operand_correction.d.next = self.correction.val();
         self.multiplier.a.next = self.operand_a.q.val();
         self.multiplier.b.next = self.operand_b.q.val();
         // Cut 1.
-        self.product.clock.next = self.clock.val();
-        self.product_correction.clock.next = self.clock.val();
+        clock!(self, clock, product, product_correction);
         self.product.d.next = self.multiplier.p.val();
         self.product_correction.d.next = self.operand_correction.q.val();
         // Cut 2.
-        self.exact.clock.next = self.clock.val();
+        clock!(self, clock, exact);
         self.exact.d.next = self.product.q.val()
             - (bit_cast::<P, W>(self.product_correction.q.val()) << self.width.val());
         // Arithmetic shift right by F (floor), plus the first dropped bit when rounding.
@@ -134,7 +131,7 @@ impl<const W: usize, const F: usize, const P: usize, const RND: bool, const SAT:
             self.floor.next = (self.exact.q.val() >> self.frac.val()) | self.extension.val();
         }
         // Cut 3.
-        self.quantised.clock.next = self.clock.val();
+        clock!(self, clock, quantised);
         self.quantised.d.next = self.floor.val()
             + (self.nearest.val() & (self.exact.q.val() & self.round_bit.val()).any());
         self.fit.v.next = self.quantised.q.val();

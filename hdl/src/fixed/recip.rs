@@ -17,6 +17,7 @@ use rust_hdl::prelude::*;
 use super::division_row::DivisionRow;
 use super::fit::Fit;
 use super::round::SignedRound;
+use crate::macros::clock;
 use crate::pipe::{chain, placement, Pipe};
 
 /// W: the format's width, F its fraction bits; Q = 2F+1 (quotient bits);
@@ -150,11 +151,15 @@ impl<
         self.unit.next = (self.a.val() == self.one.val()) | (self.a.val() == self.minus_one.val());
         // Cut 0: |X| (min's magnitude 2^(W-1) is right as an unsigned number) and the
         // numerator's first quotient bit.
-        self.operand_divisor.clock.next = self.clock.val();
-        self.operand_remainder.clock.next = self.clock.val();
-        self.operand_quotient.clock.next = self.clock.val();
-        self.operand_negative.clock.next = self.clock.val();
-        self.operand_zero.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            operand_divisor,
+            operand_remainder,
+            operand_quotient,
+            operand_negative,
+            operand_zero
+        );
         if self.negative.val() {
             self.operand_divisor.d.next = self.zero.val() - self.a.val();
         } else {
@@ -183,11 +188,15 @@ impl<
             self.row_zero[i].d.next = self.row_zero[i - 1].q.val();
         }
         for i in 0..self.rows.len() {
-            self.row_remainder[i].clock.next = self.clock.val();
-            self.row_quotient[i].clock.next = self.clock.val();
-            self.row_divisor[i].clock.next = self.clock.val();
-            self.row_negative[i].clock.next = self.clock.val();
-            self.row_zero[i].clock.next = self.clock.val();
+            clock!(
+                self,
+                clock,
+                row_remainder[i],
+                row_quotient[i],
+                row_divisor[i],
+                row_negative[i],
+                row_zero[i]
+            );
             self.row_remainder[i].d.next = self.rows[i].remainder_out.val();
             self.row_quotient[i].d.next = self.rows[i].quotient_out.val();
             self.row_divisor[i].d.next = self.rows[i].divisor.val();
@@ -201,11 +210,15 @@ impl<
         // rem < |X| ≤ 2^(W-1), so 2·rem fits in W bits.
         self.doubled.next = self.remainder.val() << 1;
         // Cut 2F+1.
-        self.decided_magnitude.clock.next = self.clock.val();
-        self.decided_round.clock.next = self.clock.val();
-        self.decided_sticky.clock.next = self.clock.val();
-        self.decided_negative.clock.next = self.clock.val();
-        self.decided_zero.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            decided_magnitude,
+            decided_round,
+            decided_sticky,
+            decided_negative,
+            decided_zero
+        );
         self.decided_magnitude.d.next = bit_cast::<K, Q>(self.quotient.val());
         self.decided_round.d.next = self.doubled.val() >= self.divisor.val();
         self.decided_sticky.d.next =
@@ -217,8 +230,7 @@ impl<
         self.rounder.round.next = self.decided_round.q.val();
         self.rounder.sticky.next = self.decided_sticky.q.val();
         // Cut 2F+2.
-        self.rounded.clock.next = self.clock.val();
-        self.rounded_zero.clock.next = self.clock.val();
+        clock!(self, clock, rounded, rounded_zero);
         self.rounded.d.next = self.rounder.value.val();
         self.rounded_zero.d.next = self.decided_zero.q.val();
         self.fit.v.next = self.rounded.q.val();

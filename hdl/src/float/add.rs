@@ -30,7 +30,8 @@ use super::unpack::Unpack;
 use crate::pipe::{placement, Pipe};
 
 /// E, M: the format; W = 1+E+M; S = M+1; X = exponent width (≥ E+2);
-/// A = S+3 (aligned significand); A1 = A+1 (sum); SUB: subtract instead of add.
+/// A = S+3 (aligned significand); A1 = A+1 (sum) ([`crate::widths::FloatWidths`]); SUB:
+/// subtract instead of add.
 #[derive(LogicBlock)]
 pub struct FloatAdd<
     const E: usize,
@@ -256,20 +257,24 @@ impl<
         self.unpack_b.x.next = self.b.val();
         self.sign_b.next = self.unpack_b.sign.val() ^ self.subtract.val();
         // Cut 0. |a| ≥ |b| ⇔ exp_a > exp_b, or equal exponents and frac_a ≥ frac_b.
-        self.compared_sig_a.clock.next = self.clock.val();
-        self.compared_sig_b.clock.next = self.clock.val();
-        self.compared_exp_a.clock.next = self.clock.val();
-        self.compared_exp_b.clock.next = self.clock.val();
-        self.compared_shift_ab.clock.next = self.clock.val();
-        self.compared_shift_ba.clock.next = self.clock.val();
-        self.compared_exp_greater.clock.next = self.clock.val();
-        self.compared_exp_equal.clock.next = self.clock.val();
-        self.compared_frac_not_less.clock.next = self.clock.val();
-        self.compared_sign_a.clock.next = self.clock.val();
-        self.compared_sign_b.clock.next = self.clock.val();
-        self.compared_nan.clock.next = self.clock.val();
-        self.compared_inf.clock.next = self.clock.val();
-        self.compared_cancel.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            compared_sig_a,
+            compared_sig_b,
+            compared_exp_a,
+            compared_exp_b,
+            compared_shift_ab,
+            compared_shift_ba,
+            compared_exp_greater,
+            compared_exp_equal,
+            compared_frac_not_less,
+            compared_sign_a,
+            compared_sign_b,
+            compared_nan,
+            compared_inf,
+            compared_cancel
+        );
         self.compared_sig_a.d.next = self.unpack_a.sig.val();
         self.compared_sig_b.d.next = self.unpack_b.sig.val();
         self.compared_exp_a.d.next = self.unpack_a.exp.val();
@@ -313,8 +318,7 @@ impl<
         }
         self.trailing_a.x.next = self.reversed_a.val();
         self.trailing_b.x.next = self.reversed_b.val();
-        self.compared_zeros_a.clock.next = self.clock.val();
-        self.compared_zeros_b.clock.next = self.clock.val();
+        clock!(self, clock, compared_zeros_a, compared_zeros_b);
         self.compared_zeros_a.d.next = bit_cast::<5, 8>(self.trailing_a.count.val());
         if self.unpack_a.zero.val() {
             self.compared_zeros_a.d.next = self.all_zeros.val();
@@ -366,11 +370,15 @@ impl<
             self.y_aligned.next = self.y_shifted.val() | self.carry_in.val();
         }
         // Cut 1. x − y = x + !y + 1, and x's lowest bit is 0: the +1 goes there.
-        self.aligned_x.clock.next = self.clock.val();
-        self.aligned_y.clock.next = self.clock.val();
-        self.aligned_exp.clock.next = self.clock.val();
-        self.aligned_subtract.clock.next = self.clock.val();
-        self.aligned_category.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            aligned_x,
+            aligned_y,
+            aligned_exp,
+            aligned_subtract,
+            aligned_category
+        );
         self.aligned_x.d.next = bit_cast::<A, S>(self.x_sig.val()) << self.extra_bits.val();
         self.aligned_y.d.next = self.y_aligned.val();
         if self.subtract_now.val() {
@@ -386,11 +394,15 @@ impl<
         // leading one or one place above. Below bit 0 the addends count as zeros, above the
         // top as differing (the carry out is always 1). A sum has no zeros to anticipate: its
         // leading one is x's or one place above, which the correction finds.
-        self.summed.clock.next = self.clock.val();
-        self.summed_zeros.clock.next = self.clock.val();
-        self.summed_exp.clock.next = self.clock.val();
-        self.summed_exp_below.clock.next = self.clock.val();
-        self.summed_category.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            summed,
+            summed_zeros,
+            summed_exp,
+            summed_exp_below,
+            summed_category
+        );
         self.summed.d.next =
             bit_cast::<A1, A>(self.aligned_x.q.val()) + bit_cast::<A1, A>(self.aligned_y.q.val());
         self.lza_t.next =
@@ -431,11 +443,15 @@ impl<
             | ((self.summed_exp_below.q.val() - bit_cast::<X, 8>(self.summed_zeros.q.val()))
                 & !self.exp_select.val());
         // Cut 3.
-        self.normal_sig.clock.next = self.clock.val();
-        self.normal_round.clock.next = self.clock.val();
-        self.normal_sticky.clock.next = self.clock.val();
-        self.normal_exp.clock.next = self.clock.val();
-        self.normal_category.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            normal_sig,
+            normal_round,
+            normal_sticky,
+            normal_exp,
+            normal_category
+        );
         self.normal_sig.d.next = bit_cast::<S, A1>(self.normalized.val() >> self.sig_shift.val());
         self.normal_round.d.next = (self.normalized.val() & self.round_bit.val()).any();
         self.normal_sticky.d.next = (self.normalized.val() & self.sticky_bits.val()).any();
@@ -446,7 +462,7 @@ impl<
         self.rounder.round.next = self.normal_round.q.val();
         self.rounder.sticky.next = self.normal_sticky.q.val();
         // Cut 4.
-        self.result.clock.next = self.clock.val();
+        clock!(self, clock, result);
         self.result.d.next = self.rounder.y.val();
         self.y.next = self.result.q.val();
     }

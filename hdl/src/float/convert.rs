@@ -89,11 +89,15 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: us
         self.category.next.nan = self.unpack.nan.val();
         self.category.next.inf = self.unpack.inf.val();
         self.category.next.zero = self.unpack.zero.val();
-        self.narrow_sig.clock.next = self.clock.val();
-        self.narrow_round.clock.next = self.clock.val();
-        self.narrow_sticky.clock.next = self.clock.val();
-        self.narrow_exp.clock.next = self.clock.val();
-        self.narrow_category.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            narrow_sig,
+            narrow_round,
+            narrow_sticky,
+            narrow_exp,
+            narrow_category
+        );
         self.narrow_sig.d.next =
             bit_cast::<S, 24>(self.unpack.sig.val() >> self.dropped_bits.val());
         self.narrow_round.d.next = (self.unpack.sig.val() & self.round_bit.val()).any();
@@ -105,7 +109,7 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize, const X: us
         self.rounder.sig.next = self.narrow_sig.q.val();
         self.rounder.round.next = self.narrow_round.q.val();
         self.rounder.sticky.next = self.narrow_sticky.q.val();
-        self.result.clock.next = self.clock.val();
+        clock!(self, clock, result);
         self.result.d.next = self.rounder.y.val();
         self.y.next = self.result.q.val();
     }
@@ -176,7 +180,7 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize> Logic
             self.sign_bit.next = self.sign_mask.val();
         }
         self.exp32.next = bit_cast::<8, E>(self.unpack.exp.val()) + self.rebias.val();
-        self.result.clock.next = self.clock.val();
+        clock!(self, clock, result);
         if self.unpack.nan.val() {
             self.result.d.next = self.nan.val();
         } else if self.unpack.inf.val() {

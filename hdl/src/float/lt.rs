@@ -93,7 +93,7 @@ impl<const E: usize, const M: usize, const W: usize, const S: usize> Logic for F
             | (self.same_binade.val() & self.frac_less.val());
         self.b_smaller.next = (self.unpack_a.exp.val() > self.unpack_b.exp.val())
             | (self.same_binade.val() & self.frac_greater.val());
-        self.result.clock.next = self.clock.val();
+        clock!(self, clock, result);
         self.result.d.next = !(self.unpack_a.nan.val() | self.unpack_b.nan.val())
             & ((!self.unpack_a.sign.val() & !self.unpack_b.sign.val() & self.a_smaller.val())
                 | (self.unpack_a.sign.val() & self.unpack_b.sign.val() & self.b_smaller.val())

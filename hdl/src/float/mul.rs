@@ -14,7 +14,8 @@ use super::unpack::Unpack;
 use crate::intmul::IntMul;
 use crate::pipe::{placement, Pipe};
 
-/// E, M: the format; W = 1+E+M; S = M+1; S2 = 2S; X = exponent width (≥ E+2).
+/// E, M: the format; W = 1+E+M; S = M+1; S2 = 2S; X = exponent width (≥ E+2)
+/// ([`crate::widths::FloatWidths`]).
 #[derive(LogicBlock)]
 pub struct FloatMul<
     const E: usize,
@@ -133,9 +134,7 @@ impl<
         self.multiplier.a.next = self.unpack_a.sig.val();
         self.multiplier.b.next = self.unpack_b.sig.val();
         // Cut 0: synthesis packs these registers into the DSP slices.
-        self.product.clock.next = self.clock.val();
-        self.product_exp.clock.next = self.clock.val();
-        self.product_class.clock.next = self.clock.val();
+        clock!(self, clock, product, product_exp, product_class);
         self.product.d.next = self.multiplier.p.val();
         self.product_exp.d.next = self.exp_sum.val();
         self.product_class.d.next = self.category.val();
@@ -147,11 +146,15 @@ impl<
             self.product_normalized.next = self.product.q.val() << 1;
         }
         // Cut 1.
-        self.normal_sig.clock.next = self.clock.val();
-        self.normal_round.clock.next = self.clock.val();
-        self.normal_sticky.clock.next = self.clock.val();
-        self.normal_exp.clock.next = self.clock.val();
-        self.normal_class.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            normal_sig,
+            normal_round,
+            normal_sticky,
+            normal_exp,
+            normal_class
+        );
         self.normal_sig.d.next =
             bit_cast::<S, S2>(self.product_normalized.val() >> self.sig_width.val());
         self.normal_round.d.next = (self.product_normalized.val() & self.round_bit.val()).any();
@@ -168,7 +171,7 @@ impl<
         self.rounder.round.next = self.normal_round.q.val();
         self.rounder.sticky.next = self.normal_sticky.q.val();
         // Cut 2.
-        self.result.clock.next = self.clock.val();
+        clock!(self, clock, result);
         self.result.d.next = self.rounder.y.val();
         self.y.next = self.result.q.val();
     }

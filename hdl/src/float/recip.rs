@@ -111,9 +111,9 @@ fn table(m: usize) -> Vec<(u64, u64, u64)> {
         .collect()
 }
 
-/// E, M: the format; W = 1+E+M; S = M+1; X = exponent width (≥ E+2); then the widths the
-/// `index_bits` … `square_bits` functions give: K, D, YW (Y), BW (B), CW (C), D2 (= 2D),
-/// D2H (d² kept), P1 = BW + D, P2 = CW + D2H, PC = 2S (sig·(2·frac + 1)).
+/// E, M: the format; W, S, X: a word, a significand, a signed exponent (≥ E+2); then the
+/// table and product widths K, D, YW, BW, CW, D2, D2H, P1, P2, PC, each named and computed
+/// by [`crate::widths::RecipWidths`] (which says why they are parameters).
 #[derive(LogicBlock)]
 pub struct FloatRecip<
     const E: usize,
@@ -336,14 +336,18 @@ impl<
         self.square.a.next = self.d.val();
         self.square.b.next = self.d.val();
         // Cut 0.
-        self.lookup_a.clock.next = self.clock.val();
-        self.lookup_c.clock.next = self.clock.val();
-        self.lookup_linear.clock.next = self.clock.val();
-        self.lookup_square.clock.next = self.clock.val();
-        self.lookup_sig.clock.next = self.clock.val();
-        self.lookup_exp.clock.next = self.clock.val();
-        self.lookup_exact.clock.next = self.clock.val();
-        self.lookup_category.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            lookup_a,
+            lookup_c,
+            lookup_linear,
+            lookup_square,
+            lookup_sig,
+            lookup_exp,
+            lookup_exact,
+            lookup_category
+        );
         self.lookup_a.d.next = self.table_a.data.val();
         self.lookup_c.d.next = self.table_c.data.val();
         self.lookup_linear.d.next = self.linear.p.val();
@@ -355,12 +359,16 @@ impl<
         self.quadratic.a.next = self.lookup_c.q.val();
         self.quadratic.b.next = self.lookup_square.q.val();
         // Cut 1.
-        self.partial_sum.clock.next = self.clock.val();
-        self.partial_quadratic.clock.next = self.clock.val();
-        self.partial_sig.clock.next = self.clock.val();
-        self.partial_exp.clock.next = self.clock.val();
-        self.partial_exact.clock.next = self.clock.val();
-        self.partial_category.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            partial_sum,
+            partial_quadratic,
+            partial_sig,
+            partial_exp,
+            partial_exact,
+            partial_category
+        );
         self.partial_sum.d.next = self.lookup_a.q.val()
             - bit_cast::<YW, P1>(self.lookup_linear.q.val() >> self.b_shift.val());
         self.partial_quadratic.d.next = self.quadratic.p.val();
@@ -371,11 +379,15 @@ impl<
         self.sum.next = self.partial_sum.q.val()
             + bit_cast::<YW, P2>(self.partial_quadratic.q.val() >> self.c_shift.val());
         // Cut 2: the candidate c = 2^M + frac.
-        self.candidate_frac.clock.next = self.clock.val();
-        self.candidate_sig.clock.next = self.clock.val();
-        self.candidate_exp.clock.next = self.clock.val();
-        self.candidate_exact.clock.next = self.clock.val();
-        self.candidate_category.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            candidate_frac,
+            candidate_sig,
+            candidate_exp,
+            candidate_exact,
+            candidate_category
+        );
         self.candidate_frac.d.next = bit_cast::<M, YW>(self.sum.val() >> self.extra_shift.val());
         self.candidate_sig.d.next = self.partial_sig.q.val();
         self.candidate_exp.d.next = self.partial_exp.q.val();
@@ -388,12 +400,16 @@ impl<
         self.check_top.next = bit_cast::<3, PC>(self.check.p.val() >> self.check_shift.val())
             + bit_cast::<3, S>(self.candidate_sig.q.val() & self.low_three.val());
         // Cut 3.
-        self.decided_up.clock.next = self.clock.val();
-        self.decided_frac.clock.next = self.clock.val();
-        self.decided_frac_up.clock.next = self.clock.val();
-        self.decided_exp.clock.next = self.clock.val();
-        self.decided_exact.clock.next = self.clock.val();
-        self.decided_category.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            decided_up,
+            decided_frac,
+            decided_frac_up,
+            decided_exp,
+            decided_exact,
+            decided_category
+        );
         self.decided_up.d.next = self.check_top.val().get_bit(2);
         self.decided_frac.d.next = self.candidate_frac.q.val();
         self.decided_frac_up.d.next = self.candidate_frac.q.val() + self.one.val();
@@ -416,7 +432,7 @@ impl<
                 self.hidden_bit.val() | bit_cast::<S, M>(self.decided_frac.q.val());
         }
         // Cut 4.
-        self.result.clock.next = self.clock.val();
+        clock!(self, clock, result);
         self.result.d.next = self.rounder.y.val();
         self.y.next = self.result.q.val();
     }

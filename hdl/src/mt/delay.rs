@@ -7,6 +7,7 @@
 //! about 800 LUTs on such lines while its block RAMs sit idle. The ring position comes from a
 //! [`Ring`] counter that every line of the same length shares.
 
+use crate::macros::clock;
 use rust_hdl::prelude::*;
 
 /// The shortest line that goes into block RAM: a ring of at least two words, the RAM's read
@@ -64,7 +65,7 @@ impl<T: Synth> Logic for Delay<T> {
     fn update(&mut self) {
         self.tap.next = self.d.val();
         for i in 0..self.regs.len() {
-            self.regs[i].clock.next = self.clock.val();
+            clock!(self, clock, regs[i]);
             self.regs[i].d.next = self.tap.val();
             self.tap.next = self.regs[i].q.val();
         }
@@ -114,10 +115,10 @@ impl<T: Synth> WordDelay<T> {
 impl<T: Synth> Logic for WordDelay<T> {
     #[hdl_gen]
     fn update(&mut self) {
-        self.regs.clock.next = self.clock.val();
+        clock!(self, clock, regs);
         self.regs.d.next = self.d.val();
         for i in 0..self.ram.len() {
-            self.ram[i].clock.next = self.clock.val();
+            clock!(self, clock, ram[i]);
             self.ram[i].at.next = self.at.val();
             self.ram[i].d.next = self.d.val();
             self.regs.d.next = self.ram[i].q.val();

@@ -13,7 +13,7 @@ macro_rules! mt_lane {
         pub use mt_lane_impl::{mt_lane_verilog, MtLane};
 
         mod mt_lane_impl {
-            use rust_hdl::prelude::*;
+            use $crate::macros::prelude::*;
 
             use super::{
                 Add, FromF32, Lt, Mul, Recip, Sub, ToF32, FORMAT, HW, NAME, RAW_FP32, WIDTH,
@@ -56,9 +56,7 @@ macro_rules! mt_lane {
                 #[hdl_gen]
                 fn update(&mut self) {
                     for i in 0..3 {
-                        self.left[i].clock.next = self.clock.val();
-                        self.right[i].clock.next = self.clock.val();
-                        self.diff[i].clock.next = self.clock.val();
+                        clock!(self, clock, left[i], right[i], diff[i]);
                         self.diff[i].a.next = self.left[i].y.val();
                         self.diff[i].b.next = self.right[i].y.val();
                         self.y[i].next = self.diff[i].y.val();
@@ -114,14 +112,13 @@ macro_rules! mt_lane {
                 #[hdl_gen]
                 fn update(&mut self) {
                     for i in 0..3 {
-                        self.products[i].clock.next = self.clock.val();
+                        clock!(self, clock, products[i]);
                         self.products[i].a.next = self.a[i].val();
                         self.products[i].b.next = self.b[i].val();
                     }
-                    self.first_sum.clock.next = self.clock.val();
-                    self.third_at_sum.clock.next = self.clock.val();
+                    clock!(self, clock, first_sum, third_at_sum);
                     self.third_at_sum.at.next = self.third_at.val();
-                    self.sum.clock.next = self.clock.val();
+                    clock!(self, clock, sum);
                     self.first_sum.a.next = self.products[0].y.val();
                     self.first_sum.b.next = self.products[1].y.val();
                     self.third_at_sum.d.next = self.products[2].y.val();
@@ -293,7 +290,7 @@ macro_rules! mt_lane {
                 #[hdl_gen]
                 fn update(&mut self) {
                     for i in 0..OPERAND_COUNT {
-                        self.load[i].clock.next = self.clock.val();
+                        clock!(self, clock, load[i]);
                         self.load[i].a.next = self.query[i].val();
                         self.loaded[i].next = self.load[i].y.val();
                         // (Through a word signal: the index inside `bit_cast` would lose
@@ -303,25 +300,33 @@ macro_rules! mt_lane {
                             self.loaded[i].next = bit_cast::<WIDTH, 32>(self.raw_word.val());
                         }
                     }
-                    self.dir_ring.clock.next = self.clock.val();
-                    self.dot_ring.clock.next = self.clock.val();
-                    self.third_ring.clock.next = self.clock.val();
-                    self.numerator_ring.clock.next = self.clock.val();
-                    self.result_ring.clock.next = self.clock.val();
-                    self.t_min_ring.clock.next = self.clock.val();
-                    self.t_min_at_test.clock.next = self.clock.val();
+                    clock!(
+                        self,
+                        clock,
+                        dir_ring,
+                        dot_ring,
+                        third_ring,
+                        numerator_ring,
+                        result_ring,
+                        t_min_ring,
+                        t_min_at_test
+                    );
                     self.t_min_at_test.at.next = self.t_min_ring.at.val();
                     // Word 15 = T_MIN_WORD (a literal: hdl_gen would leak the name).
                     self.t_min_at_test.d.next = self.loaded[15].val();
                     for i in 0..3 {
-                        self.edge1[i].clock.next = self.clock.val();
-                        self.edge2[i].clock.next = self.clock.val();
-                        self.to_origin[i].clock.next = self.clock.val();
-                        self.dir_at_cross[i].clock.next = self.clock.val();
-                        self.dir_at_dot[i].clock.next = self.clock.val();
-                        self.edge1_at_dot[i].clock.next = self.clock.val();
-                        self.edge2_at_dot[i].clock.next = self.clock.val();
-                        self.to_origin_at_dot[i].clock.next = self.clock.val();
+                        clock!(
+                            self,
+                            clock,
+                            edge1[i],
+                            edge2[i],
+                            to_origin[i],
+                            dir_at_cross[i],
+                            dir_at_dot[i],
+                            edge1_at_dot[i],
+                            edge2_at_dot[i],
+                            to_origin_at_dot[i]
+                        );
                         self.dir_at_cross[i].at.next = self.dir_ring.at.val();
                         self.dir_at_dot[i].at.next = self.dot_ring.at.val();
                         self.edge1_at_dot[i].at.next = self.dot_ring.at.val();
@@ -354,48 +359,43 @@ macro_rules! mt_lane {
                         self.t_num.a[i].next = self.edge2_at_dot[i].q.val();
                         self.t_num.b[i].next = self.q.y[i].val();
                     }
-                    self.p.clock.next = self.clock.val();
-                    self.q.clock.next = self.clock.val();
-                    self.det.clock.next = self.clock.val();
-                    self.u_num.clock.next = self.clock.val();
-                    self.v_num.clock.next = self.clock.val();
-                    self.t_num.clock.next = self.clock.val();
+                    clock!(self, clock, p, q, det, u_num, v_num, t_num);
                     self.det.third_at.next = self.third_ring.at.val();
                     self.u_num.third_at.next = self.third_ring.at.val();
                     self.v_num.third_at.next = self.third_ring.at.val();
                     self.t_num.third_at.next = self.third_ring.at.val();
                     // u, v, t = numerator · (1/det).
-                    self.inv_det.clock.next = self.clock.val();
+                    clock!(self, clock, inv_det);
                     self.inv_det.a.next = self.det.y.val();
-                    self.u_num_at_scale.clock.next = self.clock.val();
-                    self.v_num_at_scale.clock.next = self.clock.val();
-                    self.t_num_at_scale.clock.next = self.clock.val();
+                    clock!(self, clock, u_num_at_scale, v_num_at_scale, t_num_at_scale);
                     self.u_num_at_scale.at.next = self.numerator_ring.at.val();
                     self.v_num_at_scale.at.next = self.numerator_ring.at.val();
                     self.t_num_at_scale.at.next = self.numerator_ring.at.val();
                     self.u_num_at_scale.d.next = self.u_num.y.val();
                     self.v_num_at_scale.d.next = self.v_num.y.val();
                     self.t_num_at_scale.d.next = self.t_num.y.val();
-                    self.u_scale.clock.next = self.clock.val();
-                    self.v_scale.clock.next = self.clock.val();
-                    self.t_scale.clock.next = self.clock.val();
+                    clock!(self, clock, u_scale, v_scale, t_scale);
                     self.u_scale.a.next = self.u_num_at_scale.q.val();
                     self.v_scale.a.next = self.v_num_at_scale.q.val();
                     self.t_scale.a.next = self.t_num_at_scale.q.val();
                     self.u_scale.b.next = self.inv_det.y.val();
                     self.v_scale.b.next = self.inv_det.y.val();
                     self.t_scale.b.next = self.inv_det.y.val();
-                    self.u_plus_v.clock.next = self.clock.val();
+                    clock!(self, clock, u_plus_v);
                     self.u_plus_v.a.next = self.u_scale.y.val();
                     self.u_plus_v.b.next = self.v_scale.y.val();
                     // The tests: parallel = det < eps && −eps < det, then the ranges.
-                    self.det_below_eps.clock.next = self.clock.val();
-                    self.det_above_neg_eps.clock.next = self.clock.val();
-                    self.u_below_zero.clock.next = self.clock.val();
-                    self.u_above_one.clock.next = self.clock.val();
-                    self.v_below_zero.clock.next = self.clock.val();
-                    self.sum_above_one.clock.next = self.clock.val();
-                    self.t_above_min.clock.next = self.clock.val();
+                    clock!(
+                        self,
+                        clock,
+                        det_below_eps,
+                        det_above_neg_eps,
+                        u_below_zero,
+                        u_above_one,
+                        v_below_zero,
+                        sum_above_one,
+                        t_above_min
+                    );
                     self.det_below_eps.a.next = self.det.y.val();
                     self.det_below_eps.b.next = self.eps.val();
                     self.det_above_neg_eps.a.next = self.neg_eps.val();
@@ -411,9 +411,13 @@ macro_rules! mt_lane {
                     // The lower bound in the format (hw_model::mt::mt_model; t_min = 0: t > 0).
                     self.t_above_min.a.next = self.t_min_at_test.q.val();
                     self.t_above_min.b.next = self.t_scale.y.val();
-                    self.parallel_at_out.clock.next = self.clock.val();
-                    self.in_range_at_out.clock.next = self.clock.val();
-                    self.sum_above_one_at_out.clock.next = self.clock.val();
+                    clock!(
+                        self,
+                        clock,
+                        parallel_at_out,
+                        in_range_at_out,
+                        sum_above_one_at_out
+                    );
                     self.parallel_at_out.d.next =
                         self.det_below_eps.y.val() & self.det_above_neg_eps.y.val();
                     self.in_range_at_out.d.next = !self.u_below_zero.y.val()
@@ -425,15 +429,11 @@ macro_rules! mt_lane {
                         & self.in_range_at_out.q.val()
                         & !self.sum_above_one_at_out.q.val();
                     // t, u, v back to fp32.
-                    self.t_out.clock.next = self.clock.val();
-                    self.u_out.clock.next = self.clock.val();
-                    self.v_out.clock.next = self.clock.val();
+                    clock!(self, clock, t_out, u_out, v_out);
                     self.t_out.a.next = self.t_scale.y.val();
                     self.u_out.a.next = self.u_scale.y.val();
                     self.v_out.a.next = self.v_scale.y.val();
-                    self.t_at_out.clock.next = self.clock.val();
-                    self.u_at_out.clock.next = self.clock.val();
-                    self.v_at_out.clock.next = self.clock.val();
+                    clock!(self, clock, t_at_out, u_at_out, v_at_out);
                     self.t_at_out.at.next = self.result_ring.at.val();
                     self.u_at_out.at.next = self.result_ring.at.val();
                     self.v_at_out.at.next = self.result_ring.at.val();
@@ -448,7 +448,7 @@ macro_rules! mt_lane {
                     self.t.next = self.t_at_out.q.val();
                     self.u.next = self.u_at_out.q.val();
                     self.v.next = self.v_at_out.q.val();
-                    self.valid_at_out.clock.next = self.clock.val();
+                    clock!(self, clock, valid_at_out);
                     self.valid_at_out.d.next = self.valid_in.val();
                     self.valid_out.next = self.valid_at_out.q.val();
                 }

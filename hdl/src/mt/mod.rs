@@ -22,6 +22,7 @@ use rust_hdl::prelude::*;
 use crate::formats;
 use crate::operator::Op;
 use crate::regmap::{self, OPERAND_COUNT};
+use crate::top::stream::QUERY_BITS;
 use schedule::{OpLatencies, Schedule};
 
 /// The lane's timing in `format` at `depth`.
@@ -74,6 +75,33 @@ pub fn query_from_words(words: &[u32; OPERAND_COUNT]) -> MtQuery {
 pub const T_MIN_WORD: usize = (regmap::T_MIN - regmap::ORIG_X) / 4;
 // The lane (`lane.rs`) spells the index as a literal.
 const _: () = assert!(T_MIN_WORD == 15 && OPERAND_COUNT == 16);
+
+/// A lane's packed query and its answer, seen from what issues the queries (the traversal
+/// unit's leaf ports): the query's words in the register map's operand order
+/// ([`query_words`]), one a cycle with `valid`; the answer (t, u, v as fp32 words) a lane's
+/// latency later.
+#[derive(LogicInterface, Default)]
+#[join = "LaneTarget"]
+pub struct LanePort {
+    pub valid: Signal<Out, Bit>,
+    pub query: Signal<Out, Bits<QUERY_BITS>>,
+    pub hit: Signal<In, Bit>,
+    pub t: Signal<In, Bits<32>>,
+    pub u: Signal<In, Bits<32>>,
+    pub v: Signal<In, Bits<32>>,
+}
+
+/// A lane's side of [`LanePort`].
+#[derive(LogicInterface, Default)]
+#[join = "LanePort"]
+pub struct LaneTarget {
+    pub valid: Signal<In, Bit>,
+    pub query: Signal<In, Bits<QUERY_BITS>>,
+    pub hit: Signal<Out, Bit>,
+    pub t: Signal<Out, Bits<32>>,
+    pub u: Signal<Out, Bits<32>>,
+    pub v: Signal<Out, Bits<32>>,
+}
 
 /// What a lane's outputs show in one cycle (t, u, v as fp32 bits).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

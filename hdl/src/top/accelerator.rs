@@ -12,25 +12,21 @@
 #[macro_export]
 macro_rules! accelerator {
     ($lane:ty) => {
-        use rust_hdl::prelude::*;
         use $crate::axil::{AxiLiteSlave, AxiLiteSlavePort};
+        use $crate::macros::prelude::*;
         #[allow(unused_imports)]
         use $crate::mt::Lane as _;
         use $crate::regmap::OPERAND_COUNT;
-        use $crate::top::stream::{StreamFrontEnd, IN_LANE_BITS, OUT_LANE_BITS, QUERY_BITS};
+        use $crate::top::stream::{StreamFrontEnd, IN_LANE_BITS, OUT_LANE_BITS};
 
-        /// One lane behind a flat query port (rust-hdl cannot index an array port of an
-        /// element of a `Vec` of blocks, so the accelerator drives the lanes through these).
+        /// One lane behind a packed query port (rust-hdl cannot index an array port of an
+        /// element of a `Vec` of blocks, so the accelerator and the traversal unit drive the
+        /// lanes through these).
         #[derive(LogicBlock)]
         pub struct LaneSlot {
             pub clock: Signal<In, Clock>,
-            pub valid_in: Signal<In, Bit>,
-            pub query: Signal<In, Bits<QUERY_BITS>>,
+            pub port: $crate::mt::LaneTarget,
             pub valid_out: Signal<Out, Bit>,
-            pub hit: Signal<Out, Bit>,
-            pub t: Signal<Out, Bits<32>>,
-            pub u: Signal<Out, Bits<32>>,
-            pub v: Signal<Out, Bits<32>>,
             lane: $lane,
         }
 
@@ -38,13 +34,8 @@ macro_rules! accelerator {
             pub fn new(depth: usize) -> Self {
                 Self {
                     clock: Default::default(),
-                    valid_in: Default::default(),
-                    query: Default::default(),
+                    port: Default::default(),
                     valid_out: Default::default(),
-                    hit: Default::default(),
-                    t: Default::default(),
-                    u: Default::default(),
-                    v: Default::default(),
                     lane: <$lane>::new(depth),
                 }
             }
@@ -53,16 +44,16 @@ macro_rules! accelerator {
         impl Logic for LaneSlot {
             #[hdl_gen]
             fn update(&mut self) {
-                self.lane.clock.next = self.clock.val();
-                self.lane.valid_in.next = self.valid_in.val();
+                clock!(self, clock, lane);
+                self.lane.valid_in.next = self.port.valid.val();
                 for k in 0..OPERAND_COUNT {
-                    self.lane.query[k].next = self.query.val().get_bits::<32>(k * 32);
+                    self.lane.query[k].next = self.port.query.val().get_bits::<32>(k * 32);
                 }
                 self.valid_out.next = self.lane.valid_out.val();
-                self.hit.next = self.lane.hit.val();
-                self.t.next = self.lane.t.val();
-                self.u.next = self.lane.u.val();
-                self.v.next = self.lane.v.val();
+                self.port.hit.next = self.lane.hit.val();
+                self.port.t.next = self.lane.t.val();
+                self.port.u.next = self.lane.u.val();
+                self.port.v.next = self.lane.v.val();
             }
         }
 
@@ -121,28 +112,10 @@ macro_rules! accelerator {
         impl Logic for Accelerator {
             #[hdl_gen]
             fn update(&mut self) {
-                self.slave.clock.next = self.clock.val();
+                clock!(self, clock, slave, front);
                 self.slave.reset_n.next = self.reset_n.val();
-                self.front.clock.next = self.clock.val();
                 self.front.reset_n.next = self.reset_n.val();
-
-                self.slave.axi.awvalid.next = self.axi.awvalid.val();
-                self.axi.awready.next = self.slave.axi.awready.val();
-                self.slave.axi.awaddr.next = self.axi.awaddr.val();
-                self.slave.axi.wvalid.next = self.axi.wvalid.val();
-                self.axi.wready.next = self.slave.axi.wready.val();
-                self.slave.axi.wdata.next = self.axi.wdata.val();
-                self.slave.axi.wstrb.next = self.axi.wstrb.val();
-                self.axi.bvalid.next = self.slave.axi.bvalid.val();
-                self.slave.axi.bready.next = self.axi.bready.val();
-                self.axi.bresp.next = self.slave.axi.bresp.val();
-                self.slave.axi.arvalid.next = self.axi.arvalid.val();
-                self.axi.arready.next = self.slave.axi.arready.val();
-                self.slave.axi.araddr.next = self.axi.araddr.val();
-                self.axi.rvalid.next = self.slave.axi.rvalid.val();
-                self.slave.axi.rready.next = self.axi.rready.val();
-                self.axi.rdata.next = self.slave.axi.rdata.val();
-                self.axi.rresp.next = self.slave.axi.rresp.val();
+                AxiLiteSlavePort::link(&mut self.axi, &mut self.slave.axi);
                 self.interrupt.next = self.slave.interrupt.val();
                 self.slave.id.next = self.id.val();
                 self.slave.configuration.next = self.configuration.val();
@@ -164,20 +137,20 @@ macro_rules! accelerator {
                     self.front.reg_operands[k].next = self.slave.operands[k].val();
                 }
                 self.slave.done.next = self.front.reg_done.val();
-                self.slave.hit.next = self.slots[0].hit.val();
-                self.slave.t.next = self.slots[0].t.val();
-                self.slave.u.next = self.slots[0].u.val();
-                self.slave.v.next = self.slots[0].v.val();
+                self.slave.hit.next = self.slots[0].port.hit.val();
+                self.slave.t.next = self.slots[0].port.t.val();
+                self.slave.u.next = self.slots[0].port.u.val();
+                self.slave.v.next = self.slots[0].port.v.val();
 
                 self.front.lane_valid_out.next = self.slots[0].valid_out.val();
                 for i in 0..self.slots.len() {
-                    self.slots[i].clock.next = self.clock.val();
-                    self.slots[i].valid_in.next = self.front.lane_valid_in[i].val();
-                    self.slots[i].query.next = self.front.lane_query[i].val();
-                    self.front.lane_hit[i].next = self.slots[i].hit.val();
-                    self.front.lane_t[i].next = self.slots[i].t.val();
-                    self.front.lane_u[i].next = self.slots[i].u.val();
-                    self.front.lane_v[i].next = self.slots[i].v.val();
+                    clock!(self, clock, slots[i]);
+                    self.slots[i].port.valid.next = self.front.lane_valid_in[i].val();
+                    self.slots[i].port.query.next = self.front.lane_query[i].val();
+                    self.front.lane_hit[i].next = self.slots[i].port.hit.val();
+                    self.front.lane_t[i].next = self.slots[i].port.t.val();
+                    self.front.lane_u[i].next = self.slots[i].port.u.val();
+                    self.front.lane_v[i].next = self.slots[i].port.v.val();
                 }
             }
         }

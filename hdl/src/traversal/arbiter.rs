@@ -42,7 +42,7 @@ impl<const S: usize> Default for RoundRobin<S> {
 impl<const S: usize> Logic for RoundRobin<S> {
     #[hdl_gen]
     fn update(&mut self) {
-        self.last.clock.next = self.clock.val();
+        clock!(self, clock, last);
         // The slots above the last grant: !(2·last − 1) (all slots while last is 0, whose
         // mask would be 0: the fallback below takes the whole request then).
         self.after.next = self.request.val() & !((self.last.q.val() << 1) - self.one.val());

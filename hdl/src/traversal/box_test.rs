@@ -29,6 +29,7 @@ use hw_model::traversal::box_test::{BoxResult, ChildBoxes, RaySetup};
 use rust_hdl::prelude::*;
 
 use crate::formats::fp32::{self, Lt, Mul, Sub};
+use crate::macros::clock;
 use crate::mt::delay::Delay;
 use crate::mt::schedule::OpLatencies;
 use crate::operator::Op;
@@ -156,13 +157,17 @@ impl Slab {
 impl Logic for Slab {
     #[hdl_gen]
     fn update(&mut self) {
-        self.to_min.clock.next = self.clock.val();
-        self.to_max.clock.next = self.clock.val();
-        self.t0.clock.next = self.clock.val();
-        self.t1.clock.next = self.clock.val();
-        self.ordered.clock.next = self.clock.val();
-        self.t0_at_select.clock.next = self.clock.val();
-        self.t1_at_select.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            to_min,
+            to_max,
+            t0,
+            t1,
+            ordered,
+            t0_at_select,
+            t1_at_select
+        );
         self.to_min.a.next = self.min.val();
         self.to_min.b.next = self.orig_lo.val();
         self.to_max.a.next = self.max.val();
@@ -326,10 +331,10 @@ impl Logic for BoxTest {
     #[hdl_gen]
     fn update(&mut self) {
         for a in 0..3 {
-            self.inv_at_slab[a].clock.next = self.clock.val();
+            clock!(self, clock, inv_at_slab[a]);
             self.inv_at_slab[a].d.next = self.inv_dir[a].val();
             for c in 0..2 {
-                self.slabs[2 * a + c].clock.next = self.clock.val();
+                clock!(self, clock, slabs[2 * a + c]);
                 self.slabs[2 * a + c].orig_lo.next = self.orig_lo[a].val();
                 self.slabs[2 * a + c].orig_hi.next = self.orig_hi[a].val();
                 self.slabs[2 * a + c].inv.next = self.inv_at_slab[a].q.val();
@@ -338,7 +343,7 @@ impl Logic for BoxTest {
             }
         }
         // The folds start from near = +0 and far = t_hi.
-        self.t_hi_at_fold.clock.next = self.clock.val();
+        clock!(self, clock, t_hi_at_fold);
         self.t_hi_at_fold.d.next = self.t_hi.val();
         for c in 0..2 {
             self.running_near[c].next = self.zero.val();
@@ -348,14 +353,18 @@ impl Logic for BoxTest {
         // the running value keeps it out, and a tie keeps the running value, as in the model.
         for k in 0..3 {
             for c in 0..2 {
-                self.lo_at_step[2 * k + c].clock.next = self.clock.val();
-                self.hi_at_step[2 * k + c].clock.next = self.clock.val();
-                self.near_step[2 * k + c].clock.next = self.clock.val();
-                self.far_step[2 * k + c].clock.next = self.clock.val();
-                self.lo_at_keep[2 * k + c].clock.next = self.clock.val();
-                self.hi_at_keep[2 * k + c].clock.next = self.clock.val();
-                self.near_at_keep[2 * k + c].clock.next = self.clock.val();
-                self.far_at_keep[2 * k + c].clock.next = self.clock.val();
+                clock!(
+                    self,
+                    clock,
+                    lo_at_step[2 * k + c],
+                    hi_at_step[2 * k + c],
+                    near_step[2 * k + c],
+                    far_step[2 * k + c],
+                    lo_at_keep[2 * k + c],
+                    hi_at_keep[2 * k + c],
+                    near_at_keep[2 * k + c],
+                    far_at_keep[2 * k + c]
+                );
                 self.lo_at_step[2 * k + c].d.next = self.slabs[2 * k + c].lo.val();
                 self.hi_at_step[2 * k + c].d.next = self.slabs[2 * k + c].hi.val();
                 self.near_step[2 * k + c].a.next = self.running_near[2 * k + c].val();
@@ -381,9 +390,13 @@ impl Logic for BoxTest {
         // near ≤ far, and a NaN far (from a NaN t_hi: no product is a NaN that gets kept)
         // enters nothing; the NaN test is two masks, no operator.
         for c in 0..2 {
-            self.far_before_near[c].clock.next = self.clock.val();
-            self.near_at_out[c].clock.next = self.clock.val();
-            self.far_nan_at_out[c].clock.next = self.clock.val();
+            clock!(
+                self,
+                clock,
+                far_before_near[c],
+                near_at_out[c],
+                far_nan_at_out[c]
+            );
             self.far_before_near[c].a.next = self.running_far[6 + c].val();
             self.far_before_near[c].b.next = self.running_near[6 + c].val();
             self.far_nan[c].next = ((self.running_far[6 + c].val() & self.exp_mask.val())
@@ -395,12 +408,11 @@ impl Logic for BoxTest {
                 !self.far_before_near[c].y.val() & !self.far_nan_at_out[c].q.val();
             self.near[c].next = self.near_at_out[c].q.val();
         }
-        self.near_order.clock.next = self.clock.val();
+        clock!(self, clock, near_order);
         self.near_order.a.next = self.running_near[7].val();
         self.near_order.b.next = self.running_near[6].val();
         self.first.next = self.near_order.y.val();
-        self.valid_at_out.clock.next = self.clock.val();
-        self.tag_at_out.clock.next = self.clock.val();
+        clock!(self, clock, valid_at_out, tag_at_out);
         self.valid_at_out.d.next = self.valid_in.val();
         self.tag_at_out.d.next = self.tag_in.val();
         self.valid_out.next = self.valid_at_out.q.val();

@@ -183,13 +183,17 @@ impl FarEnd {
 impl Logic for FarEnd {
     #[hdl_gen]
     fn update(&mut self) {
-        self.scaled.clock.next = self.clock.val();
-        self.bound_at_sum.clock.next = self.clock.val();
-        self.loosened.clock.next = self.clock.val();
-        self.pad_at_sum.clock.next = self.clock.val();
-        self.sum.clock.next = self.clock.val();
-        self.valid_at_out.clock.next = self.clock.val();
-        self.tag_at_out.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            scaled,
+            bound_at_sum,
+            loosened,
+            pad_at_sum,
+            sum,
+            valid_at_out,
+            tag_at_out
+        );
         // (bound + |bound|·PAD) + pad, in the model's operand order.
         self.scaled.a.next = self.bound.val() & self.abs_mask.val();
         self.scaled.b.next = self.pad_factor.val();

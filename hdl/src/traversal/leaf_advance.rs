@@ -17,9 +17,10 @@
 use rust_hdl::prelude::*;
 
 use crate::formats::fp32::{self, Add, Mul, Sub};
+use crate::macros::clock;
 use crate::mt::delay::Delay;
 use crate::mt::schedule::OpLatencies;
-use crate::mt::T_MIN_WORD;
+use crate::mt::{LanePort, LaneTarget, T_MIN_WORD};
 use crate::operator::Op;
 use crate::top::stream::QUERY_BITS;
 use crate::traversal::box_test::Tag;
@@ -167,9 +168,7 @@ impl Logic for LeafAdvance {
     #[hdl_gen]
     fn update(&mut self) {
         for k in 0..3 {
-            self.scaled_dir[k].clock.next = self.clock.val();
-            self.orig_at_sum[k].clock.next = self.clock.val();
-            self.moved_sum[k].clock.next = self.clock.val();
+            clock!(self, clock, scaled_dir[k], orig_at_sum[k], moved_sum[k]);
             // o + t0·d, in the model's operand order.
             self.scaled_dir[k].a.next = self.t0.val();
             self.scaled_dir[k].b.next = self.dir[k].val();
@@ -178,10 +177,14 @@ impl Logic for LeafAdvance {
             self.moved_sum[k].b.next = self.scaled_dir[k].y.val();
             self.moved[k].next = self.moved_sum[k].y.val();
         }
-        self.lowered_t_min.clock.next = self.clock.val();
-        self.lowered_at_out.clock.next = self.clock.val();
-        self.valid_at_out.clock.next = self.clock.val();
-        self.tag_at_out.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            lowered_t_min,
+            lowered_at_out,
+            valid_at_out,
+            tag_at_out
+        );
         self.lowered_t_min.a.next = self.t_min.val();
         self.lowered_t_min.b.next = self.t0.val();
         self.lowered_at_out.d.next = self.lowered_t_min.y.val();
@@ -258,23 +261,12 @@ pub fn leaf_advance_verilog(depth: usize) -> String {
 #[derive(LogicBlock)]
 pub struct AroundLane {
     pub clock: Signal<In, Clock>,
-    /// From the leaf port (with the query).
-    pub valid_in: Signal<In, Bit>,
-    pub query_in: Signal<In, Bits<QUERY_BITS>>,
+    /// The leaf port's side: its query in, the moved-back answer out; the entry distance
+    /// beside the query.
+    pub core: LaneTarget,
     pub entry: Signal<In, Word>,
-    /// To the lane.
-    pub lane_valid: Signal<Out, Bit>,
-    pub lane_query: Signal<Out, Bits<QUERY_BITS>>,
-    /// From the lane.
-    pub lane_hit: Signal<In, Bit>,
-    pub lane_t: Signal<In, Word>,
-    pub lane_u: Signal<In, Word>,
-    pub lane_v: Signal<In, Word>,
-    /// To the leaf port's answer path.
-    pub hit: Signal<Out, Bit>,
-    pub t: Signal<Out, Word>,
-    pub u: Signal<Out, Word>,
-    pub v: Signal<Out, Word>,
+    /// The lane's side: the moved query out, the lane's answer in.
+    pub lane: LanePort,
     advance: LeafAdvance,
     /// The query's other words (dir, vertices) wait for the moved origin.
     query_at: Delay<Bits<QUERY_BITS>>,
@@ -293,19 +285,9 @@ impl AroundLane {
         let s = AdvanceSchedule::new(depth);
         Self {
             clock: Default::default(),
-            valid_in: Default::default(),
-            query_in: Default::default(),
+            core: Default::default(),
             entry: Default::default(),
-            lane_valid: Default::default(),
-            lane_query: Default::default(),
-            lane_hit: Default::default(),
-            lane_t: Default::default(),
-            lane_u: Default::default(),
-            lane_v: Default::default(),
-            hit: Default::default(),
-            t: Default::default(),
-            u: Default::default(),
-            v: Default::default(),
+            lane: Default::default(),
             advance: LeafAdvance::new(depth),
             query_at: Delay::new(s.latency),
             t0_at: Delay::new(s.latency + lane_latency),
@@ -322,45 +304,39 @@ impl AroundLane {
 impl Logic for AroundLane {
     #[hdl_gen]
     fn update(&mut self) {
-        self.advance.clock.next = self.clock.val();
-        self.query_at.clock.next = self.clock.val();
-        self.t0_at.clock.next = self.clock.val();
-        self.moved_back.clock.next = self.clock.val();
-        self.hit_at.clock.next = self.clock.val();
-        self.u_at.clock.next = self.clock.val();
-        self.v_at.clock.next = self.clock.val();
+        clock!(self, clock, advance, query_at, t0_at, moved_back, hit_at, u_at, v_at);
         // leaf_start: only a finite, positive, normal entry moves the ray.
         self.exponent.next = self.entry.val().get_bits::<8>(23);
         self.t0.next = 0.into();
         if !self.entry.val().get_bit(31) & self.exponent.val().any() & !self.exponent.val().all() {
             self.t0.next = self.entry.val();
         }
-        self.advance.valid_in.next = self.valid_in.val();
+        self.advance.valid_in.next = self.core.valid.val();
         self.advance.tag_in.next = 0.into();
         for k in 0..3 {
-            self.advance.orig[k].next = self.query_in.val().get_bits::<32>(32 * k);
-            self.advance.dir[k].next = self.query_in.val().get_bits::<32>(32 * (3 + k));
+            self.advance.orig[k].next = self.core.query.val().get_bits::<32>(32 * k);
+            self.advance.dir[k].next = self.core.query.val().get_bits::<32>(32 * (3 + k));
         }
-        self.advance.t_min.next = self.query_in.val().get_bits::<32>(480);
+        self.advance.t_min.next = self.core.query.val().get_bits::<32>(480);
         self.advance.t0.next = self.t0.val();
-        self.query_at.d.next = self.query_in.val();
+        self.query_at.d.next = self.core.query.val();
         // The moved origin (words 0-2) and t_min (word 15) around the delayed words 3-14.
-        self.lane_valid.next = self.advance.valid_out.val();
-        self.lane_query.next = bit_cast::<QUERY_BITS, 32>(self.advance.moved[0].val())
+        self.lane.valid.next = self.advance.valid_out.val();
+        self.lane.query.next = bit_cast::<QUERY_BITS, 32>(self.advance.moved[0].val())
             | (bit_cast::<QUERY_BITS, 32>(self.advance.moved[1].val()) << 32)
             | (bit_cast::<QUERY_BITS, 32>(self.advance.moved[2].val()) << 64)
             | (((self.query_at.q.val() << 32) >> 128) << 96)
             | (bit_cast::<QUERY_BITS, 32>(self.advance.t_min_out.val()) << 480);
         // The answer: t + t0 in fp32, the rest delayed beside the adder.
         self.t0_at.d.next = self.t0.val();
-        self.moved_back.a.next = self.lane_t.val();
+        self.moved_back.a.next = self.lane.t.val();
         self.moved_back.b.next = self.t0_at.q.val();
-        self.hit_at.d.next = self.lane_hit.val();
-        self.u_at.d.next = self.lane_u.val();
-        self.v_at.d.next = self.lane_v.val();
-        self.hit.next = self.hit_at.q.val();
-        self.t.next = self.moved_back.y.val();
-        self.u.next = self.u_at.q.val();
-        self.v.next = self.v_at.q.val();
+        self.hit_at.d.next = self.lane.hit.val();
+        self.u_at.d.next = self.lane.u.val();
+        self.v_at.d.next = self.lane.v.val();
+        self.core.hit.next = self.hit_at.q.val();
+        self.core.t.next = self.moved_back.y.val();
+        self.core.u.next = self.u_at.q.val();
+        self.core.v.next = self.v_at.q.val();
     }
 }

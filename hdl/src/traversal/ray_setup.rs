@@ -34,6 +34,7 @@ use hw_model::traversal::box_test::{RaySetup, HUGE_SLOPE, PAD};
 use rust_hdl::prelude::*;
 
 use crate::formats::fp32::{self, Add, Lt, Mul, Recip, Sub};
+use crate::macros::clock;
 use crate::mt::delay::Delay;
 use crate::mt::schedule::OpLatencies;
 use crate::operator::Op;
@@ -293,10 +294,14 @@ impl Logic for RaySetupUnit {
         // and a tie keeps the running value, as in the model.
         self.running[0].next = self.zero.val();
         for k in 0..3 {
-            self.abs_at_step[k].clock.next = self.clock.val();
-            self.magnitude_step[k].clock.next = self.clock.val();
-            self.abs_at_keep[k].clock.next = self.clock.val();
-            self.running_at_keep[k].clock.next = self.clock.val();
+            clock!(
+                self,
+                clock,
+                abs_at_step[k],
+                magnitude_step[k],
+                abs_at_keep[k],
+                running_at_keep[k]
+            );
             self.abs_at_step[k].d.next = self.orig[k].val() & self.abs_mask.val();
             self.magnitude_step[k].a.next = self.running[k].val();
             self.magnitude_step[k].b.next = self.abs_at_step[k].q.val();
@@ -309,15 +314,19 @@ impl Logic for RaySetupUnit {
             }
         }
         // pad = PAD·magnitude; orig_lo = o + pad, orig_hi = o − pad.
-        self.scale.clock.next = self.clock.val();
+        clock!(self, clock, scale);
         self.scale.a.next = self.pad_factor.val();
         self.scale.b.next = self.running[3].val();
         for a in 0..3 {
-            self.orig_at_pad[a].clock.next = self.clock.val();
-            self.lo[a].clock.next = self.clock.val();
-            self.hi[a].clock.next = self.clock.val();
-            self.orig_lo_at_out[a].clock.next = self.clock.val();
-            self.orig_hi_at_out[a].clock.next = self.clock.val();
+            clock!(
+                self,
+                clock,
+                orig_at_pad[a],
+                lo[a],
+                hi[a],
+                orig_lo_at_out[a],
+                orig_hi_at_out[a]
+            );
             self.orig_at_pad[a].d.next = self.orig[a].val();
             self.lo[a].a.next = self.orig_at_pad[a].q.val();
             self.lo[a].b.next = self.scale.y.val();
@@ -331,9 +340,7 @@ impl Logic for RaySetupUnit {
         // inv_dir = 1/d, or the huge slope with d's sign where that has an all-ones exponent
         // (±Inf from ±0 or a flushed subnormal, NaN from a NaN).
         for a in 0..3 {
-            self.recip[a].clock.next = self.clock.val();
-            self.sign_at_inv[a].clock.next = self.clock.val();
-            self.inv_at_out[a].clock.next = self.clock.val();
+            clock!(self, clock, recip[a], sign_at_inv[a], inv_at_out[a]);
             self.recip[a].a.next = self.dir[a].val();
             self.sign_at_inv[a].d.next = self.dir[a].val().get_bit(31);
             if (self.recip[a].y.val() & self.exp_mask.val()) != self.exp_mask.val() {
@@ -346,18 +353,22 @@ impl Logic for RaySetupUnit {
             self.inv_at_out[a].d.next = self.slope[a].val();
             self.inv_dir[a].next = self.inv_at_out[a].q.val();
         }
-        self.pad_at_out.clock.next = self.clock.val();
+        clock!(self, clock, pad_at_out);
         self.pad_at_out.d.next = self.scale.y.val();
         self.pad.next = self.pad_at_out.q.val();
         // t_hi: the bound (with valid and the tag) enters the far end at t_bound, pad joins
         // it at t_pad.
-        self.bound_at_far.clock.next = self.clock.val();
-        self.valid_at_far.clock.next = self.clock.val();
-        self.tag_at_far.clock.next = self.clock.val();
-        self.far.clock.next = self.clock.val();
-        self.t_hi_at_out.clock.next = self.clock.val();
-        self.valid_at_out.clock.next = self.clock.val();
-        self.tag_at_out.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            bound_at_far,
+            valid_at_far,
+            tag_at_far,
+            far,
+            t_hi_at_out,
+            valid_at_out,
+            tag_at_out
+        );
         self.bound_at_far.d.next = self.bound.val();
         self.valid_at_far.d.next = self.valid_in.val();
         self.tag_at_far.d.next = self.tag_in.val();

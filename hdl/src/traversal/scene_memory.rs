@@ -137,21 +137,29 @@ pub fn address_bits_for(nodes: usize, triangles: usize) -> (usize, usize) {
 }
 
 /// `LF`: a link's first is a node or a triangle index.
-pub fn link_first_bits(node_bits: usize, triangle_bits: usize) -> usize {
-    node_bits.max(triangle_bits)
+pub const fn link_first_bits(node_bits: usize, triangle_bits: usize) -> usize {
+    if node_bits > triangle_bits {
+        node_bits
+    } else {
+        triangle_bits
+    }
 }
 
 /// `LC`: a leaf's count reaches the triangle capacity itself.
-pub fn link_count_bits(triangle_bits: usize) -> usize {
+pub const fn link_count_bits(triangle_bits: usize) -> usize {
     triangle_bits + 1
 }
 
 /// `NW`: boxes and two links.
-pub fn node_record_bits(node_bits: usize, triangle_bits: usize) -> usize {
+pub const fn node_record_bits(node_bits: usize, triangle_bits: usize) -> usize {
     BOX_BITS + 2 * (link_first_bits(node_bits, triangle_bits) + link_count_bits(triangle_bits))
 }
 
-/// `TW`: vertices, the flag and the global index.
+// The triangle read spells the flag's and the index's bits as numbers (hdl_gen leaks a named
+// const into the Verilog).
+const _: () = assert!(VERTEX_BITS == 288);
+
+/// `TW`: vertices, the flag (bit [`VERTEX_BITS`]) and the global index (from the next bit).
 pub const fn triangle_record_bits() -> usize {
     VERTEX_BITS + 1 + INDEX_BITS
 }
@@ -226,8 +234,8 @@ pub struct SceneMemory<
     /// Triangle read ports (one per MT lane): port p's record at `triangle_address[p]`,
     /// one cycle later.
     pub triangle_address: Vec<Signal<In, Bits<TB>>>,
-    /// Port p's v0 x y z, v1 x y z, v2 x y z at `vert[9·p ..]`.
-    pub vert: Vec<Signal<Out, Bits<32>>>,
+    /// Port p's v0 x y z, v1 x y z, v2 x y z (word 0 lowest).
+    pub vertices: Vec<Signal<Out, Bits<VERTEX_BITS>>>,
     pub global_index: Vec<Signal<Out, Bits<INDEX_BITS>>>,
     pub casts_shadow: Vec<Signal<Out, Bit>>,
     node_ram: RAM<Bits<NW>, NB>,
@@ -306,21 +314,34 @@ pub struct SceneMemory<
     leaf_end: Signal<Local, Bits<33>>,
     next_record: Signal<Local, Bits<32>>,
     node_read: Signal<Local, Bits<NW>>,
-    triangle_read: Signal<Local, Bits<TW>>,
-    vertex_read: Signal<Local, Bits<VERTEX_BITS>>,
     /// The loader writes a triangle record (into every copy).
     triangle_write: Signal<Local, Bit>,
     triangle_record: Signal<Local, Bits<TW>>,
 }
 
+/// The memory at `$nb` node and `$tb` triangle address bits, every width parameter
+/// computed.
+macro_rules! memory_sized {
+    ($nb:literal, $tb:literal) => {
+        SceneMemory<
+            $nb,
+            $tb,
+            { link_first_bits($nb, $tb) },
+            { link_count_bits($tb) },
+            { node_record_bits($nb, $tb) },
+            { triangle_record_bits() },
+        >
+    };
+}
+
 /// A memory for the small test images (16 nodes, 32 triangles).
-pub type SceneMemory4x5 = SceneMemory<4, 5, 5, 6, 406, { triangle_record_bits() }>;
+pub type SceneMemory4x5 = memory_sized!(4, 5);
 /// Glasses (425 nodes, 720 triangles) fits: 512 nodes, 1,024 triangles.
-pub type SceneMemory9x10 = SceneMemory<9, 10, 10, 11, 426, { triangle_record_bits() }>;
+pub type SceneMemory9x10 = memory_sized!(9, 10);
 /// 2,048 nodes, 4,096 triangles.
-pub type SceneMemory11x12 = SceneMemory<11, 12, 12, 13, 434, { triangle_record_bits() }>;
+pub type SceneMemory11x12 = memory_sized!(11, 12);
 /// Glass pen and Utah teapot (3,876 nodes, 6,322 triangles) fit: 4,096 nodes, 8,192 triangles.
-pub type SceneMemory12x13 = SceneMemory<12, 13, 13, 14, 438, { triangle_record_bits() }>;
+pub type SceneMemory12x13 = memory_sized!(12, 13);
 
 impl<
         const NB: usize,
@@ -395,7 +416,7 @@ impl<
             child_first: Default::default(),
             child_count: Default::default(),
             triangle_address: defaults(triangle_ports),
-            vert: defaults(9 * triangle_ports),
+            vertices: defaults(triangle_ports),
             global_index: defaults(triangle_ports),
             casts_shadow: defaults(triangle_ports),
             node_ram: Default::default(),
@@ -459,8 +480,6 @@ impl<
             leaf_end: Default::default(),
             next_record: Default::default(),
             node_read: Default::default(),
-            triangle_read: Default::default(),
-            vertex_read: Default::default(),
             triangle_write: Default::default(),
             triangle_record: Default::default(),
         }
@@ -502,6 +521,7 @@ impl<
             error_word_reg,
             error_value_reg
         );
+        // rust-hdl's `RAM` has two clock inputs and no `clock`, out of `clock!`'s reach.
         self.node_ram.read_clock.next = self.clock.val();
         self.node_ram.write_clock.next = self.clock.val();
         for p in 0..self.triangle_ram.len() {
@@ -732,16 +752,16 @@ impl<
             self.triangle_ram[p].write_address.next = bit_cast::<TB, 32>(self.record.q.val());
             self.triangle_ram[p].write_data.next = self.triangle_record.val();
             self.triangle_ram[p].read_address.next = self.triangle_address[p].val();
-            // Through unindexed locals: hdl_gen's `bit_cast` loses a loop index.
-            self.triangle_read.next = self.triangle_ram[p].read_data.val();
-            self.vertex_read.next = bit_cast::<VERTEX_BITS, TW>(self.triangle_read.val());
-            for k in 0..9 {
-                self.vert[9 * p + k].next = self.vertex_read.val().get_bits::<32>(32 * k);
-            }
-            self.casts_shadow[p].next =
-                bit_cast::<1, TW>(self.triangle_read.val() >> self.at_flag.val()).any();
-            self.global_index[p].next =
-                bit_cast::<INDEX_BITS, TW>(self.triangle_read.val() >> self.at_index.val());
+            // The record's fields at their bits (`bit_cast` cannot take a loop index).
+            self.vertices[p].next = self.triangle_ram[p]
+                .read_data
+                .val()
+                .get_bits::<VERTEX_BITS>(0);
+            self.casts_shadow[p].next = self.triangle_ram[p].read_data.val().get_bit(288);
+            self.global_index[p].next = self.triangle_ram[p]
+                .read_data
+                .val()
+                .get_bits::<INDEX_BITS>(289);
         }
     }
 }

@@ -11,6 +11,7 @@
 //! rust-hdl cannot derive widths: `S` slots addressed by `SB` bits, stack pointers of `PB`
 //! bits (depth < 2^PB), RAM addresses of `AB` bits (S·D ≤ 2^AB), entries of `W` bits.
 
+use crate::macros::dff_setup;
 use rust_hdl::prelude::*;
 
 #[derive(LogicBlock)]
@@ -120,20 +121,23 @@ impl<const S: usize, const SB: usize, const PB: usize, const AB: usize, const W:
     fn update(&mut self) {
         self.ram.read_clock.next = self.clock.val();
         self.ram.write_clock.next = self.clock.val();
-        self.popped_reg.clock.next = self.clock.val();
-        self.empty_reg.clock.next = self.clock.val();
-        self.overflow_reg.clock.next = self.clock.val();
-        self.overflow_slot_reg.clock.next = self.clock.val();
-        self.dropped_reg.clock.next = self.clock.val();
-        self.dropped_slot_reg.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            popped_reg,
+            empty_reg,
+            overflow_reg,
+            overflow_slot_reg,
+            dropped_reg,
+            dropped_slot_reg
+        );
         // The two slots' pointers and bases (one-of-S selects).
         self.push_sp.next = 0.into();
         self.push_base.next = 0.into();
         self.pop_sp.next = 0.into();
         self.pop_base.next = 0.into();
         for i in 0..S {
-            self.sp[i].clock.next = self.clock.val();
-            self.sp[i].d.next = self.sp[i].q.val();
+            dff_setup!(self, clock, sp[i]);
             if self.push_slot.val() == self.slot_id[i].val() {
                 self.push_sp.next = self.sp[i].q.val();
                 self.push_base.next = self.base[i].val();

@@ -7,8 +7,9 @@
 use hw_model::traversal::schedule::UnitTiming;
 use rust_hdl::prelude::*;
 
+use super::config::{UnitConfig, UnitConfigError};
+use super::ports::{ControlMaster, CounterReader};
 use super::scene_memory::ERROR_CODE_BITS;
-use super::unit::{UnitConfig, UnitConfigError};
 use crate::axil::bus::{mask, word, AxiLiteBus, WORD_BITS};
 use crate::axil::AxiLiteSlavePort;
 use crate::regmap::unit::{self as map, MemoryWord, COUNTERS};
@@ -69,21 +70,14 @@ pub struct UnitControl {
     pub reset_n: Signal<In, Bit>,
     pub axi: AxiLiteSlavePort,
     // Unit side.
-    pub scene_start: Signal<Out, Bit>,
+    pub unit: ControlMaster,
+    pub counters: CounterReader,
     pub unit_reset_n: Signal<Out, Bit>,
-    /// A scene word is taken this cycle (`scene_tvalid & scene_tready`).
+    /// A scene word is taken this cycle (the scene stream's `tvalid & tready`).
     pub scene_take: Signal<In, Bit>,
-    pub idle: Signal<In, Bit>,
-    pub scene_loaded: Signal<In, Bit>,
-    pub scene_error: Signal<In, Bit>,
-    pub scene_error_code: Signal<In, Bits<ERROR_CODE_BITS>>,
-    pub scene_error_word: Signal<In, Bits<32>>,
-    pub scene_error_value: Signal<In, Bits<32>>,
-    pub overflow: Signal<In, Bit>,
-    pub overflow_ray: Signal<In, Bits<32>>,
-    /// In [`COUNTERS`] order.
-    pub counters: [Signal<In, Bits<32>>; COUNTER_COUNT],
     bus: AxiLiteBus,
+    /// The counters in [`COUNTERS`] order.
+    counter_value: [Signal<Local, Bits<32>>; COUNTER_COUNT],
     start_q: DFF<Bit>,
     reset_count: DFF<Bits<RESET_COUNT_BITS>>,
     scene_words: DFF<Bits<32>>,
@@ -120,19 +114,12 @@ impl UnitControl {
             clock: Default::default(),
             reset_n: Default::default(),
             axi: Default::default(),
-            scene_start: Default::default(),
+            unit: Default::default(),
+            counters: Default::default(),
             unit_reset_n: Default::default(),
             scene_take: Default::default(),
-            idle: Default::default(),
-            scene_loaded: Default::default(),
-            scene_error: Default::default(),
-            scene_error_code: Default::default(),
-            scene_error_word: Default::default(),
-            scene_error_value: Default::default(),
-            overflow: Default::default(),
-            overflow_ray: Default::default(),
-            counters: Default::default(),
             bus: Default::default(),
+            counter_value: Default::default(),
             start_q: Default::default(),
             reset_count: Default::default(),
             scene_words: Default::default(),
@@ -168,12 +155,17 @@ impl Logic for UnitControl {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, start_q, reset_count, scene_words);
-        self.bus.clock.next = self.clock.val();
+        clock!(self, clock, bus);
         self.bus.reset_n.next = self.reset_n.val();
         AxiLiteSlavePort::link(&mut self.axi, &mut self.bus.axi);
         self.resetting.next = self.reset_count.q.val().any();
         self.unit_reset_n.next = self.reset_n.val() & !self.resetting.val();
-        self.scene_start.next = self.start_q.q.val();
+        self.unit.scene_start.next = self.start_q.q.val();
+        self.counter_value[0].next = self.counters.rays.val();
+        self.counter_value[1].next = self.counters.node_visits.val();
+        self.counter_value[2].next = self.counters.box_tests.val();
+        self.counter_value[3].next = self.counters.mt_tests.val();
+        self.counter_value[4].next = self.counters.busy_cycles.val();
 
         // Read: the bus answers `r_mux` the next cycle; CONTROL's pulse bits read 0.
         self.r_mapped.next = false;
@@ -183,18 +175,18 @@ impl Logic for UnitControl {
         }
         if self.bus.read_word.val() == self.word_status.val() {
             self.r_mapped.next = true;
-            self.r_mux.next = bit_cast::<32, ERROR_CODE_BITS>(self.scene_error_code.val())
+            self.r_mux.next = bit_cast::<32, ERROR_CODE_BITS>(self.unit.scene_error_code.val())
                 << self.error_code_lsb.val();
-            if self.idle.val() {
+            if self.unit.idle.val() {
                 self.r_mux.next = self.r_mux.val() | self.mask_idle.val();
             }
-            if self.scene_loaded.val() {
+            if self.unit.scene_loaded.val() {
                 self.r_mux.next = self.r_mux.val() | self.mask_loaded.val();
             }
-            if self.scene_error.val() {
+            if self.unit.scene_error.val() {
                 self.r_mux.next = self.r_mux.val() | self.mask_error.val();
             }
-            if self.overflow.val() {
+            if self.unit.overflow.val() {
                 self.r_mux.next = self.r_mux.val() | self.mask_overflow.val();
             }
             if self.resetting.val() {
@@ -219,20 +211,20 @@ impl Logic for UnitControl {
         }
         if self.bus.read_word.val() == self.word_error_word.val() {
             self.r_mapped.next = true;
-            self.r_mux.next = self.scene_error_word.val();
+            self.r_mux.next = self.unit.scene_error_word.val();
         }
         if self.bus.read_word.val() == self.word_error_value.val() {
             self.r_mapped.next = true;
-            self.r_mux.next = self.scene_error_value.val();
+            self.r_mux.next = self.unit.scene_error_value.val();
         }
         if self.bus.read_word.val() == self.word_overflow_ray.val() {
             self.r_mapped.next = true;
-            self.r_mux.next = self.overflow_ray.val();
+            self.r_mux.next = self.unit.overflow_ray.val();
         }
         for i in 0..COUNTER_COUNT {
             if self.bus.read_word.val() == self.word_counter[i].val() {
                 self.r_mapped.next = true;
-                self.r_mux.next = self.counters[i].val();
+                self.r_mux.next = self.counter_value[i].val();
             }
         }
         self.bus.read_data.next = self.r_mux.val();
@@ -275,23 +267,16 @@ impl Logic for UnitControl {
 macro_rules! axil_top {
     ($name:ident, $unit:ty) => {
         /// The unit under AXI4-Lite control: `axi` (the unit's register map), the scene,
-        /// ray and answer streams of docs/traversal-unit.md.
+        /// ray and hit streams of docs/traversal-unit.md.
         #[derive(LogicBlock)]
         pub struct $name {
             pub clock: Signal<In, Clock>,
             /// Synchronous, active low (`ap_rst_n`).
             pub reset_n: Signal<In, Bit>,
             pub axi: AxiLiteSlavePort,
-            pub scene_tdata: Signal<In, Bits<32>>,
-            pub scene_tvalid: Signal<In, Bit>,
-            pub scene_tlast: Signal<In, Bit>,
-            pub scene_tready: Signal<Out, Bit>,
-            pub ray_tdata: Signal<In, Bits<RAY_BITS>>,
-            pub ray_tvalid: Signal<In, Bit>,
-            pub ray_tready: Signal<Out, Bit>,
-            pub hit_tdata: Signal<Out, Bits<HIT_BITS>>,
-            pub hit_tvalid: Signal<Out, Bit>,
-            pub hit_tready: Signal<In, Bit>,
+            pub scene: SceneStream,
+            pub ray: RayStream,
+            pub hit: HitStream,
             control: UnitControl,
             unit: $unit,
         }
@@ -304,16 +289,9 @@ macro_rules! axil_top {
                     clock: Default::default(),
                     reset_n: Default::default(),
                     axi: Default::default(),
-                    scene_tdata: Default::default(),
-                    scene_tvalid: Default::default(),
-                    scene_tlast: Default::default(),
-                    scene_tready: Default::default(),
-                    ray_tdata: Default::default(),
-                    ray_tvalid: Default::default(),
-                    ray_tready: Default::default(),
-                    hit_tdata: Default::default(),
-                    hit_tvalid: Default::default(),
-                    hit_tready: Default::default(),
+                    scene: Default::default(),
+                    ray: Default::default(),
+                    hit: Default::default(),
                     control: UnitControl::new(config),
                     unit: <$unit>::new(
                         config.depth,
@@ -328,38 +306,16 @@ macro_rules! axil_top {
         impl Logic for $name {
             #[hdl_gen]
             fn update(&mut self) {
-                self.control.clock.next = self.clock.val();
-                self.unit.clock.next = self.clock.val();
+                clock!(self, clock, control, unit);
                 self.control.reset_n.next = self.reset_n.val();
                 AxiLiteSlavePort::link(&mut self.axi, &mut self.control.axi);
                 self.unit.reset_n.next = self.control.unit_reset_n.val();
-                self.unit.scene_start.next = self.control.scene_start.val();
-                self.unit.scene_tdata.next = self.scene_tdata.val();
-                self.unit.scene_tvalid.next = self.scene_tvalid.val();
-                self.unit.scene_tlast.next = self.scene_tlast.val();
-                self.scene_tready.next = self.unit.scene_tready.val();
-                self.control.scene_take.next =
-                    self.scene_tvalid.val() & self.unit.scene_tready.val();
-                self.unit.ray_tdata.next = self.ray_tdata.val();
-                self.unit.ray_tvalid.next = self.ray_tvalid.val();
-                self.ray_tready.next = self.unit.ray_tready.val();
-                self.hit_tdata.next = self.unit.hit_tdata.val();
-                self.hit_tvalid.next = self.unit.hit_tvalid.val();
-                self.unit.hit_tready.next = self.hit_tready.val();
-                self.control.idle.next = self.unit.idle.val();
-                self.control.scene_loaded.next = self.unit.scene_loaded.val();
-                self.control.scene_error.next = self.unit.scene_error.val();
-                self.control.scene_error_code.next = self.unit.scene_error_code.val();
-                self.control.scene_error_word.next = self.unit.scene_error_word.val();
-                self.control.scene_error_value.next = self.unit.scene_error_value.val();
-                self.control.overflow.next = self.unit.overflow.val();
-                self.control.overflow_ray.next = self.unit.overflow_ray.val();
-                // In `regmap::unit::COUNTERS` order.
-                self.control.counters[0].next = self.unit.count_rays.val();
-                self.control.counters[1].next = self.unit.count_node_visits.val();
-                self.control.counters[2].next = self.unit.count_box_tests.val();
-                self.control.counters[3].next = self.unit.count_mt_tests.val();
-                self.control.counters[4].next = self.unit.count_busy_cycles.val();
+                SceneStream::link(&mut self.scene, &mut self.unit.scene);
+                self.control.scene_take.next = self.scene.tvalid.val() & self.scene.tready.val();
+                RayStream::link(&mut self.ray, &mut self.unit.ray);
+                HitStream::link(&mut self.hit, &mut self.unit.hit);
+                ControlPort::join(&mut self.unit.control, &mut self.control.unit);
+                CounterPort::join(&mut self.unit.counters, &mut self.control.counters);
             }
         }
     };
@@ -375,7 +331,10 @@ macro_rules! per_format {
                 use super::{AxilTop, UnitControl};
                 use $crate::generate::block_ports;
                 use $crate::axil::AxiLiteSlavePort;
-                use $crate::traversal::unit::{UnitConfig, HIT_BITS, RAY_BITS};
+                use $crate::traversal::config::UnitConfig;
+                use $crate::traversal::ports::{
+                    ControlPort, CounterPort, HitStream, RayStream, SceneStream,
+                };
                 use $crate::traversal::unit_top::$name as tops;
 
                 axil_top!(Axil4x5, tops::Unit4x5);

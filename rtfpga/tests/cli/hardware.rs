@@ -92,8 +92,8 @@ fn verilog_of_the_traversal_unit_writes_its_verilog_and_config() {
             .unwrap()
     };
     use hw_model::traversal::packet::{HIT_WORDS, RAY_WORDS};
-    assert_eq!(width("ray_tdata"), 32 * RAY_WORDS as u64);
-    assert_eq!(width("hit_tdata"), 32 * HIT_WORDS as u64);
+    assert_eq!(width("ray$tdata"), 32 * RAY_WORDS as u64);
+    assert_eq!(width("hit$tdata"), 32 * HIT_WORDS as u64);
     assert_eq!(width("axi$awaddr"), hdl::regmap::ADDR_BITS as u64);
     for name in [
         hdl::cgen::UNIT_HEADER_FILE,

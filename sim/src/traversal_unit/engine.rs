@@ -3,7 +3,7 @@
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use hdl::traversal::unit::UnitConfig;
+use hdl::traversal::config::UnitConfig;
 use hw_model::traversal::capacity::{chunks, run_passes};
 use hw_model::traversal::scene_image::SceneImage;
 use hw_model::traversal::{SceneCapacity, SceneMemory, UnitRay};

@@ -26,7 +26,8 @@ use sw_renderer::hit::Hit;
 
 use crate::SimError;
 
-/// The unit's inputs the driver sets (each at most 32 bits; `ray_tdata` is [`UnitPorts::ray_data`]).
+/// The unit's inputs the driver sets (each at most 32 bits; the ray stream's `tdata` is
+/// [`UnitPorts::ray_data`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum In {
     ResetN,
@@ -38,7 +39,8 @@ pub enum In {
     HitTready,
 }
 
-/// The unit's outputs the driver reads (each at most 32 bits; `hit_tdata` is [`UnitPorts::hit_data`]).
+/// The unit's outputs the driver reads (each at most 32 bits; the hit stream's `tdata` is
+/// [`UnitPorts::hit_data`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Out {
     SceneTready,
@@ -59,49 +61,70 @@ pub enum Out {
     CountBusyCycles,
 }
 
-/// The port names of docs/traversal-unit.md, in [`In`] order.
+/// The unit's Verilog top (every format and memory size has the same ports).
+type UnitTop = hdl::traversal::unit_top::fp32::Unit4x5;
+
+/// rust-hdl's flattened name of the unit top's port `bundle.signal` (`scene$tdata`) or
+/// `signal` (`reset_n`), from the top's own fields (`hdl::traversal::ports`): the compiler
+/// checks that the top has each port the harness names.
+macro_rules! port {
+    ($signal:ident) => {{
+        const _: fn(&UnitTop) = |unit| {
+            let _ = &unit.$signal;
+        };
+        stringify!($signal)
+    }};
+    ($bundle:ident . $signal:ident) => {{
+        const _: fn(&UnitTop) = |unit| {
+            let _ = &unit.$bundle.$signal;
+        };
+        concat!(stringify!($bundle), "$", stringify!($signal))
+    }};
+}
+
+/// The ports the driver sets, in [`In`] order.
 pub const IN_NAMES: [(In, &str); 7] = [
-    (In::ResetN, "reset_n"),
-    (In::SceneStart, "scene_start"),
-    (In::SceneTdata, "scene_tdata"),
-    (In::SceneTvalid, "scene_tvalid"),
-    (In::SceneTlast, "scene_tlast"),
-    (In::RayTvalid, "ray_tvalid"),
-    (In::HitTready, "hit_tready"),
+    (In::ResetN, port!(reset_n)),
+    (In::SceneStart, port!(control.scene_start)),
+    (In::SceneTdata, port!(scene.tdata)),
+    (In::SceneTvalid, port!(scene.tvalid)),
+    (In::SceneTlast, port!(scene.tlast)),
+    (In::RayTvalid, port!(ray.tvalid)),
+    (In::HitTready, port!(hit.tready)),
 ];
 
-/// The port names of docs/traversal-unit.md, in [`Out`] order.
+/// The ports the driver reads, in [`Out`] order.
 pub const OUT_NAMES: [(Out, &str); 16] = [
-    (Out::SceneTready, "scene_tready"),
-    (Out::SceneLoaded, "scene_loaded"),
-    (Out::SceneError, "scene_error"),
-    (Out::SceneErrorCode, "scene_error_code"),
-    (Out::SceneErrorWord, "scene_error_word"),
-    (Out::SceneErrorValue, "scene_error_value"),
-    (Out::RayTready, "ray_tready"),
-    (Out::HitTvalid, "hit_tvalid"),
-    (Out::Idle, "idle"),
-    (Out::Overflow, "overflow"),
-    (Out::OverflowRay, "overflow_ray"),
-    (Out::CountRays, "count_rays"),
-    (Out::CountNodeVisits, "count_node_visits"),
-    (Out::CountBoxTests, "count_box_tests"),
-    (Out::CountMtTests, "count_mt_tests"),
-    (Out::CountBusyCycles, "count_busy_cycles"),
+    (Out::SceneTready, port!(scene.tready)),
+    (Out::SceneLoaded, port!(control.scene_loaded)),
+    (Out::SceneError, port!(control.scene_error)),
+    (Out::SceneErrorCode, port!(control.scene_error_code)),
+    (Out::SceneErrorWord, port!(control.scene_error_word)),
+    (Out::SceneErrorValue, port!(control.scene_error_value)),
+    (Out::RayTready, port!(ray.tready)),
+    (Out::HitTvalid, port!(hit.tvalid)),
+    (Out::Idle, port!(control.idle)),
+    (Out::Overflow, port!(control.overflow)),
+    (Out::OverflowRay, port!(control.overflow_ray)),
+    (Out::CountRays, port!(counters.rays)),
+    (Out::CountNodeVisits, port!(counters.node_visits)),
+    (Out::CountBoxTests, port!(counters.box_tests)),
+    (Out::CountMtTests, port!(counters.mt_tests)),
+    (Out::CountBusyCycles, port!(counters.busy_cycles)),
 ];
 
 /// The ray and answer streams' data ports.
-pub const RAY_TDATA: &str = "ray_tdata";
-pub const HIT_TDATA: &str = "hit_tdata";
+pub const RAY_TDATA: &str = port!(ray.tdata);
+pub const HIT_TDATA: &str = port!(hit.tdata);
 
 /// A unit's ports, one clock cycle at a time: inputs are held until changed, outputs are
 /// sampled before the cycle's rising edge (a handshake seen in them happens at that edge).
 pub trait UnitPorts {
     fn set(&mut self, port: In, value: u32);
-    /// `ray_tdata` for the following cycles.
+    /// The ray stream's `tdata` for the following cycles.
     fn ray_data(&mut self) -> &mut [u32; RAY_WORDS];
     fn get(&self, port: Out) -> u32;
-    /// `hit_tdata` as sampled in the last cycle.
+    /// The hit stream's `tdata` as sampled in the last cycle.
     fn hit_data(&self) -> [u32; HIT_WORDS];
     fn cycle(&mut self) -> Result<(), SimError>;
     /// Cycles run so far.
@@ -122,7 +145,7 @@ pub const WATCHDOG_CYCLES: u64 = 20_000;
 pub enum UnitError {
     /// The RTL does not build this configuration.
     #[error("traversal unit configuration: {0}")]
-    Config(#[from] hdl::traversal::unit::UnitConfigError),
+    Config(#[from] hdl::traversal::config::UnitConfigError),
     #[error(transparent)]
     Sim(#[from] SimError),
     /// The image was refused, by the driver's checks or the unit's loader.
@@ -150,7 +173,7 @@ pub enum UnitError {
 pub struct Traffic {
     /// Probability that a cycle in which a ray could be presented is left empty.
     pub ray_gap: f64,
-    /// Probability that `hit_tready` is low in a cycle.
+    /// Probability that the hit stream's `tready` is low in a cycle.
     pub hit_stall: f64,
     pub seed: u64,
 }
@@ -320,7 +343,7 @@ impl<P: UnitPorts> UnitDriver<P> {
                     return Err(UnitError::Timeout {
                         cycles: WATCHDOG_CYCLES,
                         state: format!(
-                            "loading a scene image: word {sent} of {} not taken (scene_tready low, no error)",
+                            "loading a scene image: word {sent} of {} not taken (the scene stream's tready low, no error)",
                             words.len()
                         ),
                     });
@@ -452,7 +475,7 @@ impl<P: UnitPorts> UnitDriver<P> {
                 return Err(UnitError::Timeout {
                     cycles: WATCHDOG_CYCLES,
                     state: format!(
-                        "running {} rays: {sent} taken, {received} answered, unanswered ids [{}{}]; ray_tvalid {} ray_tready {}, hit_tvalid {} hit_tready {}, idle {}, overflow {}",
+                        "running {} rays: {sent} taken, {received} answered, unanswered ids [{}{}]; ray tvalid {} tready {}, hit tvalid {} tready {}, idle {}, overflow {}",
                         rays.len(),
                         missing.join(", "),
                         if sent - received > missing.len() { ", …" } else { "" },

@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use hdl::traversal::unit::{unit_verilog, UnitConfig};
+use hdl::traversal::config::{unit_verilog, UnitConfig};
 use hw_model::traversal::packet::{HIT_WORDS, RAY_WORDS};
 
 use super::{In, Out, UnitError, UnitPorts, HIT_TDATA, IN_NAMES, OUT_NAMES, RAY_TDATA};

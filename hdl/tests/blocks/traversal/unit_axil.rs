@@ -1,7 +1,7 @@
 //! `hdl::traversal::unit_axil`.
 
 use hdl::regmap::unit as map;
-use hdl::traversal::unit::UnitConfig;
+use hdl::traversal::config::UnitConfig;
 use hdl::traversal::unit_axil::*;
 use hw_model::{Advance, HwFormat};
 
@@ -34,5 +34,5 @@ fn config_and_memory_words() {
     c.memory.triangle_bits = 5;
     let m = memory_word(&c);
     assert_eq!((m.node_bits, m.triangle_bits), (4, 5));
-    assert_eq!(m.slots as usize, hdl::traversal::unit::UNIT_SLOTS);
+    assert_eq!(m.slots as usize, hdl::traversal::config::UNIT_SLOTS);
 }
