@@ -71,22 +71,22 @@ module rtfpga_core(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wvalid,a
     input wire  clock;
     input wire  reset_n;
     input wire  axi$awvalid;
-    output reg  axi$awready;
+    output wire  axi$awready;
     input wire  [6:0] axi$awaddr;
     input wire  axi$wvalid;
-    output reg  axi$wready;
+    output wire  axi$wready;
     input wire  [31:0] axi$wdata;
     input wire  [3:0] axi$wstrb;
-    output reg  axi$bvalid;
+    output wire  axi$bvalid;
     input wire  axi$bready;
-    output reg  [1:0] axi$bresp;
+    output wire  [1:0] axi$bresp;
     input wire  axi$arvalid;
-    output reg  axi$arready;
+    output wire  axi$arready;
     input wire  [6:0] axi$araddr;
-    output reg  axi$rvalid;
+    output wire  axi$rvalid;
     input wire  axi$rready;
-    output reg  [31:0] axi$rdata;
-    output reg  [1:0] axi$rresp;
+    output wire  [31:0] axi$rdata;
+    output wire  [1:0] axi$rresp;
     output reg  interrupt;
     input wire  [543:0] s_tdata$0;
     input wire  s_tvalid;
@@ -104,23 +104,6 @@ module rtfpga_core(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wvalid,a
     // Stub signals
     reg  slave$clock;
     reg  slave$reset_n;
-    reg  slave$axi$awvalid;
-    wire  slave$axi$awready;
-    reg  [6:0] slave$axi$awaddr;
-    reg  slave$axi$wvalid;
-    wire  slave$axi$wready;
-    reg  [31:0] slave$axi$wdata;
-    reg  [3:0] slave$axi$wstrb;
-    wire  slave$axi$bvalid;
-    reg  slave$axi$bready;
-    wire  [1:0] slave$axi$bresp;
-    reg  slave$axi$arvalid;
-    wire  slave$axi$arready;
-    reg  [6:0] slave$axi$araddr;
-    wire  slave$axi$rvalid;
-    reg  slave$axi$rready;
-    wire  [31:0] slave$axi$rdata;
-    wire  [1:0] slave$axi$rresp;
     wire  slave$interrupt;
     wire  slave$start;
     wire  [31:0] slave$operands$0;
@@ -182,35 +165,35 @@ module rtfpga_core(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wvalid,a
     reg  [31:0] front$lane_u$0;
     reg  [31:0] front$lane_v$0;
     reg  slots$0$clock;
-    reg  slots$0$valid_in;
-    reg  [511:0] slots$0$query;
+    reg  slots$0$port$valid;
+    reg  [511:0] slots$0$port$query;
+    wire  slots$0$port$hit;
+    wire  [31:0] slots$0$port$t;
+    wire  [31:0] slots$0$port$u;
+    wire  [31:0] slots$0$port$v;
     wire  slots$0$valid_out;
-    wire  slots$0$hit;
-    wire  [31:0] slots$0$t;
-    wire  [31:0] slots$0$u;
-    wire  [31:0] slots$0$v;
     
     // Sub module instances
     rtfpga_core$slave slave(
         .clock(slave$clock),
         .reset_n(slave$reset_n),
-        .axi$awvalid(slave$axi$awvalid),
-        .axi$awready(slave$axi$awready),
-        .axi$awaddr(slave$axi$awaddr),
-        .axi$wvalid(slave$axi$wvalid),
-        .axi$wready(slave$axi$wready),
-        .axi$wdata(slave$axi$wdata),
-        .axi$wstrb(slave$axi$wstrb),
-        .axi$bvalid(slave$axi$bvalid),
-        .axi$bready(slave$axi$bready),
-        .axi$bresp(slave$axi$bresp),
-        .axi$arvalid(slave$axi$arvalid),
-        .axi$arready(slave$axi$arready),
-        .axi$araddr(slave$axi$araddr),
-        .axi$rvalid(slave$axi$rvalid),
-        .axi$rready(slave$axi$rready),
-        .axi$rdata(slave$axi$rdata),
-        .axi$rresp(slave$axi$rresp),
+        .axi$awvalid(axi$awvalid),
+        .axi$awready(axi$awready),
+        .axi$awaddr(axi$awaddr),
+        .axi$wvalid(axi$wvalid),
+        .axi$wready(axi$wready),
+        .axi$wdata(axi$wdata),
+        .axi$wstrb(axi$wstrb),
+        .axi$bvalid(axi$bvalid),
+        .axi$bready(axi$bready),
+        .axi$bresp(axi$bresp),
+        .axi$arvalid(axi$arvalid),
+        .axi$arready(axi$arready),
+        .axi$araddr(axi$araddr),
+        .axi$rvalid(axi$rvalid),
+        .axi$rready(axi$rready),
+        .axi$rdata(axi$rdata),
+        .axi$rresp(axi$rresp),
         .interrupt(slave$interrupt),
         .start(slave$start),
         .operands$0(slave$operands$0),
@@ -276,38 +259,21 @@ module rtfpga_core(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wvalid,a
     );
     rtfpga_core$slots$0 slots$0(
         .clock(slots$0$clock),
-        .valid_in(slots$0$valid_in),
-        .query(slots$0$query),
-        .valid_out(slots$0$valid_out),
-        .hit(slots$0$hit),
-        .t(slots$0$t),
-        .u(slots$0$u),
-        .v(slots$0$v)
+        .port$valid(slots$0$port$valid),
+        .port$query(slots$0$port$query),
+        .port$hit(slots$0$port$hit),
+        .port$t(slots$0$port$t),
+        .port$u(slots$0$port$u),
+        .port$v(slots$0$port$v),
+        .valid_out(slots$0$valid_out)
     );
     
     // Update code
     always @(*) begin
         slave$clock = clock;
-        slave$reset_n = reset_n;
         front$clock = clock;
+        slave$reset_n = reset_n;
         front$reset_n = reset_n;
-        slave$axi$awvalid = axi$awvalid;
-        axi$awready = slave$axi$awready;
-        slave$axi$awaddr = axi$awaddr;
-        slave$axi$wvalid = axi$wvalid;
-        axi$wready = slave$axi$wready;
-        slave$axi$wdata = axi$wdata;
-        slave$axi$wstrb = axi$wstrb;
-        axi$bvalid = slave$axi$bvalid;
-        slave$axi$bready = axi$bready;
-        axi$bresp = slave$axi$bresp;
-        slave$axi$arvalid = axi$arvalid;
-        axi$arready = slave$axi$arready;
-        slave$axi$araddr = axi$araddr;
-        axi$rvalid = slave$axi$rvalid;
-        slave$axi$rready = axi$rready;
-        axi$rdata = slave$axi$rdata;
-        axi$rresp = slave$axi$rresp;
         interrupt = slave$interrupt;
         slave$id = id;
         slave$configuration = configuration;
@@ -337,18 +303,18 @@ module rtfpga_core(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wvalid,a
         front$reg_operands$14 = slave$operands$14;
         front$reg_operands$15 = slave$operands$15;
         slave$done = front$reg_done;
-        slave$hit = slots$0$hit;
-        slave$t = slots$0$t;
-        slave$u = slots$0$u;
-        slave$v = slots$0$v;
+        slave$hit = slots$0$port$hit;
+        slave$t = slots$0$port$t;
+        slave$u = slots$0$port$u;
+        slave$v = slots$0$port$v;
         front$lane_valid_out = slots$0$valid_out;
         slots$0$clock = clock;
-        slots$0$valid_in = front$lane_valid_in$0;
-        slots$0$query = front$lane_query$0;
-        front$lane_hit$0 = slots$0$hit;
-        front$lane_t$0 = slots$0$t;
-        front$lane_u$0 = slots$0$u;
-        front$lane_v$0 = slots$0$v;
+        slots$0$port$valid = front$lane_valid_in$0;
+        slots$0$port$query = front$lane_query$0;
+        front$lane_hit$0 = slots$0$port$hit;
+        front$lane_t$0 = slots$0$port$t;
+        front$lane_u$0 = slots$0$port$u;
+        front$lane_v$0 = slots$0$port$v;
     end
     
 endmodule // rtfpga_core
@@ -1369,83 +1335,83 @@ module rtfpga_core$slave(clock,reset_n,axi$awvalid,axi$awready,axi$awaddr,axi$wv
         u_q$d = u_q$q;
         v_q$d = v_q$q;
         args$0$clock = clock;
-        args$0$d = args$0$q;
         held$0$clock = clock;
+        args$0$d = args$0$q;
         held$0$d = held$0$q;
         operands$0 = held$0$q;
         args$1$clock = clock;
-        args$1$d = args$1$q;
         held$1$clock = clock;
+        args$1$d = args$1$q;
         held$1$d = held$1$q;
         operands$1 = held$1$q;
         args$2$clock = clock;
-        args$2$d = args$2$q;
         held$2$clock = clock;
+        args$2$d = args$2$q;
         held$2$d = held$2$q;
         operands$2 = held$2$q;
         args$3$clock = clock;
-        args$3$d = args$3$q;
         held$3$clock = clock;
+        args$3$d = args$3$q;
         held$3$d = held$3$q;
         operands$3 = held$3$q;
         args$4$clock = clock;
-        args$4$d = args$4$q;
         held$4$clock = clock;
+        args$4$d = args$4$q;
         held$4$d = held$4$q;
         operands$4 = held$4$q;
         args$5$clock = clock;
-        args$5$d = args$5$q;
         held$5$clock = clock;
+        args$5$d = args$5$q;
         held$5$d = held$5$q;
         operands$5 = held$5$q;
         args$6$clock = clock;
-        args$6$d = args$6$q;
         held$6$clock = clock;
+        args$6$d = args$6$q;
         held$6$d = held$6$q;
         operands$6 = held$6$q;
         args$7$clock = clock;
-        args$7$d = args$7$q;
         held$7$clock = clock;
+        args$7$d = args$7$q;
         held$7$d = held$7$q;
         operands$7 = held$7$q;
         args$8$clock = clock;
-        args$8$d = args$8$q;
         held$8$clock = clock;
+        args$8$d = args$8$q;
         held$8$d = held$8$q;
         operands$8 = held$8$q;
         args$9$clock = clock;
-        args$9$d = args$9$q;
         held$9$clock = clock;
+        args$9$d = args$9$q;
         held$9$d = held$9$q;
         operands$9 = held$9$q;
         args$10$clock = clock;
-        args$10$d = args$10$q;
         held$10$clock = clock;
+        args$10$d = args$10$q;
         held$10$d = held$10$q;
         operands$10 = held$10$q;
         args$11$clock = clock;
-        args$11$d = args$11$q;
         held$11$clock = clock;
+        args$11$d = args$11$q;
         held$11$d = held$11$q;
         operands$11 = held$11$q;
         args$12$clock = clock;
-        args$12$d = args$12$q;
         held$12$clock = clock;
+        args$12$d = args$12$q;
         held$12$d = held$12$q;
         operands$12 = held$12$q;
         args$13$clock = clock;
-        args$13$d = args$13$q;
         held$13$clock = clock;
+        args$13$d = args$13$q;
         held$13$d = held$13$q;
         operands$13 = held$13$q;
         args$14$clock = clock;
-        args$14$d = args$14$q;
         held$14$clock = clock;
+        args$14$d = args$14$q;
         held$14$d = held$14$q;
         operands$14 = held$14$q;
         args$15$clock = clock;
-        args$15$d = args$15$q;
         held$15$clock = clock;
+        args$15$d = args$15$q;
         held$15$d = held$15$q;
         operands$15 = held$15$q;
         bus$clock = clock;
@@ -3081,17 +3047,17 @@ module rtfpga_core$slave$v_q(d,q,clock);
 endmodule // rtfpga_core$slave$v_q
 
 
-module rtfpga_core$slots$0(clock,valid_in,query,valid_out,hit,t,u,v);
+module rtfpga_core$slots$0(clock,port$valid,port$query,port$hit,port$t,port$u,port$v,valid_out);
     
     // Module arguments
     input wire  clock;
-    input wire  valid_in;
-    input wire  [511:0] query;
+    input wire  port$valid;
+    input wire  [511:0] port$query;
+    output reg  port$hit;
+    output reg  [31:0] port$t;
+    output reg  [31:0] port$u;
+    output reg  [31:0] port$v;
     output reg  valid_out;
-    output reg  hit;
-    output reg  [31:0] t;
-    output reg  [31:0] u;
-    output reg  [31:0] v;
     
     // Stub signals
     reg  lane$clock;
@@ -3148,28 +3114,28 @@ module rtfpga_core$slots$0(clock,valid_in,query,valid_out,hit,t,u,v);
     // Update code
     always @(*) begin
         lane$clock = clock;
-        lane$valid_in = valid_in;
-        lane$query$0 = query[(0 * 32'h20)+:(32)];
-        lane$query$1 = query[(1 * 32'h20)+:(32)];
-        lane$query$2 = query[(2 * 32'h20)+:(32)];
-        lane$query$3 = query[(3 * 32'h20)+:(32)];
-        lane$query$4 = query[(4 * 32'h20)+:(32)];
-        lane$query$5 = query[(5 * 32'h20)+:(32)];
-        lane$query$6 = query[(6 * 32'h20)+:(32)];
-        lane$query$7 = query[(7 * 32'h20)+:(32)];
-        lane$query$8 = query[(8 * 32'h20)+:(32)];
-        lane$query$9 = query[(9 * 32'h20)+:(32)];
-        lane$query$10 = query[(10 * 32'h20)+:(32)];
-        lane$query$11 = query[(11 * 32'h20)+:(32)];
-        lane$query$12 = query[(12 * 32'h20)+:(32)];
-        lane$query$13 = query[(13 * 32'h20)+:(32)];
-        lane$query$14 = query[(14 * 32'h20)+:(32)];
-        lane$query$15 = query[(15 * 32'h20)+:(32)];
+        lane$valid_in = port$valid;
+        lane$query$0 = port$query[(0 * 32'h20)+:(32)];
+        lane$query$1 = port$query[(1 * 32'h20)+:(32)];
+        lane$query$2 = port$query[(2 * 32'h20)+:(32)];
+        lane$query$3 = port$query[(3 * 32'h20)+:(32)];
+        lane$query$4 = port$query[(4 * 32'h20)+:(32)];
+        lane$query$5 = port$query[(5 * 32'h20)+:(32)];
+        lane$query$6 = port$query[(6 * 32'h20)+:(32)];
+        lane$query$7 = port$query[(7 * 32'h20)+:(32)];
+        lane$query$8 = port$query[(8 * 32'h20)+:(32)];
+        lane$query$9 = port$query[(9 * 32'h20)+:(32)];
+        lane$query$10 = port$query[(10 * 32'h20)+:(32)];
+        lane$query$11 = port$query[(11 * 32'h20)+:(32)];
+        lane$query$12 = port$query[(12 * 32'h20)+:(32)];
+        lane$query$13 = port$query[(13 * 32'h20)+:(32)];
+        lane$query$14 = port$query[(14 * 32'h20)+:(32)];
+        lane$query$15 = port$query[(15 * 32'h20)+:(32)];
         valid_out = lane$valid_out;
-        hit = lane$hit;
-        t = lane$t;
-        u = lane$u;
-        v = lane$v;
+        port$hit = lane$hit;
+        port$t = lane$t;
+        port$u = lane$u;
+        port$v = lane$v;
     end
     
 endmodule // rtfpga_core$slots$0

@@ -4,6 +4,7 @@
 pub mod fixed;
 pub mod float;
 pub mod formats;
+pub mod harness;
 pub mod intmul;
 pub(crate) mod macros;
 pub mod mt;

@@ -487,11 +487,7 @@ macro_rules! mt_lane {
             /// Verilog of a lane with `depth` registers per operator, top module `top`
             /// (built on a thread with room for the lane on its stack).
             pub fn mt_lane_verilog(depth: usize) -> String {
-                $crate::top::with_build_stack(move || {
-                    let mut lane = MtLane::new(depth);
-                    lane.connect_all();
-                    generate_verilog(&lane)
-                })
+                $crate::harness::built_verilog(move || MtLane::new(depth))
             }
         }
     };

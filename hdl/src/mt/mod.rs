@@ -20,6 +20,7 @@ use hw_model::{Format, HwFormat, MtQuery, MtResult};
 use rust_hdl::prelude::*;
 
 use crate::formats;
+use crate::harness::{simulate_cycles, Stepped};
 use crate::operator::Op;
 use crate::regmap::{self, OPERAND_COUNT};
 use crate::top::stream::QUERY_BITS;
@@ -136,6 +137,28 @@ pub trait Lane: Block + Sized + 'static {
     fn outputs(&self) -> LaneOutput;
 }
 
+impl<L: Lane> Stepped for L {
+    /// Valid and the query.
+    type Input = (bool, MtQuery);
+    type Output = LaneOutput;
+
+    fn idle() -> Self::Input {
+        (false, MtQuery::default())
+    }
+
+    fn clock_input(&mut self) -> &mut Signal<In, Clock> {
+        self.clock()
+    }
+
+    fn apply(&mut self, (valid, query): &Self::Input) {
+        self.set_inputs(*valid, &query_words(query));
+    }
+
+    fn observe(&self) -> LaneOutput {
+        self.outputs()
+    }
+}
+
 /// Runs a freshly built lane in rust-hdl's simulator for `inputs.len() + flush` cycles,
 /// feeding `inputs[c]` (valid, query) in cycle `c` (then invalid all-zero queries) and
 /// returning what the outputs show in every cycle.
@@ -144,23 +167,5 @@ pub fn simulate_lane<L: Lane>(
     inputs: &[(bool, MtQuery)],
     flush: usize,
 ) -> Vec<LaneOutput> {
-    let inputs = inputs.to_vec();
-    // The lane is built by value: too large for a test thread's default stack.
-    crate::top::with_build_stack(move || {
-        let mut lane = L::new(depth);
-        lane.connect_all();
-        let idle = (false, MtQuery::default());
-        (0..inputs.len() + flush)
-            .map(|cycle| {
-                let (valid, q) = inputs.get(cycle).unwrap_or(&idle);
-                lane.set_inputs(*valid, &query_words(q));
-                lane.clock().next = Clock { clk: false };
-                assert!(simulate(&mut lane, 10_000), "lane logic did not settle");
-                let out = lane.outputs();
-                lane.clock().next = Clock { clk: true };
-                assert!(simulate(&mut lane, 10_000), "lane logic did not settle");
-                out
-            })
-            .collect()
-    })
+    simulate_cycles(move || L::new(depth), inputs, flush)
 }

@@ -29,6 +29,7 @@ use hw_model::traversal::box_test::{BoxResult, ChildBoxes, RaySetup};
 use rust_hdl::prelude::*;
 
 use crate::formats::fp32::{self, Lt, Mul, Sub};
+use crate::harness::{built_verilog, simulate_cycles, Stepped};
 use crate::macros::clock;
 use crate::mt::delay::Delay;
 use crate::mt::schedule::OpLatencies;
@@ -296,12 +297,25 @@ impl BoxTest {
     pub fn latency(depth: usize) -> usize {
         latency(depth)
     }
+}
 
-    /// Drives the inputs with one test (the simulator's side of the ports).
-    pub fn set_inputs(&mut self, valid: bool, tag: u16, ray: &RaySetup, boxes: &ChildBoxes) {
+impl Stepped for BoxTest {
+    type Input = BoxInput;
+    type Output = BoxOutput;
+
+    fn idle() -> BoxInput {
+        BoxInput::idle()
+    }
+
+    fn clock_input(&mut self) -> &mut Signal<In, Clock> {
+        &mut self.clock
+    }
+
+    fn apply(&mut self, x: &BoxInput) {
+        let (ray, boxes) = (&x.ray, &x.boxes);
         let word = |x: f32| Word::from(u64::from(x.to_bits()));
-        self.valid_in.next = valid;
-        self.tag_in.next = u64::from(tag).into();
+        self.valid_in.next = x.valid;
+        self.tag_in.next = u64::from(x.tag).into();
         for a in 0..3 {
             self.orig_lo[a].next = word(ray.orig_lo[a]);
             self.orig_hi[a].next = word(ray.orig_hi[a]);
@@ -314,8 +328,7 @@ impl BoxTest {
         self.t_hi.next = word(ray.t_hi);
     }
 
-    /// What the outputs show.
-    pub fn outputs(&self) -> BoxOutput {
+    fn observe(&self) -> BoxOutput {
         let word = |s: &Signal<Out, Word>| s.val().to_u64() as u32;
         BoxOutput {
             valid: self.valid_out.val(),
@@ -478,32 +491,10 @@ impl BoxInput {
 /// cycles, feeding `inputs[c]` in cycle `c` (then idle inputs) and returning what the
 /// outputs show in every cycle.
 pub fn simulate_box_test(depth: usize, inputs: &[BoxInput], flush: usize) -> Vec<BoxOutput> {
-    let inputs = inputs.to_vec();
-    // Built by value like the lane: ~50 operators are too large for a test thread's stack.
-    crate::top::with_build_stack(move || {
-        let mut uut = BoxTest::new(depth);
-        uut.connect_all();
-        let idle = BoxInput::idle();
-        (0..inputs.len() + flush)
-            .map(|cycle| {
-                let x = inputs.get(cycle).unwrap_or(&idle);
-                uut.set_inputs(x.valid, x.tag, &x.ray, &x.boxes);
-                uut.clock.next = Clock { clk: false };
-                assert!(simulate(&mut uut, 10_000), "box test logic did not settle");
-                let out = uut.outputs();
-                uut.clock.next = Clock { clk: true };
-                assert!(simulate(&mut uut, 10_000), "box test logic did not settle");
-                out
-            })
-            .collect()
-    })
+    simulate_cycles(move || BoxTest::new(depth), inputs, flush)
 }
 
 /// Verilog of the block at `depth`, top module `top` (built on a thread with room for it).
 pub fn box_test_verilog(depth: usize) -> String {
-    crate::top::with_build_stack(move || {
-        let mut uut = BoxTest::new(depth);
-        uut.connect_all();
-        generate_verilog(&uut)
-    })
+    built_verilog(move || BoxTest::new(depth))
 }

@@ -22,6 +22,7 @@ use hw_model::traversal::box_test::PAD;
 use rust_hdl::prelude::*;
 
 use crate::formats::fp32::{self, Add, Mul};
+use crate::harness::{built_verilog, simulate_cycles, Stepped};
 use crate::mt::delay::Delay;
 use crate::mt::schedule::OpLatencies;
 use crate::operator::Op;
@@ -160,9 +161,21 @@ impl FarEnd {
     pub fn latency(depth: usize) -> usize {
         latency(depth)
     }
+}
 
-    /// Drives the inputs with one bound (the simulator's side of the ports).
-    pub fn set_inputs(&mut self, x: &FarInput) {
+impl Stepped for FarEnd {
+    type Input = FarInput;
+    type Output = FarOutput;
+
+    fn idle() -> FarInput {
+        FarInput::default()
+    }
+
+    fn clock_input(&mut self) -> &mut Signal<In, Clock> {
+        &mut self.clock
+    }
+
+    fn apply(&mut self, x: &Self::Input) {
         let word = |x: f32| Word::from(u64::from(x.to_bits()));
         self.valid_in.next = x.valid;
         self.tag_in.next = u64::from(x.tag).into();
@@ -170,8 +183,7 @@ impl FarEnd {
         self.pad.next = word(x.pad);
     }
 
-    /// What the outputs show.
-    pub fn outputs(&self) -> FarOutput {
+    fn observe(&self) -> Self::Output {
         FarOutput {
             valid: self.valid_out.val(),
             tag: self.tag_out.val().to_u64() as u16,
@@ -232,30 +244,10 @@ pub struct FarOutput {
 /// `inputs.len() + flush` cycles, feeding `inputs[c]` in cycle `c` (then idle, all-zero
 /// inputs) and returning what the outputs show in every cycle.
 pub fn simulate_far_end(depth: usize, inputs: &[FarInput], flush: usize) -> Vec<FarOutput> {
-    let inputs = inputs.to_vec();
-    crate::top::with_build_stack(move || {
-        let mut uut = FarEnd::new(depth);
-        uut.connect_all();
-        let idle = FarInput::default();
-        (0..inputs.len() + flush)
-            .map(|cycle| {
-                uut.set_inputs(inputs.get(cycle).unwrap_or(&idle));
-                uut.clock.next = Clock { clk: false };
-                assert!(simulate(&mut uut, 10_000), "far end logic did not settle");
-                let out = uut.outputs();
-                uut.clock.next = Clock { clk: true };
-                assert!(simulate(&mut uut, 10_000), "far end logic did not settle");
-                out
-            })
-            .collect()
-    })
+    simulate_cycles(move || FarEnd::new(depth), inputs, flush)
 }
 
 /// Verilog of the block at `depth` (bound and pad together), top module `top`.
 pub fn far_end_verilog(depth: usize) -> String {
-    crate::top::with_build_stack(move || {
-        let mut uut = FarEnd::new(depth);
-        uut.connect_all();
-        generate_verilog(&uut)
-    })
+    built_verilog(move || FarEnd::new(depth))
 }

@@ -17,6 +17,7 @@
 use rust_hdl::prelude::*;
 
 use crate::formats::fp32::{self, Add, Mul, Sub};
+use crate::harness::{built_verilog, simulate_cycles, Stepped};
 use crate::macros::clock;
 use crate::mt::delay::Delay;
 use crate::mt::schedule::OpLatencies;
@@ -138,9 +139,21 @@ impl LeafAdvance {
             tag_at_out: Delay::new(s.latency),
         }
     }
+}
 
-    /// Drives the inputs with one ray (the simulator's side of the ports).
-    pub fn set_inputs(&mut self, x: &AdvanceInput) {
+impl Stepped for LeafAdvance {
+    type Input = AdvanceInput;
+    type Output = AdvanceOutput;
+
+    fn idle() -> AdvanceInput {
+        AdvanceInput::default()
+    }
+
+    fn clock_input(&mut self) -> &mut Signal<In, Clock> {
+        &mut self.clock
+    }
+
+    fn apply(&mut self, x: &Self::Input) {
         let word = |x: f32| Word::from(u64::from(x.to_bits()));
         self.valid_in.next = x.valid;
         self.tag_in.next = u64::from(x.tag).into();
@@ -152,8 +165,7 @@ impl LeafAdvance {
         self.t0.next = word(x.t0);
     }
 
-    /// What the outputs show (fp32 bits).
-    pub fn outputs(&self) -> AdvanceOutput {
+    fn observe(&self) -> Self::Output {
         let bits = |w: Word| w.to_u64() as u32;
         AdvanceOutput {
             valid: self.valid_out.val(),
@@ -224,32 +236,12 @@ pub fn simulate_leaf_advance(
     inputs: &[AdvanceInput],
     flush: usize,
 ) -> Vec<AdvanceOutput> {
-    let inputs = inputs.to_vec();
-    crate::top::with_build_stack(move || {
-        let mut uut = LeafAdvance::new(depth);
-        uut.connect_all();
-        let idle = AdvanceInput::default();
-        (0..inputs.len() + flush)
-            .map(|cycle| {
-                uut.set_inputs(inputs.get(cycle).unwrap_or(&idle));
-                uut.clock.next = Clock { clk: false };
-                assert!(simulate(&mut uut, 10_000), "leaf advance did not settle");
-                let out = uut.outputs();
-                uut.clock.next = Clock { clk: true };
-                assert!(simulate(&mut uut, 10_000), "leaf advance did not settle");
-                out
-            })
-            .collect()
-    })
+    simulate_cycles(move || LeafAdvance::new(depth), inputs, flush)
 }
 
 /// Verilog of the block at `depth`, top module `top`.
 pub fn leaf_advance_verilog(depth: usize) -> String {
-    crate::top::with_build_stack(move || {
-        let mut uut = LeafAdvance::new(depth);
-        uut.connect_all();
-        generate_verilog(&uut)
-    })
+    built_verilog(move || LeafAdvance::new(depth))
 }
 
 /// The leaf advance around one MT lane of `lane_latency` cycles: a packed query (the

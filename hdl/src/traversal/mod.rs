@@ -22,6 +22,7 @@ pub mod ray_entry;
 pub mod ray_setup;
 pub mod scene_memory;
 pub mod scene_memory_driver;
+pub mod scene_records;
 pub mod slot_ports;
 pub mod slots;
 pub mod stack;

@@ -34,6 +34,7 @@ use hw_model::traversal::box_test::{RaySetup, HUGE_SLOPE, PAD};
 use rust_hdl::prelude::*;
 
 use crate::formats::fp32::{self, Add, Lt, Mul, Recip, Sub};
+use crate::harness::{built_verilog, simulate_cycles, Stepped};
 use crate::macros::clock;
 use crate::mt::delay::Delay;
 use crate::mt::schedule::OpLatencies;
@@ -259,9 +260,21 @@ impl RaySetupUnit {
     pub fn latency(depth: usize) -> usize {
         latency(depth)
     }
+}
 
-    /// Drives the inputs with one ray (the simulator's side of the ports).
-    pub fn set_inputs(&mut self, x: &SetupInput) {
+impl Stepped for RaySetupUnit {
+    type Input = SetupInput;
+    type Output = SetupOutput;
+
+    fn idle() -> SetupInput {
+        SetupInput::default()
+    }
+
+    fn clock_input(&mut self) -> &mut Signal<In, Clock> {
+        &mut self.clock
+    }
+
+    fn apply(&mut self, x: &Self::Input) {
         let word = |x: f32| Word::from(u64::from(x.to_bits()));
         self.valid_in.next = x.valid;
         self.tag_in.next = u64::from(x.tag).into();
@@ -272,8 +285,7 @@ impl RaySetupUnit {
         self.bound.next = word(x.bound);
     }
 
-    /// What the outputs show.
-    pub fn outputs(&self) -> SetupOutput {
+    fn observe(&self) -> Self::Output {
         let word = |s: &Signal<Out, Word>| s.val().to_u64() as u32;
         SetupOutput {
             valid: self.valid_out.val(),
@@ -434,30 +446,10 @@ impl SetupOutput {
 /// cycles, feeding `inputs[c]` in cycle `c` (then idle, all-zero inputs) and returning what
 /// the outputs show in every cycle.
 pub fn simulate_ray_setup(depth: usize, inputs: &[SetupInput], flush: usize) -> Vec<SetupOutput> {
-    let inputs = inputs.to_vec();
-    crate::top::with_build_stack(move || {
-        let mut uut = RaySetupUnit::new(depth);
-        uut.connect_all();
-        let idle = SetupInput::default();
-        (0..inputs.len() + flush)
-            .map(|cycle| {
-                uut.set_inputs(inputs.get(cycle).unwrap_or(&idle));
-                uut.clock.next = Clock { clk: false };
-                assert!(simulate(&mut uut, 10_000), "ray setup logic did not settle");
-                let out = uut.outputs();
-                uut.clock.next = Clock { clk: true };
-                assert!(simulate(&mut uut, 10_000), "ray setup logic did not settle");
-                out
-            })
-            .collect()
-    })
+    simulate_cycles(move || RaySetupUnit::new(depth), inputs, flush)
 }
 
 /// Verilog of the block at `depth`, top module `top` (built on a thread with room for it).
 pub fn ray_setup_verilog(depth: usize) -> String {
-    crate::top::with_build_stack(move || {
-        let mut uut = RaySetupUnit::new(depth);
-        uut.connect_all();
-        generate_verilog(&uut)
-    })
+    built_verilog(move || RaySetupUnit::new(depth))
 }

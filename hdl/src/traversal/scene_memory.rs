@@ -2,15 +2,7 @@
 //! RAMs, one BVH node and one triangle per word, filled by a checking loader from an
 //! AXI4-Stream of 32-bit words.
 //!
-//! Records (bit 0 first; `LF`, `LC` link widths from [`link_first_bits`], [`link_count_bits`]):
-//! - node ([`node_record_bits`]): the children's padded boxes as the image orders them, min x0
-//!   x1 y0 y1 z0 z1 then max likewise (12 × 32 bits, bits 0–383), then child 0's link first
-//!   (`LF`) and count (`LC`), then child 1's. A link first is a node or triangle index, so `LF`
-//!   = max(node, triangle address bits); a count reaches the whole capacity, `LC` = triangle
-//!   address bits + 1. One read is what one box test needs.
-//! - triangle ([`triangle_record_bits`]): v0, v1, v2 (9 × 32 bits, bits 0–287), the casts-shadow
-//!   flag (bit 288), the global index ([`INDEX_BITS`], from 289). The image's reserved
-//!   word is not stored. One read is what one Möller-Trumbore lane and its hit need.
+//! Its records, capacity and load errors: [`super::scene_records`] (re-exported here).
 //!
 //! The loader (`start_load`, then the stream): the header, N nodes and T triangles in image
 //! order, each record written when its last word arrives. It checks what is cheap in
@@ -38,130 +30,13 @@
 
 use rust_hdl::prelude::*;
 
+pub use super::scene_records::*;
 use crate::defaults;
 use hw_model::traversal::scene_image::{HEADER_WORDS, MAGIC, NODE_WORDS, TRIANGLE_WORDS, VERSION};
 
-/// Bits of the boxes in a node record (12 fp32 words).
-pub const BOX_BITS: usize = 12 * 32;
-/// Bits of the vertices in a triangle record (9 fp32 words).
-pub const VERTEX_BITS: usize = 9 * 32;
-/// Bits of a global triangle index: a scene (a whole one, or the scene a chunk of it belongs
-/// to) has at most 2^24 triangles. A chunk's indices reach beyond its own capacity, so the
-/// width does not follow the triangle address bits.
-pub const INDEX_BITS: usize = 24;
-/// Width of `error_code`.
-pub const ERROR_CODE_BITS: usize = 4;
-
-/// What the loader refused, as `error_code` (0: no error).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[repr(u8)]
-pub enum LoadError {
-    /// Word 0 is not [`MAGIC`].
-    BadMagic = 1,
-    /// Word 1 is not [`VERSION`].
-    BadVersion = 2,
-    /// N (word 2) is beyond the node capacity.
-    TooManyNodes = 3,
-    /// T (word 3) is beyond the triangle capacity.
-    TooManyTriangles = 4,
-    /// A link's count is 0 and its first ≥ N (the word is the count; the first precedes it).
-    NodeLink = 5,
-    /// A link's first + count > T (the word is the count).
-    LeafLink = 6,
-    /// A triangle's global index ≥ S (header word 12).
-    GlobalIndex = 7,
-    /// A triangle's flags have a bit other than bit 0.
-    BadFlags = 8,
-    /// A reserved word is not 0.
-    Reserved = 9,
-    /// `tlast` before the image's last word.
-    EarlyLast = 10,
-    /// The image's last word without `tlast` (the rest of the packet is drained).
-    MissingLast = 11,
-    /// The scene's triangle count S (word 12) is below T or beyond 2^[`INDEX_BITS`].
-    SceneTriangles = 12,
-}
-
-impl LoadError {
-    pub const ALL: [LoadError; 12] = [
-        LoadError::BadMagic,
-        LoadError::BadVersion,
-        LoadError::TooManyNodes,
-        LoadError::TooManyTriangles,
-        LoadError::NodeLink,
-        LoadError::LeafLink,
-        LoadError::GlobalIndex,
-        LoadError::BadFlags,
-        LoadError::Reserved,
-        LoadError::EarlyLast,
-        LoadError::MissingLast,
-        LoadError::SceneTriangles,
-    ];
-
-    pub fn code(self) -> u64 {
-        self as u64
-    }
-
-    /// The error of an `error_code`, `None` for 0 or a code no error has.
-    pub fn from_code(code: u64) -> Option<LoadError> {
-        LoadError::ALL.into_iter().find(|e| e.code() == code)
-    }
-
-    fn constant(self) -> Constant<Bits<ERROR_CODE_BITS>> {
-        Constant::new(self.code().into())
-    }
-}
-
-/// Nodes and triangles a memory with these address bits holds.
-pub fn capacity_for(node_bits: usize, triangle_bits: usize) -> (usize, usize) {
-    (1 << node_bits, 1 << triangle_bits)
-}
-
-/// The address bits of the scene memory a unit of `lanes` fp32 Möller-Trumbore lanes (depth
-/// 5) carries on the XC7Z020: the largest power-of-two memory whose block RAM fits beside the
-/// lanes and the slot stacks (yosys; docs/scene-image.md, "Resources and what fits the
-/// XC7Z020"). Narrower formats' lanes use less block RAM, so this is their safe choice too.
-pub fn zynq_address_bits(lanes: usize) -> (usize, usize) {
-    if lanes <= 1 {
-        (12, 13)
-    } else {
-        (11, 12)
-    }
-}
-
-/// The smallest (node, triangle) address bits whose [`capacity_for`] holds `nodes` and
-/// `triangles` (at least 1 bit each: a RAM has an address).
-pub fn address_bits_for(nodes: usize, triangles: usize) -> (usize, usize) {
-    let bits = |n: usize| (n.max(2) - 1).ilog2() as usize + 1;
-    (bits(nodes), bits(triangles))
-}
-
-/// `LF`: a link's first is a node or a triangle index.
-pub const fn link_first_bits(node_bits: usize, triangle_bits: usize) -> usize {
-    if node_bits > triangle_bits {
-        node_bits
-    } else {
-        triangle_bits
-    }
-}
-
-/// `LC`: a leaf's count reaches the triangle capacity itself.
-pub const fn link_count_bits(triangle_bits: usize) -> usize {
-    triangle_bits + 1
-}
-
-/// `NW`: boxes and two links.
-pub const fn node_record_bits(node_bits: usize, triangle_bits: usize) -> usize {
-    BOX_BITS + 2 * (link_first_bits(node_bits, triangle_bits) + link_count_bits(triangle_bits))
-}
-
-// The triangle read spells the flag's and the index's bits as numbers (hdl_gen leaks a named
-// const into the Verilog).
-const _: () = assert!(VERTEX_BITS == 288);
-
-/// `TW`: vertices, the flag (bit [`VERTEX_BITS`]) and the global index (from the next bit).
-pub const fn triangle_record_bits() -> usize {
-    VERTEX_BITS + 1 + INDEX_BITS
+/// A load error's code, as the kernel compares it.
+fn code(error: LoadError) -> Constant<Bits<ERROR_CODE_BITS>> {
+    Constant::new(error.code().into())
 }
 
 /// The loader's states, as the `state` register's values (a `Bits` register with constants:
@@ -461,18 +336,18 @@ impl<
             header_end: c32(HEADER_WORDS - 1),
             node_end: c4(NODE_WORDS - 1),
             triangle_end: c4(TRIANGLE_WORDS - 1),
-            e_magic: LoadError::BadMagic.constant(),
-            e_version: LoadError::BadVersion.constant(),
-            e_nodes: LoadError::TooManyNodes.constant(),
-            e_triangles: LoadError::TooManyTriangles.constant(),
-            e_node_link: LoadError::NodeLink.constant(),
-            e_leaf_link: LoadError::LeafLink.constant(),
-            e_index: LoadError::GlobalIndex.constant(),
-            e_flags: LoadError::BadFlags.constant(),
-            e_reserved: LoadError::Reserved.constant(),
-            e_early_last: LoadError::EarlyLast.constant(),
-            e_missing_last: LoadError::MissingLast.constant(),
-            e_scene_triangles: LoadError::SceneTriangles.constant(),
+            e_magic: code(LoadError::BadMagic),
+            e_version: code(LoadError::BadVersion),
+            e_nodes: code(LoadError::TooManyNodes),
+            e_triangles: code(LoadError::TooManyTriangles),
+            e_node_link: code(LoadError::NodeLink),
+            e_leaf_link: code(LoadError::LeafLink),
+            e_index: code(LoadError::GlobalIndex),
+            e_flags: code(LoadError::BadFlags),
+            e_reserved: code(LoadError::Reserved),
+            e_early_last: code(LoadError::EarlyLast),
+            e_missing_last: code(LoadError::MissingLast),
+            e_scene_triangles: code(LoadError::SceneTriangles),
             take: Default::default(),
             check: Default::default(),
             is_count: Default::default(),
@@ -521,7 +396,6 @@ impl<
             error_word_reg,
             error_value_reg
         );
-        // rust-hdl's `RAM` has two clock inputs and no `clock`, out of `clock!`'s reach.
         self.node_ram.read_clock.next = self.clock.val();
         self.node_ram.write_clock.next = self.clock.val();
         for p in 0..self.triangle_ram.len() {
