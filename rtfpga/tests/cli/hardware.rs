@@ -117,7 +117,7 @@ fn verilog_of_the_traversal_unit_with_the_leaf_advance() {
             .ok();
         std::fs::read_to_string(out_dir.join("traversal_unit.v")).unwrap()
     };
-    assert!(unit("leaf-box").contains("around$0$lane_query"));
+    assert!(unit("leaf-box").contains("around$0$lane$query"));
     assert!(!unit("none").contains("around"));
 }
 
