@@ -18,8 +18,9 @@ pub mod axil;
 pub mod cgen;
 pub mod regmap;
 
-// yosys resource and logic-depth reports (issue 3).
+// yosys resource and logic-depth reports (issue 3), and the Fmax estimate (issue 41).
 pub mod synth;
+pub mod timing;
 
 // The accelerator top (lanes, AXI4-Lite, AXI4-Stream, rtfpga_top wrapper) and the generated
 // file set (issue 4).

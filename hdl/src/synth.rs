@@ -1,7 +1,7 @@
 //! Resource and logic-depth reports from yosys' Xilinx 7-series synthesis.
 //!
 //! Script: `read_verilog; synth_xilinx -family xc7 -top TOP -flatten -noiopad -noclkbuf; stat
-//! -json; ltp …`. `-noiopad -noclkbuf` because the accelerator is a core inside a block design,
+//! -json; ltp …; write_json`. `-noiopad -noclkbuf` because the accelerator is a core inside a block design,
 //! not a chip top: I/O and clock buffers would only add noise to the counts.
 //!
 //! `abc` versus `-abc9`: measured on a 32-bit add/compare/shift + 216-bit XOR test design,
@@ -14,9 +14,15 @@
 //! registered DSP48E1s are left out of the selection, so paths end at them. A registered
 //! DSP48E1 therefore counts as a register boundary: the multiplier delay in front of its
 //! internal register is not counted, an underestimate worth knowing when comparing depths.
+//!
+//! The same run writes the mapped netlist, from which [`crate::timing`] estimates the critical
+//! path and Fmax on the XC7Z020-1 (cell delays plus a calibrated routing model; the depth
+//! above counts cells, the estimate weighs them and their nets).
 
 use serde::Serialize;
 use std::collections::BTreeMap;
+
+use crate::timing::{self, CriticalPath, TimingError};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
@@ -37,6 +43,8 @@ pub enum SynthError {
     Failed { top: String, output: String },
     #[error("unexpected yosys output ({what}): {detail}")]
     Parse { what: String, detail: String },
+    #[error(transparent)]
+    Timing(#[from] TimingError),
     #[error("{path}: {source}")]
     Io {
         path: PathBuf,
@@ -51,6 +59,8 @@ pub struct SynthOptions {
     pub abc9: bool,
     /// The yosys binary (a name looked up on PATH, or a path).
     pub yosys: PathBuf,
+    /// Also keep the mapped netlist (yosys JSON, the one the timing estimate reads) here.
+    pub netlist: Option<PathBuf>,
 }
 
 impl Default for SynthOptions {
@@ -58,6 +68,7 @@ impl Default for SynthOptions {
         SynthOptions {
             abc9: false,
             yosys: PathBuf::from("yosys"),
+            netlist: None,
         }
     }
 }
@@ -84,6 +95,10 @@ pub struct SynthReport {
     pub logic_depth: u64,
     /// Every cell type and its count, for anything the fields above do not cover.
     pub cells: BTreeMap<String, u64>,
+    /// The estimated critical path on the XC7Z020-1 ([`crate::timing`]); none when the design
+    /// has no register-to-register path. `rtfpga synth --json` writes it beside the report.
+    #[serde(skip)]
+    pub critical_path: Option<CriticalPath>,
 }
 
 impl SynthReport {
@@ -111,7 +126,13 @@ impl SynthReport {
             lutram: sum(&|c| c.starts_with("RAM") && !c.starts_with("RAMB")),
             logic_depth,
             cells,
+            critical_path: None,
         }
+    }
+
+    /// The estimated Fmax on the XC7Z020-1 in MHz ([`crate::timing`]).
+    pub fn fmax_mhz_estimate(&self) -> Option<f64> {
+        self.critical_path.as_ref().map(CriticalPath::fmax_mhz)
     }
 
     /// Header of the Markdown table that [`SynthReport::markdown_row`] fills.
@@ -236,10 +257,11 @@ pub fn synthesize(
         path: std::env::temp_dir(),
         source,
     })?;
-    let (src, stat, ltp, script) = (
+    let (src, stat, ltp, netlist, script) = (
         dir.path().join("design.v"),
         dir.path().join("stat.json"),
         dir.path().join("ltp.txt"),
+        dir.path().join("netlist.json"),
         dir.path().join("synth.ys"),
     );
     write(&src, verilog)?;
@@ -250,10 +272,14 @@ pub fn synthesize(
             "read_verilog {src}\n\
              synth_xilinx -family xc7 -top {top} -flatten -noiopad -noclkbuf{abc9}\n\
              tee -q -o {stat} stat -json\n\
-             tee -q -o {ltp} ltp w:* {COMBINATIONAL_CELLS}\n",
+             tee -q -o {ltp} ltp w:* {COMBINATIONAL_CELLS}\n\
+             hierarchy -purge_lib\n\
+             attrmap -remove src\n\
+             write_json {netlist}\n",
             src = src.display(),
             stat = stat.display(),
             ltp = ltp.display(),
+            netlist = netlist.display(),
         ),
     )?;
     let out = Command::new(&options.yosys)
@@ -276,5 +302,13 @@ pub fn synthesize(
         });
     }
     let cells = parse_stat_json(&read(&stat)?, top)?;
-    Ok(SynthReport::from_cells(cells, parse_ltp(&read(&ltp)?)?))
+    let mut report = SynthReport::from_cells(cells, parse_ltp(&read(&ltp)?)?);
+    report.critical_path = timing::analyze(&read(&netlist)?, top, &timing::ROUTING)?;
+    if let Some(keep) = &options.netlist {
+        std::fs::copy(&netlist, keep).map_err(|source| SynthError::Io {
+            path: keep.clone(),
+            source,
+        })?;
+    }
+    Ok(report)
 }

@@ -1,7 +1,7 @@
 //! `rtfpga synth`: yosys Xilinx 7-series resources and logic depth of the whole accelerator,
-//! of one operator or of the traversal unit (`--unit traversal`), and whether it fits an
-//! XC7Z020 (for the accelerator also how many lanes would, for a dual-precision pair how many
-//! filter slots).
+//! of one operator or of the traversal unit (`--unit traversal`), whether it fits an XC7Z020
+//! (for the accelerator also how many lanes would, for a dual-precision pair how many filter
+//! slots), and its estimated Fmax and critical path on the XC7Z020-1 (docs/timing.md).
 
 use anyhow::{bail, Result};
 use clap::Args as ClapArgs;
@@ -155,7 +155,9 @@ fn print(
     let fits = XC7Z020.holds(usage);
     if json {
         let v = serde_json::json!({"design": label, "latency": latency, "report": report,
-            "usage": usage, "fits": fits, "fit": fit});
+            "usage": usage, "fits": fits, "fit": fit,
+            "fmax_mhz_estimate": report.fmax_mhz_estimate(),
+            "critical_path": report.critical_path});
         println!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(());
     }
@@ -181,6 +183,10 @@ fn print(
             "lanes that fit an {} (estimated from the 1- and 2-lane designs): {} (limited by {})",
             f.device, f.lanes, f.limit
         );
+    }
+    match &report.critical_path {
+        Some(path) => print!("\n{path}"),
+        None => println!("\nfmax_mhz_estimate: none (no register-to-register path)"),
     }
     Ok(())
 }

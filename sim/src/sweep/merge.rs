@@ -19,6 +19,7 @@ use super::layout::{read_json, write_json, Layout};
 use super::plots;
 use super::projection::Projector;
 use super::quality::{Psnr, QualityResult};
+use super::synth_cache::SynthRecord;
 use super::table::{self, ResourceSource, Results, Row};
 
 /// Reads the results in `layout`, writes the merged files, returns them.
@@ -113,6 +114,7 @@ pub fn merge(layout: &Layout) -> Result<Results> {
                 bram18: usage.map(|u| u.bram18),
                 carry4: p.synth.as_ref().map(|s| s.carry4),
                 logic_depth: p.synth.as_ref().map(|s| s.logic_depth),
+                fmax_mhz_estimate: p.synth.as_ref().and_then(SynthRecord::fmax_mhz_estimate),
                 resources: source,
                 lanes_fit: fit.map(|f| f.lanes),
                 fit_limit: fit.map(|f| f.limit.to_string()),
@@ -219,7 +221,6 @@ fn lane_fit(points: &[PointResult], p: &PointResult) -> Option<(LaneFit, Option<
 mod tests {
     use super::*;
     use crate::sweep::point::Point;
-    use crate::sweep::synth_cache::SynthRecord;
 
     fn synthesised(
         format: &str,
@@ -242,8 +243,10 @@ mod tests {
                 carry4: 0,
                 bram18: 4 * lanes as u64,
                 logic_depth: 9,
+                critical_path: None,
                 seconds: 0,
                 verilog_sha256: String::new(),
+                routing_model: String::new(),
             }),
             synth_cached: false,
             cosim: Vec::new(),

@@ -50,6 +50,9 @@ pub struct Row {
     pub bram18: Option<u64>,
     pub carry4: Option<u64>,
     pub logic_depth: Option<u64>,
+    /// Estimated Fmax on the XC7Z020-1 (`hdl::timing`, docs/timing.md), synthesised points
+    /// only.
+    pub fmax_mhz_estimate: Option<f64>,
     pub resources: Option<ResourceSource>,
     /// Lanes of this format and depth that fit an XC7Z020, and the resource that limits it.
     pub lanes_fit: Option<u64>,
@@ -224,9 +227,9 @@ pub fn markdown(results: &Results) -> Result<String> {
         )?;
     }
     writeln!(s, "## Points\n")?;
-    writeln!(s, "Resources: `yosys` synthesised, `estimate` = fixed + lanes × per-lane from the 1- and 2-lane synthesis; lanes fit = lanes of the format and depth that fit an XC7Z020 (limit; †fp16_d1 = this point's 1-lane synthesis with the fixed part (AXI-Lite slave, stream front end) of that 1- and 2-lane pair). Cycles/test: `*` measured in co-simulation. Quality: the hardware's lane (advance none).\n")?;
-    writeln!(s, "| point | bits | depth | lanes | latency | cycles/test | LUT | FF | DSP | BRAM18 | CARRY4 | logic depth | resources | lanes fit | policy | advance | min PSNR dB | max diff px | cosim = model | frame s | × ARM |")?;
-    writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|---:|---:|---|---:|---:|")?;
+    writeln!(s, "Resources: `yosys` synthesised, `estimate` = fixed + lanes × per-lane from the 1- and 2-lane synthesis; lanes fit = lanes of the format and depth that fit an XC7Z020 (limit; †fp16_d1 = this point's 1-lane synthesis with the fixed part (AXI-Lite slave, stream front end) of that 1- and 2-lane pair). Fmax est.: the estimated Fmax on the XC7Z020-1 of a synthesised point (docs/timing.md: an estimate from yosys' cell delays and a calibrated routing model, not placed and routed). Cycles/test: `*` measured in co-simulation. Quality: the hardware's lane (advance none).\n")?;
+    writeln!(s, "| point | bits | depth | lanes | latency | cycles/test | LUT | FF | DSP | BRAM18 | CARRY4 | logic depth | Fmax est. MHz | resources | lanes fit | policy | advance | min PSNR dB | max diff px | cosim = model | frame s | × ARM |")?;
+    writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|---:|---:|---|---:|---:|")?;
     for r in &results.rows {
         let res = match r.resources {
             Some(ResourceSource::Yosys) => "yosys",
@@ -243,7 +246,7 @@ pub fn markdown(results: &Results) -> Result<String> {
         };
         writeln!(
             s,
-            "| {} | {} | {} | {} | {} | {:.3}{} | {} | {} | {} | {} | {} | {} | {res} | {fit} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {:.3}{} | {} | {} | {} | {} | {} | {} | {} | {res} | {fit} | {} | {} | {} | {} | {} | {} | {} |",
             r.id,
             r.bits,
             r.depth,
@@ -257,6 +260,7 @@ pub fn markdown(results: &Results) -> Result<String> {
             opt(&r.bram18),
             opt(&r.carry4),
             opt(&r.logic_depth),
+            opt(&r.fmax_mhz_estimate.map(|f| format!("{f:.0}"))),
             opt(&r.policy),
             opt(&r.advance),
             opt(&r.min_psnr_db),
@@ -383,14 +387,14 @@ fn pair_hardware(s: &mut String, results: &Results) -> Result<()> {
     } else {
         writeln!(
             s,
-            "| slots | LUT | FF | DSP | BRAM18 | CARRY4 | logic depth | yosys s |"
+            "| slots | LUT | FF | DSP | BRAM18 | CARRY4 | logic depth | Fmax est. MHz | yosys s |"
         )?;
-        writeln!(s, "|---:|---:|---:|---:|---:|---:|---:|---:|")?;
+        writeln!(s, "|---:|---:|---:|---:|---:|---:|---:|---:|---:|")?;
         for p in &hw.synth {
             let r = &p.synth;
             writeln!(
                 s,
-                "| {} | {} | {} | {} | {} | {} | {} | {}{} |",
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {}{} |",
                 p.slots,
                 r.lut,
                 r.ff,
@@ -398,6 +402,7 @@ fn pair_hardware(s: &mut String, results: &Results) -> Result<()> {
                 r.bram18,
                 r.carry4,
                 r.logic_depth,
+                opt(&r.fmax_mhz_estimate().map(|f| format!("{f:.0}"))),
                 r.seconds,
                 if p.cached { " (cached)" } else { "" }
             )?;
