@@ -56,8 +56,8 @@ pub struct RoutingModel {
 /// The calibrated routing model (docs/timing.md, "Calibration"; reproduce with
 /// `scripts/timing_calibration.sh`).
 pub const ROUTING: RoutingModel = RoutingModel {
-    base_ps: 580.0,
-    per_fanout_doubling_ps: 60.0,
+    base_ps: 230.0,
+    per_fanout_doubling_ps: 70.0,
 };
 
 impl RoutingModel {
