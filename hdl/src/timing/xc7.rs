@@ -423,17 +423,9 @@ pub(crate) fn model(cell: &Cell, name: &str) -> Result<CellModel, TimingError> {
             lut_ram(&mut m, ram, &["D"], &["SPO", "DPO"]);
         }
         "RAM128X1D" => {
-            for i in 0..6 {
-                m.arc(
-                    Pin::bit("A", i),
-                    Pin::all("SPO"),
-                    LUT6_PIN_DELAYS[i] + 193 + 175,
-                );
-                m.arc(
-                    Pin::bit("DPRA", i),
-                    Pin::all("DPO"),
-                    LUT6_PIN_DELAYS[i] + 223 + 174,
-                );
+            for (i, &ps) in LUT6_PIN_DELAYS.iter().enumerate() {
+                m.arc(Pin::bit("A", i), Pin::all("SPO"), ps + 193 + 175);
+                m.arc(Pin::bit("DPRA", i), Pin::all("DPO"), ps + 223 + 174);
             }
             m.arc(Pin::bit("A", 6), Pin::all("SPO"), 276 + 175);
             m.arc(Pin::bit("DPRA", 6), Pin::all("DPO"), 296 + 174);
