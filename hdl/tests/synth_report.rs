@@ -1,6 +1,7 @@
 //! yosys reports on small designs whose resources and logic depth are known.
 
 use hdl::synth::{synthesize, SynthError, SynthOptions};
+use hdl::timing::ROUTING;
 
 fn synth(verilog: &str) -> hdl::synth::SynthReport {
     synthesize(verilog, "top", &SynthOptions::default()).unwrap()
@@ -55,6 +56,20 @@ fn logic_depth_counts_the_luts_between_registers() {
         assert_eq!(r.logic_depth, stages as u64, "{stages} stages: {r:?}");
         assert_eq!(r.lut, stages as u64, "{r:?}");
         assert_eq!(r.ff as usize, 5 * stages + 2, "{r:?}");
+        // The timing estimate on the mapped netlist: every net has fanout 1, so the first
+        // LUT's six inputs arrive together (one of them on the slowest pin, A1), and each
+        // later LUT's chain input arrives last (the fastest pin, A6); the last LUT drives q's
+        // D inside its slice (no routing). Delays: hdl/src/timing/xc7.rs.
+        let path = r
+            .critical_path
+            .as_ref()
+            .expect("a register-to-register path");
+        let net = u64::from(ROUTING.net_ps(1));
+        let (clock_to_q, a1, a6) = (303, 642, 127);
+        let expected = clock_to_q + net + a1 + (stages as u64 - 1) * (net + a6);
+        assert_eq!(path.delay_ps, expected, "{stages} stages: {path:?}");
+        assert_eq!(path.levels, stages as u64, "{path:?}");
+        assert!(path.end.starts_with("q ("), "{path:?}");
     }
 }
 

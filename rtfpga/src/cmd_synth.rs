@@ -184,9 +184,24 @@ fn print(
             f.device, f.lanes, f.limit
         );
     }
-    match &report.critical_path {
-        Some(path) => print!("\n{path}"),
-        None => println!("\nfmax_mhz_estimate: none (no register-to-register path)"),
-    }
+    let Some(path) = &report.critical_path else {
+        println!("\nno register-to-register path: no Fmax estimate");
+        return Ok(());
+    };
+    let ns = |ps: u64| ps as f64 / 1000.0;
+    println!();
+    report::Line::new()
+        .fixed("fmax_mhz_estimate", path.fmax_mhz(), 0)
+        .fixed("delay_ns", ns(path.delay_ps), 2)
+        .fixed("cell_ns", ns(path.cell_ps), 2)
+        .fixed("routing_ns", ns(path.routing_ps), 2)
+        .kv("levels", path.levels)
+        .print();
+    report::Line::labelled("critical_path")
+        .kv("from", &path.start)
+        .kv("to", &path.end)
+        .print();
+    println!("\nAn estimate for the XC7Z020-1 from yosys' cell delays and a calibrated routing model, not placed and routed (docs/timing.md: its error band). The path:\n");
+    print!("{}", path.steps_markdown());
     Ok(())
 }

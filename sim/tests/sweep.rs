@@ -613,6 +613,16 @@ points = ["fx16_13_d0_l1"]
     );
     assert!(row.cycles_measured && row.cycles_per_test == point.cycles_per_test());
     assert_eq!(row.lanes_fit, None, "a fit needs the 2-lane design too");
+    // The timing estimate (the accelerator has registers, so a path) reaches the row.
+    let fmax = synth
+        .fmax_mhz_estimate()
+        .expect("a register-to-register path");
+    assert_eq!(row.fmax_mhz_estimate, Some(fmax));
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    assert!(
+        csv.lines().next().unwrap().contains("fmax_mhz_estimate"),
+        "{csv}"
+    );
 
     // Same Verilog: the synthesis comes from the cache.
     sweep::run_local(&config, &out, &local(1)).unwrap();

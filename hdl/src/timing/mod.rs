@@ -73,7 +73,7 @@ pub struct PathStep {
     /// The cell's name, or for a cell yosys named itself the name of the net it drives.
     pub cell: String,
     pub cell_type: String,
-    /// `C->Q` at the start, `I2->O` through a cell, `D setup` at the end.
+    /// `clock->Q` at the start, `I2->O` through a cell, `D setup` at the end.
     pub arc: String,
     pub cell_ps: u64,
     /// The net into this cell (none at the start).
@@ -103,41 +103,29 @@ impl CriticalPath {
     pub fn fmax_mhz(&self) -> f64 {
         1e6 / self.delay_ps as f64
     }
-}
 
-/// `fmax_mhz_estimate=…`, the path's totals, ends and levels, then one line per cell.
-impl std::fmt::Display for CriticalPath {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let ns = |ps: u64| ps as f64 / 1000.0;
-        writeln!(
-            f,
-            "fmax_mhz_estimate={:.0} (XC7Z020-1, an estimate: see docs/timing.md for its error band)",
-            self.fmax_mhz()
-        )?;
-        writeln!(
-            f,
-            "critical path: {:.2} ns = {:.2} ns cells + {:.2} ns routing (model), {} levels",
-            ns(self.delay_ps),
-            ns(self.cell_ps),
-            ns(self.routing_ps),
-            self.levels
-        )?;
-        writeln!(f, "  from {}", self.start)?;
-        writeln!(f, "  to   {}", self.end)?;
-        for s in &self.steps {
-            let net = s.net.as_ref().map_or(String::new(), |n| {
-                format!("  [net {n}, fanout {}, {:.2} ns]", s.fanout, ns(s.route_ps))
-            });
-            writeln!(
-                f,
-                "    {:>6.2} ns  {} {} {}{net}",
-                ns(s.cell_ps),
-                s.cell_type,
-                s.arc,
-                s.cell
-            )?;
+    /// The path cell by cell as a Markdown table: each cell's delay and arc, and the net into
+    /// it with its fanout and routing delay.
+    pub fn steps_markdown(&self) -> String {
+        let ns = |ps: u64| format!("{:.2}", ps as f64 / 1000.0);
+        let mut s = String::from(
+            "| cell ns | type | arc | cell | net in | fanout | route ns |\n\
+             |---:|---|---|---|---|---:|---:|\n",
+        );
+        for step in &self.steps {
+            let (net, fanout, route) = match &step.net {
+                Some(n) => (format!("`{n}`"), step.fanout.to_string(), ns(step.route_ps)),
+                None => Default::default(),
+            };
+            s += &format!(
+                "| {} | {} | {} | `{}` | {net} | {fanout} | {route} |\n",
+                ns(step.cell_ps),
+                step.cell_type,
+                step.arc,
+                step.cell
+            );
         }
-        Ok(())
+        s
     }
 }
 

@@ -71,6 +71,12 @@ impl Run {
         self
     }
 
+    /// A yosys synthesis: minutes on a loaded machine.
+    pub fn synthesis(mut self) -> Run {
+        self.timeout = Duration::from_secs(1800);
+        self
+    }
+
     pub fn command(&self) -> assert_cmd::Command {
         let mut cmd = assert_cmd::Command::cargo_bin("rtfpga").expect("the rtfpga binary");
         cmd.args(&self.args).timeout(self.timeout);

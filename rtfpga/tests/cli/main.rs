@@ -18,5 +18,6 @@ mod precision;
 mod project;
 mod render;
 mod scenes;
+mod synth;
 mod traversal;
 mod usage;
