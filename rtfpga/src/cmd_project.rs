@@ -163,6 +163,7 @@ pub fn run(a: Args) -> Result<()> {
                     Advance::None,
                 )),
                 memory: a.memory.memory(a.lanes as usize),
+        nodes: hw_model::traversal::NodeFormat::Bvh2Fp32,
             };
             workload = workload.with_unit(&scene, &engine, a.tile_size)?;
         }

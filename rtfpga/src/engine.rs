@@ -485,6 +485,7 @@ impl HwConfig {
             advance,
             timing,
             memory,
+        nodes: hw_model::traversal::NodeFormat::Bvh2Fp32,
         })
     }
 

@@ -572,6 +572,7 @@ fn render_traversal_with_the_leaf_advance_is_the_librarys() {
         advance: Advance::LeafBox,
         timing: None,
         memory: hw_model::traversal::SceneMemory::Unbounded,
+        nodes: hw_model::traversal::NodeFormat::Bvh2Fp32,
     };
     let opts = RenderOptions {
         width: Some(32),

@@ -230,6 +230,7 @@ fn fp32_renders_of_the_builtin_scenes_equal_the_software() {
         advance: Advance::None,
         timing: None,
         memory: SceneMemory::Unbounded,
+        nodes: hw_model::traversal::NodeFormat::Bvh2Fp32,
     };
     for name in sw_renderer::scene::builtin::names() {
         let scene = Scene::load(name).unwrap();
@@ -256,6 +257,7 @@ fn fp32_renders_of_the_thesis_scenes_equal_the_software() {
         advance: Advance::None,
         timing: None,
         memory: SceneMemory::Unbounded,
+        nodes: hw_model::traversal::NodeFormat::Bvh2Fp32,
     };
     for name in thesis_scenes::SCENE_DIRS {
         let scene = Scene::load(root.join(name).to_str().unwrap()).unwrap();
@@ -278,6 +280,7 @@ fn a_render_whose_stack_overflows_fails_with_the_engines_error() {
         advance: Advance::None,
         timing: None,
         memory: SceneMemory::Unbounded,
+        nodes: hw_model::traversal::NodeFormat::Bvh2Fp32,
     };
     let opts = RenderOptions {
         width: Some(16),
@@ -310,6 +313,7 @@ fn format_aware_renders_equal_the_bvh_path_in_a_narrow_scaled_format() {
             advance: Advance::None,
             timing: None,
             memory: SceneMemory::Unbounded,
+            nodes: hw_model::traversal::NodeFormat::Bvh2Fp32,
         };
         let bvh = ModelIntersector {
             scale_exp,
@@ -561,5 +565,6 @@ fn fp32_unit(memory: SceneMemory) -> TraversalEngine {
         advance: Advance::None,
         timing: None,
         memory,
+        nodes: hw_model::traversal::NodeFormat::Bvh2Fp32,
     }
 }

@@ -38,6 +38,7 @@ pub fn unit_timing(
     UnitTiming {
         slots,
         lanes,
+        box_ports: 1,
         setup_latency: cycles(ray_setup::latency(depth) + SLOT_UPDATE),
         box_latency: cycles(MEMORY_READ + box_test::latency(depth) + SLOT_UPDATE),
         // Triangle read, the lane (behind the leaf advance, `t + t0` after it), the (t,

@@ -28,7 +28,7 @@ use sw_renderer::rays::CastStats;
 use sw_renderer::scene_image::{ImageNode, Link, SceneImage};
 use thiserror::Error;
 
-use super::{TraversalError, TraversalModel, UnitCounters, UnitRay};
+use super::{NodeFormat, TraversalError, TraversalModel, UnitCounters, UnitRay, WideError};
 use crate::format::Format;
 use crate::Advance;
 
@@ -350,6 +350,14 @@ impl ChunkedModel {
         ChunkedModel {
             chunks: chunks.collect(),
         }
+    }
+
+    /// Every chunk's tree walked in `nodes` (`TraversalModel::with_nodes`).
+    pub fn with_nodes(self, nodes: NodeFormat) -> Result<ChunkedModel, WideError> {
+        let chunks = self.chunks.into_iter().map(|c| c.with_nodes(nodes));
+        Ok(ChunkedModel {
+            chunks: chunks.collect::<Result<_, _>>()?,
+        })
     }
 
     pub fn chunks(&self) -> &[TraversalModel] {

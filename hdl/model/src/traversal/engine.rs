@@ -7,7 +7,7 @@ use sw_renderer::trace::PreparedScene;
 
 use super::capacity::{run_passes, ChunkedModel, SceneMemory};
 use super::schedule::{schedule, UnitTiming};
-use super::{Step, TraversalError, UnitCounters, UnitRay};
+use super::{NodeFormat, Step, TraversalError, UnitCounters, UnitRay};
 use crate::catalogue::catalogue;
 use crate::format::Format;
 use crate::Advance;
@@ -27,6 +27,8 @@ pub struct TraversalEngine {
     pub advance: Advance,
     pub timing: Option<UnitTiming>,
     pub memory: SceneMemory,
+    /// How the scene memory stores the tree's inner nodes.
+    pub nodes: NodeFormat,
 }
 
 impl RayEngine for TraversalEngine {
@@ -52,7 +54,8 @@ impl RayEngine for TraversalEngine {
                 &image,
                 self.memory,
             )?
-            .advanced(self.advance),
+            .advanced(self.advance)
+            .with_nodes(self.nodes)?,
             timing: self.timing,
         }))
     }

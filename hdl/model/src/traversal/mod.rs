@@ -30,6 +30,7 @@ pub mod packet;
 pub mod schedule;
 #[cfg(feature = "strategies")]
 pub mod strategies;
+pub mod wide;
 
 pub use capacity::{run_passes, CapacityError, ChunkedModel, SceneCapacity, SceneMemory};
 pub use engine::TraversalEngine;
@@ -45,6 +46,8 @@ use crate::format::Format;
 use crate::mt::mt_model_scaled;
 use crate::{Advance, Edges};
 use box_test::{box_test, ray_setup, t_hi, BoxResult};
+use wide::box_test::{wide_box_test, NodeEntry, WideRay};
+pub use wide::{NodeFormat, WideError, WideTree};
 
 /// Entries of a ray's traversal stack unless configured otherwise: a walk pushes at most one
 /// subtree per inner node it passes, and the deepest thesis scene (All materials) is 25
@@ -131,6 +134,8 @@ pub enum TraversalError {
 #[derive(Clone, Debug)]
 pub struct TraversalModel {
     format: Format,
+    /// The wide tree the unit walks, or `None` for the binary fp32 nodes of `image`.
+    wide: Option<WideTree>,
     /// Möller-Trumbore sees every coordinate times 2^scale_exp (box tests stay fp32).
     scale_exp: i32,
     /// Where a leaf's Möller-Trumbore queries start (`None` or `LeafBox`).
@@ -145,11 +150,31 @@ impl TraversalModel {
     pub fn new(format: Format, stack_depth: usize, image: SceneImage) -> TraversalModel {
         TraversalModel {
             format,
+            wide: None,
             scale_exp: 0,
             advance: Advance::None,
             stack_depth,
             image,
         }
+    }
+
+    /// The unit walking its image's tree in `nodes` (the wide ones collapsed from the
+    /// image's binary BVH by their writer, `wide::collapse`, and checked by their loader).
+    pub fn with_nodes(self, nodes: NodeFormat) -> Result<TraversalModel, WideError> {
+        let wide = match nodes.width() {
+            None => None,
+            Some(width) => {
+                let tree = wide::collapse(&self.image, width)?;
+                wide::check(&tree, &self.image.triangles)?;
+                Some(tree)
+            }
+        };
+        Ok(TraversalModel { wide, ..self })
+    }
+
+    /// The tree's wide nodes, if it has them.
+    pub fn wide(&self) -> Option<&WideTree> {
+        self.wide.as_ref()
     }
 
     /// The unit starting its Möller-Trumbore queries where `advance` says (the hardware
@@ -189,6 +214,9 @@ impl TraversalModel {
         let img = &self.image;
         if img.triangles.is_empty() {
             return Ok(None);
+        }
+        if let Some(tree) = &self.wide {
+            return self.walk_wide(tree, ray, counters, step);
         }
         let mut setup = ray_setup(ray.orig, ray.dir, ray.t_max);
         let root = root_boxes(img);
@@ -251,6 +279,74 @@ impl TraversalModel {
             }
         }
         Ok(best)
+    }
+}
+
+impl TraversalModel {
+    /// The walk of a wide tree: each inner node's children tested in one box test, the
+    /// nearest entered taken, the others pushed farthest first (so popped nearest first),
+    /// each with where the walk enters it; a popped child entered beyond the far end is
+    /// skipped. The first step is the root node's test.
+    fn walk_wide(
+        &self,
+        tree: &WideTree,
+        ray: &UnitRay,
+        counters: &mut UnitCounters,
+        step: &mut dyn FnMut(Step),
+    ) -> Result<Option<Hit>, TraversalError> {
+        let setup = ray_setup(ray.orig, ray.dir, ray.t_max);
+        let mut wide_ray = WideRay::from_setup(ray.orig, &setup);
+        let window = ray.window();
+        let mut best: Option<Hit> = None;
+        let mut stack: Vec<(Link, NodeEntry)> = Vec::with_capacity(self.stack_depth);
+        let (mut link, mut at) = (tree.root, NodeEntry::ROOT);
+        loop {
+            counters.node_visits += 1;
+            if link.is_leaf() {
+                let leaf = link.first as usize..(link.first + link.count) as usize;
+                let tested = counters.mt_tests;
+                let triangles = &self.image.triangles[leaf];
+                let answer = self.leaf(ray, &window, at.t0, triangles, counters, &mut best);
+                step(Step::Leaf((counters.mt_tests - tested) as u32));
+                match answer {
+                    Leaf::Occluded(hit) => return Ok(Some(hit)),
+                    Leaf::Closer => {
+                        wide_ray.t_hi = t_hi(remaining_bound(best, ray.t_max), setup.pad)
+                    }
+                    Leaf::Same => {}
+                }
+            } else {
+                let node = &tree.nodes[link.first as usize];
+                counters.box_tests += 1;
+                step(Step::Box);
+                let entered = wide_box_test(&wide_ray, node, at);
+                if let Some((nearest, rest)) = entered.split_first() {
+                    if stack.len() + rest.len() > self.stack_depth {
+                        return Err(TraversalError::StackOverflow {
+                            id: ray.id,
+                            capacity: self.stack_depth,
+                            depth: self.image.depth(),
+                        });
+                    }
+                    for e in rest.iter().rev() {
+                        stack.push((node.children[e.slot].link, e.entry));
+                    }
+                    (link, at) = (node.children[nearest.slot].link, nearest.entry);
+                    continue;
+                }
+            }
+            loop {
+                let Some((next, entry)) = stack.pop() else {
+                    return Ok(best);
+                };
+                step(Step::Pop);
+                if wide_ray.t_hi < entry.t0 {
+                    continue;
+                }
+                (link, at) = (next, entry);
+                break;
+            }
+        }
     }
 }
 
