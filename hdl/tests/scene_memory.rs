@@ -13,13 +13,15 @@ use hdl::traversal::scene_memory_driver::{
     check_before_load, status_result, LoadStatus, MemoryConfig, SceneMemoryError,
 };
 use hdl::verilog::verilator_lint;
+use hw_model::traversal::scene_image::{
+    SceneImage, HEADER_WORDS, NODE_WORDS, TRIANGLE_WORDS, VERSION,
+};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
 use sw_renderer::bvh::Bvh;
 use sw_renderer::math::V3;
 use sw_renderer::scene::Scene;
-use sw_renderer::scene_image::{SceneImage, HEADER_WORDS, NODE_WORDS, TRIANGLE_WORDS, VERSION};
 use sw_renderer::trace::PreparedScene;
 use sw_renderer::world::WorldTriangle;
 
@@ -425,7 +427,7 @@ fn malformed_images_are_refused_with_their_code_word_and_value() {
 /// a duplicate global index: the driver's checks); what both accept reads back.
 #[test]
 fn random_corruptions_get_the_software_loaders_verdict() {
-    use sw_renderer::scene_image::SceneImageError;
+    use hw_model::traversal::scene_image::SceneImageError;
     let mesh = mesh();
     let mut rng = StdRng::seed_from_u64(6);
     let mut bench = Bench::new(7, 0.0);

@@ -9,6 +9,7 @@ use hdl::traversal::scene_memory_driver::{check_before_load, status_result, Load
 use hdl::traversal::unit::{unit_verilog, UnitConfig, UnitConfigError, MAX_LANES};
 use hdl::verilog::{verilator_lint_waiving, UNIT_VERILATOR_WAIVERS};
 use hw_model::traversal::packet::{hit_from_words, HIT_WORDS, RAY_WORDS};
+use hw_model::traversal::scene_image::SceneImage;
 use hw_model::traversal::{TraversalModel, UnitCounters, UnitRay};
 use hw_model::{Advance, Format, HwFormat};
 use rand::rngs::StdRng;
@@ -17,7 +18,6 @@ use rayon::prelude::*;
 use rust_hdl::prelude::*;
 use sw_renderer::bvh::Bvh;
 use sw_renderer::hit::Hit;
-use sw_renderer::scene_image::SceneImage;
 
 mod common;
 use common::{mesh, rays};

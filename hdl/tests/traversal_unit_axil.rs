@@ -12,12 +12,12 @@ use hdl::traversal::unit::UnitConfig;
 use hdl::traversal::unit_axil::{fp32::Axil4x5, unit_axil};
 use hdl::verilog::{verilator_lint_waiving, UNIT_VERILATOR_WAIVERS};
 use hw_model::traversal::packet::{hit_from_words, HIT_WORDS, RAY_WORDS};
+use hw_model::traversal::scene_image::SceneImage;
 use hw_model::traversal::{TraversalModel, UnitCounters, UnitRay};
 use hw_model::{Format, HwFormat};
 use rust_hdl::prelude::*;
 use sw_renderer::bvh::Bvh;
 use sw_renderer::hit::Hit;
-use sw_renderer::scene_image::SceneImage;
 
 mod common;
 use common::{mesh, rays};

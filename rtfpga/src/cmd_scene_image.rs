@@ -4,8 +4,8 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::Args as ClapArgs;
+use hw_model::traversal::scene_image::SceneImage;
 use sw_renderer::scene::Scene;
-use sw_renderer::scene_image::SceneImage;
 use sw_renderer::trace::PreparedScene;
 
 use crate::engine::MemoryArgs;

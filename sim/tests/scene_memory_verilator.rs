@@ -9,11 +9,11 @@ use hdl::traversal::scene_memory::{SceneMemory12x13, SceneMemory9x10};
 use hdl::traversal::scene_memory_driver::{
     check_before_load, status_result, LoadStatus, MemoryConfig,
 };
+use hw_model::traversal::scene_image::{SceneImage, HEADER_WORDS, NODE_WORDS, TRIANGLE_WORDS};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use rust_hdl::prelude::*;
 use sim::{build, BuildOptions, ModelSpec, VerilatedModel};
 use sw_renderer::scene::Scene;
-use sw_renderer::scene_image::{SceneImage, HEADER_WORDS, NODE_WORDS, TRIANGLE_WORDS};
 use sw_renderer::thesis_scenes;
 use sw_renderer::trace::PreparedScene;
 

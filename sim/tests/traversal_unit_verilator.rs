@@ -15,6 +15,7 @@ use std::cell::Cell;
 
 use hdl::traversal::unit::UnitConfig;
 use hw_model::precision::SpawnChoice;
+use hw_model::traversal::scene_image::{ChildBoxes, ImageNode, ImageTriangle, Link, SceneImage};
 use hw_model::traversal::strategies::{mesh, ray};
 use hw_model::traversal::{
     SceneCapacity, SceneMemory, TraversalEngine, TraversalError, TraversalModel, UnitCounters,
@@ -34,7 +35,6 @@ use sw_renderer::intersect::F32Intersector;
 use sw_renderer::math::V3;
 use sw_renderer::render::{render, RenderOptions};
 use sw_renderer::scene::Scene;
-use sw_renderer::scene_image::{ChildBoxes, ImageNode, ImageTriangle, Link, SceneImage};
 use sw_renderer::thesis_scenes;
 use sw_renderer::world::WorldTriangle;
 

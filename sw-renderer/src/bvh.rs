@@ -420,12 +420,12 @@ impl Bvh {
         2 * self.inner.len() + 1
     }
 
-    /// The parts the scene image (`scene_image`) is written from: the root's link and padded
-    /// box, the inner nodes (`(min, max, children)`, boxes `[axis][child]`, a child
+    /// The tree in flat parts, for a reader that lays it out elsewhere: the root's link and
+    /// padded box, the inner nodes (`(min, max, children)`, boxes `[axis][child]`, a child
     /// `(first, count)`: an inner node if `count == 0`, else `order[first..first + count]`),
     /// and the triangle order.
     #[allow(clippy::type_complexity)]
-    pub(crate) fn parts(
+    pub fn parts(
         &self,
     ) -> (
         (u32, u32),

@@ -12,7 +12,6 @@ pub mod math;
 pub mod rays;
 pub mod render;
 pub mod scene;
-pub mod scene_image;
 pub mod shade;
 pub mod spawn;
 pub mod thesis_scenes;

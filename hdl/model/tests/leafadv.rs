@@ -7,6 +7,7 @@
 //! is conservative, so both answers must be the same bits.
 
 use hw_model::traversal::box_test::{box_test, ray_setup, ChildBoxes};
+use hw_model::traversal::scene_image::{Link, SceneImage};
 use hw_model::traversal::strategies::{mesh, ray};
 use hw_model::traversal::{TraversalModel, UnitCounters, UnitRay};
 use hw_model::{mt_model, Advance, Format, MtResult};
@@ -15,7 +16,6 @@ use sw_renderer::bvh::Bvh;
 use sw_renderer::hit::{closest_hit, Hit, NO_BOUND};
 use sw_renderer::intersect::MtQuery;
 use sw_renderer::math::V3;
-use sw_renderer::scene_image::{Link, SceneImage};
 use sw_renderer::world::WorldTriangle;
 
 fn format(name: &str) -> Format {

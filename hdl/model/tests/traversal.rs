@@ -6,6 +6,7 @@
 
 use hw_model::precision::{auto_scale_exp, spawn_policy, SceneRange};
 use hw_model::traversal::capacity::chunks;
+use hw_model::traversal::scene_image::{ChildBoxes, ImageNode, ImageTriangle, Link, SceneImage};
 use hw_model::traversal::strategies::{mesh, ray};
 use hw_model::traversal::{
     ChunkedModel, NodeFormat, SceneCapacity, SceneMemory, TraversalEngine, TraversalError,
@@ -20,7 +21,6 @@ use sw_renderer::intersect::{F32Intersector, MtQuery};
 use sw_renderer::math::V3;
 use sw_renderer::render::{render, RenderError, RenderOptions};
 use sw_renderer::scene::Scene;
-use sw_renderer::scene_image::{ChildBoxes, ImageNode, ImageTriangle, Link, SceneImage};
 use sw_renderer::thesis_scenes;
 use sw_renderer::world::WorldTriangle;
 

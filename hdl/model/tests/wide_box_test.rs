@@ -11,7 +11,7 @@ use hw_model::traversal::wide::{Child, WideNode};
 use num_bigint::BigInt;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use sw_renderer::scene_image::Link;
+use hw_model::traversal::scene_image::Link;
 
 /// Every f32 and grid plane is an integer times 2^-SCALE.
 const SCALE: i32 = 300;

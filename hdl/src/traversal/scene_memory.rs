@@ -39,7 +39,7 @@
 use rust_hdl::prelude::*;
 
 use crate::defaults;
-use sw_renderer::scene_image::{HEADER_WORDS, MAGIC, NODE_WORDS, TRIANGLE_WORDS, VERSION};
+use hw_model::traversal::scene_image::{HEADER_WORDS, MAGIC, NODE_WORDS, TRIANGLE_WORDS, VERSION};
 
 /// Bits of the boxes in a node record (12 fp32 words).
 pub const BOX_BITS: usize = 12 * 32;

@@ -6,7 +6,7 @@
 //! [`check_before_load`]'s, which runs the software's checking loader
 //! (`SceneImage::from_words`) and the capacity check on the words before they are streamed.
 
-use sw_renderer::scene_image::{
+use hw_model::traversal::scene_image::{
     SceneImage, SceneImageError, HEADER_WORDS, MAGIC, NODE_WORDS, TRIANGLE_WORDS, VERSION,
 };
 use thiserror::Error;

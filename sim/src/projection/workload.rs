@@ -130,7 +130,8 @@ impl Workload {
             .trace;
         let prepared = sw_renderer::trace::PreparedScene::new(scene)
             .map_err(|e| ProjectionError::Scene(e.to_string()))?;
-        let image_bytes = sw_renderer::scene_image::SceneImage::new(&prepared).bytes() as u64;
+        let image_bytes =
+            hw_model::traversal::scene_image::SceneImage::new(&prepared).bytes() as u64;
         let c = stats.cast;
         self.unit = Some(UnitWork {
             box_tests: c.box_tests,

@@ -5,10 +5,10 @@ use std::time::{Duration, Instant};
 
 use hdl::traversal::unit::UnitConfig;
 use hw_model::traversal::capacity::{chunks, run_passes};
+use hw_model::traversal::scene_image::SceneImage;
 use hw_model::traversal::{SceneCapacity, SceneMemory, UnitRay};
 use sw_renderer::hit::Hit;
 use sw_renderer::rays::{CastStats, EngineError, Ray, RayCaster, RayEngine};
-use sw_renderer::scene_image::SceneImage;
 use sw_renderer::trace::PreparedScene;
 
 use super::verilated::{unit_model, UnitModel, VerilatedUnit};

@@ -19,10 +19,10 @@ use hdl::traversal::scene_memory_driver::{
     check_before_load, status_result, LoadStatus, MemoryConfig, SceneMemoryError,
 };
 use hw_model::traversal::packet::{hit_from_words, HIT_WORDS, RAY_WORDS};
+use hw_model::traversal::scene_image::SceneImageError;
 use hw_model::traversal::{TraversalError, UnitCounters, UnitRay};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use sw_renderer::hit::Hit;
-use sw_renderer::scene_image::SceneImageError;
 
 use crate::SimError;
 

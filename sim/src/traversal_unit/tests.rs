@@ -6,11 +6,11 @@
 use super::*;
 use hdl::traversal::scene_memory::LoadError;
 use hw_model::lookup;
+use hw_model::traversal::scene_image::{SceneImage, MAGIC};
 use hw_model::traversal::TraversalModel;
 use sw_renderer::bvh::Bvh;
 use sw_renderer::hit::NO_BOUND;
 use sw_renderer::math::V3;
-use sw_renderer::scene_image::{SceneImage, MAGIC};
 use sw_renderer::world::WorldTriangle;
 
 /// How the behavioural unit breaks the contract.

@@ -17,10 +17,10 @@ use crate::format::Format;
 /// fp32 as the datapath computes it.
 const F: Format = Format::FP32;
 
+/// The two child boxes of an inner node, `[axis][child]`, as the scene image stores them.
+pub use super::scene_image::ChildBoxes;
 /// Relative padding of the ray origin and bound: the BVH's, which also padded the boxes.
 pub use sw_renderer::bvh::PAD;
-/// The two child boxes of an inner node, `[axis][child]`, as the scene image stores them.
-pub use sw_renderer::scene_image::ChildBoxes;
 
 /// The slope used for a direction component whose reciprocal is not finite (0, a flushed
 /// subnormal, NaN): huge instead of infinite, so that no 0·∞ NaN arises.

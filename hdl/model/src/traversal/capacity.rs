@@ -23,9 +23,9 @@
 
 use std::fmt;
 
+use super::scene_image::{ImageNode, Link, SceneImage};
 use sw_renderer::hit::{nearer, remaining_bound, Hit};
 use sw_renderer::rays::CastStats;
-use sw_renderer::scene_image::{ImageNode, Link, SceneImage};
 use thiserror::Error;
 
 use super::{NodeFormat, TraversalError, TraversalModel, UnitCounters, UnitRay, WideError};
@@ -339,7 +339,7 @@ impl ChunkedModel {
                 let loaded = SceneImage::from_words(&c.to_words())?;
                 Ok(TraversalModel::new(format, stack_depth, loaded).scaled(scale_exp))
             })
-            .collect::<Result<_, sw_renderer::scene_image::SceneImageError>>()?;
+            .collect::<Result<_, super::scene_image::SceneImageError>>()?;
         Ok(ChunkedModel { chunks })
     }
 

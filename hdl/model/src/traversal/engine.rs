@@ -1,8 +1,8 @@
 //! The traversal unit's model as the renderer's ray engine.
 
+use super::scene_image::SceneImage;
 use sw_renderer::hit::Hit;
 use sw_renderer::rays::{CastStats, EngineError, Ray, RayCaster, RayEngine};
-use sw_renderer::scene_image::SceneImage;
 use sw_renderer::trace::PreparedScene;
 
 use super::capacity::{run_passes, ChunkedModel, SceneMemory};

@@ -27,6 +27,7 @@ pub mod box_test;
 pub mod capacity;
 mod engine;
 pub mod packet;
+pub mod scene_image;
 pub mod schedule;
 #[cfg(feature = "strategies")]
 pub mod strategies;
@@ -39,13 +40,13 @@ pub use packet::{HIT_WORDS, RAY_WORDS};
 use sw_renderer::hit::{nearer, remaining_bound, Hit, Window};
 use sw_renderer::intersect::MtQuery;
 use sw_renderer::rays::Ray;
-use sw_renderer::scene_image::{ImageTriangle, Link, SceneImage};
 use thiserror::Error;
 
 use crate::format::Format;
 use crate::mt::mt_model_scaled;
 use crate::{Advance, Edges};
 use box_test::{box_test, ray_setup, t_hi, BoxResult};
+use scene_image::{ImageTriangle, Link, SceneImage};
 use wide::box_test::{wide_box_test, NodeEntry, WideRay};
 pub use wide::{NodeFormat, WideError, WideTree};
 

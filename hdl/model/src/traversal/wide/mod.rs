@@ -20,7 +20,7 @@ pub mod box_test;
 
 use num_bigint::BigInt;
 use sw_renderer::bvh::padded_bounds;
-use sw_renderer::scene_image::{ImageTriangle, Link, SceneImage};
+use super::scene_image::{ImageTriangle, Link, SceneImage};
 use thiserror::Error;
 
 /// Children a wide node may have: the widths the unit is built for.

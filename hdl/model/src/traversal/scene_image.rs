@@ -20,11 +20,10 @@
 //! A link `(first, count)` is an inner node `first` if `count == 0`, else the leaf of
 //! triangle records `first .. first + count` (triangles are stored in leaf order).
 
+use sw_renderer::bvh::Bvh;
+use sw_renderer::trace::PreparedScene;
+use sw_renderer::world::WorldTriangle;
 use thiserror::Error;
-
-use crate::bvh::Bvh;
-use crate::trace::PreparedScene;
-use crate::world::WorldTriangle;
 
 /// "RTSI" as a little-endian word.
 pub const MAGIC: u32 = u32::from_le_bytes(*b"RTSI");
@@ -402,7 +401,7 @@ impl SceneImage {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::Scene;
+    use sw_renderer::scene::Scene;
 
     fn image(name: &str) -> SceneImage {
         let scene = Scene::load(name).unwrap();
