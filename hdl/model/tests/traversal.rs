@@ -5,8 +5,10 @@
 //! modes.
 
 use hw_model::precision::{auto_scale_exp, spawn_policy, SceneRange};
-use hw_model::traversal::capacity::chunks;
-use hw_model::traversal::scene_image::{ChildBoxes, ImageNode, ImageTriangle, Link, SceneImage};
+use hw_model::traversal::capacity::{chunks, needs};
+use hw_model::traversal::scene_image::{
+    ChildBoxes, ImageNode, ImageTriangle, Link, SceneImage, UnitImage,
+};
 use hw_model::traversal::strategies::{mesh, ray};
 use hw_model::traversal::{
     ChunkedModel, NodeFormat, SceneCapacity, SceneMemory, TraversalEngine, TraversalError,
@@ -426,9 +428,9 @@ proptest! {
         (nodes, leaf_units, extra) in capacity(),
     ) {
         let (whole, casts) = unit(&tris, fp32(), 64);
-        let image = whole.image();
+        let UnitImage::Binary(image) = whole.image() else { unreachable!("a binary unit") };
         let cap = SceneCapacity { nodes, triangles: largest_leaf(image) * leaf_units.max(1) + extra };
-        let parts = chunks(image, SceneMemory::Chunked(cap)).unwrap();
+        let parts = chunks(image, SceneMemory::Chunked(cap), NodeFormat::Bvh2Fp32).unwrap();
         let fits = cap.holds(SceneCapacity::of(image));
         prop_assert_eq!(parts.len() == 1, fits);
         let mut indices = Vec::new();
@@ -440,7 +442,7 @@ proptest! {
         indices.sort_unstable();
         prop_assert_eq!(indices, (0..tris.len() as u32).collect::<Vec<_>>());
 
-        let chunked = ChunkedModel::new(fp32(), 64, 0, image, SceneMemory::Chunked(cap)).unwrap();
+        let chunked = ChunkedModel::new(fp32(), 64, 0, image, SceneMemory::Chunked(cap), NodeFormat::Bvh2Fp32).unwrap();
         prop_assert_eq!(chunked.chunks().len(), parts.len());
         for r in &rays {
             let want = whole.trace(r, &mut UnitCounters::default()).unwrap();
@@ -465,12 +467,28 @@ proptest! {
             }
         }
 
+        // Chunks of wide nodes: each holds its wide nodes within the capacity (a leaf chunk
+        // takes one node), and the answers are the whole scene's.
+        for nodes in [NodeFormat::Bvh4Q8, NodeFormat::Bvh8Q8] {
+            let cap = SceneCapacity { nodes: cap.nodes.max(1), ..cap };
+            let parts = chunks(image, SceneMemory::Chunked(cap), nodes).unwrap();
+            for c in &parts {
+                prop_assert!(cap.holds(needs(c, nodes)), "{} {:?}", nodes.name(), needs(c, nodes));
+            }
+            let chunked = ChunkedModel::new(fp32(), 64, 0, image, SceneMemory::Chunked(cap), nodes).unwrap();
+            for r in rays.iter().filter(|r| !r.any_hit) {
+                let want = whole.trace(r, &mut UnitCounters::default()).unwrap();
+                let got = chunked.trace(r, &mut UnitCounters::default()).unwrap();
+                prop_assert_eq!(got, want, "{} {:?}", nodes.name(), r);
+            }
+        }
+
         // With the leaf advance in a narrow format a chunk's leaf is entered at the distance
         // the whole scene's walk enters it (a chunk's root box is its subtree's box), so the
         // answers stay the whole scene's.
         let e5m14: Format = "e5m14".parse().unwrap();
         let whole = TraversalModel::new(e5m14, 64, image.clone()).advanced(Advance::LeafBox);
-        let chunked = ChunkedModel::new(e5m14, 64, 0, image, SceneMemory::Chunked(cap))
+        let chunked = ChunkedModel::new(e5m14, 64, 0, image, SceneMemory::Chunked(cap), NodeFormat::Bvh2Fp32)
             .unwrap()
             .advanced(Advance::LeafBox);
         for r in &rays {
@@ -522,9 +540,17 @@ fn an_equally_near_hit_with_a_lower_index_in_a_later_chunk_wins() {
         nodes: 0,
         triangles: 1,
     };
-    let chunked = ChunkedModel::new(fp32(), 8, 0, &image, SceneMemory::Chunked(cap)).unwrap();
+    let chunked = ChunkedModel::new(
+        fp32(),
+        8,
+        0,
+        &image,
+        SceneMemory::Chunked(cap),
+        NodeFormat::Bvh2Fp32,
+    )
+    .unwrap();
     assert_eq!(chunked.chunks().len(), 2);
-    assert_eq!(chunked.chunks()[0].image().triangles[0].index, 1);
+    assert_eq!(chunked.chunks()[0].image().triangles()[0].index, 1);
     assert_eq!(
         chunked.trace(&ray, &mut UnitCounters::default()).unwrap(),
         want
@@ -606,7 +632,7 @@ fn chunked_renders_of_the_thesis_scenes_equal_the_unchunked_unit() {
             triangles: (need.triangles / 3).max(largest_leaf(&image)),
         };
         let memory = SceneMemory::Chunked(third);
-        let parts = chunks(&image, memory).unwrap().len();
+        let parts = chunks(&image, memory, NodeFormat::Bvh2Fp32).unwrap().len();
         if need.nodes > 0 {
             assert!(parts >= 3, "{name}: {parts} chunks");
         }

@@ -6,12 +6,12 @@
 //! grid planes, edges and corners, origins on faces and inside, zero, subnormal and huge
 //! direction components, tiny and huge scenes, NaN and infinite values.
 
+use hw_model::traversal::scene_image::Link;
 use hw_model::traversal::wide::box_test::{wide_box_test, NodeEntry, WideRay};
 use hw_model::traversal::wide::{Child, WideNode};
 use num_bigint::BigInt;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use hw_model::traversal::scene_image::Link;
 
 /// Every f32 and grid plane is an integer times 2^-SCALE.
 const SCALE: i32 = 300;

@@ -53,9 +53,9 @@ impl RayEngine for TraversalEngine {
                 self.scale_exp,
                 &image,
                 self.memory,
+                self.nodes,
             )?
-            .advanced(self.advance)
-            .with_nodes(self.nodes)?,
+            .advanced(self.advance),
             timing: self.timing,
         }))
     }

@@ -46,8 +46,9 @@ use crate::format::Format;
 use crate::mt::mt_model_scaled;
 use crate::{Advance, Edges};
 use box_test::{box_test, ray_setup, t_hi, BoxResult};
-use scene_image::{ImageTriangle, Link, SceneImage};
+use scene_image::{ImageTriangle, Link, SceneImage, SceneImageError, UnitImage};
 use wide::box_test::{wide_box_test, NodeEntry, WideRay};
+use wide::image::WideImage;
 pub use wide::{NodeFormat, WideError, WideTree};
 
 /// Entries of a ray's traversal stack unless configured otherwise: a walk pushes at most one
@@ -135,47 +136,39 @@ pub enum TraversalError {
 #[derive(Clone, Debug)]
 pub struct TraversalModel {
     format: Format,
-    /// The wide tree the unit walks, or `None` for the binary fp32 nodes of `image`.
-    wide: Option<WideTree>,
     /// Möller-Trumbore sees every coordinate times 2^scale_exp (box tests stay fp32).
     scale_exp: i32,
     /// Where a leaf's Möller-Trumbore queries start (`None` or `LeafBox`).
     advance: Advance,
     stack_depth: usize,
-    image: SceneImage,
+    image: UnitImage,
 }
 
 impl TraversalModel {
     /// A unit computing Möller-Trumbore in `format`, with `stack_depth` stack entries per
-    /// ray, holding `image` (checked by `SceneImage::from_words` or `check`).
-    pub fn new(format: Format, stack_depth: usize, image: SceneImage) -> TraversalModel {
+    /// ray, holding `image` of either node format (checked by its `from_words` or `check`).
+    pub fn new(format: Format, stack_depth: usize, image: impl Into<UnitImage>) -> TraversalModel {
         TraversalModel {
             format,
-            wide: None,
             scale_exp: 0,
             advance: Advance::None,
             stack_depth,
-            image,
+            image: image.into(),
         }
     }
 
-    /// The unit walking its image's tree in `nodes` (the wide ones collapsed from the
-    /// image's binary BVH by their writer, `wide::collapse`, and checked by their loader).
-    pub fn with_nodes(self, nodes: NodeFormat) -> Result<TraversalModel, WideError> {
-        let wide = match nodes.width() {
-            None => None,
-            Some(width) => {
-                let tree = wide::collapse(&self.image, width)?;
-                wide::check(&tree, &self.image.triangles)?;
-                Some(tree)
+    /// The unit holding its binary image's tree in `nodes`: the wide ones written from it
+    /// (`WideImage::of`) and read back through their word stream (so the loader's checks
+    /// run). A wide image stays as it is; so does a binary one asked for `bvh2-fp32`.
+    pub fn with_nodes(self, nodes: NodeFormat) -> Result<TraversalModel, SceneImageError> {
+        let image = match (&self.image, nodes.width()) {
+            (UnitImage::Binary(binary), Some(width)) => {
+                let words = WideImage::of(binary, width)?.to_words();
+                UnitImage::Wide(WideImage::from_words(&words)?)
             }
+            _ => return Ok(self),
         };
-        Ok(TraversalModel { wide, ..self })
-    }
-
-    /// The tree's wide nodes, if it has them.
-    pub fn wide(&self) -> Option<&WideTree> {
-        self.wide.as_ref()
+        Ok(TraversalModel { image, ..self })
     }
 
     /// The unit starting its Möller-Trumbore queries where `advance` says (the hardware
@@ -190,7 +183,7 @@ impl TraversalModel {
         TraversalModel { scale_exp, ..self }
     }
 
-    pub fn image(&self) -> &SceneImage {
+    pub fn image(&self) -> &UnitImage {
         &self.image
     }
 
@@ -212,13 +205,11 @@ impl TraversalModel {
         step: &mut dyn FnMut(Step),
     ) -> Result<Option<Hit>, TraversalError> {
         counters.rays += 1;
-        let img = &self.image;
-        if img.triangles.is_empty() {
-            return Ok(None);
-        }
-        if let Some(tree) = &self.wide {
-            return self.walk_wide(tree, ray, counters, step);
-        }
+        let img = match &self.image {
+            _ if self.image.triangles().is_empty() => return Ok(None),
+            UnitImage::Wide(wide) => return self.walk_wide(wide, ray, counters, step),
+            UnitImage::Binary(img) => img,
+        };
         let mut setup = ray_setup(ray.orig, ray.dir, ray.t_max);
         let root = root_boxes(img);
         counters.box_tests += 1;
@@ -290,7 +281,7 @@ impl TraversalModel {
     /// skipped. The first step is the root node's test.
     fn walk_wide(
         &self,
-        tree: &WideTree,
+        image: &WideImage,
         ray: &UnitRay,
         counters: &mut UnitCounters,
         step: &mut dyn FnMut(Step),
@@ -300,13 +291,14 @@ impl TraversalModel {
         let window = ray.window();
         let mut best: Option<Hit> = None;
         let mut stack: Vec<(Link, NodeEntry)> = Vec::with_capacity(self.stack_depth);
+        let tree = &image.tree;
         let (mut link, mut at) = (tree.root, NodeEntry::ROOT);
         loop {
             counters.node_visits += 1;
             if link.is_leaf() {
                 let leaf = link.first as usize..(link.first + link.count) as usize;
                 let tested = counters.mt_tests;
-                let triangles = &self.image.triangles[leaf];
+                let triangles = &image.triangles[leaf];
                 let answer = self.leaf(ray, &window, at.t0, triangles, counters, &mut best);
                 step(Step::Leaf((counters.mt_tests - tested) as u32));
                 match answer {
@@ -326,7 +318,7 @@ impl TraversalModel {
                         return Err(TraversalError::StackOverflow {
                             id: ray.id,
                             capacity: self.stack_depth,
-                            depth: self.image.depth(),
+                            depth: image.depth(),
                         });
                     }
                     for e in rest.iter().rev() {

@@ -17,10 +17,11 @@
 //! bounds of every triangle under it, exactly, since the box test's soundness rests on it.
 
 pub mod box_test;
+pub mod image;
 
+use super::scene_image::{ImageTriangle, Link, SceneImage};
 use num_bigint::BigInt;
 use sw_renderer::bvh::padded_bounds;
-use super::scene_image::{ImageTriangle, Link, SceneImage};
 use thiserror::Error;
 
 /// Children a wide node may have: the widths the unit is built for.
