@@ -49,7 +49,13 @@ for f in "${formats[@]}"; do
                 for edges in "${edges_list[@]}"; do
                     for advance in "${advances[@]}"; do
                         opts=(--engine "$engine" --format "$f" --spawn "$spawn" --scale "$scale"
-                            --edges "$edges" --advance "$advance")
+                            --advance "$advance")
+                        # --edges is the model engine's option; the others test exact edges.
+                        if [ "$engine" = model ]; then
+                            opts+=(--edges "$edges")
+                        elif [ "$edges" != exact ]; then
+                            continue
+                        fi
                         # Skip what the CLI refuses (the first scene's render tells).
                         tag="${f}_${engine}_${spawn}_${scale}_${edges}_${advance}"
                         # A format (fx<24,12>) may be spelled with characters a file name avoids.

@@ -6,7 +6,9 @@ use clap::Args as ClapArgs;
 use sw_renderer::render::{render, RenderOptions};
 use sw_renderer::scene::Scene;
 
-use crate::engine::{self, EngineKind, HwConfig};
+use crate::engine::{self, ChunkArgs, EngineKind, HwConfig, Lane};
+use crate::options::Given;
+use crate::report::Line;
 
 #[derive(ClapArgs)]
 pub struct Args {
@@ -16,13 +18,16 @@ pub struct Args {
     /// Comma-separated WxH sizes.
     #[arg(long, default_value = "320x180,1280x720")]
     sizes: String,
-    /// Best of this many runs per point.
-    #[arg(long, default_value_t = 3)]
+    /// Best of this many runs per point (1 to 1000).
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=1000))]
     repeat: u32,
+    /// What answers the rays.
     #[arg(long, value_enum, default_value_t = EngineKind::F32)]
     engine: EngineKind,
     #[command(flatten)]
     hw: HwConfig,
+    #[command(flatten)]
+    chunks: ChunkArgs,
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32)> {
@@ -42,7 +47,8 @@ fn parse_size(s: &str) -> Result<(u32, u32)> {
     Ok((w, h))
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, given: &Given) -> Result<()> {
+    given.check(a.engine.target(&a.hw.datapath.format))?;
     let sizes = a
         .sizes
         .split(',')
@@ -53,13 +59,16 @@ pub fn run(a: Args) -> Result<()> {
         .iter()
         .map(|s| Scene::load(s))
         .collect::<Result<Vec<_>, _>>()?;
-    let engine = engine::make(a.engine, &a.hw)?;
-    println!(
-        "engine: {}, threads: {}, best of {}",
-        engine.name(),
-        rayon::current_num_threads(),
-        a.repeat.max(1)
-    );
+    let made = engine::make(a.engine, &a.hw, 0, Lane::default(), &a.chunks)?;
+    if let Some(v) = &made.verilated {
+        v.line().print();
+    }
+    let engine = made.engine;
+    Line::new()
+        .kv("engine", engine.name())
+        .kv("threads", rayon::current_num_threads())
+        .kv("best_of", a.repeat)
+        .print();
     println!("\n| scene | triangles | size | time (s) | rays | Mrays/s | MT tests |\n|---|---|---|---|---|---|---|");
     for scene in &scenes {
         for &(w, h) in &sizes {
@@ -69,7 +78,7 @@ pub fn run(a: Args) -> Result<()> {
                 ..Default::default()
             };
             let mut best = None::<sw_renderer::render::RenderStats>;
-            for _ in 0..a.repeat.max(1) {
+            for _ in 0..a.repeat {
                 let stats = render(scene, engine.as_ref(), &opts)?.stats;
                 let total = stats.prepare_time + stats.render_time;
                 if best.is_none_or(|b| total < b.prepare_time + b.render_time) {

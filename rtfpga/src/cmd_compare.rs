@@ -8,12 +8,16 @@ use clap::Args as ClapArgs;
 use sw_renderer::compare;
 use sw_renderer::render::save_png;
 
+use crate::report::{self, Line};
+
 #[derive(ClapArgs)]
 pub struct Args {
+    /// The first image (the reference: PNG or any format the image crate reads).
     a: PathBuf,
+    /// The image compared with A, of A's size.
     b: PathBuf,
-    /// Write an error heat-map here.
-    #[arg(long)]
+    /// Write an error heat-map here (.png; its folder is created).
+    #[arg(long, value_name = "DIFF.png")]
     diff: Option<PathBuf>,
     /// Write A, B and the error heat-map side by side here (three widths wide), captioned
     /// underneath unless --no-labels.
@@ -44,11 +48,6 @@ fn file_name(p: &Path) -> String {
         .map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into())
 }
 
-/// `p` made absolute against the working directory (not resolving links), for messages.
-fn absolute(p: &Path) -> PathBuf {
-    std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf())
-}
-
 /// The three captions of the montage: --labels (A,B or A,B,DIFF) or the file names, and
 /// "difference, PSNR <x> dB" / "difference, identical" unless given.
 fn captions(a: &Args, stats: &compare::ImageDiff) -> Result<Vec<String>> {
@@ -70,16 +69,17 @@ fn captions(a: &Args, stats: &compare::ImageDiff) -> Result<Vec<String>> {
 }
 
 pub fn run(a: Args) -> Result<()> {
+    if let Some(d) = &a.diff {
+        report::image_out("--diff", d)?;
+    }
+    if let Some(m) = &a.side_by_side {
+        report::image_out("--side-by-side", m)?;
+    }
     let (ia, ib) = (open(&a.a)?, open(&a.b)?);
     let stats = compare::compare(&ia, &ib)?;
-    let psnr = if stats.psnr_db.is_infinite() {
-        "inf".to_string()
-    } else {
-        format!("{:.4}", stats.psnr_db)
-    };
     if let Some(d) = &a.diff {
-        save_png(&compare::diff_heatmap(&ia, &ib)?, d)
-            .with_context(|| format!("writing {}", d.display()))?;
+        save_png(&compare::diff_heatmap(&ia, &ib)?, d)?;
+        Line::new().path("diff", d).print();
     }
     if let Some(out) = &a.side_by_side {
         let montage = if a.no_labels {
@@ -88,14 +88,16 @@ pub fn run(a: Args) -> Result<()> {
             let labels = captions(&a, &stats)?;
             compare::side_by_side_labelled(&ia, &ib, [&labels[0], &labels[1], &labels[2]])?
         };
-        save_png(&montage, out).with_context(|| format!("writing {}", out.display()))?;
-        println!("side_by_side={}", absolute(out).display());
+        save_png(&montage, out)?;
+        Line::new().path("side_by_side", out).print();
     }
-    println!(
-        "differing_pixels={} max_abs_error={}",
-        stats.differing_pixels, stats.max_abs_error
-    );
-    println!("psnr_db={psnr}");
+    Line::new()
+        .kv("differing_pixels", stats.differing_pixels)
+        .kv("max_abs_error", stats.max_abs_error)
+        .print();
+    Line::new()
+        .kv("psnr_db", report::psnr(stats.psnr_db))
+        .print();
     Ok(())
 }
 

@@ -6,7 +6,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result};
 use clap::{Args as ClapArgs, ValueEnum};
 use sim::accel_model::VcdWindow;
 use sim::axil_master::Completion;
@@ -15,11 +15,14 @@ use sim::hw_intersector::{HwIntersector, Mode};
 use sim::traversal_unit::{Traffic, UnitEngine};
 use sw_renderer::compare;
 use sw_renderer::intersect::{F32Intersector, Intersector};
+use sw_renderer::rays::RayEngine;
 use sw_renderer::render::{render, save_png, RenderOptions, RenderOutput};
 use sw_renderer::scene::Scene;
 use sw_renderer::spawn::SpawnPolicy;
 
-use crate::engine::{HwConfig, SpawnArgs, UnitAdvanceArgs, UnitKind};
+use crate::engine::{AdvanceArg, ChunkArgs, HwConfig, SpawnArgs, UnitKind, Verilated};
+use crate::options::Given;
+use crate::report::{self, Line};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum ModeArg {
@@ -42,7 +45,9 @@ pub struct Args {
     #[command(flatten)]
     hw: HwConfig,
     #[command(flatten)]
-    advance: UnitAdvanceArgs,
+    advance: AdvanceArg,
+    #[command(flatten)]
+    chunks: ChunkArgs,
     #[command(flatten)]
     spawn: SpawnArgs,
     /// Override the scene's width (1 to 16384 pixels).
@@ -51,11 +56,11 @@ pub struct Args {
     /// Override the scene's height (1 to 16384 pixels).
     #[arg(long, value_parser = crate::cmd_render::image_side())]
     height: Option<u32>,
-    /// How queries reach the accelerator (`--unit mt`).
+    /// How queries reach the accelerator.
     #[arg(long, value_enum, default_value_t = ModeArg::Stream)]
     mode: ModeArg,
-    /// Output PNG of the hardware render.
-    #[arg(long)]
+    /// Output image of the hardware render (.png; its folder is created).
+    #[arg(long, value_name = "OUT.png")]
     out: PathBuf,
     /// Write a VCD waveform of the first simulated instance (builds a trace-enabled model).
     #[arg(long)]
@@ -63,8 +68,9 @@ pub struct Args {
     /// First cycle of the VCD window (cycles since the instance was created, reset included).
     #[arg(long, default_value_t = 0, requires = "vcd")]
     vcd_from: u64,
-    /// Cycles in the VCD window.
-    #[arg(long, default_value_t = 2000, requires = "vcd")]
+    /// Cycles in the VCD window (1 to 100,000,000).
+    #[arg(long, default_value_t = 2000, requires = "vcd",
+          value_parser = clap::value_parser!(u64).range(1..=100_000_000))]
     vcd_cycles: u64,
     /// No progress bar.
     #[arg(long)]
@@ -73,28 +79,55 @@ pub struct Args {
 
 /// The spawn policy by name and the policy itself, as `render --engine hw|traversal` in the
 /// same format resolves them. The hardware takes its queries unscaled.
-fn spawn(a: &Args) -> Result<(&'static str, SpawnPolicy)> {
-    let format = a.hw.answer_format();
+fn spawn(a: &Args) -> (&'static str, SpawnPolicy) {
+    let format = a.hw.datapath.answer_format();
     let choice = a.spawn.choice(a.unit.engine(), &format);
-    Ok((choice.name(), choice.policy(&format, 0)))
+    (choice.name(), choice.policy(&format, 0))
 }
 
-pub fn run(a: Args) -> Result<()> {
-    a.advance.of(a.unit)?;
+pub fn run(a: Args, given: &Given) -> Result<()> {
+    given.check(a.unit.target(&a.hw.datapath.format))?;
+    // The configuration first (an error names it before any scene is read or model built).
+    let build = Build::of(&a)?;
     let scene = Scene::load(&a.scene)?;
-    if a.unit == UnitKind::Traversal {
-        return run_traversal(&a, &scene);
+    report::image_out("--out", &a.out)?;
+    if let Some(vcd) = &a.vcd {
+        report::file_out(vcd)?;
     }
-    let (spawn_name, spawn) = spawn(&a)?;
-    if let Some(pair) = a.hw.pair_config()? {
-        return run_pair(&a, &scene, &pair, spawn_name, spawn);
+    match build {
+        Build::Accelerator(mode) => run_accelerator(&a, &scene, mode),
+        Build::Pair(pair) => run_pair(&a, &scene, &pair),
+        Build::Unit(config) => run_traversal(&a, &scene, &config),
     }
-    let config = a.hw.top_config()?;
-    let mode = match a.mode {
-        ModeArg::Stream => Mode::Stream,
-        ModeArg::Register => Mode::Register(Completion::Poll),
-        ModeArg::RegisterIrq => Mode::Register(Completion::Interrupt),
-    };
+}
+
+/// What `cosim` builds.
+enum Build {
+    Accelerator(Mode),
+    Pair(PairConfig),
+    Unit(hdl::traversal::unit::UnitConfig),
+}
+
+impl Build {
+    fn of(a: &Args) -> Result<Build> {
+        let advance = a.advance.advance.unwrap_or_default();
+        if a.unit == UnitKind::Traversal {
+            return Ok(Build::Unit(a.hw.unit_config(advance)?));
+        }
+        if matches!(a.hw.datapath.format, hw_model::dual::FormatChoice::Pair(_)) {
+            return Ok(Build::Pair(a.hw.pair_config()?));
+        }
+        a.hw.datapath.top_config()?;
+        Ok(Build::Accelerator(match a.mode {
+            ModeArg::Stream => Mode::Stream,
+            ModeArg::Register => Mode::Register(Completion::Poll),
+            ModeArg::RegisterIrq => Mode::Register(Completion::Interrupt),
+        }))
+    }
+}
+
+fn run_accelerator(a: &Args, scene: &Scene, mode: Mode) -> Result<()> {
+    let config = a.hw.datapath.top_config()?;
     let hw = match &a.vcd {
         Some(path) => HwIntersector::with_vcd(
             &config,
@@ -107,93 +140,77 @@ pub fn run(a: Args) -> Result<()> {
         )?,
         None => HwIntersector::new(&config, mode)?,
     };
-    let built = hw.model();
-    println!(
-        "model {} ({}, {:.1} s)",
-        hw.name(),
-        if built.model.cached {
-            "cached"
-        } else {
-            "built"
-        },
-        built.build_time.as_secs_f64()
-    );
-    let out = render(&scene, &hw, &options(&a, spawn));
+    Verilated::of_accelerator(&hw).line().print();
+    let (spawn_name, spawn) = spawn(a);
+    let out = render(scene, &hw, &options(a, spawn));
     hw.close_vcd();
-    let out = out.with_context(|| format!("co-simulating {}", hw.name()))?;
-    let sw = save_and_render_software(&a, &scene, &out)?;
+    let out = out.with_context(|| format!("co-simulating {}", Intersector::name(&hw)))?;
+    let sw = save_and_render_software(a, scene, &out)?;
 
     let s = hw.stats();
     let wall = out.stats.render_time.as_secs_f64();
-    println!(
-        "scene={} size={}x{} engine=\"{}\" spawn={spawn_name} tests={} cycles={} cycles_per_test={:.2} lane_utilisation={:.4} transactions={} instances={}",
-        scene.name,
-        out.image.width(),
-        out.image.height(),
-        hw.name(),
-        s.tests,
-        s.cycles,
-        s.cycles_per_test(),
-        s.lane_utilisation(),
-        s.transactions,
-        s.instances
-    );
-    println!(
-        "sim_cycles_per_s={:.0} tests_per_s={:.0} (per core: simulator CPU time {:.2} s, simulator wall time {:.2} s) wall_s={:.2} wall_tests_per_s={:.0}",
-        s.cycles_per_sec(),
-        s.tests_per_sec(),
-        s.sim_cpu_time.as_secs_f64(),
-        s.sim_time.as_secs_f64(),
-        wall,
-        s.tests as f64 / wall.max(1e-9)
-    );
+    Line::new()
+        .kv("scene", &scene.name)
+        .kv(
+            "size",
+            format_args!("{}x{}", out.image.width(), out.image.height()),
+        )
+        .kv("engine", Intersector::name(&hw))
+        .kv("spawn", spawn_name)
+        .kv("tests", s.tests)
+        .kv("cycles", s.cycles)
+        .fixed("cycles_per_test", s.cycles_per_test(), 2)
+        .fixed("lane_utilisation", s.lane_utilisation(), 4)
+        .kv("transactions", s.transactions)
+        .kv("instances", s.instances)
+        .print();
+    // Simulator speed per core: its CPU and wall time summed over the threads.
+    Line::new()
+        .fixed("sim_cycles_per_s", s.cycles_per_sec(), 0)
+        .fixed("tests_per_s", s.tests_per_sec(), 0)
+        .fixed("sim_cpu_s", s.sim_cpu_time.as_secs_f64(), 2)
+        .fixed("sim_wall_s", s.sim_time.as_secs_f64(), 2)
+        .fixed("wall_s", wall, 2)
+        .fixed("wall_tests_per_s", s.tests as f64 / wall.max(1e-9), 0)
+        .print();
     if let Some(path) = &a.vcd {
-        println!(
-            "vcd={} (cycles {}..{})",
-            path.display(),
-            a.vcd_from,
-            a.vcd_from + a.vcd_cycles
-        );
+        Line::new()
+            .path("vcd", path)
+            .kv("vcd_from", a.vcd_from)
+            .kv("vcd_to", a.vcd_from + a.vcd_cycles)
+            .print();
     }
-    print_comparison(&out, &sw)
+    print_comparison(a, &out, &sw)
 }
 
 /// `--format bfp18/fp32`: the render's queries through the Verilated dual-precision pair,
 /// the share the filters forwarded to the fp32 lane and the tests per cycle.
-fn run_pair(
-    a: &Args,
-    scene: &Scene,
-    pair: &PairConfig,
-    spawn_name: &str,
-    spawn: SpawnPolicy,
-) -> Result<()> {
-    if a.mode != ModeArg::Stream || a.vcd.is_some() {
-        bail!("--format {}: the dual-precision pair is driven at its ports (no AXI bus: --mode stream, no --vcd)", a.hw.format);
-    }
+fn run_pair(a: &Args, scene: &Scene, pair: &PairConfig) -> Result<()> {
     let hw = PairIntersector::new(pair)?;
-    println!(
-        "model {} ({:.1} s)",
-        hw.name(),
-        hw.build_time().as_secs_f64()
-    );
+    Verilated::of(Intersector::name(&hw), hw.model())
+        .line()
+        .print();
+    let (spawn_name, spawn) = spawn(a);
     let out = render(scene, &hw, &options(a, spawn))
-        .with_context(|| format!("co-simulating {}", hw.name()))?;
+        .with_context(|| format!("co-simulating {}", Intersector::name(&hw)))?;
     let sw = save_and_render_software(a, scene, &out)?;
     let s = hw.stats();
-    println!(
-        "scene={} size={}x{} engine=\"{}\" spawn={spawn_name} tests={} forwarded={} forwarded_share={:.4} cycles={} tests_per_cycle={:.4} stall_cycles={}",
-        scene.name,
-        out.image.width(),
-        out.image.height(),
-        hw.name(),
-        s.tests,
-        s.forwarded,
-        s.forwarded_share(),
-        s.cycles,
-        s.tests_per_cycle(),
-        s.stall_cycles
-    );
-    print_comparison(&out, &sw)
+    Line::new()
+        .kv("scene", &scene.name)
+        .kv(
+            "size",
+            format_args!("{}x{}", out.image.width(), out.image.height()),
+        )
+        .kv("engine", Intersector::name(&hw))
+        .kv("spawn", spawn_name)
+        .kv("tests", s.tests)
+        .kv("forwarded", s.forwarded)
+        .fixed("forwarded_share", s.forwarded_share(), 4)
+        .kv("cycles", s.cycles)
+        .fixed("tests_per_cycle", s.tests_per_cycle(), 4)
+        .kv("stall_cycles", s.stall_cycles)
+        .print();
+    print_comparison(a, &out, &sw)
 }
 
 /// The render options of `a`, spawning with `spawn`.
@@ -209,7 +226,7 @@ fn options(a: &Args, spawn: SpawnPolicy) -> RenderOptions {
 
 /// The hardware render saved, the software render (f32, the thesis' spawn) at the same size.
 fn save_and_render_software(a: &Args, scene: &Scene, hw: &RenderOutput) -> Result<RenderOutput> {
-    save_png(&hw.image, &a.out).with_context(|| format!("writing {}", a.out.display()))?;
+    save_png(&hw.image, &a.out)?;
     let opts = RenderOptions {
         progress: false,
         ..options(a, SpawnPolicy::Thesis)
@@ -217,79 +234,77 @@ fn save_and_render_software(a: &Args, scene: &Scene, hw: &RenderOutput) -> Resul
     Ok(render(scene, &F32Intersector, &opts)?)
 }
 
-/// `differing_pixels=…` and, last, `psnr_db=…` of the hardware render against the software.
-fn print_comparison(hw: &RenderOutput, sw: &RenderOutput) -> Result<()> {
+/// `out=…`, `differing_pixels=…` and, last, `psnr_db=…` of the hardware render against the
+/// software.
+fn print_comparison(a: &Args, hw: &RenderOutput, sw: &RenderOutput) -> Result<()> {
     let diff = compare::compare(&hw.image, &sw.image)?;
-    println!(
-        "differing_pixels={} max_abs_error={}",
-        diff.differing_pixels, diff.max_abs_error
-    );
-    let psnr = if diff.psnr_db.is_infinite() {
-        "inf".to_string()
-    } else {
-        format!("{:.4}", diff.psnr_db)
-    };
-    println!("psnr_db={psnr}");
+    Line::new().path("out", &a.out).print();
+    Line::new()
+        .kv("differing_pixels", diff.differing_pixels)
+        .kv("max_abs_error", diff.max_abs_error)
+        .print();
+    Line::new()
+        .kv("psnr_db", report::psnr(diff.psnr_db))
+        .print();
     Ok(())
 }
 
 /// `--unit traversal`: the render's rays through the Verilated traversal unit (chunked
-/// passes when the scene exceeds its memory), its counters and cycles per render ray.
-fn run_traversal(a: &Args, scene: &Scene) -> Result<()> {
-    if a.mode != ModeArg::Stream || a.vcd.is_some() {
-        bail!("--mode register/register-irq and --vcd are options of --unit mt: the traversal unit takes its rays over its own stream");
-    }
-    let config = a.hw.unit_config(a.advance.of(a.unit)?)?;
-    let (spawn_name, spawn) = spawn(a)?;
-    let engine = UnitEngine::new(&config, Traffic::FULL_SPEED, true)?;
-    let name = sw_renderer::rays::RayEngine::name(&engine);
-    let built = engine.model();
-    println!(
-        "model {} ({}, {:.1} s)",
-        name,
-        if built.model.cached {
-            "cached"
-        } else {
-            "built"
-        },
-        built.build_time.as_secs_f64()
-    );
+/// passes when the scene exceeds its memory, unless `--no-chunks`), its counters and cycles
+/// per render ray.
+fn run_traversal(a: &Args, scene: &Scene, config: &hdl::traversal::unit::UnitConfig) -> Result<()> {
+    let engine = UnitEngine::new(config, Traffic::FULL_SPEED, !a.chunks.no_chunks)?;
+    let name = RayEngine::name(&engine);
+    Verilated::of(name.clone(), engine.model()).line().print();
+    let (spawn_name, spawn) = spawn(a);
     let out = render(scene, &engine, &options(a, spawn))
-        .with_context(|| format!("co-simulating {}", name))?;
+        .with_context(|| format!("co-simulating {name}"))?;
     let sw = save_and_render_software(a, scene, &out)?;
     let c = out.stats.trace.cast;
     let s = engine.stats();
     let rays = out.stats.trace.rays();
     let per_ray = |n: u64| n as f64 / rays.max(1) as f64;
     let cycles = c.cycles.max(1) as f64;
-    println!(
-        "scene={} size={}x{} engine=\"{}\" spawn={spawn_name} rays={rays} cycles={} cycles_per_ray={:.2} node_visits_per_ray={:.2} box_tests_per_ray={:.2} mt_tests_per_ray={:.2} box_utilisation={:.4} lane_utilisation={:.4} busy_cycles={} instances={}",
-        scene.name,
-        out.image.width(),
-        out.image.height(),
-        name,
-        c.cycles,
-        per_ray(c.cycles),
-        per_ray(c.node_visits),
-        per_ray(c.box_tests),
-        per_ray(c.mt_tests),
-        c.box_tests as f64 / cycles,
-        c.mt_tests as f64 / (cycles * config.lanes as f64),
-        s.runs.busy_cycles,
-        s.instances
-    );
-    println!(
-        "unit_memory passes={} ray_passes={} chunk_loads={} loaded_bytes={} loads={} load_cycles={}",
-        c.passes, c.ray_passes, c.chunk_loads, c.loaded_bytes, s.loads, s.load_cycles
-    );
+    Line::new()
+        .kv("scene", &scene.name)
+        .kv(
+            "size",
+            format_args!("{}x{}", out.image.width(), out.image.height()),
+        )
+        .kv("engine", &name)
+        .kv("spawn", spawn_name)
+        .kv("rays", rays)
+        .kv("cycles", c.cycles)
+        .fixed("cycles_per_ray", per_ray(c.cycles), 2)
+        .fixed("node_visits_per_ray", per_ray(c.node_visits), 2)
+        .fixed("box_tests_per_ray", per_ray(c.box_tests), 2)
+        .fixed("mt_tests_per_ray", per_ray(c.mt_tests), 2)
+        .fixed("box_utilisation", c.box_tests as f64 / cycles, 4)
+        .fixed(
+            "lane_utilisation",
+            c.mt_tests as f64 / (cycles * config.lanes as f64),
+            4,
+        )
+        .kv("busy_cycles", s.runs.busy_cycles)
+        .kv("instances", s.instances)
+        .print();
+    Line::labelled("unit_memory")
+        .kv("passes", c.passes)
+        .kv("ray_passes", c.ray_passes)
+        .kv("chunk_loads", c.chunk_loads)
+        .kv("loaded_bytes", c.loaded_bytes)
+        .kv("loads", s.loads)
+        .kv("load_cycles", s.load_cycles)
+        .print();
+    // Simulator speed per core: simulated cycles over the simulator's wall time summed over
+    // the threads.
     let sim_s = s.sim_time.as_secs_f64().max(1e-9);
-    println!(
-        "sim_cycles_per_s={:.0} rays_per_s={:.0} (per core: {} simulated cycles in {:.2} s of simulator wall time, summed over threads) wall_s={:.2}",
-        s.sim_cycles as f64 / sim_s,
-        rays as f64 / sim_s,
-        s.sim_cycles,
-        sim_s,
-        out.stats.render_time.as_secs_f64()
-    );
-    print_comparison(&out, &sw)
+    Line::new()
+        .fixed("sim_cycles_per_s", s.sim_cycles as f64 / sim_s, 0)
+        .fixed("rays_per_s", rays as f64 / sim_s, 0)
+        .kv("sim_cycles", s.sim_cycles)
+        .fixed("sim_wall_s", sim_s, 2)
+        .fixed("wall_s", out.stats.render_time.as_secs_f64(), 2)
+        .print();
+    print_comparison(a, &out, &sw)
 }

@@ -2,17 +2,23 @@
 //! design, and (`--calibration`) the model against every time the thesis measured.
 //! The model is `sim::projection`; docs/projection.md explains it.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 use clap::{Args as ClapArgs, ValueEnum};
-use hw_model::traversal::{TraversalEngine, DEFAULT_STACK_DEPTH};
+use hw_model::dual::FormatChoice;
+use hw_model::traversal::TraversalEngine;
 use hw_model::Advance;
+use sim::projection::fit_store::{self, StoredFit};
 use sim::projection::{
     self, Board, Calibration, Design, Frontend, Role, Setup, Traversal, Workload, Workloads,
 };
 use sw_renderer::render::RenderOptions;
 use sw_renderer::scene::Scene;
+
+use crate::engine::{ChunkArgs, Datapath, HwConfig, SceneMemoryArg, UnitArgs};
+use crate::options::{Given, Target};
+use crate::report::{self, Line};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum DesignKind {
@@ -42,26 +48,27 @@ pub struct Args {
     #[arg(long)]
     scene: Option<String>,
     /// Override the scene's width (1 to 16384 pixels).
-    #[arg(long, value_parser = crate::cmd_render::image_side())]
+    #[arg(long, value_parser = crate::cmd_render::image_side(), requires = "scene")]
     width: Option<u32>,
     /// Override the scene's height (1 to 16384 pixels).
-    #[arg(long, value_parser = crate::cmd_render::image_side())]
+    #[arg(long, value_parser = crate::cmd_render::image_side(), requires = "scene")]
     height: Option<u32>,
+    /// The accelerator design projected.
     #[arg(long, value_enum, default_value_t = DesignKind::Stream)]
     design: DesignKind,
     /// How candidates are found [default: brute-force for thesis, bvh for stream].
     #[arg(long, value_enum)]
     traversal: Option<TraversalKind>,
-    /// Datapath number format of the stream design (sets its pipeline latency with --depth).
+    /// Datapath number format (sets the pipeline latency with --depth).
     #[arg(long, default_value = "fp32")]
     format: hw_model::HwFormat,
-    /// Pipeline registers per operator of the stream design.
+    /// Pipeline registers per operator: 0 to the format's maximum.
     #[arg(long, default_value_t = 1)]
     depth: usize,
-    /// Stream, traversal: MT lanes; thesis: accelerators.
+    /// MT lanes (the traversal unit: 1 to 3); the thesis design: its accelerators.
     #[arg(long, default_value_t = 1)]
     lanes: u32,
-    /// Traversal: ray slots of the unit.
+    /// Ray slots of the traversal unit (its schedule model times 1 to 1024; the RTL has 32).
     #[arg(long, default_value_t = hdl::traversal::timing::DEFAULT_SLOTS as u32,
           value_parser = clap::value_parser!(u32).range(1..=1024))]
     slots: u32,
@@ -72,104 +79,180 @@ pub struct Args {
     /// stream: cycles between queries per lane [default: 1, II = 1].
     #[arg(long)]
     cycles_per_test: Option<f64>,
-    /// Stream, traversal: HP ports the DMA uses (1–4).
+    /// HP ports the DMA uses (1–4).
     #[arg(long, default_value_t = 1)]
     hp_ports: u32,
-    /// Stream, traversal: fraction of the HP ports' peak bandwidth the DMA reaches.
+    /// Fraction of the HP ports' peak bandwidth the DMA reaches.
     #[arg(long, default_value_t = 0.8)]
     dma_efficiency: f64,
-    /// Stream: ARM cycles to pack one query into the DMA buffer; traversal: to write one
-    /// ray and read its answer.
+    /// ARM cycles to pack one query into the DMA buffer (the traversal design: to write one
+    /// ray and read its answer).
     #[arg(long, default_value_t = 40.0)]
     pack_cycles: f64,
-    /// Traversal: the unit's scene memory.
     #[command(flatten)]
-    memory: crate::engine::MemoryArgs,
+    memory: SceneMemoryArg,
+    #[command(flatten)]
+    chunks: ChunkArgs,
     /// Edge of the renderer's square tiles: one tile's rays per level form a wavefront (a
     /// chunked unit loads every chunk once per wavefront).
     #[arg(long, default_value_t = RenderOptions::default().tile_size,
           value_parser = clap::value_parser!(u32).range(1..=4096))]
     tile_size: u32,
-    /// Print the calibration table (measured vs modelled thesis times).
+    /// Print the calibration table (measured vs modelled thesis times); fits the board's
+    /// constants anew and stores them.
     #[arg(long)]
     calibration: bool,
     /// With --calibration: skip the slow scenes (Glass pen, Glasses, All materials).
-    #[arg(long)]
+    #[arg(long, requires = "calibration")]
     quick: bool,
+    /// Fit the board's constants on the thesis scenes again instead of using the stored fit.
+    #[arg(long)]
+    recalibrate: bool,
     /// Directory of the thesis scenes the model is calibrated on [default:
     /// $RTFPGA_THESIS_SCENES, else ../shared/scenes/thesis beside the source tree rtfpga was
-    /// built from].
+    /// built from]. Needed once: the fit is stored in the cache ($RTFPGA_CACHE, else the
+    /// Cargo target directory's verilator-cache).
     #[arg(long)]
     thesis_scenes: Option<PathBuf>,
 }
 
-pub fn run(a: Args) -> Result<()> {
+impl DesignKind {
+    fn target(self) -> Target {
+        match self {
+            DesignKind::Thesis => Target::ThesisDesign,
+            DesignKind::Stream => Target::StreamDesign,
+            DesignKind::Traversal => Target::TraversalDesign,
+        }
+    }
+}
+
+pub fn run(a: Args, given: &Given) -> Result<()> {
+    given.check(a.design.target())?;
     if a.scene.is_none() && !a.calibration {
         bail!("nothing to do: give --scene to project a frame and/or --calibration");
     }
     let design = design(&a)?;
-    if a.design != DesignKind::Traversal
-        && (a.memory.scene_capacity.is_some() || a.memory.no_chunks)
-    {
-        bail!("--scene-capacity and --no-chunks describe the traversal unit: use them with --design traversal");
-    }
-    let thesis_scenes = match &a.thesis_scenes {
-        Some(dir) => dir.clone(),
-        None => sw_renderer::thesis_scenes::locate()?.with_context(|| {
-            format!(
-                "{} (looked for {}); or give --thesis-scenes",
-                sw_renderer::thesis_scenes::NOT_FOUND,
-                sw_renderer::thesis_scenes::fallback_dir().display()
-            )
-        })?,
+    let unit = match a.design {
+        DesignKind::Traversal => Some(traversal_engine(&a)?),
+        _ => None,
     };
-    if !thesis_scenes.is_dir() {
-        bail!(
-            "thesis scenes: {} is not a directory (set --thesis-scenes)",
-            thesis_scenes.display()
-        );
-    }
-    let mut workloads = Workloads::new(&thesis_scenes);
-    let quick = a.quick;
-    let calibration = projection::calibrate(&mut workloads, |m| {
-        !quick
-            || [
-                "Simple_plane_scene",
-                "Simple_plane2_scene",
-                "Utah_teapot_scene",
-            ]
-            .contains(&m.scene)
-    })
-    .context("calibrating the model on the thesis' measurements")?;
-    if a.calibration {
+    let scene = a.scene.as_deref().map(Scene::load).transpose()?;
+    let thesis = thesis_scenes(&a)?;
+    let store = sim::verilator::default_cache_dir().join(fit_store::FILE_NAME);
+    let board = if a.calibration {
+        let thesis = thesis.with_context(|| {
+            format!(
+                "--calibration renders the thesis scenes: {} (or give --thesis-scenes)",
+                sw_renderer::thesis_scenes::NOT_FOUND
+            )
+        })?;
+        let calibration = fit(&thesis, &store, !a.quick)?;
         print_calibration(&calibration);
-    }
-    if let Some(spec) = &a.scene {
-        let scene = Scene::load(spec)?;
+        calibration.board
+    } else {
+        stored_or_fitted(&a, thesis.as_deref(), &store)?
+    };
+    if let Some(scene) = scene {
         let width = a.width.unwrap_or(scene.options.width);
         let height = a.height.unwrap_or(scene.options.height);
         let mut workload = Workload::measure(&scene, width, height)?;
-        if a.design == DesignKind::Traversal {
-            let engine = TraversalEngine {
-                format: a.format.format(),
-                stack_depth: DEFAULT_STACK_DEPTH,
-                scale_exp: 0,
-                advance: Advance::None,
-                timing: Some(hdl::traversal::timing::unit_timing(
-                    a.format,
-                    a.depth,
-                    a.lanes as usize,
-                    a.slots as usize,
-                    Advance::None,
-                )),
-                memory: a.memory.memory(a.lanes as usize),
-        nodes: hw_model::traversal::NodeFormat::Bvh2Fp32,
-            };
-            workload = workload.with_unit(&scene, &engine, a.tile_size)?;
+        if let Some(engine) = &unit {
+            workload = workload.with_unit(&scene, engine, a.tile_size)?;
         }
-        print_projection(&workload, &design, &calibration.board)?;
+        print_projection(&a, &workload, &design, &board)?;
     }
     Ok(())
+}
+
+/// The thesis scenes' directory, if they are here: `--thesis-scenes` (then it must be a
+/// directory), else where `sw_renderer::thesis_scenes` finds them.
+fn thesis_scenes(a: &Args) -> Result<Option<PathBuf>> {
+    match &a.thesis_scenes {
+        Some(dir) if dir.is_dir() => Ok(Some(dir.clone())),
+        Some(dir) => bail!("--thesis-scenes {}: not a directory", dir.display()),
+        None => Ok(sw_renderer::thesis_scenes::locate()?),
+    }
+}
+
+/// Fits the board's constants on the thesis scenes in `thesis` (every check row too when
+/// `all`, else the quick scenes' only) and stores the fit at `store`.
+fn fit(thesis: &Path, store: &Path, all: bool) -> Result<Calibration> {
+    let mut workloads = Workloads::new(thesis);
+    let (calibration, took) = report::spinner(
+        &format!("calibrating on the thesis scenes in {}", thesis.display()),
+        || {
+            projection::calibrate(&mut workloads, |m| {
+                all || [
+                    "Simple_plane_scene",
+                    "Simple_plane2_scene",
+                    "Utah_teapot_scene",
+                ]
+                .contains(&m.scene)
+            })
+        },
+    );
+    let calibration = calibration.context("calibrating the model on the thesis' measurements")?;
+    fit_store::save(
+        store,
+        &StoredFit {
+            program: fit_store::program_key()?,
+            scenes: fit_store::scenes_key(thesis)?,
+            board: calibration.board,
+        },
+    )?;
+    eprintln!(
+        "calibration: fitted on the thesis scenes in {} in {:.1} s, stored at {}",
+        thesis.display(),
+        took.as_secs_f64(),
+        store.display()
+    );
+    Ok(calibration)
+}
+
+/// The board's constants: the stored fit when this program made it on these scenes (or the
+/// scenes are not here to check), else fitted now on the scenes (the four fit rows only),
+/// saying on stderr which.
+fn stored_or_fitted(a: &Args, thesis: Option<&Path>, store: &Path) -> Result<Board> {
+    let program = fit_store::program_key()?;
+    let scenes = thesis.map(fit_store::scenes_key).transpose()?;
+    let stored = fit_store::load(store);
+    if let Some(f) = fit_store::usable(stored, &program, scenes.as_deref(), a.recalibrate) {
+        let on = match thesis {
+            Some(dir) => format!("on the thesis scenes in {}", dir.display()),
+            None => "on thesis scenes that are not here now".to_string(),
+        };
+        eprintln!(
+            "calibration: the fit stored at {} (made {on}; --recalibrate fits again)",
+            store.display()
+        );
+        return Ok(f.board);
+    }
+    let Some(thesis) = thesis else {
+        bail!(
+            "the projection's board constants are fitted once on the thesis scenes, and no fit is stored at {}: {} (or give --thesis-scenes) and run this again",
+            store.display(),
+            sw_renderer::thesis_scenes::NOT_FOUND
+        );
+    };
+    Ok(fit(thesis, store, false)?.board)
+}
+
+/// The traversal design's unit: the traversal engine `render --engine traversal` makes in
+/// this configuration (its checks of depth, lanes and slots included).
+fn traversal_engine(a: &Args) -> Result<TraversalEngine> {
+    let hw = HwConfig {
+        datapath: Datapath {
+            format: FormatChoice::Single(a.format.format()),
+            depth: a.depth,
+            lanes: a.lanes as usize,
+        },
+        unit: UnitArgs {
+            slots: a.slots,
+            memory: a.memory.clone(),
+        },
+        dual_filter: None,
+    };
+    hw.traversal_engine(0, Advance::None, &a.chunks)
 }
 
 fn design(a: &Args) -> Result<Design> {
@@ -180,31 +263,18 @@ fn design(a: &Args) -> Result<Design> {
         None => Traversal::Bvh,
     };
     let frontend = match a.design {
-        DesignKind::Thesis => {
-            if a.format != hw_model::HwFormat::FP32 {
-                bail!(
-                    "--format {}: the thesis design is the fp32 HLS unit",
-                    a.format
-                );
-            }
-            Frontend::Thesis {
-                units: a.lanes,
-                cycles_per_test: a.cycles_per_test.unwrap_or(THESIS_CYCLES_PER_TEST),
-            }
-        }
-        DesignKind::Traversal => {
-            if a.cycles_per_test.is_some() {
-                bail!(
-                    "--cycles-per-test: the traversal design's cycles come from its schedule model"
-                );
-            }
-            Frontend::Traversal {
-                hp_ports: a.hp_ports,
-                dma_efficiency: a.dma_efficiency,
-                pack_arm_cycles: a.pack_cycles,
-            }
-        }
+        DesignKind::Thesis => Frontend::Thesis {
+            units: a.lanes,
+            cycles_per_test: a.cycles_per_test.unwrap_or(THESIS_CYCLES_PER_TEST),
+        },
+        DesignKind::Traversal => Frontend::Traversal {
+            hp_ports: a.hp_ports,
+            dma_efficiency: a.dma_efficiency,
+            pack_arm_cycles: a.pack_cycles,
+        },
         DesignKind::Stream => {
+            // The lane's depth as the accelerator checks it.
+            hdl::top::TopConfig::new(a.format, a.depth, 1).validate()?;
             let latency = hdl::mt::latency(a.format, a.depth);
             Frontend::Stream {
                 lanes: a.lanes,
@@ -225,80 +295,138 @@ fn design(a: &Args) -> Result<Design> {
     Ok(d)
 }
 
-fn print_projection(w: &Workload, d: &Design, b: &Board) -> Result<()> {
+/// The design as `key=value` fields: what `a` chose and what it set.
+fn design_line(a: &Args, d: &Design) -> Line {
+    let traversal = match d.traversal {
+        Traversal::BruteForce => "brute-force",
+        Traversal::Bvh => "bvh",
+    };
+    let line = Line::new()
+        .kv(
+            "design",
+            a.design
+                .to_possible_value()
+                .map_or_else(String::new, |v| v.get_name().to_string()),
+        )
+        .kv("traversal", traversal)
+        .kv("fpl_mhz", d.fpl_mhz);
+    match d.frontend {
+        Frontend::Thesis {
+            units,
+            cycles_per_test,
+        } => line
+            .kv("accelerators", units)
+            .kv("cycles_per_test", cycles_per_test),
+        Frontend::Stream {
+            lanes,
+            cycles_per_test,
+            pipeline_latency,
+            hp_ports,
+            dma_efficiency,
+            pack_arm_cycles,
+        } => line
+            .kv("format", a.format)
+            .kv("depth", a.depth)
+            .kv("lanes", lanes)
+            .kv("cycles_per_test", cycles_per_test)
+            .kv("pipeline_latency", pipeline_latency)
+            .kv("hp_ports", hp_ports)
+            .kv("dma_efficiency", dma_efficiency)
+            .kv("pack_cycles", pack_arm_cycles),
+        Frontend::Traversal {
+            hp_ports,
+            dma_efficiency,
+            pack_arm_cycles,
+        } => line
+            .kv("format", a.format)
+            .kv("depth", a.depth)
+            .kv("lanes", a.lanes)
+            .kv("slots", a.slots)
+            .kv("hp_ports", hp_ports)
+            .kv("dma_efficiency", dma_efficiency)
+            .kv("pack_cycles", pack_arm_cycles),
+    }
+}
+
+fn print_projection(a: &Args, w: &Workload, d: &Design, b: &Board) -> Result<()> {
     let p = projection::project(w, d, b)?;
     // The thesis' software on the ARM, and the same with the BVH (traversal not counted).
     let arm = b.arm_only_s(w, Traversal::BruteForce);
     let arm_bvh = b.arm_only_s(w, Traversal::Bvh);
-    println!("scene: {} at {}x{}", w.scene, w.width, w.height);
-    println!(
-        "design: {:?}, traversal {:?}, f_PL {} MHz",
-        d.frontend, d.traversal, d.fpl_mhz
-    );
-    println!(
-        "rays: {} (primary {}, reflection {}, refraction {}, shadow {}); tests: {}",
-        w.rays(),
-        w.primary_rays,
-        w.reflection_rays,
-        w.refraction_rays,
-        w.shadow_rays,
-        p.tests
-    );
+    Line::new()
+        .kv("scene", &w.scene)
+        .kv("size", format_args!("{}x{}", w.width, w.height))
+        .print();
+    design_line(a, d).print();
+    Line::new()
+        .kv("rays", w.rays())
+        .kv("primary_rays", w.primary_rays)
+        .kv("reflection_rays", w.reflection_rays)
+        .kv("refraction_rays", w.refraction_rays)
+        .kv("shadow_rays", w.shadow_rays)
+        .kv("tests", p.tests)
+        .print();
     println!("\n| term | seconds |\n|---|---|");
     println!("| ARM | {:.4} |", p.arm_s);
     println!("| bus (AXI4-Lite) | {:.4} |", p.bus_s);
     println!("| accelerator | {:.4} |", p.accel_s);
-    println!("| total | {:.4} |", p.total_s());
+    println!("| total | {:.4} |\n", p.total_s());
     if let Some(u) = &w.unit {
         let rays = w.rays().max(1) as f64;
-        println!(
-            "\nunit (schedule model): cycles_per_ray={:.2} box_tests_per_ray={:.2} mt_tests_per_ray={:.2} image_bytes={}",
-            u.cycles as f64 / rays,
-            u.box_tests as f64 / rays,
-            u.mt_tests as f64 / rays,
-            u.image_bytes
-        );
-        println!(
-            "scene memory: wavefronts={} passes={} ray_passes={} chunk_loads={} loaded_bytes={} load_cycles_per_ray={:.2}",
-            u.wavefronts,
-            u.passes,
-            u.ray_passes,
-            u.chunk_loads,
-            u.loaded_bytes,
-            projection::load_cycles(u, d).unwrap_or(0.0) / rays
-        );
+        // The unit's schedule model on the frame, and its scene memory's loads.
+        Line::labelled("unit_schedule")
+            .fixed("cycles_per_ray", u.cycles as f64 / rays, 2)
+            .fixed("box_tests_per_ray", u.box_tests as f64 / rays, 2)
+            .fixed("mt_tests_per_ray", u.mt_tests as f64 / rays, 2)
+            .kv("image_bytes", u.image_bytes)
+            .print();
+        Line::labelled("unit_memory")
+            .kv("wavefronts", u.wavefronts)
+            .kv("passes", u.passes)
+            .kv("ray_passes", u.ray_passes)
+            .kv("chunk_loads", u.chunk_loads)
+            .kv("loaded_bytes", u.loaded_bytes)
+            .fixed(
+                "load_cycles_per_ray",
+                projection::load_cycles(u, d).unwrap_or(0.0) / rays,
+                2,
+            )
+            .print();
     }
-    println!(
-        "\narm_software_s={arm:.4} arm_bvh_software_s={arm_bvh:.4} total_s={:.4} speedup_vs_arm={:.2} speedup_vs_arm_bvh={:.2}",
-        p.total_s(),
-        arm / p.total_s(),
-        arm_bvh / p.total_s()
-    );
+    let mut line = Line::new()
+        .fixed("arm_software_s", arm, 4)
+        .fixed("arm_bvh_software_s", arm_bvh, 4)
+        .fixed("total_s", p.total_s(), 4)
+        .fixed("speedup_vs_arm", arm / p.total_s(), 2)
+        .fixed("speedup_vs_arm_bvh", arm_bvh / p.total_s(), 2);
     if let Some(walk) = b.arm_bvh_walk_s(w) {
-        println!(
-            "arm_bvh_walk_s={walk:.4} speedup_vs_arm_bvh_walk={:.2}",
-            walk / p.total_s()
+        line = line.fixed("arm_bvh_walk_s", walk, 4).fixed(
+            "speedup_vs_arm_bvh_walk",
+            walk / p.total_s(),
+            2,
         );
     }
+    line.print();
     Ok(())
 }
 
 fn print_calibration(c: &Calibration) {
     let b = &c.board;
-    println!("fitted constants (4, from the 4 `fit` rows; all other rows are held-out checks):");
-    println!("  ARM per ray (non-MT work)  {:.1} ns", b.arm_ray_ns);
-    println!(
-        "  ARM per MT test            {:.1} ns ({:.1} cycles at 667 MHz)",
-        b.arm_test_ns,
-        b.arm_test_ns * projection::ARM_MHZ / 1e3
-    );
-    println!("  AXI4-Lite access, fixed    {:.1} ns", b.access_fixed_ns);
-    println!(
-        "  AXI4-Lite access, fabric   {:.2} cycles ({:.0} ns at 100 MHz, {:.0} ns at 214 MHz)",
-        b.access_pl_cycles,
-        b.access_ns(100.0),
-        b.access_ns(214.0)
-    );
+    // The four fitted constants (from the four `fit` rows; every other row is a held-out
+    // check): ARM ns per ray and per MT test, AXI4-Lite access ns (fixed) and fabric cycles.
+    Line::labelled("fitted")
+        .fixed("arm_ray_ns", b.arm_ray_ns, 1)
+        .fixed("arm_test_ns", b.arm_test_ns, 1)
+        .fixed(
+            "arm_test_cycles",
+            b.arm_test_ns * projection::ARM_MHZ / 1e3,
+            1,
+        )
+        .fixed("access_fixed_ns", b.access_fixed_ns, 1)
+        .fixed("access_pl_cycles", b.access_pl_cycles, 2)
+        .fixed("access_ns_at_100mhz", b.access_ns(100.0), 0)
+        .fixed("access_ns_at_214mhz", b.access_ns(214.0), 0)
+        .print();
     println!("\n| measurement | source | scene | size | setup | role | measured s | modelled s | error % |");
     println!("|---|---|---|---|---|---|---|---|---|");
     for r in &c.rows {
@@ -329,4 +457,5 @@ fn print_calibration(c: &Calibration) {
             r.error_pct()
         );
     }
+    println!();
 }

@@ -2,12 +2,14 @@
 
 use std::path::PathBuf;
 
-use anyhow::{bail, Context, Result};
+use anyhow::Result;
 use clap::Args as ClapArgs;
 use sw_renderer::render::{render, save_png, RenderOptions};
 use sw_renderer::scene::Scene;
 
-use crate::engine::{self, EngineKind, HwConfig, MemoryArgs, PrecisionArgs};
+use crate::engine::{self, ChunkArgs, EngineKind, HwConfig, PrecisionArgs};
+use crate::options::Given;
+use crate::report::{self, Line};
 
 #[derive(ClapArgs)]
 pub struct Args {
@@ -20,6 +22,7 @@ pub struct Args {
     /// Override the scene's height (1 to 16384 pixels).
     #[arg(long, value_parser = image_side())]
     height: Option<u32>,
+    /// What answers the rays.
     #[arg(long, value_enum, default_value_t = EngineKind::F32)]
     engine: EngineKind,
     #[command(flatten)]
@@ -27,9 +30,9 @@ pub struct Args {
     #[command(flatten)]
     precision: PrecisionArgs,
     #[command(flatten)]
-    memory: MemoryArgs,
-    /// Output PNG.
-    #[arg(long)]
+    chunks: ChunkArgs,
+    /// Output image (.png; its folder is created).
+    #[arg(long, value_name = "OUT.png")]
     out: PathBuf,
     /// No progress bar.
     #[arg(long)]
@@ -45,88 +48,94 @@ pub fn image_side() -> clap::builder::RangedI64ValueParser<u32> {
     clap::value_parser!(u32).range(1..=i64::from(MAX_IMAGE_SIDE))
 }
 
-pub fn run(a: Args) -> Result<()> {
-    if a.engine != EngineKind::Traversal
-        && (a.memory.scene_capacity.is_some() || a.memory.no_chunks)
-    {
-        bail!("--scene-capacity and --no-chunks describe the traversal unit: use them with --engine traversal");
-    }
+pub fn run(a: Args, given: &Given) -> Result<()> {
+    given.check(a.engine.target(&a.hw.datapath.format))?;
     let scene = Scene::load(&a.scene)?;
     let precision = a.precision.resolve(a.engine, &a.hw, &scene)?;
-    let (spawn, scale_exp, lane) = (precision.spawn, precision.scale_exp, precision.lane);
-    // The model's memory is the RTL's when --unit-memory names it.
-    let memory = MemoryArgs {
-        scene_capacity: a.memory.scene_capacity.or(a.hw.unit_memory),
-        ..a.memory.clone()
-    };
-    let made = engine::make_scaled(a.engine, &a.hw, scale_exp, lane, memory.memory(a.hw.lanes))?;
+    let (scale_exp, lane) = (precision.scale_exp, precision.lane);
+    report::image_out("--out", &a.out)?;
+    let made = engine::make(a.engine, &a.hw, scale_exp, lane, &a.chunks)?;
+    if let Some(v) = &made.verilated {
+        v.line().print();
+    }
     let engine = made.engine;
     let opts = RenderOptions {
         width: a.width,
         height: a.height,
         progress: !a.quiet,
-        spawn,
+        spawn: precision.spawn,
         ..Default::default()
     };
     let out = render(&scene, engine.as_ref(), &opts)?;
-    save_png(&out.image, &a.out).with_context(|| format!("writing {}", a.out.display()))?;
+    save_png(&out.image, &a.out)?;
     let s = &out.stats;
     let secs = s.render_time.as_secs_f64();
-    println!(
-        "scene={} engine={} spawn={} scale_exp={} edges={} advance={} size={}x{} triangles={} rays={} mt_queries={} box_tests={} node_visits={} prepare_s={:.3} render_s={:.3} mrays_per_s={:.2}",
-        scene.name,
-        engine.name(),
-        precision.choice.name(),
-        scale_exp,
-        lane.edges,
-        lane.advance,
-        out.image.width(),
-        out.image.height(),
-        scene.triangle_count(),
-        s.trace.rays(),
-        s.trace.cast.mt_tests,
-        s.trace.cast.box_tests,
-        s.trace.cast.node_visits,
-        s.prepare_time.as_secs_f64(),
-        secs,
-        s.trace.rays() as f64 / secs.max(1e-9) / 1e6
-    );
+    Line::new()
+        .kv("scene", &scene.name)
+        .kv("engine", engine.name())
+        .kv("spawn", precision.choice.name())
+        .kv("scale_exp", scale_exp)
+        .kv("edges", lane.edges)
+        .kv("advance", lane.advance)
+        .kv(
+            "size",
+            format_args!("{}x{}", out.image.width(), out.image.height()),
+        )
+        .kv("triangles", scene.triangle_count())
+        .kv("rays", s.trace.rays())
+        .kv("mt_queries", s.trace.cast.mt_tests)
+        .kv("box_tests", s.trace.cast.box_tests)
+        .kv("node_visits", s.trace.cast.node_visits)
+        .fixed("prepare_s", s.prepare_time.as_secs_f64(), 3)
+        .fixed("render_s", secs, 3)
+        .fixed(
+            "mrays_per_s",
+            s.trace.rays() as f64 / secs.max(1e-9) / 1e6,
+            2,
+        )
+        .print();
+    Line::new().path("out", &a.out).print();
     if let Some(dual) = &made.dual {
         let d = dual.stats();
-        println!(
-            "dual_precision pair={} filter={} tests={} certain_misses={} forwarded={} forwarded_share={:.4}",
-            dual.filter.pair,
-            dual.filter.kind,
-            d.tests,
-            d.certain_misses,
-            d.forwarded(),
-            d.forwarded_share()
-        );
+        Line::labelled("dual_precision")
+            .kv("pair", dual.filter.pair)
+            .kv("filter", dual.filter.kind)
+            .kv("tests", d.tests)
+            .kv("certain_misses", d.certain_misses)
+            .kv("forwarded", d.forwarded())
+            .fixed("forwarded_share", d.forwarded_share(), 4)
+            .print();
     }
     let c = s.trace.cast;
     if c.passes > 0 {
         // The traversal unit's scene memory: one pass per wavefront and loaded chunk.
-        println!(
-            "unit_memory passes={} ray_passes={} chunk_loads={} loaded_bytes={}",
-            c.passes, c.ray_passes, c.chunk_loads, c.loaded_bytes
-        );
+        Line::labelled("unit_memory")
+            .kv("passes", c.passes)
+            .kv("ray_passes", c.ray_passes)
+            .kv("chunk_loads", c.chunk_loads)
+            .kv("loaded_bytes", c.loaded_bytes)
+            .print();
     }
     if c.cycles > 0 {
         // The traversal unit's schedule model (not a co-simulation).
         let rays = s.trace.rays().max(1) as f64;
-        println!(
-            "unit_schedule slots={} lanes={} cycles={} cycles_per_ray={:.2} box_tests_per_ray={:.2} mt_tests_per_ray={:.2} node_visits_per_ray={:.2} box_utilisation={:.3} lane_utilisation={:.3} mrays_per_s_at_100mhz={:.2}",
-            a.hw.slots,
-            a.hw.lanes,
-            c.cycles,
-            c.cycles as f64 / rays,
-            c.box_tests as f64 / rays,
-            c.mt_tests as f64 / rays,
-            c.node_visits as f64 / rays,
-            c.box_tests as f64 / c.cycles as f64,
-            c.mt_tests as f64 / (c.cycles as f64 * a.hw.lanes as f64),
-            rays / c.cycles as f64 * 100.0
-        );
+        let lanes = a.hw.datapath.lanes as f64;
+        Line::labelled("unit_schedule")
+            .kv("slots", a.hw.unit.slots)
+            .kv("lanes", a.hw.datapath.lanes)
+            .kv("cycles", c.cycles)
+            .fixed("cycles_per_ray", c.cycles as f64 / rays, 2)
+            .fixed("box_tests_per_ray", c.box_tests as f64 / rays, 2)
+            .fixed("mt_tests_per_ray", c.mt_tests as f64 / rays, 2)
+            .fixed("node_visits_per_ray", c.node_visits as f64 / rays, 2)
+            .fixed("box_utilisation", c.box_tests as f64 / c.cycles as f64, 3)
+            .fixed(
+                "lane_utilisation",
+                c.mt_tests as f64 / (c.cycles as f64 * lanes),
+                3,
+            )
+            .fixed("mrays_per_s_at_100mhz", rays / c.cycles as f64 * 100.0, 2)
+            .print();
     }
     Ok(())
 }

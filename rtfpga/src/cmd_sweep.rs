@@ -16,9 +16,9 @@ pub struct Args {
     /// Output directory (results, plots, grids, per-job files, the synthesis cache).
     #[arg(long)]
     out: PathBuf,
-    /// Jobs at once.
-    #[arg(long, default_value_t = 2)]
-    jobs: usize,
+    /// Jobs at once (1 to 256).
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u16).range(1..=256))]
+    jobs: u16,
     /// Only check the configuration and write manifest.json and jobs.txt.
     #[arg(long)]
     manifest_only: bool,
@@ -29,8 +29,10 @@ pub struct Args {
 
 #[derive(ClapArgs)]
 pub struct JobArgs {
+    /// Sweep configuration (the sweep's).
     #[arg(long)]
     config: PathBuf,
+    /// The sweep's output directory.
     #[arg(long)]
     out: PathBuf,
     /// `prepare`, `quality/FORMAT` or `point/ID` (manifest.json lists them).
@@ -62,7 +64,7 @@ pub fn run(a: Args) -> Result<()> {
         return Ok(());
     }
     let opts = LocalRun {
-        threads: a.jobs,
+        threads: usize::from(a.jobs),
         progress: !a.quiet,
         program: program(),
     };
@@ -101,11 +103,11 @@ fn summary(results: &Results, layout: &Layout) {
     for &variant in &results.variants {
         match sweep::table::smallest_format_above(hardware.iter().copied(), variant, 40.0) {
             Some(q) => println!(
-                "smallest format with PSNR >= 40 dB on every scene, {variant}: {} ({} bits)",
+                "smallest format with a PSNR of at least 40 dB on every scene, {variant}: {} ({} bits)",
                 q.format, q.bits
             ),
             None if !hardware.is_empty() => {
-                println!("no format reaches PSNR >= 40 dB on every scene with the {variant}")
+                println!("no format reaches a PSNR of 40 dB on every scene with the {variant}")
             }
             None => {}
         }

@@ -6,7 +6,9 @@
 use anyhow::{bail, Result};
 use clap::Args as ClapArgs;
 
-use crate::engine::{HwConfig, UnitAdvanceArgs, UnitKind};
+use crate::engine::{AdvanceArg, HwConfig, UnitKind};
+use crate::options::{Given, Target};
+use crate::report;
 use hdl::dual::pair::{forward_latency, miss_latency};
 use hdl::operator::Op;
 use hdl::synth::{synthesize, SynthOptions, SynthReport};
@@ -23,12 +25,12 @@ pub struct Args {
     #[command(flatten)]
     hw: HwConfig,
     #[command(flatten)]
-    advance: UnitAdvanceArgs,
+    advance: AdvanceArg,
     /// Synthesise one operator of `--format` instead of the accelerator (add, sub, mul,
     /// recip, lt, from_f32, to_f32).
     #[arg(long)]
     op: Option<String>,
-    /// Pipeline stages of `--op`.
+    /// Pipeline stages of `--op`: 0 to the operator's maximum in the format.
     #[arg(long, default_value_t = 0)]
     stages: usize,
     /// Skip the lanes=1 vs lanes=2 runs that estimate how many lanes fit.
@@ -39,45 +41,55 @@ pub struct Args {
     json: bool,
 }
 
-pub fn run(a: Args) -> Result<()> {
+/// yosys on `verilog` (top module `top`), behind a spinner naming `what`.
+fn yosys(what: &str, verilog: &str, top: &str, options: &SynthOptions) -> Result<SynthReport> {
+    let (report, _) = report::spinner(&format!("yosys synth_xilinx: {what}"), || {
+        synthesize(verilog, top, options)
+    });
+    Ok(report?)
+}
+
+pub fn run(a: Args, given: &Given) -> Result<()> {
+    let target = match (&a.op, a.unit) {
+        (Some(_), UnitKind::Traversal) => bail!("--op synthesises one operator of the accelerator's lane; it does not combine with --unit traversal"),
+        (Some(_), UnitKind::Mt) => Target::Operator,
+        (None, unit) => unit.target(&a.hw.datapath.format),
+    };
+    given.check(target)?;
     let options = SynthOptions::default();
-    let advance = a.advance.of(a.unit)?;
     if a.unit == UnitKind::Traversal {
-        if a.op.is_some() {
-            bail!("--op synthesises one operator of the accelerator's lane; it does not combine with --unit traversal");
-        }
-        let config = a.hw.unit_config(advance)?;
+        let config = a.hw.unit_config(a.advance.advance.unwrap_or_default())?;
         let verilog = unit_verilog(&config)?;
-        let report = synthesize(&verilog, "top", &options)?;
+        let (nodes, triangles) = config.memory.capacity();
         let label = format!(
-            "traversal unit {} d{} l{} {}x{}",
-            config.format,
-            config.depth,
-            config.lanes,
-            config.memory.node_bits,
-            config.memory.triangle_bits
+            "traversal unit {} d{} l{} memory {nodes},{triangles}",
+            config.format, config.depth, config.lanes,
         );
+        let report = yosys(&label, &verilog, "top", &options)?;
         return print(&label, &report, None, None, a.json);
     }
     if let Some(op) = &a.op {
         let op: Op = op.parse()?;
-        let format = a.hw.single_format()?;
+        let format = a.hw.datapath.single_format()?;
         let rtl = hdl::formats::rtl(format.try_into()?, op, a.stages)?;
-        let report = synthesize(&rtl.verilog, hdl::verilog::TOP, &options)?;
         let label = format!("{} {} stages={}", format, op, a.stages);
+        let report = yosys(&label, &rtl.verilog, hdl::verilog::TOP, &options)?;
         return print(&label, &report, Some(rtl.latency), None, a.json);
     }
-    if let Some(pair) = a.hw.pair_config()? {
-        return synth_pair(&a, &pair, &options);
+    if target == Target::HwPair {
+        return synth_pair(&a, &a.hw.pair_config()?, &options);
     }
-    let config = a.hw.top_config()?;
-    config.validate()?;
+    let config = a.hw.datapath.top_config()?;
     let synth = |lanes: usize| -> Result<SynthReport> {
         let config = TopConfig {
             lanes,
             ..config.clone()
         };
-        Ok(synthesize_top(&config, &options)?)
+        let what = format!("{} ({lanes} lanes)", config.dir_name());
+        let (report, _) = report::spinner(&format!("yosys synth_xilinx: {what}"), || {
+            synthesize_top(&config, &options)
+        });
+        Ok(report?)
     };
     let report = synth(config.lanes)?;
     let fit = lane_fit(&a, config.lanes, &report, synth)?;
@@ -93,14 +105,10 @@ pub fn run(a: Args) -> Result<()> {
 /// `--format bfp18/fp32`: the dual-precision pair, and how many filter slots would fit
 /// beside its one fp32 lane (from the 1- and 2-slot designs).
 fn synth_pair(a: &Args, pair: &PairConfig, options: &SynthOptions) -> Result<()> {
-    if a.op.is_some() {
-        bail!(
-            "--op synthesises one operator of a single-format lane, not of a dual-precision pair"
-        );
-    }
     let synth = |slots: usize| -> Result<SynthReport> {
-        let verilog = pair_verilog(&PairConfig { slots, ..*pair })?;
-        Ok(synthesize(&verilog, hdl::verilog::TOP, options)?)
+        let config = PairConfig { slots, ..*pair };
+        let verilog = pair_verilog(&config)?;
+        yosys(&config.to_string(), &verilog, hdl::verilog::TOP, options)
     };
     let report = synth(pair.slots)?;
     let fit = lane_fit(a, pair.slots, &report, synth)?;
@@ -159,7 +167,7 @@ fn print(
     let d = XC7Z020;
     let pct = |used: u64, of: u64| 100.0 * used as f64 / of as f64;
     println!(
-        "this design on an {}: {} ({} of {} LUT incl. SRL = {:.1} %, {} of {} FF, {} of {} DSP48E1, {} of {} RAMB18)",
+        "this design on an {}: {} ({} of {} LUT incl. SRL ({:.1} %), {} of {} FF, {} of {} DSP48E1, {} of {} RAMB18)",
         d.name,
         if fits { "fits" } else { "does not fit" },
         usage.lut, d.lut, pct(usage.lut, d.lut), usage.ff, d.ff, usage.dsp48e1, d.dsp48e1, usage.bram18, d.bram18

@@ -15,7 +15,9 @@ use sw_renderer::intersect::{F32Intersector, Intersector, MtQuery, MtResult};
 use sw_renderer::render::{render, RenderOptions};
 use sw_renderer::scene::Scene;
 
-use crate::engine::HwConfig;
+use crate::engine::{Datapath, Verilated};
+use crate::options::{Given, Target};
+use crate::report::{self, Line};
 
 #[derive(ClapArgs)]
 pub struct Args {
@@ -42,24 +44,28 @@ struct RecordArgs {
     /// Override the scene's height (1 to 16384 pixels).
     #[arg(long, value_parser = crate::cmd_render::image_side())]
     height: Option<u32>,
-    /// Output trace file.
+    /// Output trace file (its folder is created).
     #[arg(long)]
     out: PathBuf,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum ReplayEngine {
+    /// The bit-accurate model of the datapath.
     Model,
+    /// The Verilated accelerator.
     Hw,
+    /// Both, and the first query where they differ.
     Both,
 }
 
 #[derive(ClapArgs)]
 struct ReplayArgs {
-    /// The trace file.
+    /// The trace file (`trace record`).
     trace: PathBuf,
     #[command(flatten)]
-    hw: HwConfig,
+    datapath: Datapath,
+    /// What answers the queries.
     #[arg(long, value_enum, default_value_t = ReplayEngine::Both)]
     engine: ReplayEngine,
     /// No progress bar.
@@ -67,15 +73,16 @@ struct ReplayArgs {
     quiet: bool,
 }
 
-pub fn run(a: Args) -> Result<()> {
+pub fn run(a: Args, given: &Given) -> Result<()> {
     match a.command {
         Command::Record(r) => record(r),
-        Command::Replay(r) => replay_trace(r),
+        Command::Replay(r) => replay_trace(r, given),
     }
 }
 
 fn record(a: RecordArgs) -> Result<()> {
     let scene = Scene::load(&a.scene)?;
+    report::file_out(&a.out)?;
     let rec = Recorder::new(&F32Intersector);
     let opts = RenderOptions {
         width: a.width,
@@ -85,12 +92,11 @@ fn record(a: RecordArgs) -> Result<()> {
     render(&scene, &rec, &opts)?;
     let queries = rec.into_queries();
     write_trace(&a.out, &queries)?;
-    println!(
-        "scene={} queries={} file={}",
-        scene.name,
-        queries.len(),
-        a.out.display()
-    );
+    Line::new()
+        .kv("scene", &scene.name)
+        .kv("queries", queries.len())
+        .path("out", &a.out)
+        .print();
     Ok(())
 }
 
@@ -112,41 +118,54 @@ fn timed(isect: &dyn Intersector, queries: &[MtQuery], quiet: bool) -> Result<Ve
     bar.finish_and_clear();
     let results = results.map_err(|e| anyhow::anyhow!(e).context(isect.name()))?;
     let secs = start.elapsed().as_secs_f64();
-    println!(
-        "engine=\"{}\" queries={} wall_s={secs:.3} tests_per_s={:.0}",
-        isect.name(),
-        queries.len(),
-        queries.len() as f64 / secs.max(1e-9)
-    );
+    Line::new()
+        .kv("engine", isect.name())
+        .kv("queries", queries.len())
+        .fixed("wall_s", secs, 3)
+        .fixed("tests_per_s", queries.len() as f64 / secs.max(1e-9), 0)
+        .print();
     Ok(results)
 }
 
-fn replay_trace(a: ReplayArgs) -> Result<()> {
+fn replay_trace(a: ReplayArgs, given: &Given) -> Result<()> {
+    given.check(match a.engine {
+        ReplayEngine::Model => Target::Model,
+        ReplayEngine::Hw | ReplayEngine::Both => Target::Accelerator,
+    })?;
+    let format = a.datapath.single_format()?;
+    let config = match a.engine {
+        ReplayEngine::Model => None,
+        ReplayEngine::Hw | ReplayEngine::Both => Some(a.datapath.top_config()?),
+    };
     let queries = read_trace(&a.trace)?;
-    let model = ModelIntersector::new(a.hw.single_format()?);
+    let model = ModelIntersector::new(format);
     let want = if a.engine != ReplayEngine::Hw {
         Some(timed(&model, &queries, a.quiet)?)
     } else {
         None
     };
-    if a.engine == ReplayEngine::Model {
+    let Some(config) = config else {
         return Ok(());
-    }
-    let hw = HwIntersector::new(&a.hw.top_config()?, Mode::Stream)?;
+    };
+    let hw = HwIntersector::new(&config, Mode::Stream)?;
+    Verilated::of_accelerator(&hw).line().print();
     let got = timed(&hw, &queries, a.quiet)?;
     let s = hw.stats();
-    println!(
-        "cycles={} lane_utilisation={:.4} sim_cycles_per_s={:.0} tests_per_s={:.0} (per core: simulator CPU time {:.2} s, wall time {:.2} s)",
-        s.cycles,
-        s.lane_utilisation(),
-        s.cycles_per_sec(),
-        s.tests_per_sec(),
-        s.sim_cpu_time.as_secs_f64(),
-        s.sim_time.as_secs_f64()
-    );
+    // Simulator speed per core: its CPU and wall time summed over the threads.
+    Line::new()
+        .kv("cycles", s.cycles)
+        .fixed("lane_utilisation", s.lane_utilisation(), 4)
+        .fixed("sim_cycles_per_s", s.cycles_per_sec(), 0)
+        .fixed("sim_tests_per_s", s.tests_per_sec(), 0)
+        .fixed("sim_cpu_s", s.sim_cpu_time.as_secs_f64(), 2)
+        .fixed("sim_wall_s", s.sim_time.as_secs_f64(), 2)
+        .print();
     if let Some(want) = want {
         match first_difference(&got, &want) {
-            None => println!("identical ({} queries, hardware = model)", queries.len()),
+            None => println!(
+                "identical: the hardware answers as the model on all {} queries",
+                queries.len()
+            ),
             Some(d) => {
                 println!("first difference: {d} (hardware vs model)");
                 bail!("the hardware and the model differ on {}", a.trace.display());

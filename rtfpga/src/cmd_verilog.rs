@@ -3,11 +3,13 @@
 //! `--unit traversal` the traversal unit under AXI4-Lite control (`traversal_unit.v`), its C
 //! header and driver and `config.json`.
 
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result};
 use clap::Args as ClapArgs;
 use std::path::PathBuf;
 
-use crate::engine::{HwConfig, UnitAdvanceArgs, UnitKind};
+use crate::engine::{AdvanceArg, Datapath, HwConfig, UnitArgs, UnitKind};
+use crate::options::{Given, Target};
+use crate::report;
 use hdl::generate::{
     default_configs, default_unit_config, generate, unit_dir_name, unit_files, write_files,
 };
@@ -20,10 +22,12 @@ pub struct Args {
     #[arg(long, value_enum, default_value_t = UnitKind::Mt)]
     unit: UnitKind,
     #[command(flatten)]
-    hw: HwConfig,
+    datapath: Datapath,
     #[command(flatten)]
-    advance: UnitAdvanceArgs,
-    /// Output directory (created if missing).
+    unit_args: UnitArgs,
+    #[command(flatten)]
+    advance: AdvanceArg,
+    /// Output folder (created if missing).
     #[arg(long)]
     out: PathBuf,
     /// Write every committed file set, one folder each (what generated-verilog/ holds): the
@@ -32,13 +36,23 @@ pub struct Args {
     defaults: bool,
 }
 
-pub fn run(a: Args) -> Result<()> {
-    let advance = a.advance.of(a.unit)?;
+pub fn run(a: Args, given: &Given) -> Result<()> {
+    let target = match (a.defaults, a.unit) {
+        (true, UnitKind::Mt) => Target::Defaults,
+        (true, UnitKind::Traversal) => anyhow::bail!("--defaults writes every committed file set, the traversal unit's among them: it takes no --unit traversal"),
+        (false, UnitKind::Mt) => Target::Accelerator,
+        (false, UnitKind::Traversal) => Target::Unit,
+    };
+    given.check(target)?;
     if a.unit == UnitKind::Traversal {
-        if a.defaults {
-            bail!("--defaults writes every committed file set, the traversal unit's among them; with --unit traversal give --format, --depth and --lanes");
-        }
-        return traversal_unit(&a.hw.unit_config(advance)?, &a.out, true);
+        let hw = HwConfig {
+            datapath: a.datapath.clone(),
+            unit: a.unit_args.clone(),
+            dual_filter: None,
+        };
+        let config = hw.unit_config(a.advance.advance.unwrap_or_default())?;
+        report::dir_out(&a.out)?;
+        return traversal_unit(&config, &a.out, true);
     }
     let jobs: Vec<(TopConfig, PathBuf)> = if a.defaults {
         default_configs()
@@ -49,8 +63,9 @@ pub fn run(a: Args) -> Result<()> {
             })
             .collect()
     } else {
-        vec![(a.hw.top_config()?, a.out.clone())]
+        vec![(a.datapath.top_config()?, a.out.clone())]
     };
+    report::dir_out(&a.out)?;
     for (config, dir) in jobs {
         let generated =
             generate(&config).with_context(|| format!("configuration {}", config.dir_name()))?;

@@ -1,5 +1,9 @@
-//! Engine selection shared by the subcommands that render: which `RayEngine` answers the
-//! renderer's rays.
+//! The hardware options the subcommands share and what they resolve to: the `RayEngine` that
+//! answers a render's rays, the accelerator, pair or traversal unit a command builds. Which
+//! option acts where is `options::RULES`; the checks of values are here and in the libraries'
+//! configuration types.
+
+use std::time::Duration;
 
 use anyhow::{bail, Context, Result};
 use clap::builder::TypedValueParser;
@@ -7,7 +11,7 @@ use clap::{Args as ClapArgs, ValueEnum};
 use hdl::dual::pair::SlotFilter;
 use hdl::top::TopConfig;
 use hdl::traversal::scene_memory;
-use hdl::traversal::unit::UnitConfig;
+use hdl::traversal::unit::{UnitConfig, BUILT_MEMORY_BITS};
 use hw_model::dual::{
     BoundArith, DualIntersector, Filter, FilterFormat, FilterKind, FormatChoice, PluckerDecisions,
     HW_BOUND_BITS,
@@ -17,22 +21,41 @@ use hw_model::traversal::{SceneCapacity, SceneMemory, TraversalEngine, DEFAULT_S
 use hw_model::{Advance, Edges, Format, ModelIntersector, NamedChoice};
 use sim::dual_pair::{built_pair, PairConfig, PairIntersector};
 use sim::hw_intersector::{HwIntersector, Mode};
+use sim::verilator::BuiltModel;
 use sw_renderer::intersect::F32Intersector;
 use sw_renderer::rays::RayEngine;
 use sw_renderer::scene::Scene;
 use sw_renderer::spawn::SpawnPolicy;
 
+use crate::options::Target;
+use crate::report::Line;
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum EngineKind {
-    /// The reference Möller-Trumbore in native f32.
+    /// The reference Möller-Trumbore in native f32 (the golden images').
     F32,
-    /// The bit-accurate model of the hardware arithmetic in `--format`.
+    /// The bit-accurate model of the datapath's arithmetic in --format (no simulation).
     Model,
-    /// The Verilated accelerator (co-simulation).
+    /// The Verilated Möller-Trumbore accelerator in --format (co-simulation).
     Hw,
-    /// The traversal unit's bit-accurate model: BVH and triangles in the unit's scene
-    /// memory, rays in, hits out; Möller-Trumbore in `--format`.
+    /// The traversal unit's bit-accurate model: the scene in its memory, rays in, hits out,
+    /// Möller-Trumbore in --format; cycles from its schedule model.
     Traversal,
+}
+
+impl EngineKind {
+    /// What this engine is in the options table, answering in `format`.
+    pub fn target(self, format: &FormatChoice) -> Target {
+        let pair = matches!(format, FormatChoice::Pair(_));
+        match self {
+            EngineKind::F32 => Target::F32,
+            EngineKind::Model if pair => Target::ModelPair,
+            EngineKind::Model => Target::Model,
+            EngineKind::Hw if pair => Target::HwPair,
+            EngineKind::Hw => Target::Accelerator,
+            EngineKind::Traversal => Target::UnitModel,
+        }
+    }
 }
 
 /// Which hardware a co-simulation, Verilog or synthesis command means.
@@ -54,35 +77,117 @@ impl UnitKind {
             UnitKind::Traversal => EngineKind::Traversal,
         }
     }
+
+    /// What this unit is in the options table, built in `format`.
+    pub fn target(self, format: &FormatChoice) -> Target {
+        match self {
+            UnitKind::Mt => EngineKind::Hw.target(format),
+            UnitKind::Traversal => Target::Unit,
+        }
+    }
 }
 
-/// The hardware configuration: number format, pipeline depth, lanes.
+fn format_help() -> String {
+    format!(
+        "Number format of the datapath: a catalogue name (`rtfpga formats`); the model engine \
+         also takes any spelling such as e8m14 or fx<24,8>, and a dual-precision pair \
+         FILTER/FALLBACK such as fp16/fp32 (docs/precision.md), of which the hardware builds {}",
+        built_pair()
+    )
+}
+
+fn lanes_help() -> String {
+    let slots = sim::dual_pair::SLOTS;
+    format!(
+        "Parallel Möller-Trumbore lanes: the accelerator 1 to {}, the traversal unit 1 to {}, a \
+         hardware pair its filter slots ({} to {})",
+        hdl::top::MAX_LANES,
+        hdl::traversal::unit::MAX_LANES,
+        slots.start(),
+        slots.end()
+    )
+}
+
+/// `--format`, `--depth`, `--lanes`: the datapath.
 #[derive(ClapArgs, Clone, Debug)]
-pub struct HwConfig {
-    /// Number format of the datapath: a catalogue name (`rtfpga formats`), or for the model
-    /// engine any spelling such as e8m14 or fx<24,8>, or a dual-precision pair
-    /// FILTER/FALLBACK such as fp16/fp32 (docs/precision.md; the model engine, and
-    /// bfp18/fp32 also in hardware: `--engine hw`, `cosim`).
-    #[arg(long, default_value = "fp32")]
+pub struct Datapath {
+    #[arg(long, default_value = "fp32", help = format_help())]
     pub format: FormatChoice,
-    /// Pipeline registers per operator.
+    /// Pipeline registers per operator: 0 to the format's maximum.
     #[arg(long, default_value_t = 1)]
     pub depth: usize,
-    /// Parallel MT lanes (a dual-precision pair in hardware: its filter slots, which share
-    /// one fp32 lane).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, help = lanes_help())]
     pub lanes: usize,
-    /// Ray slots of the traversal unit (`--engine traversal`: its schedule model's cycles).
+}
+
+fn capacity_text((node_bits, triangle_bits): (usize, usize)) -> String {
+    let (nodes, triangles) = scene_memory::capacity_for(node_bits, triangle_bits);
+    format!("{nodes},{triangles}")
+}
+
+/// The scene memories the RTL is built with, "16,32, 512,1024, … and 4096,8192".
+fn built_memories() -> String {
+    let all: Vec<String> = BUILT_MEMORY_BITS
+        .iter()
+        .copied()
+        .map(capacity_text)
+        .collect();
+    match all.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
+        _ => all.join(""),
+    }
+}
+
+fn scene_memory_help() -> String {
+    format!(
+        "The traversal unit's scene memory: the inner nodes and triangles it holds. The RTL is \
+         built with {}; the model takes any, and renders a larger scene in chunked passes \
+         [default: the memory that fits the XC7Z020 beside the lanes: {} beside one lane, {} \
+         beside more]",
+        built_memories(),
+        capacity_text(scene_memory::zynq_address_bits(1)),
+        capacity_text(scene_memory::zynq_address_bits(2)),
+    )
+}
+
+/// `--scene-memory NODES,TRIANGLES` (once `--unit-memory` and `--scene-capacity`).
+#[derive(ClapArgs, Clone, Debug, Default)]
+pub struct SceneMemoryArg {
+    #[arg(long = "scene-memory", alias = "unit-memory", alias = "scene-capacity",
+          value_name = "NODES,TRIANGLES", value_parser = parse_capacity,
+          help = scene_memory_help())]
+    pub scene_memory: Option<SceneCapacity>,
+}
+
+/// `--slots` and `--scene-memory`: the traversal unit's.
+#[derive(ClapArgs, Clone, Debug)]
+pub struct UnitArgs {
+    /// Ray slots of the traversal unit: the RTL has 32, the schedule model times 1 to 1024.
     #[arg(long, default_value_t = hdl::traversal::timing::DEFAULT_SLOTS as u32,
           value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub slots: u32,
-    /// `--unit traversal`: the RTL scene memory as NODES,TRIANGLES (built: 16,32, 512,1024,
-    /// 2048,4096, 4096,8192) [default: the one that fits the XC7Z020 beside the lanes:
-    /// 4096,8192 beside one, 2048,4096 beside more].
-    #[arg(long, value_name = "NODES,TRIANGLES", value_parser = parse_capacity)]
-    pub unit_memory: Option<SceneCapacity>,
-    /// The filter of a dual-precision pair (docs/precision.md, "Dual precision") [default:
-    /// bfp for a bfpW/fp32 pair, else linear].
+    #[command(flatten)]
+    pub memory: SceneMemoryArg,
+}
+
+/// `--no-chunks`.
+#[derive(ClapArgs, Clone, Debug, Default)]
+pub struct ChunkArgs {
+    /// Refuse a scene larger than the traversal unit's scene memory instead of rendering it in
+    /// chunked passes.
+    #[arg(long)]
+    pub no_chunks: bool,
+}
+
+/// The hardware configuration: datapath, traversal unit, pair filter.
+#[derive(ClapArgs, Clone, Debug)]
+pub struct HwConfig {
+    #[command(flatten)]
+    pub datapath: Datapath,
+    #[command(flatten)]
+    pub unit: UnitArgs,
+    /// The filter of a dual-precision pair (docs/precision.md, "Dual precision") [default: bfp
+    /// for a bfpW/FALLBACK pair, else linear].
     #[arg(long, value_enum)]
     pub dual_filter: Option<DualFilter>,
 }
@@ -90,8 +195,7 @@ pub struct HwConfig {
 /// `--dual-filter`: what a pair's filter computes and how it evaluates its bound.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum DualFilter {
-    /// Division-free, its bound on a coarse grid from the subtractors' rounding bound (what
-    /// a hardware filter evaluates).
+    /// Division-free, its bound on a coarse grid from the subtractors' rounding bound.
     Linear,
     /// Division-free, its bound exact.
     LinearExact,
@@ -100,10 +204,10 @@ pub enum DualFilter {
     /// Block floating point, for a bfpW/FALLBACK pair: exact integers, margins per width.
     Bfp,
     /// Block floating point in Plücker form, for a bfpW/FALLBACK pair: per-ray and
-    /// per-triangle blocks, no translation per test, the bfp filter's decisions (the
-    /// model of the rust-hdl filter).
+    /// per-triangle blocks, no translation per test, the bfp filter's decisions.
     Plucker,
-    /// The Plücker filter with sign decisions against short-float margins (model only).
+    /// The Plücker filter with sign decisions against short-float margins (the Plücker lane
+    /// built in rust-hdl).
     PluckerSigns,
 }
 
@@ -118,59 +222,111 @@ impl DualFilter {
             DualFilter::PluckerSigns => FilterKind::Plucker(PluckerDecisions::Signs),
         }
     }
+
+    /// The filter lane built in hardware for this filter (the table admits only these for a
+    /// hardware pair).
+    fn slot_filter(self) -> Option<SlotFilter> {
+        match self {
+            DualFilter::Bfp => Some(SlotFilter::Bfp),
+            DualFilter::PluckerSigns => Some(SlotFilter::Plucker),
+            _ => None,
+        }
+    }
 }
 
-pub fn make(kind: EngineKind, hw: &HwConfig) -> Result<Box<dyn RayEngine>> {
-    let memory = MemoryArgs::default().memory(hw.lanes);
-    Ok(make_scaled(kind, hw, 0, Lane::default(), memory)?.engine)
-}
-
-/// An engine, and for a dual-precision pair a handle on its counters.
+/// A render's engine, with handles on what it reports beside the image.
 pub struct Made {
     pub engine: Box<dyn RayEngine>,
     /// Shares the engine's counters (`--format FILTER/FALLBACK`).
     pub dual: Option<DualIntersector>,
+    /// The Verilated model behind a hardware engine.
+    pub verilated: Option<Verilated>,
 }
 
-/// The engine, its Möller-Trumbore queries scaled by 2^`scale_exp` (model engines only; a
-/// pair scales its filter, its fallback answers the queries as given), the model engine's
-/// lane options `lane` ([`PrecisionArgs::resolve`] checks that only it gets others than the
-/// hardware's), a traversal unit with the scene `memory`.
-pub fn make_scaled(
+/// A Verilated model as a command reports it.
+pub struct Verilated {
+    pub name: String,
+    pub cached: bool,
+    pub build_time: Duration,
+}
+
+impl Verilated {
+    pub fn of<C>(name: String, built: &BuiltModel<C>) -> Verilated {
+        Verilated {
+            name,
+            cached: built.model.cached,
+            build_time: built.build_time,
+        }
+    }
+
+    pub fn of_accelerator(hw: &HwIntersector) -> Verilated {
+        let m = hw.model();
+        Verilated {
+            name: sw_renderer::intersect::Intersector::name(hw),
+            cached: m.model.cached,
+            build_time: m.build_time,
+        }
+    }
+
+    /// `verilated engine="…" cache=hit|miss build_s=…`: whether the model came from the cache
+    /// and the time spent building or loading it.
+    pub fn line(&self) -> Line {
+        Line::labelled("verilated")
+            .kv("engine", &self.name)
+            .kv("cache", if self.cached { "hit" } else { "miss" })
+            .fixed("build_s", self.build_time.as_secs_f64(), 1)
+    }
+}
+
+/// The engine `kind` in `hw`'s configuration, its Möller-Trumbore queries scaled by
+/// 2^`scale_exp` (model engines only; a pair scales its filter, its fallback answers the
+/// queries as given), the model engine's lane options `lane`, a traversal unit's scene memory
+/// chunked unless `chunks` says no.
+pub fn make(
     kind: EngineKind,
     hw: &HwConfig,
     scale_exp: i32,
     lane: Lane,
-    memory: SceneMemory,
+    chunks: &ChunkArgs,
 ) -> Result<Made> {
-    if let (EngineKind::Model, FormatChoice::Pair(pair)) = (kind, hw.format) {
-        let kind = hw
-            .dual_filter
-            .map_or_else(|| FilterKind::default_for(&pair), DualFilter::kind);
-        let dual = DualIntersector::with_filter(Filter::new(pair, scale_exp, kind)?);
-        return Ok(Made {
-            engine: Box::new(dual.clone()),
-            dual: Some(dual),
-        });
-    }
-    if let (EngineKind::Hw, Some(pair)) = (kind, hw.pair_config()?) {
-        return Ok(Made {
-            engine: Box::new(PairIntersector::new(&pair)?),
-            dual: None,
-        });
-    }
-    let engine: Box<dyn RayEngine> = match kind {
-        EngineKind::F32 => Box::new(F32Intersector),
-        EngineKind::Model => Box::new(ModelIntersector {
-            format: hw.single_format()?,
-            scale_exp,
-            edges: lane.edges,
-            advance: lane.advance,
-        }),
-        EngineKind::Hw => Box::new(HwIntersector::new(&hw.top_config()?, Mode::Stream)?),
-        EngineKind::Traversal => Box::new(hw.traversal_engine(scale_exp, lane.advance, memory)?),
+    let mut made = Made {
+        engine: Box::new(F32Intersector),
+        dual: None,
+        verilated: None,
     };
-    Ok(Made { engine, dual: None })
+    match (kind, hw.datapath.format) {
+        (EngineKind::F32, _) => {}
+        (EngineKind::Model, FormatChoice::Pair(pair)) => {
+            let kind = hw
+                .dual_filter
+                .map_or_else(|| FilterKind::default_for(&pair), DualFilter::kind);
+            let dual = DualIntersector::with_filter(Filter::new(pair, scale_exp, kind)?);
+            made.engine = Box::new(dual.clone());
+            made.dual = Some(dual);
+        }
+        (EngineKind::Model, FormatChoice::Single(format)) => {
+            made.engine = Box::new(ModelIntersector {
+                format,
+                scale_exp,
+                edges: lane.edges,
+                advance: lane.advance,
+            });
+        }
+        (EngineKind::Hw, FormatChoice::Pair(_)) => {
+            let pair = PairIntersector::new(&hw.pair_config()?)?;
+            made.verilated = Some(Verilated::of(RayEngine::name(&pair), pair.model()));
+            made.engine = Box::new(pair);
+        }
+        (EngineKind::Hw, FormatChoice::Single(_)) => {
+            let accel = HwIntersector::new(&hw.datapath.top_config()?, Mode::Stream)?;
+            made.verilated = Some(Verilated::of_accelerator(&accel));
+            made.engine = Box::new(accel);
+        }
+        (EngineKind::Traversal, _) => {
+            made.engine = Box::new(hw.traversal_engine(scale_exp, lane.advance, chunks)?);
+        }
+    }
+    Ok(made)
 }
 
 /// Power-of-two scaling of the Möller-Trumbore queries (`--scale`, docs/precision.md).
@@ -189,26 +345,15 @@ fn choice<T: NamedChoice>() -> impl TypedValueParser<Value = T> {
         .try_map(|name| name.parse::<T>())
 }
 
-/// `--advance` of the traversal unit's RTL (`verilog`, `synth` and `cosim`).
+/// `--advance`: where a lane starts a query's ray.
 #[derive(ClapArgs, Clone, Debug)]
-pub struct UnitAdvanceArgs {
-    /// `--unit traversal`: where the unit's lanes start a leaf's queries: none (at the ray's
-    /// origin) or leaf-box (moved to where the box test entered the leaf, the model's
-    /// `--engine traversal --advance leaf-box`; docs/traversal-unit.md) [default: none].
+pub struct AdvanceArg {
+    /// Where a lane starts a query's ray: none (at its origin), triangle-box (moved in fp32 to
+    /// where it enters the triangle's bounding box) or leaf-box (moved to where it enters the
+    /// BVH leaf, as the traversal unit's box test computed it; docs/traversal-unit.md)
+    /// [default: triangle-box for a format-aware model render, else none].
     #[arg(long, value_parser = choice::<Advance>())]
     pub advance: Option<Advance>,
-}
-
-impl UnitAdvanceArgs {
-    /// The advance of `unit`: an error for another than none with the accelerator, whose
-    /// lanes start at the query's origin.
-    pub fn of(&self, unit: UnitKind) -> Result<Advance> {
-        let advance = self.advance.unwrap_or_default();
-        if unit == UnitKind::Mt && advance != Advance::None {
-            bail!("--advance {advance}: the Möller-Trumbore accelerator's lanes start at the query's origin; the leaf advance is the traversal unit's (--unit traversal)");
-        }
-        Ok(advance)
-    }
 }
 
 /// The model lane's options beyond its format (docs/precision.md): the hardware lanes' are
@@ -258,29 +403,24 @@ impl SpawnArgs {
 pub struct PrecisionArgs {
     #[command(flatten)]
     pub spawn: SpawnArgs,
-    /// Scaling of the queries into the format's range, model and traversal engines only
-    /// [default: none].
+    /// Scaling of the queries into the format's range [default: none].
     #[arg(long, value_enum)]
     pub scale: Option<ScaleKind>,
     /// The model lane's edge test: exact (the hardware's) or conservative (widened by its
-    /// running error bound), model engine with one format only [default: exact].
+    /// running error bound) [default: exact].
     #[arg(long, value_parser = choice::<Edges>())]
     pub edges: Option<Edges>,
-    /// Where a lane starts a query's ray: none (at its origin), triangle-box (moved in fp32
-    /// to where it enters the triangle's bounding box; model engine with one format only) or
-    /// leaf-box (moved to where it enters the BVH leaf, as the traversal unit's box test
-    /// computed it; traversal engine only) [default: triangle-box for a format-aware model
-    /// render, else none].
-    #[arg(long, value_parser = choice::<Advance>())]
-    pub advance: Option<Advance>,
+    #[command(flatten)]
+    pub advance: AdvanceArg,
 }
 
 impl PrecisionArgs {
     /// The spawn policy, the scale exponent and the lane options for rendering `scene` with
-    /// `kind` in `hw`'s format.
+    /// `kind` in `hw`'s format (`options::RULES` has checked which of them act on it).
     pub fn resolve(&self, kind: EngineKind, hw: &HwConfig, scene: &Scene) -> Result<Precision> {
+        let format = hw.datapath.format;
         // A pair answers as its fallback (unscaled); only its filter is scaled.
-        let (answers, scaled) = match hw.format {
+        let (answers, scaled) = match format {
             FormatChoice::Single(f) => (f, f),
             FormatChoice::Pair(p) => match p.filter {
                 FilterFormat::Float(filter) => (p.fallback, filter),
@@ -290,58 +430,22 @@ impl PrecisionArgs {
                 FilterFormat::Bfp(_) => (p.fallback, p.fallback),
             },
         };
-        let model = matches!(kind, EngineKind::Model | EngineKind::Traversal);
         // Unscaled unless asked: auto scaling measured no better in any format and worse in
         // e5m14 and the fixed formats (docs/precision.md).
-        let scale = self.scale.unwrap_or(ScaleKind::None);
-        let scale_exp = match scale {
+        let scale_exp = match self.scale.unwrap_or(ScaleKind::None) {
             ScaleKind::None => 0,
-            ScaleKind::Auto if !model => {
-                bail!("--scale auto needs the model or traversal engine (the others see fp32 queries as given)")
-            }
             ScaleKind::Auto => auto_scale_exp(&scaled, &SceneRange::of(scene)?),
         };
         let answer_scale = if answers == scaled { scale_exp } else { 0 };
         let choice = self.spawn.choice(kind, &answers);
-        // The lane options exist in the model of one format only; elsewhere only the
-        // hardware's are accepted.
-        let single_model =
-            kind == EngineKind::Model && matches!(hw.format, FormatChoice::Single(_));
-        if single_model && self.advance == Some(Advance::LeafBox) {
-            bail!("--advance leaf-box needs the traversal engine (--engine traversal): it starts a leaf's queries where the unit's box test entered the leaf; the model engine has no leaves (--advance triangle-box is its per-triangle form)")
-        }
-        let lane = if single_model {
-            Lane {
-                edges: self.edges.unwrap_or_default(),
-                advance: self
-                    .advance
-                    .unwrap_or_else(|| hw_model::advance::default_for(choice)),
-            }
-        } else {
-            let asked = Lane {
-                edges: self.edges.unwrap_or_default(),
-                advance: self.advance.unwrap_or_default(),
-            };
-            // The traversal unit also starts a leaf's queries at the leaf's box entry.
-            let unit_advance = kind == EngineKind::Traversal && asked.advance == Advance::LeafBox;
-            let built = Lane {
-                advance: if unit_advance {
-                    Advance::LeafBox
-                } else {
-                    Advance::None
-                },
-                ..Lane::default()
-            };
-            if asked != built {
-                bail!(
-                    "--edges {} --advance {}: not built for --engine {} with --format {}: --edges conservative and --advance triangle-box are model-only so far (--engine model with one format), --advance leaf-box is the traversal unit's (--engine traversal); the hardware lanes, the traversal unit and dual-precision pairs test exact edges",
-                    asked.edges,
-                    asked.advance,
-                    engine_name(kind),
-                    hw.format
-                )
-            }
-            asked
+        let single_model = kind.target(&format) == Target::Model;
+        let lane = Lane {
+            edges: self.edges.unwrap_or_default(),
+            advance: self.advance.advance.unwrap_or(if single_model {
+                hw_model::advance::default_for(choice)
+            } else {
+                Advance::None
+            }),
         };
         Ok(Precision {
             choice,
@@ -349,49 +453,6 @@ impl PrecisionArgs {
             scale_exp,
             lane,
         })
-    }
-}
-
-/// `--engine`'s spelling of `kind`.
-fn engine_name(kind: EngineKind) -> String {
-    kind.to_possible_value()
-        .map_or_else(|| format!("{kind:?}"), |v| v.get_name().to_string())
-}
-
-/// The traversal unit's scene memory when no `--scene-capacity` is given: the block-RAM
-/// memory a unit of `lanes` lanes carries on the XC7Z020.
-fn default_capacity(lanes: usize) -> SceneCapacity {
-    let (node_bits, triangle_bits) = scene_memory::zynq_address_bits(lanes);
-    let (nodes, triangles) = scene_memory::capacity_for(node_bits, triangle_bits);
-    SceneCapacity {
-        nodes: nodes as u32,
-        triangles: triangles as u32,
-    }
-}
-
-/// `--scene-capacity` and `--no-chunks`: the traversal unit's scene memory.
-#[derive(ClapArgs, Clone, Debug, Default)]
-pub struct MemoryArgs {
-    /// Traversal unit: inner nodes and triangles its scene memory holds, as NODES,TRIANGLES
-    /// (e.g. 2048,4096); larger scenes render in chunked passes [default: the unit's block-RAM
-    /// memory on the XC7Z020: 4096,8192 beside one lane, 2048,4096 beside more].
-    #[arg(long, value_name = "NODES,TRIANGLES", value_parser = parse_capacity)]
-    pub scene_capacity: Option<SceneCapacity>,
-    /// Traversal unit: refuse a scene larger than --scene-capacity instead of chunking it.
-    #[arg(long)]
-    pub no_chunks: bool,
-}
-
-impl MemoryArgs {
-    /// The memory of a unit with `lanes` lanes.
-    pub fn memory(&self, lanes: usize) -> SceneMemory {
-        let capacity = self
-            .scene_capacity
-            .unwrap_or_else(|| default_capacity(lanes));
-        match self.no_chunks {
-            true => SceneMemory::Whole(capacity),
-            false => SceneMemory::Chunked(capacity),
-        }
     }
 }
 
@@ -404,13 +465,58 @@ fn parse_capacity(s: &str) -> Result<SceneCapacity, String> {
             .parse::<u32>()
             .map_err(|e| format!("{}: {e}", expected()))
     };
-    Ok(SceneCapacity {
+    let capacity = SceneCapacity {
         nodes: count(nodes)?,
         triangles: count(triangles)?,
-    })
+    };
+    if capacity.triangles == 0 {
+        return Err(format!(
+            "`{s}`: a scene memory holds at least one triangle (a scene without inner nodes: 0 nodes)"
+        ));
+    }
+    Ok(capacity)
 }
 
-impl HwConfig {
+impl SceneMemoryArg {
+    /// The model's scene memory for a unit of `lanes` lanes: `--scene-memory`, else the one
+    /// the XC7Z020 holds beside them; chunked unless `chunks` says no.
+    pub fn model_memory(&self, lanes: usize, chunks: &ChunkArgs) -> SceneMemory {
+        let capacity = self.scene_memory.unwrap_or_else(|| {
+            let (node_bits, triangle_bits) = scene_memory::zynq_address_bits(lanes);
+            let (nodes, triangles) = scene_memory::capacity_for(node_bits, triangle_bits);
+            SceneCapacity {
+                nodes: nodes as u32,
+                triangles: triangles as u32,
+            }
+        });
+        match chunks.no_chunks {
+            true => SceneMemory::Whole(capacity),
+            false => SceneMemory::Chunked(capacity),
+        }
+    }
+
+    /// The RTL's scene memory as address bits: `--scene-memory` must name one of the memories
+    /// built (in the units typed), else the one the XC7Z020 holds beside `lanes` lanes.
+    pub fn rtl_bits(&self, lanes: usize) -> Result<(usize, usize)> {
+        let Some(c) = self.scene_memory else {
+            return Ok(scene_memory::zynq_address_bits(lanes));
+        };
+        BUILT_MEMORY_BITS
+            .iter()
+            .copied()
+            .find(|&bits| capacity_text(bits) == format!("{},{}", c.nodes, c.triangles))
+            .with_context(|| {
+                format!(
+                    "--scene-memory {},{}: the traversal unit's RTL is built with scene memories of {} (NODES,TRIANGLES)",
+                    c.nodes,
+                    c.triangles,
+                    built_memories()
+                )
+            })
+    }
+}
+
+impl Datapath {
     /// The datapath's one format: a pair is an error here (the model engine and the
     /// Möller-Trumbore hardware take one, [`HwConfig::pair_config`]).
     pub fn single_format(&self) -> Result<Format> {
@@ -431,87 +537,113 @@ impl HwConfig {
         }
     }
 
-    /// The dual-precision pair in hardware (`None` for one format): `--lanes` filter slots
-    /// (bfp, or with `--dual-filter plucker-signs` the Plücker lane) sharing one fp32 lane at
-    /// `--depth`. Only the pairs built in rust-hdl are: its filter width
-    /// (`hdl::dual::WIDTH`), those two filters, 1 to 5 slots.
-    pub fn pair_config(&self) -> Result<Option<PairConfig>> {
-        let FormatChoice::Pair(pair) = self.format else {
-            return Ok(None);
-        };
+    /// The accelerator of this configuration: an error if the format has no hardware or the
+    /// depth or lanes are not built.
+    pub fn top_config(&self) -> Result<TopConfig> {
+        let config = TopConfig::new(self.single_format()?.try_into()?, self.depth, self.lanes);
+        config.validate()?;
+        Ok(config)
+    }
+}
+
+impl HwConfig {
+    /// The dual-precision pair in hardware: `--lanes` filter slots (bfp, or with
+    /// `--dual-filter plucker-signs` the Plücker lane) sharing one fp32 lane at `--depth`.
+    /// Only the pair built in rust-hdl is: its filter width (`hdl::dual::WIDTH`), 1 to 5
+    /// slots.
+    pub fn pair_config(&self) -> Result<PairConfig> {
+        let format = self.datapath.format;
         let built = built_pair();
-        let filter = match self.dual_filter.unwrap_or(DualFilter::Bfp) {
-            DualFilter::Bfp => Some(SlotFilter::Bfp),
-            DualFilter::PluckerSigns => Some(SlotFilter::Plucker),
-            _ => None,
+        let filter = self.dual_filter.unwrap_or(DualFilter::Bfp).slot_filter();
+        let (FormatChoice::Pair(pair), Some(filter)) = (format, filter) else {
+            bail!("--format {format}: the hardware pair is {built}; other pairs are model-only (--engine model)");
         };
-        let Some(filter) = filter.filter(|_| pair == built) else {
-            let asked = self.dual_filter.and_then(|f| f.to_possible_value());
-            let asked = asked.map_or(String::new(), |v| {
-                format!(" --dual-filter {}", v.get_name())
-            });
-            bail!("--format {pair}{asked}: the hardware pairs are {built} with its bfp filter or with plucker-signs; other pairs and filters are model-only (--engine model)");
-        };
+        if pair != built {
+            bail!("--format {pair}: the hardware pair is {built}; other pairs are model-only (--engine model)");
+        }
         let config = PairConfig {
-            slots: self.lanes,
-            depth: self.depth,
+            slots: self.datapath.lanes,
+            depth: self.datapath.depth,
             filter,
         };
         config.check().with_context(|| {
-            format!("--format {pair} --lanes {} (its filter slots)", self.lanes)
+            format!(
+                "--format {pair} --lanes {} --depth {}",
+                self.datapath.lanes, self.datapath.depth
+            )
         })?;
-        Ok(Some(config))
+        Ok(config)
     }
 
     /// The traversal unit's model in this configuration, its Möller-Trumbore queries scaled
-    /// by 2^`scale_exp` and started where `advance` says, holding scenes in `memory`; timed by
-    /// its schedule model when the format has hardware (any other format has no lane latency
-    /// to time with).
+    /// by 2^`scale_exp` and started where `advance` says; timed by its schedule model when
+    /// the format has hardware (any other format has no lane latency to time with). Its depth
+    /// and lanes are the RTL's (1 to 3 lanes); its slots any the schedule model takes.
     pub fn traversal_engine(
         &self,
         scale_exp: i32,
         advance: Advance,
-        memory: SceneMemory,
+        chunks: &ChunkArgs,
     ) -> Result<TraversalEngine> {
-        let format = self.single_format()?;
-        let timing = hw_model::HwFormat::try_from(format).ok().map(|f| {
-            let slots = self.slots as usize;
-            hdl::traversal::timing::unit_timing(f, self.depth, self.lanes, slots, advance)
-        });
+        let d = &self.datapath;
+        let format = d.single_format()?;
+        let timing = match hw_model::HwFormat::try_from(format) {
+            Ok(f) => {
+                // The RTL's checks of depth and lanes, not of its slots and memory: the
+                // schedule model times any slot count, the model holds any memory.
+                let rtl = UnitConfig {
+                    advance,
+                    ..UnitConfig::new(f, d.depth, d.lanes)
+                };
+                rtl.check()?;
+                let slots = self.unit.slots as usize;
+                let t = hdl::traversal::timing::unit_timing(f, d.depth, d.lanes, slots, advance);
+                t.check()?;
+                Some(t)
+            }
+            Err(_) => None,
+        };
         Ok(TraversalEngine {
             format,
             stack_depth: DEFAULT_STACK_DEPTH,
             scale_exp,
             advance,
             timing,
-            memory,
-        nodes: hw_model::traversal::NodeFormat::Bvh2Fp32,
+            memory: self.unit.memory.model_memory(d.lanes, chunks),
+            nodes: hw_model::traversal::NodeFormat::Bvh2Fp32,
         })
     }
 
-    /// The traversal unit of this configuration, its scene memory the one that fits the
-    /// XC7Z020 beside `lanes` lanes, its lanes started where `advance` says: an error naming
-    /// what the RTL does not build.
+    /// The traversal unit's RTL in this configuration, its lanes started where `advance`
+    /// says: an error naming what the RTL does not build.
     pub fn unit_config(&self, advance: Advance) -> Result<UnitConfig> {
-        let mut config = UnitConfig::new(self.single_format()?.try_into()?, self.depth, self.lanes);
-        config.slots = self.slots as usize;
+        let d = &self.datapath;
+        let mut config = UnitConfig::new(d.single_format()?.try_into()?, d.depth, d.lanes);
+        config.slots = self.unit.slots as usize;
         config.advance = advance;
-        if let Some(c) = self.unit_memory {
-            let (node_bits, triangle_bits) =
-                scene_memory::address_bits_for(c.nodes as usize, c.triangles as usize);
-            config.memory.node_bits = node_bits;
-            config.memory.triangle_bits = triangle_bits;
-        }
+        (config.memory.node_bits, config.memory.triangle_bits) =
+            self.unit.memory.rtl_bits(d.lanes)?;
         config.check()?;
         Ok(config)
     }
+}
 
-    /// The accelerator of this configuration: an error if the format has no hardware.
-    pub fn top_config(&self) -> Result<TopConfig> {
-        Ok(TopConfig::new(
-            self.single_format()?.try_into()?,
-            self.depth,
-            self.lanes,
-        ))
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_built_memories_are_named_in_the_units_typed() {
+        assert_eq!(built_memories(), "16,32, 512,1024, 2048,4096 and 4096,8192");
+        let arg = |nodes, triangles| SceneMemoryArg {
+            scene_memory: Some(SceneCapacity { nodes, triangles }),
+        };
+        assert_eq!(arg(2048, 4096).rtl_bits(1).unwrap(), (11, 12));
+        let e = arg(100, 100).rtl_bits(1).unwrap_err().to_string();
+        assert!(e.starts_with("--scene-memory 100,100: "), "{e}");
+        assert_eq!(
+            SceneMemoryArg::default().rtl_bits(1).unwrap(),
+            scene_memory::zynq_address_bits(1)
+        );
     }
 }

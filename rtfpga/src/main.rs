@@ -1,6 +1,7 @@
-//! `rtfpga`: render scenes in software or through the accelerator, compare images, list
-//! number formats, generate and measure the hardware. The CLI contract is in the repository's
-//! `docs/architecture.md` ("CLI contract"); each subcommand lives in its own module.
+//! `rtfpga`: render scenes in software, through the bit-accurate models or the Verilated
+//! hardware, compare images, list number formats, generate and measure the hardware. The CLI
+//! contract is in the repository's `docs/architecture.md` ("CLI contract"); each subcommand
+//! lives in its own module, which option acts where in `options`.
 
 mod cmd_bench;
 mod cmd_compare;
@@ -15,14 +16,21 @@ mod cmd_synth;
 mod cmd_trace;
 mod cmd_verilog;
 mod engine;
+mod options;
+mod report;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
+
+use options::Given;
 
 #[derive(Parser)]
 #[command(
     name = "rtfpga",
     version,
-    about = "FPGA ray-triangle intersection accelerator toolkit"
+    about = "An FPGA ray-tracing core designed and verified in Rust: the scene in block RAM, BVH \
+             traversal and ray-triangle intersection in hardware (rust-hdl, a bit-accurate \
+             model, Verilator co-simulation, yosys resources; Zynq XC7Z020). It began as the \
+             Möller-Trumbore accelerator of a 2021 MSc thesis, which it also builds."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -31,7 +39,9 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Render a scene (thesis scene directory, .toml scene, or built-in name) to PNG.
+    /// Render a scene (thesis scene directory, .toml scene, or built-in name) to PNG with an
+    /// engine: software f32, the bit-accurate model, the Verilated accelerator, or the
+    /// traversal unit's model.
     Render(cmd_render::Args),
     /// Compare two images: PSNR (last line `psnr_db=...`) and an optional error heat-map.
     Compare(cmd_compare::Args),
@@ -43,13 +53,17 @@ enum Command {
     Golden(cmd_golden::Args),
     /// Projected ZedBoard frame time of an accelerator design; --calibration: the model vs the thesis.
     Project(cmd_project::Args),
-    /// Render through the Verilated accelerator; tests, cycles, lane utilisation, speed, PSNR vs software.
+    /// Render through the Verilated accelerator or traversal unit; cycles, utilisation,
+    /// simulation speed, PSNR vs software.
     Cosim(cmd_cosim::Args),
-    /// Record a render's ray-triangle queries to a trace file, or replay one into model/hardware.
+    /// Record a render's ray-triangle queries to a trace file, or replay one into the
+    /// bit-accurate model and/or the Verilated accelerator.
     Trace(cmd_trace::Args),
-    /// Generate the accelerator's Verilog (rtfpga_top.v), C header/driver and config.json.
+    /// Generate the Verilog, C header/driver and config.json of the accelerator or the
+    /// traversal unit.
     Verilog(cmd_verilog::Args),
-    /// yosys resources and logic depth of the accelerator or one operator; lanes that fit.
+    /// yosys resources and logic depth of the accelerator, a pair, the traversal unit or one
+    /// operator; lanes that fit.
     Synth(cmd_synth::Args),
     /// A scene as the traversal unit's memory holds it: sizes, and the image's words.
     SceneImage(cmd_scene_image::Args),
@@ -69,18 +83,27 @@ fn main() -> std::process::ExitCode {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
-    let cli = Cli::parse();
+    // An interrupted Verilator build leaves no half-built model in the cache.
+    let _ = ctrlc::set_handler(|| {
+        sim::verilator::remove_unfinished_builds();
+        std::process::exit(130);
+    });
+    sim::verilator::show_build_progress(true);
+    let cmd = options::annotate(Cli::command());
+    let matches = cmd.clone().get_matches();
+    let given = Given::of(&cmd, &matches);
+    let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
     let result = match cli.command {
-        Command::Render(a) => cmd_render::run(a),
+        Command::Render(a) => cmd_render::run(a, &given),
         Command::Compare(a) => cmd_compare::run(a),
         Command::Formats(a) => cmd_formats::run(a),
         Command::Golden(a) => cmd_golden::run(a),
-        Command::Verilog(a) => cmd_verilog::run(a),
-        Command::Synth(a) => cmd_synth::run(a),
-        Command::Bench(a) => cmd_bench::run(a),
-        Command::Project(a) => cmd_project::run(a),
-        Command::Cosim(a) => cmd_cosim::run(a),
-        Command::Trace(a) => cmd_trace::run(a),
+        Command::Verilog(a) => cmd_verilog::run(a, &given),
+        Command::Synth(a) => cmd_synth::run(a, &given),
+        Command::Bench(a) => cmd_bench::run(a, &given),
+        Command::Project(a) => cmd_project::run(a, &given),
+        Command::Cosim(a) => cmd_cosim::run(a, &given),
+        Command::Trace(a) => cmd_trace::run(a, &given),
         Command::SceneImage(a) => cmd_scene_image::run(a),
         Command::Sweep(a) => cmd_sweep::run(a),
         Command::SweepJob(a) => cmd_sweep::run_job(a),

@@ -10,7 +10,6 @@
 //! answering is a timeout, never a silent miss.
 
 use std::sync::{Arc, Mutex};
-use std::time::Duration;
 
 use hdl::dual::pair::{dual_pair_verilog, SlotFilter, TAG};
 use hdl::dual::plucker_operands::{operand_words, OPERAND_BITS, OPERAND_WORDS};
@@ -57,13 +56,20 @@ impl std::fmt::Display for PairConfig {
 }
 
 impl PairConfig {
-    /// An error unless the slot count is one a pair is built with.
+    /// An error unless the slot count is one a pair is built with and its fp32 lane has
+    /// `depth`'s pipeline registers.
     pub fn check(&self) -> Result<(), PairError> {
-        if SLOTS.contains(&self.slots) {
-            Ok(())
-        } else {
-            Err(PairError::Slots(self.slots))
+        if !SLOTS.contains(&self.slots) {
+            return Err(PairError::Slots(self.slots));
         }
+        let max = hdl::mt::max_depth(hw_model::HwFormat::FP32);
+        if self.depth > max {
+            return Err(PairError::Depth {
+                depth: self.depth,
+                max,
+            });
+        }
+        Ok(())
     }
 }
 
@@ -71,6 +77,8 @@ impl PairConfig {
 pub enum PairError {
     #[error("a dual-precision pair has {} to {} filter slots, not {0}", SLOTS.start(), SLOTS.end())]
     Slots(usize),
+    #[error("depth = {depth}: the pair's fp32 lane has pipeline registers for depth 0 to {max}")]
+    Depth { depth: usize, max: usize },
     #[error(transparent)]
     Cosim(#[from] CosimError),
 }
@@ -340,9 +348,9 @@ impl PairIntersector {
         self.model.config
     }
 
-    /// Time spent generating the Verilog and building (or loading) the model.
-    pub fn build_time(&self) -> Duration {
-        self.model.build_time
+    /// The Verilated model: whether it came from the cache, the time spent on it.
+    pub fn model(&self) -> &PairModel {
+        &self.model
     }
 
     pub fn stats(&self) -> PairStats {

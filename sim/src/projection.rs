@@ -6,6 +6,7 @@
 
 pub mod calibration;
 pub mod cost;
+pub mod fit_store;
 pub mod workload;
 
 pub use calibration::{

@@ -1302,6 +1302,9 @@ pub type TraversalCore11x12 =
 pub type TraversalCore12x13 =
     TraversalCore<12, 13, 13, 14, 438, { triangle_record_bits() }, 32, 5, 6, 10, 59>;
 
+/// The (node, triangle) address bits of the scene memories built, one per alias above.
+pub const BUILT_MEMORY_BITS: [(usize, usize); 4] = [(4, 5), (9, 10), (11, 12), (12, 13)];
+
 /// Slots of every built unit, and the deepest stack its stack RAM holds.
 pub const UNIT_SLOTS: usize = super::timing::DEFAULT_SLOTS;
 // The aliases (here and in `unit_top`) spell S = 32, SB = 5 as numbers.
@@ -1330,13 +1333,19 @@ pub struct UnitConfig {
 pub enum UnitConfigError {
     #[error("{0} Möller-Trumbore lanes: the traversal unit is built with 1 to {MAX_LANES}")]
     Lanes(usize),
+    #[error("depth = {depth}: format {format} has pipeline registers for depth 0 to {max}")]
+    Depth {
+        format: HwFormat,
+        depth: usize,
+        max: usize,
+    },
     #[error("the traversal unit's RTL has {UNIT_SLOTS} ray slots, not {0}")]
     Slots(usize),
     #[error("a stack of {0} entries: the unit's stacks hold 1 to {MAX_STACK_DEPTH}")]
     StackDepth(usize),
     #[error("the traversal unit's RTL advances to the leaf box (leaf-box) or not at all (none), not {}", .0.name())]
     Advance(Advance),
-    #[error("no scene memory of {node_bits} node and {triangle_bits} triangle address bits is built (sizes: 4/5, 9/10, 11/12, 12/13)")]
+    #[error("no scene memory of {node_bits} node and {triangle_bits} triangle address bits is built (sizes: {})", built_memory_bits())]
     Memory {
         node_bits: usize,
         triangle_bits: usize,
@@ -1378,6 +1387,14 @@ impl UnitConfig {
         if !(1..=MAX_LANES).contains(&self.lanes) {
             return Err(UnitConfigError::Lanes(self.lanes));
         }
+        let max = crate::mt::max_depth(self.format);
+        if self.depth > max {
+            return Err(UnitConfigError::Depth {
+                format: self.format,
+                depth: self.depth,
+                max,
+            });
+        }
         if self.slots != UNIT_SLOTS {
             return Err(UnitConfigError::Slots(self.slots));
         }
@@ -1388,13 +1405,22 @@ impl UnitConfig {
             return Err(UnitConfigError::Advance(self.advance));
         }
         match (self.memory.node_bits, self.memory.triangle_bits) {
-            (4, 5) | (9, 10) | (11, 12) | (12, 13) => Ok(()),
+            bits if BUILT_MEMORY_BITS.contains(&bits) => Ok(()),
             (node_bits, triangle_bits) => Err(UnitConfigError::Memory {
                 node_bits,
                 triangle_bits,
             }),
         }
     }
+}
+
+/// [`BUILT_MEMORY_BITS`] as "4/5, 9/10, …".
+fn built_memory_bits() -> String {
+    let sizes: Vec<String> = BUILT_MEMORY_BITS
+        .iter()
+        .map(|(n, t)| format!("{n}/{t}"))
+        .collect();
+    sizes.join(", ")
 }
 
 /// The unit's Verilog (rust-hdl's, top module `top`): the core and the lane of the

@@ -31,7 +31,7 @@ pub const DMA_ACCESSES_PER_BATCH: f64 = 8.0;
 pub const DMA_ACCESSES_PER_LOAD: f64 = DMA_ACCESSES_PER_BATCH / 2.0;
 
 /// The board's fitted constants.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Board {
     /// ARM time per ray for everything but the ray-triangle tests (ray generation, shading,
     /// recursion, writing the pixel).

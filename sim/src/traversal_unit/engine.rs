@@ -80,13 +80,11 @@ impl UnitEngine {
 }
 
 impl RayEngine for UnitEngine {
-    /// "traversal unit fp32 depth 5 lanes 1 (Verilated)".
+    /// "hw traversal fp32 d5 l1": like the accelerator's "hw fp32 d5 l1 stream" (the
+    /// bit-accurate model of the unit is "traversal model fp32").
     fn name(&self) -> String {
         let c = self.config();
-        format!(
-            "traversal unit {} depth {} lanes {} (Verilated)",
-            c.format, c.depth, c.lanes
-        )
+        format!("hw traversal {} d{} l{}", c.format, c.depth, c.lanes)
     }
 
     fn prepare<'a>(

@@ -2,6 +2,7 @@
 
 use super::cache;
 use super::interface::Interface;
+use super::progress::BuildProgress;
 use super::shim;
 use super::toolchain::{run, Toolchain};
 use crate::SimError;
@@ -47,14 +48,19 @@ fn cxx_flags(tc: &Toolchain, trace: bool) -> Vec<String> {
     flags
 }
 
-/// Compiles each `(source, object, opt)` with `flags`, on as many threads as there are cores.
+/// Compiles each `(source, object, opt)` with `flags`, on as many threads as there are cores,
+/// counting the files done in `progress` under `stage`.
 fn compile_all(
     tc: &Toolchain,
     flags: &[String],
     jobs: &[(PathBuf, PathBuf, &str)],
     include: &Path,
+    progress: &BuildProgress,
+    stage: &str,
 ) -> Result<(), SimError> {
     let next = AtomicUsize::new(0);
+    let done = AtomicUsize::new(0);
+    progress.compiled(stage, 0, jobs.len());
     let first_error: Mutex<Option<SimError>> = Mutex::new(None);
     let threads = std::thread::available_parallelism()
         .map_or(1, |n| n.get())
@@ -81,8 +87,14 @@ fn compile_all(
                     "compiling {}",
                     src.file_name().unwrap_or_default().to_string_lossy()
                 );
-                if let Err(e) = run(cmd, "c++ compiler", &what) {
-                    first_error.lock().unwrap().get_or_insert(e);
+                match run(cmd, "c++ compiler", &what) {
+                    Ok(_) => {
+                        let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+                        progress.compiled(stage, n, jobs.len());
+                    }
+                    Err(e) => {
+                        first_error.lock().unwrap().get_or_insert(e);
+                    }
                 }
             });
         }
@@ -90,8 +102,13 @@ fn compile_all(
     first_error.into_inner().unwrap().map_or(Ok(()), Err)
 }
 
-/// Verilator's runtime as a static library in the cache, built on first use.
-pub fn runtime(tc: &Toolchain, cache_root: &Path) -> Result<PathBuf, SimError> {
+/// Verilator's runtime as a static library in the cache, built on first use (reported in
+/// `progress`).
+pub fn runtime(
+    tc: &Toolchain,
+    cache_root: &Path,
+    progress: &BuildProgress,
+) -> Result<PathBuf, SimError> {
     let flags = cxx_flags(tc, true);
     let name = format!(
         "runtime-{}",
@@ -108,7 +125,7 @@ pub fn runtime(tc: &Toolchain, cache_root: &Path) -> Result<PathBuf, SimError> {
                 )
             })
             .collect();
-        compile_all(tc, &flags, &jobs, tmp)?;
+        compile_all(tc, &flags, &jobs, tmp, progress, "Verilator's runtime")?;
         let mut ar = Command::new("ar");
         ar.arg("rcs")
             .arg(tmp.join(RUNTIME_LIB))
@@ -145,8 +162,10 @@ pub fn verilator_args(top: &str, trace: bool, extra: &[String]) -> Vec<String> {
     args
 }
 
-/// Builds `dir/model.so` from `verilog` and the shim for `iface`.
+/// Builds `dir/model.so` from `verilog` and the shim for `iface`, reporting in `progress`.
+#[allow(clippy::too_many_arguments)]
 pub fn model(
+    progress: &BuildProgress,
     tc: &Toolchain,
     runtime_lib: &Path,
     dir: &Path,
@@ -160,6 +179,7 @@ pub fn model(
     std::fs::write(&v_path, verilog).map_err(|e| SimError::io(&v_path, e))?;
     let mut cmd = Command::new(&tc.verilator);
     cmd.args(verilator_args).arg("-Mdir").arg(&obj).arg(&v_path);
+    progress.stage("verilating");
     run(cmd, "verilator", "verilating the design")?;
 
     // The shim names the ports as Verilator did, reserved words renamed included.
@@ -183,7 +203,14 @@ pub fn model(
             jobs.push((src.clone(), src.with_extension("o"), opt));
         }
     }
-    compile_all(tc, &cxx_flags(tc, trace), &jobs, &obj)?;
+    compile_all(
+        tc,
+        &cxx_flags(tc, trace),
+        &jobs,
+        &obj,
+        progress,
+        "compiling",
+    )?;
 
     let mut link = Command::new(&tc.cxx);
     link.args(["-shared", "-fPIC", "-o"])
@@ -197,6 +224,7 @@ pub fn model(
             "-pthread",
             "-latomic",
         ]);
+    progress.stage("linking");
     run(link, "c++ compiler", "linking the model")?;
     // The intermediate files are large and not needed once the model is linked.
     std::fs::remove_dir_all(&obj).map_err(|e| SimError::io(&obj, e))?;

@@ -12,15 +12,17 @@ mod interface;
 mod model;
 mod pipelined;
 mod ports;
+mod progress;
 mod shim;
 mod toolchain;
 
 pub use built::{BuiltModel, BuiltModels};
-pub use cache::default_dir as default_cache_dir;
+pub use cache::{default_dir as default_cache_dir, remove_unfinished_builds};
 pub use interface::Interface;
 pub use model::{Model, VerilatedModel};
 pub use pipelined::run_pipelined;
 pub use ports::{parse_ports, Direction, Port};
+pub use progress::show_build_progress;
 pub use toolchain::find_on_path;
 
 use crate::SimError;
@@ -111,18 +113,24 @@ pub fn build(spec: &ModelSpec, options: &BuildOptions) -> Result<Model, SimError
     let (dir, cached) = if root.join(&name).is_dir() {
         (root.join(&name), true)
     } else {
-        let runtime = compile::runtime(&tc, &root)?;
-        cache::get_or_build(&root, &name, |tmp| {
-            compile::model(
-                &tc,
-                &runtime,
-                tmp,
-                &spec.verilog,
-                &args,
-                &iface,
-                options.trace,
-            )
-        })?
+        let progress =
+            progress::BuildProgress::start(&format!("the Verilated model {}", &name[..14]), &root);
+        let built = compile::runtime(&tc, &root, &progress).and_then(|runtime| {
+            cache::get_or_build(&root, &name, |tmp| {
+                compile::model(
+                    &progress,
+                    &tc,
+                    &runtime,
+                    tmp,
+                    &spec.verilog,
+                    &args,
+                    &iface,
+                    options.trace,
+                )
+            })
+        });
+        progress.finish(built.is_ok());
+        built?
     };
     Model::load(&dir.join(compile::MODEL_LIB), iface, cached, options.trace)
 }

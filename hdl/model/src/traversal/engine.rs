@@ -45,6 +45,9 @@ impl RayEngine for TraversalEngine {
         &'a self,
         scene: &'a PreparedScene,
     ) -> Result<Box<dyn RayCaster + 'a>, EngineError> {
+        if let Some(t) = &self.timing {
+            t.check()?;
+        }
         let image = SceneImage::from_words(&SceneImage::new(scene).to_words())?;
         Ok(Box::new(Caster {
             model: ChunkedModel::new(

@@ -32,6 +32,40 @@ pub struct UnitTiming {
     pub pop_latency: u64,
 }
 
+/// A unit the schedule model cannot time.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum TimingError {
+    #[error("a unit of {0} ray slots: it needs at least one")]
+    NoSlots(usize),
+    #[error("{lanes} Möller-Trumbore lanes for {slots} ray slots: each lane serves its own slots, so 1 to {slots}")]
+    Lanes { lanes: usize, slots: usize },
+    #[error("{ports} box ports for {slots} ray slots: each port serves its own slots, so 1 to {slots}")]
+    BoxPorts { ports: usize, slots: usize },
+}
+
+impl UnitTiming {
+    /// Whether the schedule model can time this unit: a slot, and 1 lane (box port) to one per
+    /// slot.
+    pub fn check(&self) -> Result<(), TimingError> {
+        if self.slots == 0 {
+            return Err(TimingError::NoSlots(self.slots));
+        }
+        if !(1..=self.slots).contains(&self.lanes) {
+            return Err(TimingError::Lanes {
+                lanes: self.lanes,
+                slots: self.slots,
+            });
+        }
+        if !(1..=self.slots).contains(&self.box_ports) {
+            return Err(TimingError::BoxPorts {
+                ports: self.box_ports,
+                slots: self.slots,
+            });
+        }
+        Ok(())
+    }
+}
+
 /// What a schedule took.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Schedule {
@@ -86,12 +120,10 @@ impl Slot {
     }
 }
 
-/// The cycles of one wavefront whose rays walk `walks` (in the order they enter).
+/// The cycles of one wavefront whose rays walk `walks` (in the order they enter), for a
+/// unit that passes [`UnitTiming::check`] (its callers check it where the timing enters).
 pub fn schedule(t: &UnitTiming, walks: &[Vec<Step>]) -> Schedule {
-    assert!(
-        t.slots > 0 && t.lanes > 0 && t.box_ports > 0,
-        "a unit needs slots, lanes and box ports"
-    );
+    debug_assert!(t.check().is_ok(), "{t:?}: {:?}", t.check());
     let free = Slot {
         ray: 0,
         step: 0,
@@ -233,6 +265,30 @@ mod tests {
         assert!(one.cycles > 64 * 40, "{one:?}");
         // 16 slots keep the box port busy: about one box test a cycle.
         assert!(many.cycles < 256 + 64, "{many:?}");
+    }
+
+    #[test]
+    fn a_unit_without_slots_or_with_more_lanes_than_slots_is_refused() {
+        assert_eq!(T.check(), Ok(()));
+        assert_eq!(
+            UnitTiming { slots: 0, ..T }.check(),
+            Err(TimingError::NoSlots(0))
+        );
+        assert_eq!(
+            UnitTiming { lanes: 0, ..T }.check(),
+            Err(TimingError::Lanes { lanes: 0, slots: 1 })
+        );
+        let e = UnitTiming {
+            lanes: 3,
+            slots: 2,
+            ..T
+        }
+        .check()
+        .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "3 Möller-Trumbore lanes for 2 ray slots: each lane serves its own slots, so 1 to 2"
+        );
     }
 
     #[test]
