@@ -8,6 +8,7 @@
 
 use hw_model::traversal::scene_image::Link;
 use hw_model::traversal::wide::box_test::{wide_box_test, NodeEntry, WideRay};
+use hw_model::traversal::wide::cases::{node_inside, random_case};
 use hw_model::traversal::wide::{Child, WideNode};
 use num_bigint::BigInt;
 use rand::rngs::StdRng;
@@ -121,113 +122,6 @@ fn child_planes(node: &WideNode, child: &Child, pad: f32) -> ([BigInt; 3], [BigI
     )
 }
 
-fn f32_of(rng: &mut StdRng, magnitude: f32) -> f32 {
-    let x: f32 = rng.gen_range(-1.0..1.0);
-    x * magnitude
-}
-
-/// An adversarial direction component.
-fn component(rng: &mut StdRng) -> f32 {
-    match rng.gen_range(0..10) {
-        0 => 0.0,
-        1 => -0.0,
-        2 => f32::from_bits(rng.gen_range(1..0x80_0000)) * if rng.gen() { 1.0 } else { -1.0 },
-        3 => f32_of(rng, 1e-6),
-        4 => f32_of(rng, 1e20),
-        _ => f32_of(rng, 1.0),
-    }
-}
-
-struct Case {
-    node: WideNode,
-    orig: [f32; 3],
-    dir: [f32; 3],
-    bound: f32,
-}
-
-fn random_node(rng: &mut StdRng, width: usize, scale: f32) -> WideNode {
-    let exp_base = scale.log2().floor() as i32 - 8;
-    WideNode {
-        origin: std::array::from_fn(|_| f32_of(rng, scale * 4.0)),
-        exp: std::array::from_fn(|_| (exp_base + rng.gen_range(-3..=1)).clamp(-128, 127) as i8),
-        children: (0..rng.gen_range(1..=width))
-            .map(|k| {
-                let lo: [u8; 3] = std::array::from_fn(|_| rng.gen());
-                let hi = std::array::from_fn(|a| {
-                    if rng.gen_range(0..4) == 0 {
-                        lo[a]
-                    } else {
-                        rng.gen_range(lo[a]..=255)
-                    }
-                });
-                Child {
-                    lo,
-                    hi,
-                    link: Link {
-                        first: k as u32,
-                        count: 1,
-                    },
-                }
-            })
-            .collect(),
-    }
-}
-
-/// A point of the child's box: a corner, an edge or face point, or inside (rounded to f32).
-fn box_point(rng: &mut StdRng, node: &WideNode, child: &Child) -> [f32; 3] {
-    std::array::from_fn(|a| {
-        let q = match rng.gen_range(0..3) {
-            0 => f64::from(child.lo[a]),
-            1 => f64::from(child.hi[a]),
-            _ => rng.gen_range(f64::from(child.lo[a])..=f64::from(child.hi[a])),
-        };
-        (f64::from(node.origin[a]) + q * 2f64.powi(i32::from(node.exp[a]))) as f32
-    })
-}
-
-fn random_case(rng: &mut StdRng, width: usize) -> Case {
-    let scale = 2f32.powi(rng.gen_range(-40..40));
-    let node = random_node(rng, width, scale);
-    let child = node.children[rng.gen_range(0..node.children.len())];
-    let (orig, dir) = match rng.gen_range(0..5) {
-        // Aimed at a corner, edge or face point of a child, from outside or inside, or from
-        // far away (where the fp32 offset α is large against the node: its rounding matters).
-        0..=2 => {
-            let target = box_point(rng, &node, &child);
-            let far = 2f32.powi(rng.gen_range(3..20));
-            let orig = match rng.gen_range(0..3) {
-                0 => box_point(rng, &node, &child),
-                1 => std::array::from_fn(|a| node.origin[a] + f32_of(rng, scale * 8.0)),
-                _ => std::array::from_fn(|a| node.origin[a] + f32_of(rng, scale * far)),
-            };
-            let dir = std::array::from_fn(|a| target[a] - orig[a]);
-            (orig, dir)
-        }
-        // An origin on a face or corner, any direction.
-        3 => (
-            box_point(rng, &node, &child),
-            std::array::from_fn(|_| component(rng)),
-        ),
-        _ => (
-            std::array::from_fn(|a| node.origin[a] + f32_of(rng, scale * 8.0)),
-            std::array::from_fn(|_| component(rng)),
-        ),
-    };
-    let bound = match rng.gen_range(0..5) {
-        0 => f32::INFINITY,
-        1 => f32::MAX,
-        2 => rng.gen_range(0.0..2.0),
-        3 => 0.0,
-        _ => rng.gen_range(0.0..1e6),
-    };
-    Case {
-        node,
-        orig,
-        dir,
-        bound,
-    }
-}
-
 /// Checks `node`'s test at `at` for `ray` against the exact test, every exit also capped at
 /// `cap` (the parent's exact exit: a node's children lie in its box); returns per child its
 /// exact `(near, far)` where entered.
@@ -279,37 +173,6 @@ fn check(
         exact_entered.push(Some((near, far)));
     }
     exact_entered
-}
-
-/// A node inside `child`'s box on `parent`'s grid: its grid starts at the child's lower
-/// corner (rounded up into the box) and spans at most the child's extent.
-fn node_inside(rng: &mut StdRng, parent: &WideNode, child: &Child, width: usize) -> WideNode {
-    let mut node = random_node(rng, width, 1.0);
-    for a in 0..3 {
-        let step = 2f64.powi(i32::from(parent.exp[a]));
-        let lo = f64::from(parent.origin[a]) + f64::from(child.lo[a]) * step;
-        let hi = f64::from(parent.origin[a]) + f64::from(child.hi[a]) * step;
-        let mut origin = lo as f32;
-        if f64::from(origin) < lo {
-            origin = origin.next_up();
-        }
-        let room = hi - f64::from(origin);
-        // The finest step of the child's grid: 255 of them fit the room.
-        let e = if room > 0.0 {
-            ((room / 255.0).log2().floor() as i32).clamp(-128, 127)
-        } else {
-            -128
-        };
-        node.origin[a] = origin;
-        node.exp[a] = e as i8;
-        if room <= 0.0 {
-            // A flat child: its descendants sit on one plane.
-            node.children
-                .iter_mut()
-                .for_each(|c| (c.lo[a], c.hi[a]) = (0, 0));
-        }
-    }
-    node
 }
 
 fn run(seed: u64, cases: usize, padded: bool) -> (usize, usize) {

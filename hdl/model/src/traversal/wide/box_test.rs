@@ -248,7 +248,9 @@ pub fn wide_box_test(ray: &WideRay, node: &WideNode, at: NodeEntry) -> Vec<Enter
     if tau >= OFFSET_SAT as i128 {
         return unknown();
     }
-    let tau = tau as i64;
+    // A walk's t0 is never negative; a negative one counts as 0 (a later start, within the
+    // exact test's window [0, t_hi]), so that the offsets below keep within 48 bits.
+    let tau = tau.max(0) as i64;
     let axes: [Axis; 3] = std::array::from_fn(|a| {
         let inv = bits(ray.inv_dir[a]);
         let positive = inv & 0x8000_0000 == 0;
@@ -260,12 +262,16 @@ pub fn wide_box_test(ray: &WideRay, node: &WideNode, at: NodeEntry) -> Vec<Enter
         // 2^-126; where that could reach a quarter of the grid's step, this axis bounds
         // nothing (the margin below has half a step for both).
         // A reciprocal flushed to zero (|d| ≥ 2^126) is no slope either.
-        let inv_exp = exponent(inv).expect("the reciprocal is finite");
+        // The ray setup's reciprocal is finite; a non-finite word bounds nothing either.
+        let Some(inv_exp) = exponent(inv) else {
+            return no_bound;
+        };
         if inv_exp == -127 || (inv_exp - 125).max(-126) + shift > -2 {
             return no_bound;
         }
         let (Some((a_lo, a_hi)), Some((_, pad))) =
-            (scaled(alpha[a], shift), scaled(bits(ray.pad_t[a]), shift))
+            // pad_t is a magnitude (`pad·|inv|`): its sign bit is not read.
+            (scaled(alpha[a], shift), scaled(bits(ray.pad_t[a]) & 0x7FFF_FFFF, shift))
         else {
             return no_bound;
         };

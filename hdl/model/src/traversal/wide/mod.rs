@@ -17,6 +17,8 @@
 //! bounds of every triangle under it, exactly, since the box test's soundness rests on it.
 
 pub mod box_test;
+#[cfg(feature = "strategies")]
+pub mod cases;
 pub mod image;
 
 use super::scene_image::{ImageTriangle, Link, SceneImage};
