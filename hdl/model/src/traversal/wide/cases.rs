@@ -2,12 +2,13 @@
 //! children of every shape, and rays aimed at their corners, edges and faces from inside,
 //! nearby and far away, with zero, subnormal and huge direction components — the inputs the
 //! box test's soundness test (hw-model), the RTL's tests (hdl) and its co-simulation (sim)
-//! share.
+//! share; and whole node tests ([`random_test`]) for the RTL, special words included.
 
 use crate::traversal::scene_image::Link;
 use rand::rngs::StdRng;
 use rand::Rng;
 
+use super::box_test::{wide_box_test, NodeEntry, WideRay, WIDTH_MIN, WIDTH_UNBOUNDED};
 use super::{Child, WideNode};
 
 /// A uniform value in `(−magnitude, magnitude)`.
@@ -153,4 +154,101 @@ pub fn node_inside(rng: &mut StdRng, parent: &WideNode, child: &Child, width: us
         }
     }
     node
+}
+
+/// One box test of a wide node: the ray, the node and where the walk entered it.
+#[derive(Clone, Debug)]
+pub struct NodeTest {
+    pub ray: WideRay,
+    pub node: WideNode,
+    pub at: NodeEntry,
+}
+
+/// An fp32 word that is often special: ±0, ±∞, NaN, a subnormal, the largest finite value,
+/// a power of two from 2^-126 to 2^127, a random finite value or random bits.
+pub fn special_word(rng: &mut StdRng) -> f32 {
+    let sign = if rng.gen() { 1.0 } else { -1.0 };
+    sign * match rng.gen_range(0..9) {
+        0 => 0.0,
+        1 => f32::INFINITY,
+        2 => f32::NAN,
+        3 => f32::from_bits(rng.gen_range(1..0x80_0000)),
+        4 => f32::MAX,
+        5 => 2f32.powi(rng.gen_range(-126..=127)),
+        6 => {
+            let magnitude = 2f32.powi(rng.gen_range(-40..40));
+            f32_of(rng, magnitude)
+        }
+        _ => f32::from_bits(rng.gen()),
+    }
+}
+
+/// A node test of up to `width` children, in turn: a [`random_case`] at the root; one level
+/// below it (a node inside a child the root's test entered, entered where that test said);
+/// a random case entered anywhere (any `t0`, any width exponent); and a random case whose
+/// ray and entry words are [`special_word`]s (with inverted codes too) — words the ray setup
+/// and a walk never produce, which the stage must still answer as the model does.
+pub fn random_test(rng: &mut StdRng, width: usize) -> NodeTest {
+    let case = random_case(rng, width);
+    let ray = WideRay::new(case.orig, case.dir, case.bound);
+    match rng.gen_range(0..4) {
+        0 => NodeTest {
+            ray,
+            node: case.node,
+            at: NodeEntry::ROOT,
+        },
+        1 => {
+            let entered = wide_box_test(&ray, &case.node, NodeEntry::ROOT);
+            let Some(e) = entered.get(rng.gen_range(0..entered.len().max(1))) else {
+                return NodeTest {
+                    ray,
+                    node: case.node,
+                    at: NodeEntry::ROOT,
+                };
+            };
+            let child = case.node.children[e.slot];
+            NodeTest {
+                ray,
+                node: node_inside(rng, &case.node, &child, width),
+                at: e.entry,
+            }
+        }
+        2 => NodeTest {
+            ray,
+            node: case.node,
+            at: NodeEntry {
+                t0: if rng.gen() {
+                    rng.gen_range(0.0..1e3)
+                } else {
+                    special_word(rng)
+                },
+                width_exp: rng.gen_range(WIDTH_MIN..=WIDTH_UNBOUNDED),
+            },
+        },
+        _ => {
+            let mut node = case.node;
+            for c in &mut node.children {
+                if rng.gen_range(0..4) == 0 {
+                    c.lo = std::array::from_fn(|_| rng.gen());
+                    c.hi = std::array::from_fn(|_| rng.gen());
+                }
+            }
+            let word = |rng: &mut StdRng, x: f32| if rng.gen() { special_word(rng) } else { x };
+            let ray = WideRay {
+                orig: ray.orig.map(|x| word(rng, x)),
+                inv_dir: ray.inv_dir.map(|x| word(rng, x)),
+                pad_t: ray.pad_t.map(|x| word(rng, x)),
+                pad: ray.pad,
+                t_hi: word(rng, ray.t_hi),
+            };
+            NodeTest {
+                ray,
+                node,
+                at: NodeEntry {
+                    t0: word(rng, 0.0),
+                    width_exp: rng.gen_range(WIDTH_MIN..=WIDTH_UNBOUNDED),
+                },
+            }
+        }
+    }
 }
