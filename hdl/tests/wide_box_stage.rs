@@ -7,6 +7,7 @@
 //! `cargo test --release -p hdl --test wide_box_stage -- --ignored --nocapture resources_8_children_depth_5`.
 
 use hdl::synth::{synthesize, SynthOptions};
+use hdl::traversal::wide::ones::Ones;
 use hdl::traversal::wide::plane::Plane;
 use hdl::traversal::wide::{
     latency, max_depth, schedule, simulate_wide_box_stage, wide_box_stage_verilog, WideInput,
@@ -171,6 +172,22 @@ fn wide_stage_verilog_passes_verilator_lint() {
                 panic!("width {width} depth {depth}: verilator lint failed:\n{e}");
             }
         }
+    }
+}
+
+/// The carry-save count of the ranks: every byte.
+#[test]
+fn ones_counts_every_byte() {
+    let mut uut = Ones::default();
+    uut.connect_all();
+    for x in 0..=255u32 {
+        uut.x.next = u64::from(x).into();
+        assert!(simulate(&mut uut, 100));
+        assert_eq!(
+            uut.count.val().to_u64(),
+            u64::from(x.count_ones()),
+            "{x:08b}"
+        );
     }
 }
 

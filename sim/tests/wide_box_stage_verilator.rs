@@ -12,11 +12,12 @@
 use std::sync::Mutex;
 
 use hdl::traversal::wide::{latency, max_depth, wide_box_stage_verilog, WideInput, WideOutput};
+use hw_model::traversal::scene_image::SceneImage;
 use hw_model::traversal::wide::box_test::{wide_box_test, NodeEntry, WideRay};
 use hw_model::traversal::wide::cases::{random_test, NodeTest};
-use hw_model::traversal::wide::NodeFormat;
-use hw_model::traversal::{TraversalModel, UnitRay, DEFAULT_STACK_DEPTH};
-use hw_model::Format;
+use hw_model::traversal::wide::image::WideImage;
+use hw_model::traversal::wide::{NodeFormat, WideTree};
+use hw_model::traversal::UnitRay;
 use rand::rngs::StdRng;
 use rand::SeedableRng;
 use sim::{build, run_pipelined, BuildOptions, ModelSpec};
@@ -25,7 +26,6 @@ use sw_renderer::intersect::F32Intersector;
 use sw_renderer::rays::{CastStats, EngineError, Ray, RayCaster, RayEngine};
 use sw_renderer::render::{render, RenderOptions};
 use sw_renderer::scene::Scene;
-use sw_renderer::scene_image::SceneImage;
 use sw_renderer::thesis_scenes;
 use sw_renderer::trace::PreparedScene;
 
@@ -159,7 +159,7 @@ struct Recorder {
 }
 
 struct RecordingCaster<'a> {
-    model: TraversalModel,
+    tree: WideTree,
     hits: Box<dyn RayCaster + 'a>,
     tests: &'a Mutex<Vec<NodeTest>>,
 }
@@ -173,12 +173,11 @@ impl RayEngine for Recorder {
         &'a self,
         scene: &'a PreparedScene,
     ) -> Result<Box<dyn RayCaster + 'a>, EngineError> {
-        let image = SceneImage::new(scene);
-        let model = TraversalModel::new(Format::FP32, DEFAULT_STACK_DEPTH, image)
-            .with_nodes(self.nodes)
-            .expect("the thesis scenes' wide trees load");
+        let width = self.nodes.width().expect("wide nodes");
+        let image = WideImage::of(&SceneImage::new(scene), width)
+            .expect("the thesis scenes' wide trees are written");
         Ok(Box::new(RecordingCaster {
-            model,
+            tree: image.tree,
             hits: F32Intersector.prepare(scene)?,
             tests: &self.tests,
         }))
@@ -187,7 +186,7 @@ impl RayEngine for Recorder {
 
 impl RayCaster for RecordingCaster<'_> {
     fn cast(&self, rays: &[Ray], hits: &mut [Option<Hit>]) -> Result<CastStats, EngineError> {
-        let tree = self.model.wide().expect("a wide tree");
+        let tree = &self.tree;
         let mut tests = Vec::new();
         for ray in rays {
             let r = UnitRay::of(ray, 0);

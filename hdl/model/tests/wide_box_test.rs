@@ -6,7 +6,6 @@
 //! grid planes, edges and corners, origins on faces and inside, zero, subnormal and huge
 //! direction components, tiny and huge scenes, NaN and infinite values.
 
-use hw_model::traversal::scene_image::Link;
 use hw_model::traversal::wide::box_test::{wide_box_test, NodeEntry, WideRay};
 use hw_model::traversal::wide::cases::{node_inside, random_case};
 use hw_model::traversal::wide::{Child, WideNode};

@@ -5,7 +5,9 @@
 //!
 //! In units of `2^(U−8)`: `v = ⌈t_hi·2^(8−U)⌉ − τ + 255`, the code is `v >> 8`.
 //!
-//! Cut points ([`FarCode::CUTS`]): 0. after `⌈t_hi⌉ + 255`; 1. the results.
+//! Cut points ([`FarCode::CUTS`]), one carry chain each: 0. after `⌈t_hi⌉ + 255`; 1. after
+//! `v`; 2. the results, clamped. (The far end waits for the planes anyway: its third register
+//! costs no latency.)
 
 use rust_hdl::prelude::*;
 
@@ -34,8 +36,11 @@ pub struct FarCode {
     tau_0: Pipe<Offset>,
     nan_0: Pipe<Bit>,
     unknown_0: Pipe<Bit>,
-    from_tau: Signal<Local, Offset>,
     /// Cut 1.
+    from_tau: Pipe<Offset>,
+    nan_1: Pipe<Bit>,
+    unknown_1: Pipe<Bit>,
+    /// Cut 2.
     far_out: Pipe<ExitCode>,
     unknown_out: Pipe<Bit>,
     exit_round: Constant<Offset>,
@@ -45,7 +50,7 @@ pub struct FarCode {
 }
 
 impl FarCode {
-    pub const CUTS: usize = 2;
+    pub const CUTS: usize = 3;
 
     pub fn max_stages() -> usize {
         Self::CUTS
@@ -68,9 +73,11 @@ impl FarCode {
             tau_0: Pipe::new(cut[0]),
             nan_0: Pipe::new(cut[0]),
             unknown_0: Pipe::new(cut[0]),
-            from_tau: Default::default(),
-            far_out: Pipe::new(cut[1]),
-            unknown_out: Pipe::new(cut[1]),
+            from_tau: Pipe::new(cut[1]),
+            nan_1: Pipe::new(cut[1]),
+            unknown_1: Pipe::new(cut[1]),
+            far_out: Pipe::new(cut[2]),
+            unknown_out: Pipe::new(cut[2]),
             exit_round: Constant::new(((1u64 << FRAC_BITS) - 1).into()),
             sat: Constant::new((OFFSET_SAT as u64).into()),
             limit: Constant::new((CODE_LIMIT as u64).into()),
@@ -86,6 +93,9 @@ impl Logic for FarCode {
         self.tau_0.clock.next = self.clock.val();
         self.nan_0.clock.next = self.clock.val();
         self.unknown_0.clock.next = self.clock.val();
+        self.from_tau.clock.next = self.clock.val();
+        self.nan_1.clock.next = self.clock.val();
+        self.unknown_1.clock.next = self.clock.val();
         self.far_out.clock.next = self.clock.val();
         self.unknown_out.clock.next = self.clock.val();
         // ⌈t_hi⌉ of a negative t_hi is −⌊|t_hi|⌋.
@@ -101,18 +111,20 @@ impl Logic for FarCode {
         self.unknown_0.d.next = !self.bounded.val()
             | self.t0_nan.val()
             | (bit_cast::<48, 47>(self.tau.val()) >= self.sat.val());
+        self.from_tau.d.next = self.rounded_up.q.val() - self.tau_0.q.val();
+        self.nan_1.d.next = self.nan_0.q.val();
+        self.unknown_1.d.next = self.unknown_0.q.val();
         // v >> 8 clamped to −1..=CODE_LIMIT = 2^14 + 1: v ≥ 2^22 + 2^8 is the limit.
-        self.from_tau.next = self.rounded_up.q.val() - self.tau_0.q.val();
-        self.far_out.d.next = bit_cast::<16, 48>(self.from_tau.val() >> 8);
-        if self.from_tau.val().get_bits::<24>(23).any()
-            | (self.from_tau.val().get_bit(22) & self.from_tau.val().get_bits::<14>(8).any())
+        self.far_out.d.next = bit_cast::<16, 48>(self.from_tau.q.val() >> 8);
+        if self.from_tau.q.val().get_bits::<24>(23).any()
+            | (self.from_tau.q.val().get_bit(22) & self.from_tau.q.val().get_bits::<14>(8).any())
         {
             self.far_out.d.next = self.limit.val();
         }
-        if self.from_tau.val().get_bit(47) | self.nan_0.q.val() {
+        if self.from_tau.q.val().get_bit(47) | self.nan_1.q.val() {
             self.far_out.d.next = self.none.val();
         }
-        self.unknown_out.d.next = self.unknown_0.q.val();
+        self.unknown_out.d.next = self.unknown_1.q.val();
         self.far_end.next = self.far_out.q.val();
         self.unknown.next = self.unknown_out.q.val();
     }

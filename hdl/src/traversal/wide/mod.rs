@@ -24,6 +24,7 @@ pub mod extent;
 pub mod far;
 pub mod fold;
 pub mod grid;
+pub mod ones;
 pub mod order;
 pub mod plane;
 pub mod scaled;
@@ -38,8 +39,8 @@ use crate::mt::schedule::OpLatencies;
 use crate::operator::Op;
 
 pub use stage::{
-    link_word, simulate_wide_box_stage, wide_box_stage_verilog, width_word, EnteredChild,
-    WideBoxStage, WideInput, WideOutput, LINK_BITS,
+    simulate_wide_box_stage, wide_box_stage_verilog, width_word, EnteredChild, WideBoxStage,
+    WideInput, WideOutput, LINK_BITS,
 };
 
 type Word = Bits<32>;
@@ -67,6 +68,8 @@ pub type Slot = Bits<3>;
 pub type Count = Bits<4>;
 /// The widest node the stage is built for.
 pub const MAX_WIDTH: usize = 8;
+/// A bit per slot.
+pub type SlotBits = Bits<MAX_WIDTH>;
 
 /// When each value of the stage is ready, from its blocks' registers at a depth: each block
 /// has `min(depth, its cut points)` of them, as an operator has.

@@ -1,6 +1,6 @@
 //! The entered children, nearest first: each child's rank among the entered ones by
-//! `(near, slot)` (the model's sort key), from one comparison per pair side by side, then for
-//! each position the slot ranked there. Children that are not entered rank after all that
+//! `(near, slot)` (the model's sort key), the number of children before it (one comparison
+//! per pair side by side, counted by [`Ones`]), then for each position the slot ranked there. Children that are not entered rank after all that
 //! are; the positions from `entered` on are not meaningful.
 //!
 //! When the node's grid is unknown every child below `children` is entered, in slot order.
@@ -9,7 +9,8 @@
 
 use rust_hdl::prelude::*;
 
-use super::{Count, EntryCode, ExitCode, Slot};
+use super::ones::Ones;
+use super::{Count, EntryCode, ExitCode, Slot, SlotBits};
 use crate::pipe::{placement, Pipe};
 
 #[derive(LogicBlock)]
@@ -24,8 +25,11 @@ pub struct NearestFirst {
     pub slot: Vec<Signal<Out, Slot>>,
     pub entered: Signal<Out, Count>,
     enters: Vec<Signal<Local, Bit>>,
-    rank_sum: Vec<Signal<Local, Count>>,
-    count_sum: Signal<Local, Count>,
+    /// The entered children, and per child those before it (bit per slot).
+    entered_bits: Signal<Local, SlotBits>,
+    before: Vec<Signal<Local, SlotBits>>,
+    count_ones: Ones,
+    rank_ones: Vec<Ones>,
     /// Cut 0.
     rank: Vec<Pipe<Count>>,
     count: Pipe<Count>,
@@ -56,8 +60,10 @@ impl NearestFirst {
             slot: crate::defaults(width),
             entered: Default::default(),
             enters: crate::defaults(width),
-            rank_sum: crate::defaults(width),
-            count_sum: Default::default(),
+            entered_bits: Default::default(),
+            before: crate::defaults(width),
+            count_ones: Default::default(),
+            rank_ones: (0..width).map(|_| Ones::default()).collect(),
             rank: (0..width).map(|_| Pipe::new(cut[0])).collect(),
             count: Pipe::new(cut[0]),
             children_0: Pipe::new(cut[0]),
@@ -77,38 +83,40 @@ impl Logic for NearestFirst {
         self.unknown_0.clock.next = self.clock.val();
         self.entered_out.clock.next = self.clock.val();
         // Entered: a slot of the node, far ≥ 0 and near ≤ far.
-        self.count_sum.next = 0.into();
+        self.entered_bits.next = 0.into();
         for c in 0..self.near.len() {
             // A far end is at most CODE_LIMIT, below 2^15.
             self.enters[c].next = !self.far[c].val().get_bit(15)
                 & (self.near[c].val() <= self.far[c].val().get_bits::<15>(0))
                 & (self.children.val() > c.to_bits());
-            if self.enters[c].val() {
-                self.count_sum.next = self.count_sum.val() + 1;
-            }
+            self.entered_bits.next = self.entered_bits.val().replace_bit(c, self.enters[c].val());
         }
+        self.count_ones.x.next = self.entered_bits.val();
+        self.count.d.next = self.count_ones.count.val();
         // d comes before c: entered, and c is not or is farther (a tie goes to the lower
         // slot).
         for c in 0..self.near.len() {
             self.rank[c].clock.next = self.clock.val();
-            self.rank_sum[c].next = 0.into();
+            self.before[c].next = 0.into();
             for d in 0..self.near.len() {
-                if d < c
-                    && self.enters[d].val()
-                        & (!self.enters[c].val() | (self.near[d].val() <= self.near[c].val()))
-                {
-                    self.rank_sum[c].next = self.rank_sum[c].val() + 1;
+                if d < c {
+                    self.before[c].next = self.before[c].val().replace_bit(
+                        d,
+                        self.enters[d].val()
+                            & (!self.enters[c].val() | (self.near[d].val() <= self.near[c].val())),
+                    );
                 }
-                if c < d
-                    && self.enters[d].val()
-                        & (!self.enters[c].val() | (self.near[d].val() < self.near[c].val()))
-                {
-                    self.rank_sum[c].next = self.rank_sum[c].val() + 1;
+                if c < d {
+                    self.before[c].next = self.before[c].val().replace_bit(
+                        d,
+                        self.enters[d].val()
+                            & (!self.enters[c].val() | (self.near[d].val() < self.near[c].val())),
+                    );
                 }
             }
-            self.rank[c].d.next = self.rank_sum[c].val();
+            self.rank_ones[c].x.next = self.before[c].val();
+            self.rank[c].d.next = self.rank_ones[c].count.val();
         }
-        self.count.d.next = self.count_sum.val();
         self.children_0.d.next = self.children.val();
         self.unknown_0.d.next = self.unknown.val();
         // The slot of each position: the one child ranked there.

@@ -1,10 +1,11 @@
 //! [`WideBoxStage`]: the wide node box test, one test a cycle in, its entered children out
 //! nearest first [`super::latency`]`(depth)` cycles later.
 
+use hw_model::traversal::scene_image::Link;
 use hw_model::traversal::wide::box_test::{NodeEntry, WideRay};
+use hw_model::traversal::wide::image::{link_of, link_word};
 use hw_model::traversal::wide::WideNode;
 use rust_hdl::prelude::*;
-use sw_renderer::scene_image::Link;
 
 use super::axis::AxisBounds;
 use super::entry::ChildEntry;
@@ -27,16 +28,13 @@ fn lines<T: Synth>(n: usize, cycles: usize) -> Vec<Delay<T>> {
     (0..n).map(|_| Delay::new(cycles)).collect()
 }
 
-/// Bits of a child's link in the stage's simulation and reports: a 24-bit `first` above a
-/// 4-bit `count` (a wide leaf holds at most 15 triangles). The stage passes links through
-/// unread, so the unit builds it with its own width.
-pub const LINK_BITS: usize = 28;
-/// Bits of a link's count, below its first.
-const LINK_COUNT_BITS: usize = 4;
+/// Bits of a child's link in the stage's simulation and reports: the scene image's link word
+/// (`hw_model::traversal::wide::image::link_word`), which the stage passes through unread.
+pub const LINK_BITS: usize = 32;
 
 /// The wide box test of one node against one ray, one test a cycle (II = 1): in a ray's
 /// [`WideRay`] words, where the walk entered the node ([`NodeEntry`]) and the node's record
-/// (grid origin and exponents, child count, per child six codes and an `L`-bit link); out
+/// (grid origin and exponents, child count, per child six codes and a link); out
 /// [`super::latency`]`(depth)` cycles later how many children are entered and, nearest first
 /// by (entry code, slot), each one's link and where the walk enters it (`t0` in fp32, width
 /// exponent), with `valid_out` and `tag_out`. Positions from `entered` on are not meaningful.
@@ -44,7 +42,12 @@ const LINK_COUNT_BITS: usize = 4;
 /// the operators'). No reset: the valid line holds the flip-flops' power-on zeros until the
 /// first test passes.
 ///
-/// `lo` and `hi` are indexed `3·slot + axis`.
+/// The node ports are the fields of the scene image's node record
+/// (`hw_model::traversal::wide::image`, version 3), unconverted: `origin` its words 0–2, `exp`
+/// the bytes 0–2 of word 3 and `children` the low 4 bits of its byte 3, `lo[3·slot + axis]`
+/// and `hi[3·slot + axis]` the code bytes `6·slot + axis` and `6·slot + 3 + axis` of the
+/// packed code words, `link` the link words (with `L` = [`LINK_BITS`] = 32; the stage passes
+/// them through unread). The ray's words are the wide ray setup's ([`WideRay`]).
 #[derive(LogicBlock)]
 pub struct WideBoxStage<const L: usize> {
     pub clock: Signal<In, Clock>,
@@ -453,22 +456,6 @@ pub struct WideOutput {
     pub entered: Vec<EnteredChild>,
 }
 
-/// A link as the stage's `L`-bit word: first above the count.
-pub fn link_word(link: Link, bits: usize) -> u64 {
-    assert!(
-        link.count < 1 << LINK_COUNT_BITS && u64::from(link.first) < 1 << (bits - LINK_COUNT_BITS),
-        "{link:?} does not fit a {bits}-bit link word"
-    );
-    u64::from(link.first) << LINK_COUNT_BITS | u64::from(link.count)
-}
-
-fn link_of(word: u64) -> Link {
-    Link {
-        first: (word >> LINK_COUNT_BITS) as u32,
-        count: (word & ((1 << LINK_COUNT_BITS) - 1)) as u32,
-    }
-}
-
 /// A width exponent as the stage's 10-bit two's complement word.
 pub fn width_word(w: i16) -> u64 {
     (w as u64) & ((1 << WidthExp::BITS) - 1)
@@ -551,7 +538,7 @@ impl WideInput {
         w.push(self.node.children.len() as u64);
         w.extend((0..3 * width).map(|i| u64::from(child(i / 3).lo[i % 3])));
         w.extend((0..3 * width).map(|i| u64::from(child(i / 3).hi[i % 3])));
-        w.extend((0..width).map(|slot| link_word(child(slot).link, LINK_BITS)));
+        w.extend((0..width).map(|slot| u64::from(link_word(child(slot).link))));
         w
     }
 }
@@ -566,7 +553,7 @@ impl WideOutput {
             tag: w[1] as u16,
             entered: (0..entered)
                 .map(|p| EnteredChild {
-                    link: link_of(w[3 + p]),
+                    link: link_of(w[3 + p] as u32),
                     t0: w[3 + width + p] as u32,
                     width_exp: width_of(w[3 + 2 * width + p]),
                 })

@@ -16,6 +16,19 @@ use super::{check, collapse, Child, WideError, WideNode, WideTree, MAX_LEAF_TRIA
 /// Bits of a link word's `first`; `count` takes the 4 bits above.
 const FIRST_BITS: u32 = 28;
 
+/// A child's link as its record's link word: `first` in bits 0–27, `count` in bits 28–31.
+pub fn link_word(link: Link) -> u32 {
+    link.first | link.count << FIRST_BITS
+}
+
+/// The link a link word holds.
+pub fn link_of(word: u32) -> Link {
+    Link {
+        first: word & ((1 << FIRST_BITS) - 1),
+        count: word >> FIRST_BITS,
+    }
+}
+
 /// Words of a node record of `width` children.
 pub fn node_words(width: usize) -> usize {
     4 + 6 * width / 4 + width
@@ -73,11 +86,7 @@ impl WideImage {
                     .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
             );
             for c in 0..width {
-                w.push(
-                    n.children
-                        .get(c)
-                        .map_or(0, |c| c.link.first | c.link.count << FIRST_BITS),
-                );
+                w.push(n.children.get(c).map_or(0, |c| link_word(c.link)));
             }
         }
         write_triangles(&self.triangles, &mut w);
@@ -141,10 +150,7 @@ impl WideImage {
                     .map(|c| Child {
                         lo: [0, 1, 2].map(|a| bytes[6 * c + a]),
                         hi: [0, 1, 2].map(|a| bytes[6 * c + 3 + a]),
-                        link: Link {
-                            first: w[links + c] & ((1 << FIRST_BITS) - 1),
-                            count: w[links + c] >> FIRST_BITS,
-                        },
+                        link: link_of(w[links + c]),
                     })
                     .collect(),
             });
