@@ -294,8 +294,8 @@ fn the_axi4_lite_units_verilog_passes_verilator_lint() {
     assert!(top.ports.iter().any(|p| p.name == "axi$awaddr"));
 }
 
-/// yosys resources of the unit's register slave alone (the unit's are BENCHMARKS.md "The
-/// assembled unit in yosys"):
+/// yosys resources of the unit's register slave alone (the unit's are BENCHMARKS.md
+/// "Traversal unit: resources"):
 /// `cargo test --release -p hdl --test traversal_unit_axil -- --ignored --nocapture control_resources`.
 #[test]
 #[ignore]

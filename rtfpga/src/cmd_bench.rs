@@ -48,6 +48,9 @@ fn parse_size(s: &str) -> Result<(u32, u32)> {
 }
 
 pub fn run(a: Args, given: &Given) -> Result<()> {
+    if a.engine == EngineKind::Frame {
+        return Err(engine::frame_is_not_a_ray_engine());
+    }
     given.check(a.engine.target(&a.hw.datapath.format))?;
     let sizes = a
         .sizes

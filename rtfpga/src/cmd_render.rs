@@ -2,12 +2,19 @@
 
 use std::path::PathBuf;
 
+use std::time::Instant;
+
 use anyhow::Result;
 use clap::Args as ClapArgs;
+use hw_model::frame::{Frame, FrameLimits, WAVEFRONT};
+use hw_model::traversal::TraversalEngine;
+use indicatif::{ProgressBar, ProgressStyle};
+use sw_renderer::rays::{CastStats, RayEngine};
 use sw_renderer::render::{render, save_png, RenderOptions};
 use sw_renderer::scene::Scene;
+use sw_renderer::trace::PreparedScene;
 
-use crate::engine::{self, ChunkArgs, EngineKind, HwConfig, PrecisionArgs};
+use crate::engine::{self, ChunkArgs, EngineKind, HwConfig, Precision, PrecisionArgs};
 use crate::options::Given;
 use crate::report::{self, Line};
 
@@ -54,6 +61,9 @@ pub fn run(a: Args, given: &Given) -> Result<()> {
     let precision = a.precision.resolve(a.engine, &a.hw, &scene)?;
     let (scale_exp, lane) = (precision.scale_exp, precision.lane);
     report::image_out("--out", &a.out)?;
+    if a.engine == EngineKind::Frame {
+        return render_frame(&a, &scene, &precision);
+    }
     let made = engine::make(a.engine, &a.hw, scale_exp, lane, &a.chunks)?;
     if let Some(v) = &made.verilated {
         v.line().print();
@@ -107,15 +117,7 @@ pub fn run(a: Args, given: &Given) -> Result<()> {
             .print();
     }
     let c = s.trace.cast;
-    if c.passes > 0 {
-        // The traversal unit's scene memory: one pass per wavefront and loaded chunk.
-        Line::labelled("unit_memory")
-            .kv("passes", c.passes)
-            .kv("ray_passes", c.ray_passes)
-            .kv("chunk_loads", c.chunk_loads)
-            .kv("loaded_bytes", c.loaded_bytes)
-            .print();
-    }
+    unit_memory(&c);
     if c.cycles > 0 {
         // The traversal unit's schedule model (not a co-simulation).
         let rays = s.trace.rays().max(1) as f64;
@@ -144,5 +146,85 @@ pub fn run(a: Args, given: &Given) -> Result<()> {
             .fixed("mrays_per_s_at_100mhz", rays / c.cycles as f64 * 100.0, 2)
             .print();
     }
+    Ok(())
+}
+
+/// The traversal unit's scene memory, when a unit answered: one pass per wavefront and loaded
+/// chunk.
+fn unit_memory(c: &CastStats) {
+    if c.passes > 0 {
+        Line::labelled("unit_memory")
+            .kv("passes", c.passes)
+            .kv("ray_passes", c.ray_passes)
+            .kv("chunk_loads", c.chunk_loads)
+            .kv("loaded_bytes", c.loaded_bytes)
+            .print();
+    }
+}
+
+/// `render --engine frame`: the frame unit's model (docs/frame.md), its rays answered by the
+/// traversal unit's model in `--format` (untimed: the frame model has no cycles) with its
+/// scene memory as `--engine traversal` has it (chunked passes change no answer).
+fn render_frame(a: &Args, scene: &Scene, precision: &Precision) -> Result<()> {
+    let unit = TraversalEngine {
+        timing: None,
+        ..a.hw
+            .traversal_engine(precision.scale_exp, precision.lane.advance, &a.chunks)?
+    };
+    let width = a.width.unwrap_or(scene.options.width);
+    let height = a.height.unwrap_or(scene.options.height);
+    let start = Instant::now();
+    let prepared = PreparedScene::new(scene)?;
+    let frame = Frame::new(scene, &prepared, &unit, width, height, &FrameLimits::HW)?;
+    let prepare_s = start.elapsed().as_secs_f64();
+    let tile_size = RenderOptions::default().tile_size;
+    let bar = match a.quiet {
+        true => ProgressBar::hidden(),
+        false => ProgressBar::new(frame.tile_count(tile_size) as u64),
+    };
+    if let Ok(style) =
+        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} tiles {elapsed}/{eta}")
+    {
+        bar.set_style(style);
+    }
+    bar.set_message(format!("{} (frame)", scene.name));
+    let start = Instant::now();
+    let out = frame.render(tile_size, WAVEFRONT, &|| bar.inc(1));
+    bar.finish_and_clear();
+    let out = out?;
+    let render_s = start.elapsed().as_secs_f64();
+    save_png(&out.image, &a.out)?;
+    let s = &out.stats;
+    Line::new()
+        .kv("scene", &scene.name)
+        .kv("engine", "frame")
+        .kv("traversal", unit.name())
+        .kv("spawn", precision.choice.name())
+        .kv("scale_exp", precision.scale_exp)
+        .kv("advance", precision.lane.advance)
+        .kv("size", format_args!("{width}x{height}"))
+        .kv("triangles", scene.triangle_count())
+        .kv("rays", s.rays())
+        .kv("mt_queries", s.cast.mt_tests)
+        .kv("box_tests", s.cast.box_tests)
+        .kv("node_visits", s.cast.node_visits)
+        .fixed("prepare_s", prepare_s, 3)
+        .fixed("render_s", render_s, 3)
+        .fixed("mrays_per_s", s.rays() as f64 / render_s.max(1e-9) / 1e6, 2)
+        .print();
+    Line::new().path("out", &a.out).print();
+    Line::labelled("frame")
+        .kv("primary_rays", s.primary_rays)
+        .kv("reflection_rays", s.reflection_rays)
+        .kv("refraction_rays", s.refraction_rays)
+        .kv("shadow_rays", s.shadow_rays)
+        .kv("hits", s.hits)
+        .kv("occluded", s.occluded)
+        .kv("zero_shadows", s.zero_shadows)
+        .kv("past_depth", s.past_depth)
+        .kv("total_internal", s.total_internal)
+        .kv("contributions", s.contributions)
+        .print();
+    unit_memory(&s.cast);
     Ok(())
 }

@@ -12,10 +12,7 @@ use hdl::dual::pair::SlotFilter;
 use hdl::top::TopConfig;
 use hdl::traversal::scene_memory;
 use hdl::traversal::unit::{UnitConfig, BUILT_MEMORY_BITS};
-use hw_model::dual::{
-    BoundArith, DualIntersector, Filter, FilterFormat, FilterKind, FormatChoice, PluckerDecisions,
-    HW_BOUND_BITS,
-};
+use hw_model::dual::{DualIntersector, Filter, FilterKind, FormatChoice};
 use hw_model::precision::{auto_scale_exp, SceneRange, SpawnChoice};
 use hw_model::traversal::{
     NodeFormat, SceneCapacity, SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH,
@@ -43,6 +40,10 @@ pub enum EngineKind {
     /// The traversal unit's bit-accurate model: the scene in its memory, rays in, hits out,
     /// Möller-Trumbore in --format; cycles from its schedule model.
     Traversal,
+    /// The frame unit's bit-accurate model (render only): ray generation, shading and pixel
+    /// sums in the hardware's fp32, rays answered by the traversal unit's model in --format
+    /// (docs/frame.md).
+    Frame,
 }
 
 impl EngineKind {
@@ -56,8 +57,16 @@ impl EngineKind {
             EngineKind::Hw if pair => Target::HwPair,
             EngineKind::Hw => Target::Accelerator,
             EngineKind::Traversal => Target::UnitModel,
+            EngineKind::Frame => Target::FrameModel,
         }
     }
+}
+
+/// The error of asking the frame model to answer the software renderer's rays.
+pub fn frame_is_not_a_ray_engine() -> anyhow::Error {
+    anyhow::anyhow!(
+        "--engine frame renders whole frames (ray generation, shading and pixels in the model), not the software renderer's rays: use it with `rtfpga render`"
+    )
 }
 
 /// Which hardware a co-simulation, Verilog or synthesis command means.
@@ -93,7 +102,7 @@ fn format_help() -> String {
     format!(
         "Number format of the datapath: a catalogue name (`rtfpga formats`); the model engine \
          also takes any spelling such as e8m14 or fx<24,8>, and a dual-precision pair \
-         FILTER/FALLBACK such as fp16/fp32 (docs/precision.md), of which the hardware builds {}",
+         bfpW/FALLBACK such as bfp14/fp32 (docs/precision.md), of which the hardware builds {}",
         built_pair()
     )
 }
@@ -197,50 +206,36 @@ pub struct HwConfig {
     pub datapath: Datapath,
     #[command(flatten)]
     pub unit: UnitArgs,
-    /// The filter of a dual-precision pair (docs/precision.md, "Dual precision") [default: bfp
-    /// for a bfpW/FALLBACK pair, else linear].
+    /// The filter of a dual-precision pair (docs/precision.md, "Dual precision") [default:
+    /// bfp].
     #[arg(long, value_enum)]
     pub dual_filter: Option<DualFilter>,
 }
 
-/// `--dual-filter`: what a pair's filter computes and how it evaluates its bound.
+/// `--dual-filter`: what a pair's filter computes (both are built in hardware).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum DualFilter {
-    /// Division-free, its bound on a coarse grid from the subtractors' rounding bound.
-    Linear,
-    /// Division-free, its bound exact.
-    LinearExact,
-    /// A whole lane in the filter format (quotients), its bound exact.
-    Quotient,
-    /// Block floating point, for a bfpW/FALLBACK pair: exact integers, margins per width.
+    /// Block floating point: the query translated in integers, W-bit blocks, margins from
+    /// the bits dropped, decisions on short floats.
     Bfp,
-    /// Block floating point in Plücker form, for a bfpW/FALLBACK pair: per-ray and
-    /// per-triangle blocks, no translation per test, the bfp filter's decisions.
-    Plucker,
-    /// The Plücker filter with sign decisions against short-float margins (the Plücker lane
-    /// built in rust-hdl).
+    /// Block floating point in Plücker form: per-ray and per-triangle blocks, no
+    /// translation per test, decisions by signs and bit lengths.
     PluckerSigns,
 }
 
 impl DualFilter {
     pub fn kind(self) -> FilterKind {
         match self {
-            DualFilter::Linear => FilterKind::Linear(BoundArith::Coarse(HW_BOUND_BITS)),
-            DualFilter::LinearExact => FilterKind::Linear(BoundArith::Exact),
-            DualFilter::Quotient => FilterKind::Quotient,
             DualFilter::Bfp => FilterKind::Bfp,
-            DualFilter::Plucker => FilterKind::Plucker(PluckerDecisions::Table),
-            DualFilter::PluckerSigns => FilterKind::Plucker(PluckerDecisions::Signs),
+            DualFilter::PluckerSigns => FilterKind::Plucker,
         }
     }
 
-    /// The filter lane built in hardware for this filter (the table admits only these for a
-    /// hardware pair).
-    fn slot_filter(self) -> Option<SlotFilter> {
+    /// The filter lane built in hardware for this filter.
+    fn slot_filter(self) -> SlotFilter {
         match self {
-            DualFilter::Bfp => Some(SlotFilter::Bfp),
-            DualFilter::PluckerSigns => Some(SlotFilter::Plucker),
-            _ => None,
+            DualFilter::Bfp => SlotFilter::Bfp,
+            DualFilter::PluckerSigns => SlotFilter::Plucker,
         }
     }
 }
@@ -290,8 +285,8 @@ impl Verilated {
 }
 
 /// The engine `kind` in `hw`'s configuration, its Möller-Trumbore queries scaled by
-/// 2^`scale_exp` (model engines only; a pair scales its filter, its fallback answers the
-/// queries as given), the model engine's lane options `lane`, a traversal unit's scene memory
+/// 2^`scale_exp` (model engines of one format only; a pair answers the queries as given),
+/// the model engine's lane options `lane`, a traversal unit's scene memory
 /// chunked unless `chunks` says no.
 pub fn make(
     kind: EngineKind,
@@ -310,8 +305,8 @@ pub fn make(
         (EngineKind::Model, FormatChoice::Pair(pair)) => {
             let kind = hw
                 .dual_filter
-                .map_or_else(|| FilterKind::default_for(&pair), DualFilter::kind);
-            let dual = DualIntersector::with_filter(Filter::new(pair, scale_exp, kind)?);
+                .map_or_else(FilterKind::default, DualFilter::kind);
+            let dual = DualIntersector::with_filter(Filter::new(pair, kind));
             made.engine = Box::new(dual.clone());
             made.dual = Some(dual);
         }
@@ -336,6 +331,7 @@ pub fn make(
         (EngineKind::Traversal, _) => {
             made.engine = Box::new(hw.traversal_engine(scale_exp, lane.advance, chunks)?);
         }
+        (EngineKind::Frame, _) => return Err(frame_is_not_a_ray_engine()),
     }
     Ok(made)
 }
@@ -390,16 +386,19 @@ pub struct Precision {
 pub struct SpawnArgs {
     /// Spawn policy of secondary and shadow rays: thesis (origin offset by the scene's bias)
     /// or format-aware (also a t_min from the format's rounding error, the triangle left
-    /// excluded) [default: thesis for the f32 engine and for fp32, else format-aware].
+    /// excluded) [default: thesis for the f32 and frame engines and for fp32, else
+    /// format-aware].
     #[arg(long, value_parser = choice::<SpawnChoice>())]
     pub spawn: Option<SpawnChoice>,
 }
 
 impl SpawnArgs {
     /// The policy asked for, else the default of `kind` answering in `answers`: the thesis'
-    /// for the f32 engine and for fp32 (they reproduce the reference), else format-aware.
+    /// for the f32 engine and for fp32 (they reproduce the reference) and for the frame
+    /// engine (the only one it has), else format-aware.
     pub fn choice(&self, kind: EngineKind, answers: &Format) -> SpawnChoice {
-        let thesis = kind == EngineKind::F32 || *answers == Format::FP32;
+        let thesis =
+            matches!(kind, EngineKind::F32 | EngineKind::Frame) || *answers == Format::FP32;
         self.spawn.unwrap_or(if thesis {
             SpawnChoice::Thesis
         } else {
@@ -430,24 +429,18 @@ impl PrecisionArgs {
     /// `kind` in `hw`'s format (`options::RULES` has checked which of them act on it).
     pub fn resolve(&self, kind: EngineKind, hw: &HwConfig, scene: &Scene) -> Result<Precision> {
         let format = hw.datapath.format;
-        // A pair answers as its fallback (unscaled); only its filter is scaled.
-        let (answers, scaled) = match format {
-            FormatChoice::Single(f) => (f, f),
-            FormatChoice::Pair(p) => match p.filter {
-                FilterFormat::Float(filter) => (p.fallback, filter),
-                FilterFormat::Bfp(_) if self.scale == Some(ScaleKind::Auto) => {
-                    bail!("--format {p} --scale auto: a block-floating-point filter is not scaled (its exponents are per vector)")
-                }
-                FilterFormat::Bfp(_) => (p.fallback, p.fallback),
-            },
+        // A pair answers as its fallback, on the queries as given (`--scale` does not act on
+        // it: its filter's exponents are per vector).
+        let answers = match format {
+            FormatChoice::Single(f) => f,
+            FormatChoice::Pair(p) => p.fallback,
         };
         // Unscaled unless asked: auto scaling measured no better in any format and worse in
         // e5m14 and the fixed formats (docs/precision.md).
         let scale_exp = match self.scale.unwrap_or(ScaleKind::None) {
             ScaleKind::None => 0,
-            ScaleKind::Auto => auto_scale_exp(&scaled, &SceneRange::of(scene)?),
+            ScaleKind::Auto => auto_scale_exp(&answers, &SceneRange::of(scene)?),
         };
-        let answer_scale = if answers == scaled { scale_exp } else { 0 };
         let choice = self.spawn.choice(kind, &answers);
         let single_model = kind.target(&format) == Target::Model;
         let lane = Lane {
@@ -460,7 +453,7 @@ impl PrecisionArgs {
         };
         Ok(Precision {
             choice,
-            spawn: choice.policy(&answers, answer_scale),
+            spawn: choice.policy(&answers, scale_exp),
             scale_exp,
             lane,
         })
@@ -566,7 +559,7 @@ impl HwConfig {
         let format = self.datapath.format;
         let built = built_pair();
         let filter = self.dual_filter.unwrap_or(DualFilter::Bfp).slot_filter();
-        let (FormatChoice::Pair(pair), Some(filter)) = (format, filter) else {
+        let FormatChoice::Pair(pair) = format else {
             bail!("--format {format}: the hardware pair is {built}; other pairs are model-only (--engine model)");
         };
         if pair != built {

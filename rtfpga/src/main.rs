@@ -1,7 +1,7 @@
 //! `rtfpga`: render scenes in software, through the bit-accurate models or the Verilated
 //! hardware, compare images, list number formats, generate and measure the hardware. The CLI
-//! contract is in the repository's `docs/architecture.md` ("CLI contract"); each subcommand
-//! lives in its own module, which option acts where in `options`.
+//! contract is the repository's `docs/cli.md`; each subcommand lives in its own module, which
+//! option acts where in `options`.
 
 mod cmd_bench;
 mod cmd_compare;

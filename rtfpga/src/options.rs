@@ -24,6 +24,9 @@ pub enum Target {
     UnitModel,
     /// The traversal unit's RTL.
     Unit,
+    /// The frame unit's bit-accurate model: ray generation, shading and pixel sums around
+    /// the traversal unit's model (untimed).
+    FrameModel,
     /// One operator of a lane (`synth --op`).
     Operator,
     /// Every committed configuration (`verilog --defaults`).
@@ -60,6 +63,7 @@ pub const RULES: &[Rule] = &[
             (HwPair, Values::Any),
             (UnitModel, Values::Any),
             (Unit, Values::Any),
+            (FrameModel, Values::Any),
             (Operator, Values::Any),
             (StreamDesign, Values::Any),
             (TraversalDesign, Values::Any),
@@ -101,6 +105,7 @@ pub const RULES: &[Rule] = &[
         applies: &[
             (UnitModel, Values::Any),
             (Unit, Values::Any),
+            (FrameModel, Values::Any),
             (TraversalDesign, Values::Any),
         ],
     },
@@ -120,22 +125,34 @@ pub const RULES: &[Rule] = &[
         applies: &[
             (UnitModel, Values::Any),
             (Unit, Values::Any),
+            (FrameModel, Values::Any),
             (TraversalDesign, Values::Any),
         ],
     },
     Rule {
         arg: "dual_filter",
-        applies: &[
-            (ModelPair, Values::Any),
-            (HwPair, Values::Only(&["bfp", "plucker-signs"])),
-        ],
+        applies: &[(ModelPair, Values::Any), (HwPair, Values::Any)],
     },
     Rule {
         arg: "scale",
         applies: &[
             (Model, Values::Any),
-            (ModelPair, Values::Any),
             (UnitModel, Values::Any),
+            (FrameModel, Values::Any),
+        ],
+    },
+    Rule {
+        arg: "spawn",
+        applies: &[
+            (F32, Values::Any),
+            (Model, Values::Any),
+            (ModelPair, Values::Any),
+            (Accelerator, Values::Any),
+            (HwPair, Values::Any),
+            (UnitModel, Values::Any),
+            (Unit, Values::Any),
+            // The frame unit spawns as the thesis does: the bias, every hit counting.
+            (FrameModel, Values::Only(&["thesis"])),
         ],
     },
     Rule {
@@ -148,6 +165,7 @@ pub const RULES: &[Rule] = &[
             (Model, Values::Only(&["none", "triangle-box"])),
             (UnitModel, Values::Only(&["none", "leaf-box"])),
             (Unit, Values::Only(&["none", "leaf-box"])),
+            (FrameModel, Values::Only(&["none", "leaf-box"])),
         ],
     },
     Rule {
@@ -192,10 +210,13 @@ pub const RULES: &[Rule] = &[
     },
 ];
 
-/// The targets of each subcommand (its path of names) and how its command line chooses them.
-pub const SUBCOMMANDS: &[(&[&str], &[(Target, &str)])] = &[
+/// A subcommand's targets, each with how its command line chooses it.
+pub type Targets = &'static [(Target, &'static str)];
+
+/// The targets of each subcommand (its path of names).
+pub const SUBCOMMANDS: &[(&[&str], Targets)] = &[
     (&["render"], RENDER),
-    (&["bench"], RENDER),
+    (&["bench"], BENCH),
     (
         &["cosim"],
         &[
@@ -235,20 +256,28 @@ pub const SUBCOMMANDS: &[(&[&str], &[(Target, &str)])] = &[
     ),
 ];
 
-const RENDER: &[(Target, &str)] = &[
+const RENDER: Targets = &[
     (F32, "--engine f32"),
     (Model, "--engine model"),
     (ModelPair, "--engine model --format FILTER/FALLBACK"),
     (Accelerator, "--engine hw"),
     (HwPair, "--engine hw --format bfp18/fp32"),
     (UnitModel, "--engine traversal"),
+    (FrameModel, "--engine frame"),
 ];
+
+/// `bench` times the renderer's ray engines: `render`'s but the frame model (its last), which
+/// renders whole frames.
+const BENCH: Targets = match RENDER.split_last() {
+    Some((_, ray_engines)) => ray_engines,
+    None => &[],
+};
 
 fn rule(arg: &str) -> Option<&'static Rule> {
     RULES.iter().find(|r| r.arg == arg)
 }
 
-fn targets_of(path: &[&str]) -> Option<&'static [(Target, &'static str)]> {
+fn targets_of(path: &[&str]) -> Option<Targets> {
     SUBCOMMANDS
         .iter()
         .find(|(p, _)| *p == path)

@@ -32,7 +32,7 @@ const PAIRS: [PairConfig; 2] = [
 
 fn model(pair: &PairConfig) -> DualIntersector {
     let formats = FormatPair::parse("bfp18/fp32").unwrap();
-    DualIntersector::with_filter(Filter::new(formats, 0, pair.filter.model_kind()).unwrap())
+    DualIntersector::with_filter(Filter::new(formats, pair.filter.model_kind()))
 }
 
 fn point(rng: &mut StdRng, size: f32) -> [f32; 3] {

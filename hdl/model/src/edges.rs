@@ -15,7 +15,6 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::dual::{round_up_to_bits, HW_BOUND_BITS};
 use crate::format::Format;
 use crate::precision::rounding_error;
 
@@ -109,9 +108,28 @@ impl Rounding {
 
 const EXPONENT_BITS: u64 = 0x7ff0_0000_0000_0000;
 
+/// Fraction bits of the bound network's coarse float.
+pub const HW_BOUND_BITS: u32 = 3;
+
 /// `x` ≥ 0 rounded up to [`HW_BOUND_BITS`] fraction bits: the bound network's numbers.
 fn up(x: f64) -> f64 {
     round_up_to_bits(x, HW_BOUND_BITS)
+}
+
+/// `x` ≥ 0 rounded up to a float of `bits` fraction bits (0 and non-finite values stay).
+fn round_up_to_bits(x: f64, bits: u32) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let dropped = f64::MANTISSA_DIGITS - 1 - bits;
+    let raw = x.to_bits();
+    let low = raw & ((1u64 << dropped) - 1);
+    if low == 0 {
+        x
+    } else {
+        // Carrying into the exponent field gives the next power of two, as it should.
+        f64::from_bits((raw - low) + (1u64 << dropped))
+    }
 }
 
 /// a + b of two bound values, rounded up: f64's sum, moved up one step if it was inexact
@@ -329,5 +347,27 @@ mod tests {
         );
         assert_eq!(fx.of_result(3.0, Op::Sum), 0.0);
         assert_eq!(fx.of_magnitude(3.0, Op::Product), 2f64.powi(-16));
+    }
+
+    proptest::proptest! {
+        /// The coarse grid rounds up onto values of `bits` fraction bits, at most one
+        /// grid step (2^(1-bits) relative) above, and leaves grid values alone.
+        #[test]
+        fn coarse_rounding_is_upward_onto_the_grid(x in 1e-300f64..1e300, bits in 0u32..8) {
+            let up = round_up_to_bits(x, bits);
+            proptest::prop_assert!(up >= x);
+            proptest::prop_assert!(up <= x * (1.0 + 2f64.powi(1 - bits as i32)));
+            let e = up.log2().floor() as i32;
+            let steps = up / 2f64.powi(e - bits as i32);
+            proptest::prop_assert!(steps == steps.trunc() && steps <= 2f64.powi(bits as i32 + 1));
+            proptest::prop_assert_eq!(round_up_to_bits(up, bits), up);
+        }
+    }
+
+    #[test]
+    fn zero_infinity_and_grid_values_stay() {
+        for x in [0.0, 1e-30, 0.3, 7.0, f64::INFINITY] {
+            assert_eq!(up(x) == x, x == 0.0 || x.is_infinite() || x == 7.0);
+        }
     }
 }

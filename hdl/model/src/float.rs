@@ -208,6 +208,34 @@ impl FloatFormat {
         self.round_pack(sx, sum, ex - shift as i32 - self.man as i32, false)
     }
 
+    /// Correctly rounded √a (RNE, FTZ): √±0 = ±0, √+Inf = +Inf, a NaN or a value below zero
+    /// gives the canonical NaN. The exact root of `sig × 2^e` is formed as the integer square
+    /// root of `sig` shifted left by an even-making amount to `2·man + 6` or `2·man + 7` bits:
+    /// `man + 3` or more root bits, its remainder the sticky flag: one rounding of root +
+    /// sticky is the correct one (and a square root is never exactly halfway between two
+    /// floats). Formats up to 28 fraction bits (the root then fits a u64).
+    #[inline]
+    pub fn sqrt(self, a: u64) -> u64 {
+        match self.unpack(a) {
+            Unpacked::Nan | Unpacked::Inf(true) | Unpacked::Finite { sign: true, .. } => self.nan(),
+            Unpacked::Inf(false) => a,
+            Unpacked::Zero(s) => self.zero(s),
+            Unpacked::Finite { sig, e, .. } => {
+                let mut shift = self.man + 5;
+                if (e - shift as i32) % 2 != 0 {
+                    shift += 1;
+                }
+                debug_assert!(
+                    2 * self.man + 7 <= 64,
+                    "sqrt's root fits a u64 up to man = 28"
+                );
+                let x = sig << shift;
+                let root = x.isqrt();
+                self.round_pack(false, root, (e - shift as i32) / 2, root * root != x)
+            }
+        }
+    }
+
     /// An order-preserving integer key; `None` for NaN. Flushed subnormals and both zeros map to 0.
     #[inline]
     fn order_key(self, a: u64) -> Option<i64> {

@@ -59,6 +59,8 @@ pub mod engine;
 mod fixed;
 mod float;
 pub mod format;
+pub mod fp32;
+pub mod frame;
 pub mod mt;
 pub mod precision;
 pub mod traversal;

@@ -202,34 +202,3 @@ pub fn edge_bound(format: &Format, q: &MtQuery) -> (LaneValues, Option<crate::ed
     let x = with_arith!(format, f => lane_values(f, &datapath(f, q)));
     (x, tolerances(&Rounding::of(format), &x))
 }
-
-/// The values the tests compare, exactly (every valid format's values are f64 values).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MtValues {
-    pub det: f64,
-    /// The numerators s·p, dir·q, e2·q of u, v, t.
-    pub num: [f64; 3],
-    pub u: f64,
-    pub v: f64,
-    pub t: f64,
-    pub uv: f64,
-}
-
-/// [`mt_model`] in `format` and the intermediates its tests compare (the dual-precision
-/// filter's inputs, `crate::dual`).
-pub fn mt_traced(format: &Format, q: &MtQuery) -> (MtResult, MtValues) {
-    let (result, d) = with_arith!(format, f => {
-        let d = datapath(f, q);
-        (tests(f, &d, None), d)
-    });
-    let x = |bits| format.to_f64(bits);
-    let values = MtValues {
-        det: x(d.det),
-        num: d.num.map(x),
-        u: x(d.u),
-        v: x(d.v),
-        t: x(d.t),
-        uv: x(d.uv),
-    };
-    (result, values)
-}

@@ -3,10 +3,7 @@
 //! scenes), a margin below the derived bound is caught wrongly rejecting hits, and bad
 //! pairs are clear errors.
 
-use hw_model::dual::{
-    BoundArith, DualError, DualIntersector, Filter, FilterFormat, FilterKind, FormatChoice,
-    FormatPair, PluckerDecisions, DEFAULT_FILTER,
-};
+use hw_model::dual::{DualError, DualIntersector, Filter, FilterKind, FormatChoice, FormatPair};
 use hw_model::precision::SpawnChoice;
 use hw_model::{lookup, mt_model, FormatError, ModelIntersector, MtQuery, MtResult};
 use rand::rngs::StdRng;
@@ -143,72 +140,42 @@ fn fallback_hits(pair: &FormatPair, qs: &[MtQuery]) -> Vec<(MtQuery, MtResult)> 
     .concat()
 }
 
-/// A filter under test and its pairs: `main` takes the long random run, `extra` (scaled by
-/// 2^k) 10^5 of its queries, `margin` the margin and render tests, `largest` the ignored
-/// report; `rejects_at` a margin scale shown to reject fallback hits (the largest such
-/// scale is 0.18–0.30 for every filter and pair: the ignored report).
+/// A filter under test and its pairs: `main` takes the long random run, `extra` 10^5 of its
+/// queries, `margin` the margin and render tests, `largest` the ignored report; `rejects_at`
+/// a margin scale shown to reject fallback hits (the largest such scale is 0.14–0.32 for
+/// every filter and pair: the ignored report).
 struct Case {
     kind: FilterKind,
     main: &'static str,
-    extra: &'static [(&'static str, i32)],
+    extra: &'static [&'static str],
     margin: &'static [&'static str],
     largest: &'static [&'static str],
     rejects_at: f64,
 }
 
-const FLOAT_EXTRA: &[(&str, i32)] = &[("fp16/fp32", -2), ("e6m13/fp32", 0), ("bf16/fp24", 0)];
-const FLOAT_MARGIN: &[&str] = &["fp16/fp32", "e6m13/fp32"];
-const FLOAT_LARGEST: &[&str] = &["fp16/fp32", "e6m13/fp32", "fp24/fp32"];
-
-const fn float_case(kind: FilterKind) -> Case {
-    Case {
-        kind,
-        main: "fp16/fp32",
-        extra: FLOAT_EXTRA,
-        margin: FLOAT_MARGIN,
-        largest: FLOAT_LARGEST,
-        rejects_at: 0.25,
-    }
-}
-
-/// The filters under test: the division-free one with the hardware's coarse bound, the
-/// quotient filter, the division-free one with an exact bound, block floating point, and
-/// block floating point in Plücker form with either decisions.
-const CASES: [Case; 6] = [
-    float_case(DEFAULT_FILTER),
-    float_case(FilterKind::Quotient),
-    float_case(FilterKind::Linear(BoundArith::Exact)),
+/// The filters hardware builds: block floating point, and block floating point in Plücker
+/// form with sign decisions.
+const CASES: [Case; 2] = [
     Case {
         kind: FilterKind::Bfp,
         main: "bfp18/fp32",
-        extra: &[("bfp14/fp32", 0), ("bfp8/fp32", 0), ("bfp24/fp32", 0)],
+        extra: &["bfp14/fp32", "bfp8/fp32", "bfp24/fp32"],
         margin: &["bfp18/fp32", "bfp14/fp32"],
         largest: &["bfp14/fp32", "bfp16/fp32", "bfp18/fp32", "bfp20/fp32"],
         rejects_at: 0.2,
     },
-    plucker_case(PluckerDecisions::Table),
-    plucker_case(PluckerDecisions::Signs),
-];
-
-const fn plucker_case(decisions: PluckerDecisions) -> Case {
     Case {
-        kind: FilterKind::Plucker(decisions),
+        kind: FilterKind::Plucker,
         main: "bfp18/fp32",
-        extra: &[("bfp14/fp32", 0), ("bfp8/fp32", 0), ("bfp24/fp32", 0)],
+        extra: &["bfp14/fp32", "bfp8/fp32", "bfp24/fp32"],
         margin: &["bfp18/fp32", "bfp14/fp32"],
         largest: &["bfp14/fp32", "bfp18/fp32", "bfp24/fp32"],
         rejects_at: 0.2,
-    }
-}
+    },
+];
 
-/// The engines' filters and the Plücker filter (the candidate for hardware) take the
-/// million queries; the others a fifth of them.
-fn long_run(kind: FilterKind) -> bool {
-    kind == DEFAULT_FILTER || matches!(kind, FilterKind::Bfp | FilterKind::Plucker(_))
-}
-
-fn filter(p: &str, scale_exp: i32, kind: FilterKind) -> Filter {
-    Filter::new(pair(p), scale_exp, kind).unwrap()
+fn filter(p: &str, kind: FilterKind) -> Filter {
+    Filter::new(pair(p), kind)
 }
 
 /// `f` over `items` in one contiguous chunk per core, results in chunk order. The checks
@@ -258,8 +225,7 @@ fn filter_and_fallback_equal_the_fallback_on_a_million_queries() {
     let qs = queries(17, 1_000_000);
     for case in &CASES {
         let kind = case.kind;
-        let n = if long_run(kind) { qs.len() } else { 200_000 };
-        let decided = check_equal(filter(case.main, 0, kind), &qs[..n]);
+        let decided = check_equal(filter(case.main, kind), &qs);
         // Not vacuous: the filter decides a share alone (most queries are built to be close
         // calls).
         assert!(
@@ -269,22 +235,22 @@ fn filter_and_fallback_equal_the_fallback_on_a_million_queries() {
         );
         println!("{} {kind:?}: {decided:.3} decided by the filter", case.main);
         let some = &qs[..100_000];
-        for &(p, k) in case.extra {
-            let decided = check_equal(filter(p, k, kind), some);
+        for &p in case.extra {
+            let decided = check_equal(filter(p, kind), some);
             assert!(decided > 0.02, "{p} {kind:?} decided only {decided:.3}");
-            println!("{p} scaled by 2^{k}, {kind:?}: {decided:.3} decided by the filter");
+            println!("{p} {kind:?}: {decided:.3} decided by the filter");
         }
     }
 }
 
-/// The margin is the bound, not a bound with room to spare: with a quarter (bfp: a fifth)
-/// of it the same kind of queries hold hits the filter would reject.
+/// The margin is the bound, not a bound with room to spare: with a fifth of it the same kind
+/// of queries hold hits the filter would reject.
 #[test]
 fn a_fraction_of_the_margin_rejects_hits() {
     let qs = queries(17, 300_000);
     for case in &CASES {
         for &p in case.margin {
-            let filter = filter(p, 0, case.kind);
+            let filter = filter(p, case.kind);
             let hits = fallback_hits(&filter.pair, &qs);
             let wrong = hits
                 .iter()
@@ -338,8 +304,8 @@ fn flushed_quotients() -> Vec<MtQuery> {
 /// A flushed quotient makes the fallback hit where exact arithmetic misses; every filter
 /// must leave such a query to the fallback. (Here the margins already cover N_u, so this
 /// does not show the flush guards of the u < 0 and v < 0 tests necessary: removing the
-/// linear or the Plücker filter's guard still passes. With 1/1000 of its margin the bfp
-/// filter does reject these hits.)
+/// Plücker filter's guard still passes. With 1/1000 of its margin the bfp filter does
+/// reject these hits.)
 #[test]
 fn flushed_quotients_are_left_to_the_fallback() {
     let qs = flushed_quotients();
@@ -349,18 +315,19 @@ fn flushed_quotients_are_left_to_the_fallback() {
         "the fallback should hit every flushed-quotient query"
     );
     for case in &CASES {
-        let pairs = std::iter::once((case.main, 0))
-            .chain(case.extra.iter().copied())
-            .chain(case.margin.iter().chain(case.largest).map(|&p| (p, 0)));
-        for (p, k) in pairs {
-            let filter = filter(p, k, case.kind);
+        let pairs = std::iter::once(&case.main)
+            .chain(case.extra)
+            .chain(case.margin)
+            .chain(case.largest);
+        for &p in pairs {
+            let filter = filter(p, case.kind);
             for q in &qs {
                 assert!(!filter.certain_miss(q, 1.0), "{p} {:?}: {q:?}", case.kind);
             }
         }
     }
     // Not vacuous: the hits are close enough calls that a too-small margin rejects them.
-    let bfp = filter("bfp18/fp32", 0, FilterKind::Bfp);
+    let bfp = filter("bfp18/fp32", FilterKind::Bfp);
     assert!(qs.iter().any(|q| bfp.certain_miss(q, 1e-3)));
 }
 
@@ -373,7 +340,7 @@ fn largest_margin_scale_that_rejects_a_hit() {
     let qs = queries(17, 100_000);
     for case in &CASES {
         for &p in case.largest {
-            let filter = filter(p, 0, case.kind);
+            let filter = filter(p, case.kind);
             let hits = fallback_hits(&filter.pair, &qs);
             let rejects = |scale: f64| hits.iter().any(|(q, _)| filter.certain_miss(q, scale));
             assert!(!rejects(1.0), "{p} {:?} rejects a hit", case.kind);
@@ -414,7 +381,7 @@ fn dual_renders_of_the_thesis_scenes_equal_the_fallbacks() {
         for case in &CASES {
             for &p in case.margin {
                 let kind = case.kind;
-                let dual = DualIntersector::with_filter(filter(p, 0, kind));
+                let dual = DualIntersector::with_filter(filter(p, kind));
                 let got = render_small(&scene, &dual);
                 assert!(
                     got.as_raw() == want.as_raw(),
@@ -430,51 +397,18 @@ fn dual_renders_of_the_thesis_scenes_equal_the_fallbacks() {
 #[test]
 fn bad_pairs_are_clear_errors() {
     let err = |s: &str| FormatPair::parse(s).unwrap_err();
-    assert!(matches!(err("fp32/fp16"), DualError::NotNarrower { .. }));
-    let msg = err("fp32/fp16").to_string();
-    assert!(
-        msg.contains("not narrower") && msg.contains("fp32/fp16"),
-        "{msg}"
-    );
-    // A wider exponent is as wrong as more fraction bits.
-    assert!(matches!(err("bf16/fp16"), DualError::NotNarrower { .. }));
-    match err("fp16/xyz") {
-        DualError::Half { half, source, .. } => {
-            assert_eq!(half, "fallback");
-            assert!(matches!(source, FormatError::Unknown(_)));
-        }
-        e => panic!("{e:?}"),
-    }
-    assert!(err("fp16/xyz").to_string().contains("xyz"));
-    assert!(matches!(
-        err("e1m3/fp32"),
-        DualError::Half { half: "filter", .. }
-    ));
-    assert!(matches!(err("fp32/e8m23"), DualError::Equal(_)));
-    assert!(matches!(err("fx32_16/fp32"), DualError::Fixed { .. }));
-    assert!(err("fx32_16/fp32")
-        .to_string()
-        .contains("float formats only"));
-    for bad in ["fp16/", "/fp32", "a/b/c", "fp16//fp32", "/"] {
+    for bad in ["fp16/", "/fp32", "a/b/c", "bfp18//fp32", "/"] {
         assert!(matches!(err(bad), DualError::Malformed(_)), "{bad}");
     }
-    // Spelled as a format: a `/` makes it a pair.
-    let choice: FormatChoice = "e6m13/fp32".parse().unwrap();
-    assert_eq!(choice, FormatChoice::Pair(pair("e6m13/fp32")));
-    assert_eq!(choice.to_string(), "e6m13/fp32");
-    assert_eq!(
-        "fp16".parse::<FormatChoice>().unwrap(),
-        FormatChoice::Single(lookup("fp16").unwrap())
-    );
-    assert_eq!(
-        Intersector::name(&DualIntersector::new(pair(" FP16 / fp32 "), 0).unwrap()),
-        "model fp16/fp32"
-    );
-}
-
-#[test]
-fn bad_bfp_spellings_are_clear_errors() {
-    let err = |s: &str| FormatPair::parse(s).unwrap_err();
+    // A float filter is no filter of a pair.
+    for bad in ["fp16/fp32", "e6m13/fp32", "fp32/fp16", "fx32_16/fp32"] {
+        let e = err(bad);
+        assert!(matches!(e, DualError::NotBfp { .. }), "{bad}: {e:?}");
+        assert!(
+            e.to_string().contains("is not block floating point") && e.to_string().contains(bad),
+            "{e}"
+        );
+    }
     for bad in [
         "bfp7/fp32",
         "bfp25/fp32",
@@ -486,66 +420,42 @@ fn bad_bfp_spellings_are_clear_errors() {
         assert!(matches!(e, DualError::BfpWidth { .. }), "{bad}: {e:?}");
         assert!(e.to_string().contains("8 to 24 bits"), "{e}");
     }
-    for bad in ["bfp18/fp16", "bfp18/fp24"] {
+    for bad in ["bfp18/fp16", "bfp18/fp24", "bfp18/fx32_16"] {
         let e = err(bad);
         assert!(matches!(e, DualError::BfpFallback { .. }), "{bad}: {e:?}");
         assert!(e.to_string().contains("holds fp32"), "{e}");
     }
-    assert!(matches!(
-        err("bfp18/xyz"),
-        DualError::Half {
-            half: "fallback",
-            ..
+    match err("bfp18/xyz") {
+        DualError::Half { half, source, .. } => {
+            assert_eq!(half, "fallback");
+            assert!(matches!(source, FormatError::Unknown(_)));
         }
-    ));
-    // Spelled as a format; the engines pick the bfp filter for it.
+        e => panic!("{e:?}"),
+    }
+    assert!(err("bfp18/xyz").to_string().contains("xyz"));
+    // Spelled as a format: a `/` makes it a pair; the engines pick the bfp filter for it.
     let choice: FormatChoice = " BFP18 / fp32 ".parse().unwrap();
+    assert_eq!(choice, FormatChoice::Pair(pair("bfp18/fp32")));
     assert_eq!(choice.to_string(), "bfp18/fp32");
+    assert_eq!(
+        "fp16".parse::<FormatChoice>().unwrap(),
+        FormatChoice::Single(lookup("fp16").unwrap())
+    );
     let p = pair("bfp18/fp32");
-    assert_eq!(p.filter, FilterFormat::Bfp(18));
-    assert_eq!(FilterKind::default_for(&p), FilterKind::Bfp);
+    assert_eq!(p.filter_width, 18);
     assert_eq!(
-        DualIntersector::new(p, 0).unwrap().filter.kind,
-        FilterKind::Bfp
+        Intersector::name(&DualIntersector::new(p)),
+        "model bfp18/fp32"
     );
-    // The kind must fit the filter, and block floating point is not scaled.
-    let kind_err = |p: &str, k: i32, kind| Filter::new(pair(p), k, kind).unwrap_err();
-    let e = kind_err("bfp18/fp32", 0, DEFAULT_FILTER);
-    assert!(e.to_string().contains("needs a float filter"), "{e}");
-    let e = kind_err("fp16/fp32", 0, FilterKind::Bfp);
-    assert!(
-        e.to_string()
-            .contains("needs a block-floating-point filter"),
-        "{e}"
-    );
-    assert!(matches!(
-        kind_err("bfp18/fp32", -2, FilterKind::Bfp),
-        DualError::BfpScaled { scale_exp: -2, .. }
-    ));
-    let e = kind_err("fp16/fp32", 0, FilterKind::Plucker(PluckerDecisions::Table));
-    assert!(
-        e.to_string()
-            .contains("the plucker filter needs a block-floating-point filter"),
-        "{e}"
-    );
-    assert!(matches!(
-        kind_err(
-            "bfp18/fp32",
-            3,
-            FilterKind::Plucker(PluckerDecisions::Table)
-        ),
-        DualError::BfpScaled { scale_exp: 3, .. }
-    ));
-    assert_eq!(
-        filter(
-            "bfp14/fp32",
-            0,
-            FilterKind::Plucker(PluckerDecisions::Signs)
-        )
-        .kind
-        .to_string(),
-        "plucker-signs"
-    );
+    assert_eq!(DualIntersector::new(p).filter.kind, FilterKind::Bfp);
+    assert_eq!(pair("bfp14/e8m30").to_string(), "bfp14/e8m30");
+    // The filters by their CLI names.
+    for kind in FilterKind::ALL {
+        assert_eq!(kind.to_string().parse::<FilterKind>(), Ok(kind));
+    }
+    assert_eq!(FilterKind::Plucker.to_string(), "plucker-signs");
+    let e = "linear".parse::<FilterKind>().unwrap_err();
+    assert!(e.contains("bfp or plucker-signs"), "{e}");
 }
 
 /// What any filter must forward on a query, for the floors below: the fp32 answer is a hit,
@@ -557,18 +467,15 @@ struct Floors {
     forwarded: std::sync::atomic::AtomicU64,
     hits: std::sync::atomic::AtomicU64,
     inside: std::sync::atomic::AtomicU64,
-    /// Per filter of [`FloorCounter::others`]: tests it would forward, fp32 hits it would
-    /// have rejected.
-    others: [[std::sync::atomic::AtomicU64; 2]; PLUCKER.len()],
+    /// The Plücker filter's ([`FloorCounter::plucker`]): tests it would forward, fp32 hits it
+    /// would have rejected.
+    plucker: [std::sync::atomic::AtomicU64; 2],
 }
 
-/// The filters the floors are measured against beside bfp18/fp32.
-const PLUCKER: [PluckerDecisions; 2] = [PluckerDecisions::Table, PluckerDecisions::Signs];
-
-/// bfp18/fp32 with [`Floors`] counted beside it, and what the Plücker filters would forward.
+/// bfp18/fp32 with [`Floors`] counted beside it, and what the Plücker filter would forward.
 struct FloorCounter {
     dual: DualIntersector,
-    others: [Filter; PLUCKER.len()],
+    plucker: Filter,
     floors: Floors,
 }
 
@@ -617,12 +524,11 @@ impl Intersector for FloorCounter {
             .filter(|(q, r)| r.hit || inside_edges(q))
             .count() as u64;
         let f = &self.floors;
-        for (other, [forwarded, rejected]) in self.others.iter().zip(&f.others) {
-            for (q, r) in queries.iter().zip(results.iter()) {
-                let miss = other.certain_miss(q, 1.0);
-                forwarded.fetch_add(u64::from(!miss), Relaxed);
-                rejected.fetch_add(u64::from(miss && r.hit), Relaxed);
-            }
+        let [plucker_forwarded, plucker_rejected] = &f.plucker;
+        for (q, r) in queries.iter().zip(results.iter()) {
+            let miss = self.plucker.certain_miss(q, 1.0);
+            plucker_forwarded.fetch_add(u64::from(!miss), Relaxed);
+            plucker_rejected.fetch_add(u64::from(miss && r.hit), Relaxed);
         }
         f.tests.fetch_add(queries.len() as u64, Relaxed);
         f.forwarded.fetch_add(forwarded, Relaxed);
@@ -635,7 +541,8 @@ impl Intersector for FloorCounter {
 /// The forwarded share's floors on the thesis scenes at 320×180 under both spawn policies
 /// (as the fp32 renders spawn): any filter forwards the fp32 hits; a filter that decides only
 /// the edge tests (no t test) also forwards the misses inside the edges. Beside them, what
-/// bfp18/fp32 forwards. `--ignored`: it prints the table docs/precision.md reports.
+/// bfp18/fp32 and its Plücker filter forward. `--ignored`: it prints the table
+/// docs/precision.md reports.
 #[test]
 #[ignore]
 fn forwarding_floors_on_the_thesis_scenes() {
@@ -644,9 +551,9 @@ fn forwarding_floors_on_the_thesis_scenes() {
         return;
     };
     println!(
-        "| policy | scene | tests | fp32 hits | hits or inside the edges | bfp18/fp32 forwards | Plücker, bfp decisions (`plucker`) | Plücker, sign decisions (`plucker-signs`, the lane) |"
+        "| policy | scene | tests | fp32 hits | hits or inside the edges | bfp18/fp32 forwards | Plücker (`plucker-signs`) forwards |"
     );
-    println!("|---|---|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---|---:|---:|---:|---:|---:|");
     for choice in [SpawnChoice::Thesis, SpawnChoice::FormatAware] {
         let opts = RenderOptions {
             width: Some(320),
@@ -654,48 +561,41 @@ fn forwarding_floors_on_the_thesis_scenes() {
             spawn: choice.policy(&lookup("fp32").unwrap(), 0),
             ..Default::default()
         };
-        let mut total = [0u64; 6];
-        let row = |scene: &str, n: [u64; 6]| {
+        let mut total = [0u64; 5];
+        let row = |scene: &str, n: [u64; 5]| {
             let share = |k: usize| n[k] as f64 / n[0].max(1) as f64;
             println!(
-                "| {choice} | {scene} | {} | {:.4} | {:.4} | {:.4} | {:.4} | {:.4} |",
+                "| {choice} | {scene} | {} | {:.4} | {:.4} | {:.4} | {:.4} |",
                 n[0],
                 share(1),
                 share(2),
                 share(3),
-                share(4),
-                share(5)
+                share(4)
             );
         };
         for name in thesis_scenes::SCENE_DIRS {
             let scene = Scene::load(root.join(name).to_str().unwrap()).unwrap();
             let counter = FloorCounter {
-                dual: DualIntersector::new(pair("bfp18/fp32"), 0).unwrap(),
-                others: PLUCKER.map(|d| filter("bfp18/fp32", 0, FilterKind::Plucker(d))),
+                dual: DualIntersector::new(pair("bfp18/fp32")),
+                plucker: filter("bfp18/fp32", FilterKind::Plucker),
                 floors: Floors::default(),
             };
             render(&scene, &counter, &opts).unwrap();
             let f = &counter.floors;
-            let [table, signs] = &f.others;
-            let n = [
-                &f.tests,
-                &f.hits,
-                &f.inside,
-                &f.forwarded,
-                &table[0],
-                &signs[0],
-            ]
-            .map(|c| c.load(Relaxed));
+            let n = [&f.tests, &f.hits, &f.inside, &f.forwarded, &f.plucker[0]]
+                .map(|c| c.load(Relaxed));
             // The floors are floors: a filter that forwarded less would have dropped a hit.
             assert!(
                 n[3..].iter().all(|&k| n[1] <= k) && n[1] <= n[2],
                 "{name}: {n:?}"
             );
-            for [_, rejected] in &f.others {
-                assert_eq!(rejected.load(Relaxed), 0, "{name}: an fp32 hit rejected");
-            }
+            assert_eq!(
+                f.plucker[1].load(Relaxed),
+                0,
+                "{name}: an fp32 hit rejected"
+            );
             row(name, n);
-            for k in 0..6 {
+            for k in 0..5 {
                 total[k] += n[k];
             }
         }

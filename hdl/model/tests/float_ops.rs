@@ -390,3 +390,44 @@ fn f32_conversions_round_once_and_round_trip() {
         }
     }
 }
+
+/// √x of fp32 as the model computes it, from the reference: f64 `sqrt` (correctly rounded)
+/// rounded once to f32 (double rounding is innocuous for a square root: 53 ≥ 2·24 + 2), with
+/// the SPEC's flushing and NaN rules: a subnormal operand is ±0, √−0 = −0, below zero NaN.
+fn sqrt_reference(bits: u32) -> u32 {
+    let x = ftz32(f32::from_bits(bits));
+    if x.is_nan() || x < 0.0 || x == f32::NEG_INFINITY {
+        return 0x7fc0_0000;
+    }
+    ((x as f64).sqrt() as f32).to_bits()
+}
+
+/// Every fp32 in [1, 4): every significand with both exponent parities, which is every case
+/// the integer root sees (other exponents only shift the result's).
+#[test]
+fn fp32_sqrt_is_correctly_rounded_on_every_operand_in_one_to_four() {
+    for bits in 1.0f32.to_bits()..4.0f32.to_bits() {
+        let got = hw_model::fp32::Fp32::from_bits(bits).sqrt().bits();
+        assert_eq!(got, sqrt_reference(bits), "sqrt({bits:#x})");
+    }
+}
+
+#[test]
+fn fp32_sqrt_of_random_and_special_operands() {
+    let mut r = rng(8);
+    let specials = float_edges(8, 23).into_iter().map(|b| b as u32);
+    let negatives = float_edges(8, 23)
+        .into_iter()
+        .map(|b| b as u32 | 0x8000_0000);
+    let random = (0..200_000).map(|_| r.gen::<u32>());
+    for bits in specials.chain(negatives).chain(random) {
+        let got = hw_model::fp32::Fp32::from_bits(bits).sqrt().bits();
+        assert_eq!(got, sqrt_reference(bits), "sqrt({bits:#x})");
+    }
+    let sqrt = |x: f32| hw_model::fp32::Fp32::new(x).sqrt().f32();
+    assert_eq!(sqrt(-0.0).to_bits(), 0x8000_0000);
+    assert_eq!(sqrt(1e-40).to_bits(), 0, "a subnormal operand is +0");
+    assert_eq!(sqrt(f32::INFINITY), f32::INFINITY);
+    assert_eq!(sqrt(4.0), 2.0);
+    assert_eq!(sqrt(2.0), std::f32::consts::SQRT_2);
+}

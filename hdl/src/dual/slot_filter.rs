@@ -4,7 +4,7 @@
 //! slot can keep either in a list (rust-hdl's Verilog takes no port array of a block in a
 //! list). Wires only.
 
-use hw_model::dual::{FilterKind, PluckerDecisions};
+use hw_model::dual::FilterKind;
 use rust_hdl::prelude::*;
 
 use super::align_add::EXP_BITS;
@@ -48,7 +48,7 @@ impl SlotFilter {
     pub fn model_kind(self) -> FilterKind {
         match self {
             SlotFilter::Bfp => FilterKind::Bfp,
-            SlotFilter::Plucker => FilterKind::Plucker(PluckerDecisions::Signs),
+            SlotFilter::Plucker => FilterKind::Plucker,
         }
     }
 }

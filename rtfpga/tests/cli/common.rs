@@ -182,9 +182,12 @@ pub fn split(line: &str) -> Option<Vec<String>> {
     Some(words)
 }
 
+/// A parsed `key=value` line: its label word (if it has one) and its fields in order.
+pub type Fields = (Option<String>, Vec<(String, String)>);
+
 /// A `key=value` line: its label word (if it has one) and its fields; an error unless every
 /// word after the label is `key=value` with a lowercase key.
-pub fn fields(line: &str) -> Result<(Option<String>, Vec<(String, String)>), String> {
+pub fn fields(line: &str) -> Result<Fields, String> {
     let words = split(line).ok_or_else(|| format!("unbalanced quote in {line:?}"))?;
     let mut label = None;
     let mut out = Vec::new();

@@ -1,5 +1,6 @@
-//! Dual-precision pairs `--format FILTER/FALLBACK`: the model engine renders the fallback's
-//! image with any filter; the hardware builds one pair; every other use names what is built.
+//! Dual-precision pairs `--format bfpW/FALLBACK`: the model engine renders the fallback's
+//! image with either filter; the hardware builds one pair; every other use names what is
+//! built.
 
 use hw_model::ModelIntersector;
 
@@ -12,20 +13,13 @@ fn a_model_pair_renders_the_fallbacks_image_and_reports_what_it_forwarded() {
     let fp32 = ModelIntersector::new(hw_model::lookup("fp32").unwrap());
     let want = library_render("utah_teapot", 32, 18, &fp32);
     for (pair, args, filter) in [
-        ("fp16/fp32", &[][..], "linear"),
-        ("fp16/fp32", &["--dual-filter", "quotient"][..], "quotient"),
-        (
-            "fp16/fp32",
-            &["--dual-filter", "linear-exact"],
-            "linear-exact",
-        ),
-        ("bfp18/fp32", &[], "bfp"),
-        ("bfp18/fp32", &["--dual-filter", "plucker"], "plucker"),
+        ("bfp18/fp32", &[][..], "bfp"),
         (
             "bfp18/fp32",
             &["--dual-filter", "plucker-signs"],
             "plucker-signs",
         ),
+        ("bfp14/fp32", &[], "bfp"),
     ] {
         let out = render("utah_teapot", 32, 18, &png)
             .args(&["--engine", "model", "--format", pair])
@@ -59,12 +53,11 @@ fn a_malformed_pair_is_a_usage_error_naming_what_is_wrong() {
     let dir = tmp();
     let png = at(&dir, "x.png");
     for (format, needle) in [
-        ("fp32/fp16", "not narrower"),
-        ("fp16/xyz", "xyz"),
-        ("fp16/fp16", "same format"),
+        ("fp16/fp32", "not block floating point"),
+        ("bfp18/xyz", "xyz"),
         ("fp16/", "FILTER/FALLBACK"),
         ("a/b/c", "FILTER/FALLBACK"),
-        ("fx32_16/fp32", "float formats only"),
+        ("fx32_16/fp32", "not block floating point"),
         ("bfp7/fp32", "8 to 24 bits"),
         ("bfp18/fp16", "holds fp32"),
     ] {
@@ -76,18 +69,20 @@ fn a_malformed_pair_is_a_usage_error_naming_what_is_wrong() {
 }
 
 #[test]
-fn a_filter_that_does_not_fit_the_pair_and_a_scaled_bfp_filter_are_errors() {
+fn a_filter_that_is_not_built_and_a_scaled_pair_are_errors() {
     let dir = tmp();
     let png = at(&dir, "x.png");
-    for (extra, needle) in [
-        (["--dual-filter", "linear"], "needs a float filter"),
-        (["--scale", "auto"], "not scaled"),
-    ] {
-        render("simple_plane", 8, 8, &png)
-            .args(&["--engine", "model", "--format", "bfp18/fp32"])
-            .args(&extra)
-            .fails(1, &["bfp18/fp32", needle]);
-    }
+    let pair = || {
+        render("simple_plane", 8, 8, &png).args(&["--engine", "model", "--format", "bfp18/fp32"])
+    };
+    pair()
+        .args(&["--dual-filter", "linear"])
+        .fails(2, &["linear", "bfp", "plucker-signs"]);
+    pair().args(&["--scale", "auto"]).fails(
+        1,
+        &["--scale does not act on --engine model --format FILTER/FALLBACK"],
+    );
+    assert!(!png.exists());
 }
 
 #[test]
@@ -96,14 +91,15 @@ fn pairs_other_than_the_built_one_are_model_only_everywhere() {
     let png = at(&dir, "x.png");
     for engine in ["hw", "traversal"] {
         render("simple_plane", 8, 8, &png)
-            .args(&["--engine", engine, "--format", "fp16/fp32"])
-            .fails(1, &["fp16/fp32", "model-only"]);
+            .args(&["--engine", engine, "--format", "bfp14/fp32"])
+            .fails(1, &["bfp14/fp32", "model-only"]);
     }
-    rtfpga(&["verilog", "--format", "fp16/fp32", "--out", s(dir.path())]).fails(1, &["model-only"]);
-    rtfpga(&["synth", "--format", "fp16/fp32"]).fails(1, &["model-only"]);
-    rtfpga(&["cosim", "--scene", "simple_plane", "--format", "fp16/fp32"])
-        .out(&png)
+    rtfpga(&["verilog", "--format", "bfp14/fp32", "--out", s(dir.path())])
         .fails(1, &["model-only"]);
+    rtfpga(&["synth", "--format", "bfp14/fp32"]).fails(1, &["model-only"]);
+    rtfpga(&["cosim", "--scene", "simple_plane", "--format", "bfp14/fp32"])
+        .out(&png)
+        .fails(1, &["the hardware pair is bfp18/fp32", "model-only"]);
     assert!(!png.exists());
 }
 
@@ -119,9 +115,6 @@ fn the_hardware_pair_refuses_what_it_is_not_built_with() {
     pair()
         .args(&["--lanes", "2", "--mode", "register"])
         .fails(1, &["--mode does not act on --unit mt --format bfp18/fp32"]);
-    pair()
-        .args(&["--lanes", "2", "--dual-filter", "quotient"])
-        .fails(1, &["--dual-filter quotient", "bfp or plucker-signs"]);
     pair()
         .args(&["--depth", "99"])
         .fails(1, &["depth = 99", "depth 0 to"]);

@@ -147,7 +147,7 @@ fn the_traversal_unit_refuses_what_its_rtl_does_not_build() {
             &["--advance", "triangle-box"],
             &["--advance triangle-box", "none or leaf-box"],
         ),
-        (&["--format", "fp16/fp32"], &["model-only"]),
+        (&["--format", "bfp18/fp32"], &["model-only"]),
     ] {
         unit("cosim")
             .args(&["--scene", "simple_plane"])

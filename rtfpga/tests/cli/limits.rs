@@ -164,6 +164,23 @@ fn image_sizes_and_render_options_at_their_limits() {
             vec!["--engine", "traversal", "--scene-memory", "4294967296,1"],
             Refused(2),
         ),
+        // The frame unit's image limits (hw_model::frame::FrameLimits::HW).
+        (
+            vec!["--engine", "frame", "--width", "1", "--height", "1"],
+            Ok,
+        ),
+        (
+            vec!["--engine", "frame", "--width", "1920", "--height", "1"],
+            Ok,
+        ),
+        (
+            vec!["--engine", "frame", "--width", "1921", "--height", "1"],
+            Refused(1),
+        ),
+        (
+            vec!["--engine", "frame", "--width", "1", "--height", "1081"],
+            Refused(1),
+        ),
         (vec!["--engine", "hw", "--lanes", "0"], Refused(1)),
         (vec!["--engine", "hw", "--lanes", "9"], Refused(1)),
         (vec!["--engine", "hw", "--depth", &beyond], Refused(1)),

@@ -16,6 +16,7 @@ fn sample(option: &str) -> Option<&'static [&'static str]> {
         "--scale" => &["none"],
         "--edges" => &["exact"],
         "--advance" => &["none"],
+        "--spawn" => &["thesis"],
         "--mode" => &["stream"],
         "--vcd" => &["x.vcd"],
         "--stages" => &["1"],
@@ -86,6 +87,7 @@ fn an_option_given_where_it_does_not_act_is_refused_naming_where_it_does() {
                 "--engine hw",
                 "--engine hw --format bfp18/fp32",
                 "--engine traversal",
+                "--engine frame",
             ],
         ),
         (
@@ -136,7 +138,7 @@ fn an_option_given_where_it_does_not_act_is_refused_naming_where_it_does() {
             let values = sample(&option).unwrap_or_else(|| panic!("no sample value of {option}"));
             for target in targets {
                 let spelled = target
-                    .replace("FILTER/FALLBACK", "fp16/fp32")
+                    .replace("FILTER/FALLBACK", "bfp14/fp32")
                     .replace("hw|both", "hw")
                     .replace("--op", "--op bogus");
                 let spelled: Vec<&str> = spelled.split(' ').collect();
@@ -197,7 +199,7 @@ fn options_that_were_ignored_are_refused() {
         "--format",
         "fp16",
         "--dual-filter",
-        "plucker",
+        "plucker-signs",
     ])
     .fails(1, &["--dual-filter does not act on --engine model:"]);
     r().args(&["--engine", "hw", "--slots", "4"]).fails(
@@ -206,6 +208,13 @@ fn options_that_were_ignored_are_refused() {
     );
     r().args(&["--engine", "model", "--depth", "99"])
         .fails(1, &["--depth does not act on --engine model"]);
+    // The frame model has no cycles and spawns as the thesis does.
+    r().args(&["--engine", "frame", "--lanes", "2"])
+        .fails(1, &["--lanes does not act on --engine frame"]);
+    r().args(&["--engine", "frame", "--spawn", "format-aware"])
+        .fails(1, &["--spawn format-aware: --engine frame takes thesis"]);
+    rtfpga(&["bench", "simple_plane", "--engine", "frame"])
+        .fails(1, &["--engine frame renders whole frames", "rtfpga render"]);
     // The schedule model's unit is the RTL's in depth and lanes (its slots may vary).
     r().args(&["--engine", "traversal", "--depth", "99"])
         .fails(1, &["depth = 99", "depth 0 to"]);
@@ -276,14 +285,19 @@ fn the_help_is_true() {
         !cosim.contains("model only"),
         "plucker-signs is built:\n{cosim}"
     );
-    assert!(cosim.contains("(bfp, plucker-signs)"), "{cosim}");
+    // Both filters are built: the hardware pair takes every value of --dual-filter.
+    assert!(
+        cosim.contains("[default: bfp] [applies to: --unit mt --format bfp18/fp32]")
+            && cosim.contains("- plucker-signs:"),
+        "{cosim}"
+    );
     let render = rtfpga(&["render", "--help"]).ok();
     assert!(
         !render.contains("`--unit traversal`"),
         "render has no --unit:\n{render}"
     );
     assert!(
-        render.contains("[applies to: --engine model (none, triangle-box), --engine traversal (none, leaf-box)]"),
+        render.contains("[applies to: --engine model (none, triangle-box), --engine traversal (none, leaf-box), --engine frame (none, leaf-box)]"),
         "{render}"
     );
     // Every option and positional argument has a description.

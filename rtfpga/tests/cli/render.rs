@@ -1,7 +1,12 @@
 //! `rtfpga render`: the image a render writes is the library's for the same engine.
 
-use hw_model::ModelIntersector;
+use hw_model::frame::{Frame, FrameLimits, WAVEFRONT};
+use hw_model::traversal::{SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
+use hw_model::{Advance, Format, ModelIntersector};
+use image::RgbImage;
 use sw_renderer::intersect::F32Intersector;
+use sw_renderer::scene::Scene;
+use sw_renderer::trace::PreparedScene;
 
 use crate::common::*;
 
@@ -74,5 +79,72 @@ fn the_fp16_model_writes_the_models_image_not_f32s() {
         img,
         library_render("simple_plane", 32, 18, &F32Intersector),
         "--engine model --format fp16 rendered exactly the f32 image"
+    );
+}
+
+/// The frame model's image of `scene` (hw_model::frame), its rays answered by the traversal
+/// unit's model in `format`.
+fn library_frame(scene: &str, w: u32, h: u32, format: Format) -> RgbImage {
+    let scene = Scene::load(scene).expect("scene");
+    let prepared = PreparedScene::new(&scene).expect("prepared");
+    let unit = TraversalEngine {
+        format,
+        stack_depth: DEFAULT_STACK_DEPTH,
+        scale_exp: 0,
+        advance: Advance::None,
+        timing: None,
+        memory: SceneMemory::Unbounded,
+    };
+    let frame = Frame::new(&scene, &prepared, &unit, w, h, &FrameLimits::HW).expect("loaded");
+    frame.render(16, WAVEFRONT, &|| {}).expect("rendered").image
+}
+
+/// `--engine frame` writes the frame model's image, its rays answered in `--format`; on
+/// simple_plane (one contribution a pixel) that is the software's image. Its `frame` line
+/// counts the rays by kind.
+#[test]
+fn the_frame_engine_writes_the_frame_models_image_and_counts_rays_by_kind() {
+    let dir = tmp();
+    let png = at(&dir, "frame.png");
+    let out = render("simple_plane", 64, 36, &png)
+        .args(&["--engine", "frame"])
+        .ok();
+    assert_eq!(value(&out, "engine").as_deref(), Some("frame"), "{out}");
+    assert_eq!(
+        value(&out, "traversal").as_deref(),
+        Some("traversal model fp32"),
+        "{out}"
+    );
+    assert_eq!(value(&out, "spawn").as_deref(), Some("thesis"), "{out}");
+    let frame = labelled(&out, "frame");
+    for (kind, count) in [
+        ("primary_rays", "2304"),
+        ("reflection_rays", "0"),
+        ("refraction_rays", "0"),
+    ] {
+        assert_eq!(value(frame, kind).as_deref(), Some(count), "{out}");
+    }
+    assert_eq!(
+        read_png(&png),
+        library_render("simple_plane", 64, 36, &F32Intersector)
+    );
+
+    let out = render("glass_pen", 40, 24, &png)
+        .args(&["--engine", "frame", "--format", "e8m14"])
+        .ok();
+    let frame = labelled(&out, "frame");
+    for kind in ["reflection_rays", "refraction_rays", "shadow_rays"] {
+        let n: u64 = value(frame, kind).unwrap().parse().unwrap();
+        assert!(n > 0, "no {kind}: {out}");
+    }
+    let image = read_png(&png);
+    assert_eq!(
+        image,
+        library_frame("glass_pen", 40, 24, hw_model::lookup("e8m14").unwrap())
+    );
+    assert_ne!(
+        image,
+        library_frame("glass_pen", 40, 24, Format::FP32),
+        "--format did not reach the traversal unit"
     );
 }

@@ -144,6 +144,6 @@ fn scene_image_writes_the_words_it_reports() {
         .chunks_exact(4)
         .map(|w| u32::from_le_bytes(w.try_into().unwrap()))
         .collect();
-    let image = sw_renderer::scene_image::SceneImage::from_words(&words).unwrap();
+    let image = hw_model::traversal::scene_image::SceneImage::from_words(&words).unwrap();
     assert_eq!(image.triangles.len(), 6322);
 }

@@ -48,7 +48,7 @@ pub struct DualScene {
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct DualResult {
-    /// As `FormatPair` prints it (`fp16/fp32`).
+    /// As `FormatPair` prints it (`bfp18/fp32`).
     pub pair: String,
     /// Width of the filter format in bits.
     pub filter_bits: u32,
@@ -188,7 +188,7 @@ pub fn run(config: &SweepConfig, layout: &Layout, pair: &str) -> Result<Vec<Dual
         let mut scenes = Vec::new();
         for scene in &config.scenes {
             // One intersector per scene: its counters are the scene's.
-            let dual = DualIntersector::new(parsed, 0)?;
+            let dual = DualIntersector::new(parsed);
             let out = render_scene(config, scene, &dual, spawn)?;
             let stats = dual.stats();
             let expected = render_scene(config, scene, &fallback, spawn)?;
@@ -215,7 +215,7 @@ pub fn run(config: &SweepConfig, layout: &Layout, pair: &str) -> Result<Vec<Dual
         };
         let result = DualResult {
             pair: pair.to_string(),
-            filter_bits: parsed.filter.width(),
+            filter_bits: parsed.filter_width,
             policy,
             scenes,
             hardware: hardware.then(|| PairHardware {

@@ -49,7 +49,7 @@ impl Layout {
         self.quality_dir(format, variant).join("result.json")
     }
 
-    /// A dual-precision pair's renders (`fp16/fp32` in the folder `fp16_fp32`).
+    /// A dual-precision pair's renders (`bfp18/fp32` in the folder `bfp18_fp32`).
     pub fn dual_dir(&self, pair: &str, policy: SpawnChoice) -> PathBuf {
         self.root
             .join("dual")

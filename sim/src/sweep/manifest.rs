@@ -20,14 +20,14 @@ pub enum Job {
     Prepare,
     /// Model-engine renders of every scene in one format.
     Quality(String),
-    /// Model renders of every scene through one dual-precision pair (`fp16/fp32`).
+    /// Model renders of every scene through one dual-precision pair (`bfp18/fp32`).
     Dual(String),
     /// Verilog, synthesis, latency and co-simulation of one point (by id).
     Point(String),
 }
 
 impl Job {
-    /// How the job is named on the command line: `prepare`, `quality/fp16`, `dual/fp16/fp32`,
+    /// How the job is named on the command line: `prepare`, `quality/fp16`, `dual/bfp18/fp32`,
     /// `point/fp16_d1_l2`.
     pub fn id(&self) -> String {
         match self {

@@ -100,7 +100,7 @@ pub fn write_csv(rows: &[Row], path: &Path) -> Result<()> {
 /// One line of quality.csv: a format or pair on one scene under one policy.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct QualityRow {
-    /// A format, or a dual-precision pair (`fp16/fp32`).
+    /// A format, or a dual-precision pair (`bfp18/fp32`).
     pub format: String,
     /// `hardware`, `model` (model-only format) or `pair`.
     pub kind: String,

@@ -5,15 +5,14 @@
 //! exponent of its largest dropped part; step 3 computes the cross products exactly, cuts
 //! them to blocks at a fixed exponent ([`cross_block`]) and the dots exactly; step 4
 //! ([`margin_units`]) bounds the filter's and the fp32 fallback's errors by a few constants
-//! shifted by block and dropped-part exponents; step 5 ([`Filter::decide_bfp`]) decides the
+//! shifted by block and dropped-part exponents; step 5 ([`certain_miss`]) decides the
 //! fallback's tests on short floats rounded outward ([`round`]), every rounding in the
 //! direction that keeps a decision certain.
 
 use std::ops::RangeInclusive;
 
-use sw_renderer::intersect::{MtQuery, MtResult};
+use sw_renderer::intersect::MtQuery;
 
-use super::{Filter, FilterFormat, FP32_ROUNDING};
 use crate::mt::DET_EPSILON;
 
 /// The mantissa widths a `bfpW` filter may have: products of three mantissas stay well
@@ -314,6 +313,9 @@ fn constants() -> Constants {
     }
 }
 
+/// fp32's unit roundoff 2^-24: the fallback's roundings.
+const FP32_UNIT: f64 = 1.0 / 16_777_216.0;
+
 /// The fp32 fallback's part of a margin, times 2^(E_a + E_b + E_c) of a value a·(b × c)
 /// whose vectors have block exponents in [`EXP_MIN`, `EXP_MAX`] and a sum of at least
 /// [`SUM_MIN`] (each |x_k| ≤ 2^E(1 + τ)): 6γ₇(1 + τ)³ (seven roundings on each of the six
@@ -321,7 +323,7 @@ fn constants() -> Constants {
 /// in as 3u·[`QUOTIENT_RANGE`]. Shared with the Plücker filter, whose fallback is the same.
 pub fn fallback_constant() -> f64 {
     let tau = tau();
-    let u = FP32_ROUNDING.unit;
+    let u = FP32_UNIT;
     let gamma7 = 7.0 * u / (1.0 - 7.0 * u);
     6.0 * gamma7 * (1.0 + tau).powi(3) + 2f64.powi(-39) + 3.0 * u * QUOTIENT_RANGE
 }
@@ -597,7 +599,7 @@ pub fn values(q: &MtQuery, width: u32, margin_scale: f64) -> Option<[(Fx, i128);
     Some([value(DET)?, value(N_U)?, value(N_V)?, value(N_T)?])
 }
 
-/// Step 5 ([`Filter::decide_bfp`]): the rows of the decision table from det and its margin
+/// Step 5 ([`certain_miss`]): the rows of the decision table from det and its margin
 /// `e_det`, the numerators N_u, N_v, N_t with theirs (values at their last bit's exponent,
 /// margins in units of that bit) and the query's t_min. `None` only if an i128 adder
 /// overflows (never at the filter's widths): forwarded.
@@ -646,28 +648,23 @@ pub fn decide(det: Fx, e_det: i128, nums: [(Fx, i128); 3], t_min: f32) -> Option
     })
 }
 
-impl Filter {
-    /// [`Filter::decide`] for [`super::FilterKind::Bfp`]: `decide_linear`'s tests (the
-    /// table in docs/precision.md, "The division-free filter") on short floats rounded
-    /// outward ([`round`]): steps 1–4 ([`values`]), then step 5 ([`decide`]). With
-    /// σ = sign(det), n = σ·N and the margins e (the fallback's quotient roundings folded
-    /// in, [`margin_units`]): H = up(|det| + e_D), L = down(|det| − e_D), and per numerator
-    /// hi = up(n + e), lo = down(n − e):
-    /// - H < eps (the fallback's parallel test fires);
-    /// - otherwise only if L > 0, L ≥ 2^-126, H < 2^125 and max(hi, −lo) < L·2^125 (no
-    ///   reciprocal overflows or flushes, no quotient overflows);
-    /// - u < 0: hi_u < 0 and H·2^-124 ≤ −hi_u (the quotient is not flushed to −0); v likewise;
-    /// - u > 1: H < lo_u;
-    /// - u + v > 1: H < down(lo_u + lo_v) ([`add_down`]);
-    /// - t ≤ t_min: hi_t < down(τ'·(L if τ' ≥ 0 else H)), τ' ≤ t_min − λ ([`t_min_below`]).
-    pub(super) fn decide_bfp(&self, q: &MtQuery, margin_scale: f64) -> Option<MtResult> {
-        let FilterFormat::Bfp(width) = self.pair.filter else {
-            unreachable!("Filter::new pairs the bfp kind with a bfpW filter")
-        };
-        let [det, nu, nv, nt] = values(q, width, margin_scale)?;
-        let rows = decide(det.0, det.1, [nu, nv, nt], q.t_min)?;
-        rows.miss().then_some(MtResult::default())
-    }
+/// Whether the bfp filter of `width` decides `q` a certain miss: the fallback's tests (the
+/// table in docs/precision.md, "Deciding without a division") on short floats rounded
+/// outward ([`round`]): steps 1–4 ([`values`]), then step 5 ([`decide`]). With
+/// σ = sign(det), n = σ·N and the margins e (the fallback's quotient roundings folded
+/// in, [`margin_units`]): H = up(|det| + e_D), L = down(|det| − e_D), and per numerator
+/// hi = up(n + e), lo = down(n − e):
+/// - H < eps (the fallback's parallel test fires);
+/// - otherwise only if L > 0, L ≥ 2^-126, H < 2^125 and max(hi, −lo) < L·2^125 (no
+///   reciprocal overflows or flushes, no quotient overflows);
+/// - u < 0: hi_u < 0 and H·2^-124 ≤ −hi_u (the quotient is not flushed to −0); v likewise;
+/// - u > 1: H < lo_u;
+/// - u + v > 1: H < down(lo_u + lo_v) ([`add_down`]);
+/// - t ≤ t_min: hi_t < down(τ'·(L if τ' ≥ 0 else H)), τ' ≤ t_min − λ ([`t_min_below`]).
+pub fn certain_miss(q: &MtQuery, width: u32, margin_scale: f64) -> bool {
+    values(q, width, margin_scale)
+        .and_then(|[det, nu, nv, nt]| decide(det.0, det.1, [nu, nv, nt], q.t_min))
+        .is_some_and(|rows| rows.miss())
 }
 
 #[cfg(test)]

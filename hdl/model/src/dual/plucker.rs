@@ -21,20 +21,19 @@
 //! value's, the alignment's unit, and the fp32 fallback's bound (`bfp::fallback_constant`)
 //! shifted by the distance of 2^ΣE from the value's last bit, ΣE from block exponents and
 //! the exponent of |s| that a coarse subtraction gives ([`s_exponent`]). The values are
-//! fitted to the bfp filter's step-5 widths, so its decisions (`bfp::decide`, and `Decide`
-//! in rust-hdl) decide them. The sign decisions ([`PluckerDecisions::Signs`],
-//! `signs::decide`, what the hardware lane builds) take the same values and margins and
-//! N_w with its own margin ([`sign_inputs`]): bit for bit what hardware computes.
+//! fitted to the widths of the bfp filter's step 5 (`bfp::decide`, `Decide` in rust-hdl),
+//! which the sign decisions (`signs::decide`, [`certain_miss`]) take with N_w and its own
+//! margin ([`sign_inputs`]): bit for bit what the hardware lane computes.
 
 use std::ops::RangeInclusive;
 
-use sw_renderer::intersect::{MtQuery, MtResult};
+use sw_renderer::intersect::MtQuery;
 
 use super::bfp::{
     self, constant, fallback_constant, lsb_range, margin_bits, split, top, value_bits, Fx, Term,
     Vector, DET, EXP_MAX, EXP_MIN, N_T, N_U, N_V, SUM_MIN,
 };
-use super::{signs, Filter, FilterFormat, PluckerDecisions};
+use super::signs;
 
 /// Block exponents a stored vector may have (a 10-bit biased field in hardware); outside,
 /// the query is forwarded.
@@ -535,34 +534,13 @@ pub fn sign_inputs(q: &MtQuery, width: u32, margin_scale: f64) -> Option<SignInp
     })
 }
 
-impl Filter {
-    /// [`Filter::decide`] for [`super::FilterKind::Plucker`]: `decisions` on the values of
-    /// [`datapath`]: [`PluckerDecisions::Table`] takes [`decide_inputs`] to the bfp
-    /// filter's step 5 (`bfp::decide`), [`PluckerDecisions::Signs`] takes
-    /// [`sign_inputs`] to `signs::decide`.
-    pub(super) fn decide_plucker(
-        &self,
-        q: &MtQuery,
-        margin_scale: f64,
-        decisions: PluckerDecisions,
-    ) -> Option<MtResult> {
-        let FilterFormat::Bfp(width) = self.pair.filter else {
-            unreachable!("Filter::new pairs the plucker kind with a bfpW filter")
-        };
-        match decisions {
-            PluckerDecisions::Table => {
-                let [det, nu, nv, nt] = decide_inputs(q, width, margin_scale)?;
-                let rows = bfp::decide(det.0, det.1, [nu, nv, nt], q.t_min)?;
-                rows.miss().then_some(MtResult::default())
-            }
-            PluckerDecisions::Signs => {
-                let SignInputs { values, w } = sign_inputs(q, width, margin_scale)?;
-                let [det, nu, nv, nt] = values;
-                let rows = signs::decide(det, [nu, nv, nt], w, q.t_min, width);
-                rows.miss().then_some(MtResult::default())
-            }
-        }
-    }
+/// Whether the Plücker filter of `width` decides `q` a certain miss: the sign decisions
+/// (`signs::decide`) on [`sign_inputs`], bit for bit what the hardware lane decides.
+pub fn certain_miss(q: &MtQuery, width: u32, margin_scale: f64) -> bool {
+    sign_inputs(q, width, margin_scale).is_some_and(|SignInputs { values, w }| {
+        let [det, nu, nv, nt] = values;
+        signs::decide(det, [nu, nv, nt], w, q.t_min, width).miss()
+    })
 }
 
 #[cfg(test)]

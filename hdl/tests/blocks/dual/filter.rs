@@ -94,10 +94,8 @@ fn bits(x: f32) -> Bits<32> {
 fn stream(qs: &[MtQuery], seen: &mut Seen) {
     let filter = Filter::new(
         FormatPair::parse(&format!("bfp{WIDTH}/fp32")).unwrap(),
-        0,
         FilterKind::Bfp,
-    )
-    .unwrap();
+    );
     let mut uut = BfpFilter::default();
     uut.connect_all();
     for cycle in 0..qs.len() + LATENCY {

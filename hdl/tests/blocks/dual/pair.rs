@@ -172,7 +172,7 @@ fn run(
 /// The model of a pair with `kind`'s filter.
 fn model(kind: SlotFilter) -> DualIntersector {
     let pair = FormatPair::parse(&format!("bfp{WIDTH}/fp32")).unwrap();
-    DualIntersector::with_filter(Filter::new(pair, 0, kind.model_kind()).unwrap())
+    DualIntersector::with_filter(Filter::new(pair, kind.model_kind()))
 }
 
 const KINDS: [SlotFilter; 2] = [SlotFilter::Bfp, SlotFilter::Plucker];

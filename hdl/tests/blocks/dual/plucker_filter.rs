@@ -13,7 +13,7 @@ use hw_model::dual::bfp::Term;
 use hw_model::dual::plucker::{
     datapath, decide_inputs, fallback_term, margin_constants, s_exponent, MarginConstants,
 };
-use hw_model::dual::{Filter, FilterKind, FormatPair, PluckerDecisions};
+use hw_model::dual::{Filter, FilterKind, FormatPair};
 use hw_model::precision::SpawnChoice;
 use hw_model::{lookup, ModelIntersector, MtResult};
 use rand::rngs::StdRng;
@@ -170,10 +170,8 @@ fn bits(x: f32) -> Bits<32> {
 fn stream(qs: &[MtQuery]) -> Seen {
     let filter = Filter::new(
         FormatPair::parse(&format!("bfp{WIDTH}/fp32")).unwrap(),
-        0,
-        FilterKind::Plucker(PluckerDecisions::Signs),
-    )
-    .unwrap();
+        FilterKind::Plucker,
+    );
     let mut seen = Seen::default();
     let mut uut = PluckerFilter::default();
     uut.connect_all();

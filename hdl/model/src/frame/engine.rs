@@ -1,0 +1,306 @@
+//! Running a frame: the primary rays of every pixel, the traversal unit's model answering
+//! them in batches, shading, accumulation, until every pixel's last ray has returned.
+//!
+//! The image is split into tiles, each run on its own (in parallel): a tile's rays form a
+//! queue; [`RayOrder`] picks the next batch from it, the traversal unit answers the batch,
+//! each answer is shaded, its contributions added and its spawned rays queued. Pixels are
+//! independent and their sums order-independent, so the image depends neither on the tile
+//! size nor on the order: the hardware, answering rays out of order, gives the same bits.
+
+use std::ops::AddAssign;
+
+use image::RgbImage;
+use rayon::prelude::*;
+use sw_renderer::hit::Hit;
+use sw_renderer::math::V3;
+use sw_renderer::rays::{CastStats, Ray, RayCaster, RayEngine};
+use sw_renderer::scene::Scene;
+use sw_renderer::trace::PreparedScene;
+
+use super::accumulate::Accumulator;
+use super::constants::FrameConstants;
+use super::raygen::primary;
+use super::shade::{shade, FrameRay, Load, RayKind, Shaded};
+use super::{FrameError, FrameLimits};
+use crate::fp32::Vec3;
+
+/// How the next batch is taken from a tile's queue of rays: given a seed (the tile and the
+/// step) it may reorder the queue and returns how many rays from its front go to the
+/// traversal unit next (at least 1 is taken).
+pub type RayOrder<'o> = &'o (dyn Fn(u64, &mut [FrameRay]) -> usize + Sync);
+
+/// The whole queue as one batch, in order: a wavefront per ray-tree level.
+pub const WAVEFRONT: RayOrder<'static> = &|_, queue| queue.len();
+
+/// What a frame did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FrameStats {
+    pub primary_rays: u64,
+    pub reflection_rays: u64,
+    pub refraction_rays: u64,
+    pub shadow_rays: u64,
+    /// Primary, reflection and refraction rays that hit.
+    pub hits: u64,
+    /// Shadow rays an occluder stopped.
+    pub occluded: u64,
+    /// Shadow rays not spawned because their contribution was zero.
+    pub zero_shadows: u64,
+    /// Reflection and refraction rays past the maximum depth (background, not traced).
+    pub past_depth: u64,
+    /// Glass hits with total internal reflection (no refraction ray).
+    pub total_internal: u64,
+    /// Contributions added to pixels.
+    pub contributions: u64,
+    /// What the traversal unit's model did.
+    pub cast: CastStats,
+}
+
+impl FrameStats {
+    pub fn rays(&self) -> u64 {
+        self.primary_rays + self.reflection_rays + self.refraction_rays + self.shadow_rays
+    }
+
+    pub fn of_kind(&self, kind: RayKind) -> u64 {
+        match kind {
+            RayKind::Primary => self.primary_rays,
+            RayKind::Reflection => self.reflection_rays,
+            RayKind::Refraction => self.refraction_rays,
+            RayKind::Shadow => self.shadow_rays,
+        }
+    }
+
+    fn count(&mut self, kind: RayKind) {
+        *match kind {
+            RayKind::Primary => &mut self.primary_rays,
+            RayKind::Reflection => &mut self.reflection_rays,
+            RayKind::Refraction => &mut self.refraction_rays,
+            RayKind::Shadow => &mut self.shadow_rays,
+        } += 1;
+    }
+}
+
+impl AddAssign for FrameStats {
+    fn add_assign(&mut self, o: FrameStats) {
+        self.primary_rays += o.primary_rays;
+        self.reflection_rays += o.reflection_rays;
+        self.refraction_rays += o.refraction_rays;
+        self.shadow_rays += o.shadow_rays;
+        self.hits += o.hits;
+        self.occluded += o.occluded;
+        self.zero_shadows += o.zero_shadows;
+        self.past_depth += o.past_depth;
+        self.total_internal += o.total_internal;
+        self.contributions += o.contributions;
+        self.cast += o.cast;
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct FrameOutput {
+    pub image: RgbImage,
+    pub stats: FrameStats,
+}
+
+/// A rectangle of pixels.
+#[derive(Clone, Copy, Debug)]
+struct Tile {
+    x0: u32,
+    y0: u32,
+    x1: u32,
+    y1: u32,
+}
+
+impl Tile {
+    fn width(&self) -> u32 {
+        self.x1 - self.x0
+    }
+
+    fn pixels(&self) -> usize {
+        (self.width() * (self.y1 - self.y0)) as usize
+    }
+}
+
+/// The frame unit with a scene loaded: its constants and its traversal unit.
+pub struct Frame<'a> {
+    constants: FrameConstants,
+    caster: Box<dyn RayCaster + 'a>,
+    scene: String,
+}
+
+impl<'a> Frame<'a> {
+    /// `scene` (prepared as `prepared`) loaded for a `width`×`height` frame checked against
+    /// `limits`, its rays answered by `traversal` (the traversal unit's model; it loads the
+    /// scene image from `prepared`).
+    pub fn new(
+        scene: &Scene,
+        prepared: &'a PreparedScene,
+        traversal: &'a dyn RayEngine,
+        width: u32,
+        height: u32,
+        limits: &FrameLimits,
+    ) -> Result<Frame<'a>, FrameError> {
+        let constants = FrameConstants::load(scene, prepared, width, height, limits)?;
+        let caster = traversal
+            .prepare(prepared)
+            .map_err(|source| FrameError::Traversal {
+                scene: scene.name.clone(),
+                source,
+            })?;
+        Ok(Frame {
+            constants,
+            caster,
+            scene: scene.name.clone(),
+        })
+    }
+
+    pub fn constants(&self) -> &FrameConstants {
+        &self.constants
+    }
+
+    /// The number of tiles of edge `tile_size` (≥ 1) [`Frame::render`] runs.
+    pub fn tile_count(&self, tile_size: u32) -> usize {
+        self.tiles(tile_size).len()
+    }
+
+    fn tiles(&self, size: u32) -> Vec<Tile> {
+        let (w, h) = (self.constants.width, self.constants.height);
+        let size = size.max(1);
+        let mut tiles = Vec::new();
+        for y0 in (0..h).step_by(size as usize) {
+            for x0 in (0..w).step_by(size as usize) {
+                tiles.push(Tile {
+                    x0,
+                    y0,
+                    x1: (x0 + size).min(w),
+                    y1: (y0 + size).min(h),
+                });
+            }
+        }
+        tiles
+    }
+
+    /// Renders the frame in tiles of edge `tile_size`, each tile's batches taken by `order`;
+    /// `done` is called after each tile.
+    pub fn render(
+        &self,
+        tile_size: u32,
+        order: RayOrder,
+        done: &(dyn Fn() + Sync),
+    ) -> Result<FrameOutput, FrameError> {
+        let tiles = self.tiles(tile_size);
+        let rendered = (tiles.par_iter().enumerate())
+            .map(|(k, tile)| {
+                let out = self.tile(k as u64, tile, order);
+                done();
+                out
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut image = RgbImage::new(self.constants.width, self.constants.height);
+        let mut stats = FrameStats::default();
+        for (tile, (pixels, s)) in tiles.iter().zip(rendered) {
+            for (k, rgb) in pixels.into_iter().enumerate() {
+                let (i, j) = (k as u32 % tile.width(), k as u32 / tile.width());
+                image.put_pixel(tile.x0 + i, tile.y0 + j, image::Rgb(rgb));
+            }
+            stats += s;
+        }
+        Ok(FrameOutput { image, stats })
+    }
+
+    /// One tile: its pixels' colours (row by row) and what it did.
+    fn tile(
+        &self,
+        index: u64,
+        tile: &Tile,
+        order: RayOrder,
+    ) -> Result<(Vec<[u8; 3]>, FrameStats), FrameError> {
+        let c = &self.constants;
+        let local = |pixel: u32| {
+            let (i, j) = (pixel % c.width, pixel / c.width);
+            ((j - tile.y0) * tile.width() + (i - tile.x0)) as usize
+        };
+        let mut acc = Accumulator::new(tile.pixels());
+        let mut colours: Vec<Option<[u8; 3]>> = vec![None; tile.pixels()];
+        let mut queue: Vec<FrameRay> = Vec::with_capacity(tile.pixels());
+        for j in tile.y0..tile.y1 {
+            for i in tile.x0..tile.x1 {
+                let (orig, dir) = primary(&c.camera, i, j);
+                let pixel = j * c.width + i;
+                acc.issue(local(pixel));
+                queue.push(FrameRay {
+                    pixel,
+                    orig,
+                    dir,
+                    t_max: crate::fp32::Fp32::MAX,
+                    load: Load::Cast {
+                        kind: RayKind::Primary,
+                        depth: 0,
+                        weight: Vec3::of([1.0; 3]),
+                    },
+                });
+            }
+        }
+        let mut stats = FrameStats::default();
+        let (mut rays, mut hits) = (Vec::new(), Vec::<Option<Hit>>::new());
+        let mut shaded = Shaded::default();
+        for step in 0u64.. {
+            if queue.is_empty() {
+                break;
+            }
+            let n = order(index << 32 | step, &mut queue).clamp(1, queue.len());
+            let batch: Vec<FrameRay> = queue.drain(..n).collect();
+            rays.clear();
+            rays.extend(batch.iter().map(unit_ray));
+            hits.clear();
+            hits.resize(batch.len(), None);
+            stats.cast +=
+                (self.caster.cast(&rays, &mut hits)).map_err(|source| FrameError::Traversal {
+                    scene: self.scene.clone(),
+                    source,
+                })?;
+            for (ray, hit) in batch.iter().zip(&hits) {
+                stats.count(ray.kind());
+                match (ray.kind(), hit) {
+                    (RayKind::Shadow, Some(_)) => stats.occluded += 1,
+                    (RayKind::Shadow, None) | (_, None) => {}
+                    (_, Some(_)) => stats.hits += 1,
+                }
+                shaded.clear();
+                shade(c, ray, hit.as_ref(), &mut shaded);
+                let p = local(ray.pixel);
+                for &contribution in &shaded.contributions {
+                    acc.add(p, contribution);
+                }
+                for &spawned in &shaded.spawned {
+                    acc.issue(p);
+                    queue.push(spawned);
+                }
+                if let Some(rgb) = acc.retire(p) {
+                    colours[p] = Some(rgb);
+                }
+            }
+        }
+        stats.zero_shadows = shaded.zero_shadows;
+        stats.past_depth = shaded.past_depth;
+        stats.total_internal = shaded.total_internal;
+        stats.contributions = acc.added;
+        let pixels = colours
+            .into_iter()
+            .map(|c| c.expect("every pixel retires its last ray once the queue is empty"))
+            .collect();
+        Ok((pixels, stats))
+    }
+}
+
+/// A frame ray as the traversal unit takes it: t_min 0 and nothing excluded (the thesis'
+/// spawning, by the bias).
+fn unit_ray(r: &FrameRay) -> Ray {
+    Ray {
+        orig: V3::from_array(r.orig.to_f32()),
+        dir: V3::from_array(r.dir.to_f32()),
+        bound: r.t_max.f32(),
+        shadow: r.kind() == RayKind::Shadow,
+        t_min: 0.0,
+        exclude: None,
+    }
+}
