@@ -84,3 +84,52 @@ impl<const A: usize, const B: usize, const P: usize, const SIGNED: bool> Logic
         })
     }
 }
+
+/// The DSP48E1's multiply-add: `p = c + a·b` with `a` a `A`-bit two's complement value, `b` a
+/// `B`-bit unsigned one and `c` and `p` 48-bit two's complement (the post-adder's width; the
+/// caller keeps the sum within it). With `A ≤ 25` and `B ≤ 17` the product fits the DSP's
+/// 25×18 signed multiplier and yosys `synth_xilinx` maps the whole expression onto one
+/// DSP48E1, its C port feeding the post-adder, and registers around it into the DSP's
+/// input (B) and output (P) registers.
+#[derive(LogicBlock)]
+pub struct MulAdd<const A: usize, const B: usize> {
+    pub a: Signal<In, Bits<A>>,
+    pub b: Signal<In, Bits<B>>,
+    pub c: Signal<In, Bits<48>>,
+    pub p: Signal<Out, Bits<48>>,
+}
+
+impl<const A: usize, const B: usize> Default for MulAdd<A, B> {
+    fn default() -> Self {
+        assert!(
+            A <= 25 && B <= 17,
+            "MulAdd<{A}, {B}>: one DSP48E1 multiplies 25-bit signed by 17-bit unsigned values"
+        );
+        Self {
+            a: Default::default(),
+            b: Default::default(),
+            c: Default::default(),
+            p: Default::default(),
+        }
+    }
+}
+
+impl<const A: usize, const B: usize> Logic for MulAdd<A, B> {
+    fn update(&mut self) {
+        let a = sign_extended(self.a.val().to_u128(), A);
+        let b = self.b.val().to_u128() as i128;
+        let c = sign_extended(self.c.val().to_u128(), 48);
+        let p = (c + a * b) as u128 & ((1 << 48) - 1);
+        self.p.next = (p as u64).into();
+    }
+
+    fn connect(&mut self) {
+        self.p.connect();
+    }
+
+    fn hdl(&self) -> Verilog {
+        // `b` zero-extended by one bit is a signed operand; the sum takes p's 48 bits and
+        // sign-extends the other operands to it.
+        Verilog::Custom("always @(*) p = $signed(c) + $signed(a) * $signed({1'b0, b});".into())
+    }
+}

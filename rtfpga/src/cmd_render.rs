@@ -122,15 +122,22 @@ pub fn run(a: Args, given: &Given) -> Result<()> {
         // The traversal unit's schedule model (not a co-simulation).
         let rays = s.trace.rays().max(1) as f64;
         let lanes = a.hw.datapath.lanes as f64;
+        let box_ports = a.hw.unit.box_ports as f64;
         Line::labelled("unit_schedule")
+            .kv("nodes", a.hw.unit.nodes.name())
             .kv("slots", a.hw.unit.slots)
+            .kv("box_ports", a.hw.unit.box_ports)
             .kv("lanes", a.hw.datapath.lanes)
             .kv("cycles", c.cycles)
             .fixed("cycles_per_ray", c.cycles as f64 / rays, 2)
             .fixed("box_tests_per_ray", c.box_tests as f64 / rays, 2)
             .fixed("mt_tests_per_ray", c.mt_tests as f64 / rays, 2)
             .fixed("node_visits_per_ray", c.node_visits as f64 / rays, 2)
-            .fixed("box_utilisation", c.box_tests as f64 / c.cycles as f64, 3)
+            .fixed(
+                "box_utilisation",
+                c.box_tests as f64 / (c.cycles as f64 * box_ports),
+                3,
+            )
             .fixed(
                 "lane_utilisation",
                 c.mt_tests as f64 / (c.cycles as f64 * lanes),

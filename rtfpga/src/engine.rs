@@ -14,7 +14,9 @@ use hdl::traversal::config::{UnitConfig, BUILT_MEMORY_BITS};
 use hdl::traversal::scene_memory;
 use hw_model::dual::{DualIntersector, Filter, FilterKind, FormatChoice};
 use hw_model::precision::{auto_scale_exp, SceneRange, SpawnChoice};
-use hw_model::traversal::{SceneCapacity, SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
+use hw_model::traversal::{
+    NodeFormat, SceneCapacity, SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH,
+};
 use hw_model::{Advance, Edges, Format, ModelIntersector, NamedChoice};
 use sim::dual_pair::{built_pair, PairConfig, PairIntersector};
 use sim::hw_intersector::{HwIntersector, Mode};
@@ -177,6 +179,15 @@ pub struct UnitArgs {
     pub slots: u32,
     #[command(flatten)]
     pub memory: SceneMemoryArg,
+    /// How the scene memory stores the tree's inner nodes: bvh2-fp32 (binary, fp32 boxes; the
+    /// RTL's), or wide nodes of 2, 4 or 8 children with 8-bit quantized boxes, all tested in
+    /// one beat (docs/wide-nodes.md).
+    #[arg(long, default_value = "bvh2-fp32", value_parser = choice::<NodeFormat>())]
+    pub nodes: NodeFormat,
+    /// Box ports of the traversal unit (slot s uses port s mod N): the RTL has 1, the
+    /// schedule model times 1 to 8.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=8))]
+    pub box_ports: u32,
 }
 
 /// `--no-chunks`.
@@ -591,6 +602,12 @@ impl HwConfig {
                 rtl.check()?;
                 let slots = self.unit.slots as usize;
                 let t = hdl::traversal::timing::unit_timing(f, d.depth, d.lanes, slots, advance);
+                let t = hdl::traversal::timing::node_timing(
+                    t,
+                    self.unit.nodes,
+                    d.depth,
+                    self.unit.box_ports as usize,
+                );
                 t.check()?;
                 Some(t)
             }
@@ -603,6 +620,7 @@ impl HwConfig {
             advance,
             timing,
             memory: self.unit.memory.model_memory(d.lanes, chunks),
+            nodes: self.unit.nodes,
         })
     }
 

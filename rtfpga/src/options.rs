@@ -110,6 +110,17 @@ pub const RULES: &[Rule] = &[
         ],
     },
     Rule {
+        arg: "nodes",
+        applies: &[
+            (UnitModel, Values::Any),
+            (Unit, Values::Only(&["bvh2-fp32"])),
+        ],
+    },
+    Rule {
+        arg: "box_ports",
+        applies: &[(UnitModel, Values::Any), (Unit, Values::Only(&["1"]))],
+    },
+    Rule {
         arg: "no_chunks",
         applies: &[
             (UnitModel, Values::Any),

@@ -481,6 +481,7 @@ fn model_engine(c: &UnitConfig, advance: Advance) -> TraversalEngine {
             nodes: nodes as u32,
             triangles: triangles as u32,
         }),
+        nodes: hw_model::traversal::NodeFormat::Bvh2Fp32,
     }
 }
 

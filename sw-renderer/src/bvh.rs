@@ -56,17 +56,17 @@ impl Aabb {
 
     /// Grown by `PAD` times its largest coordinate magnitude.
     fn padded(&self) -> Aabb {
-        let magnitude = self
-            .min
-            .iter()
-            .chain(&self.max)
-            .fold(0.0f32, |m, x| m.max(x.abs()));
-        let pad = PAD * magnitude + f32::MIN_POSITIVE;
-        Aabb {
-            min: self.min.map(|x| x - pad),
-            max: self.max.map(|x| x + pad),
-        }
+        let (min, max) = padded_bounds(self.min, self.max);
+        Aabb { min, max }
     }
+}
+
+/// The box `(min, max)` grown by `PAD` times its largest coordinate magnitude (and the
+/// smallest normal float): how the BVH pads every box it stores, in f32.
+pub fn padded_bounds(min: [f32; 3], max: [f32; 3]) -> ([f32; 3], [f32; 3]) {
+    let magnitude = min.iter().chain(&max).fold(0.0f32, |m, x| m.max(x.abs()));
+    let pad = PAD * magnitude + f32::MIN_POSITIVE;
+    (min.map(|x| x - pad), max.map(|x| x + pad))
 }
 
 /// A node of the binary build: a leaf lists `order[first..first + count]`; an inner node

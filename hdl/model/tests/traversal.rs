@@ -5,12 +5,14 @@
 //! modes.
 
 use hw_model::precision::{auto_scale_exp, spawn_policy, SceneRange};
-use hw_model::traversal::capacity::chunks;
-use hw_model::traversal::scene_image::{ChildBoxes, ImageNode, ImageTriangle, Link, SceneImage};
+use hw_model::traversal::capacity::{chunks, needs};
+use hw_model::traversal::scene_image::{
+    ChildBoxes, ImageNode, ImageTriangle, Link, SceneImage, UnitImage,
+};
 use hw_model::traversal::strategies::{mesh, ray};
 use hw_model::traversal::{
-    ChunkedModel, SceneCapacity, SceneMemory, TraversalEngine, TraversalError, TraversalModel,
-    UnitCounters, UnitRay,
+    ChunkedModel, NodeFormat, SceneCapacity, SceneMemory, TraversalEngine, TraversalError,
+    TraversalModel, UnitCounters, UnitRay,
 };
 use hw_model::{lookup, mt_model, Advance, Format, ModelIntersector};
 use proptest::prelude::*;
@@ -61,32 +63,74 @@ fn brute_force(
 }
 
 /// A model holding `tris` (objects of 8 triangles; odd objects cast no shadow), with the
-/// renderer's BVH, through the image's word stream.
-fn unit(tris: &[WorldTriangle], format: Format, stack: usize) -> (TraversalModel, Vec<bool>) {
+/// renderer's BVH, through the image's word stream, walking it in `nodes`.
+fn unit_in(
+    tris: &[WorldTriangle],
+    format: Format,
+    stack: usize,
+    nodes: NodeFormat,
+) -> (TraversalModel, Vec<bool>) {
     let casts: Vec<bool> = tris.iter().map(|t| t.object % 2 == 0).collect();
     let image = SceneImage::from_bvh(&Bvh::build(tris), tris, &casts);
     let image = SceneImage::from_words(&image.to_words()).unwrap();
-    (TraversalModel::new(format, stack, image), casts)
+    let unit = TraversalModel::new(format, stack, image)
+        .with_nodes(nodes)
+        .unwrap();
+    (unit, casts)
+}
+
+fn unit(tris: &[WorldTriangle], format: Format, stack: usize) -> (TraversalModel, Vec<bool>) {
+    unit_in(tris, format, stack, NodeFormat::Bvh2Fp32)
+}
+
+/// `tris` and `rays` scaled by `2^k` (directions unchanged): a tiny or a huge scene.
+fn scaled(tris: &[WorldTriangle], rays: &[UnitRay], k: i32) -> (Vec<WorldTriangle>, Vec<UnitRay>) {
+    let s = 2f32.powi(k);
+    let tris = tris
+        .iter()
+        .map(|t| WorldTriangle {
+            verts: t.verts.map(|v| v * s),
+            ..*t
+        })
+        .collect();
+    let rays = rays
+        .iter()
+        .map(|r| UnitRay {
+            orig: r.orig.map(|x| x * s),
+            t_max: r.t_max * s,
+            t_min: r.t_min * s,
+            ..*r
+        })
+        .collect();
+    (tris, rays)
 }
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
 
-    /// fp32: the unit's answer is the brute-force answer (closest-hit: the same hit, bit for
-    /// bit; any-hit: occluded exactly when brute force finds a hit).
+    /// fp32, in every node format: the unit's answer is the brute-force answer (closest-hit:
+    /// the same hit, bit for bit; any-hit: occluded exactly when brute force finds a hit), in
+    /// scenes of ordinary, tiny and huge size.
     #[test]
-    fn fp32_answers_equal_brute_force(tris in mesh(), rays in prop::collection::vec(ray(), 1..24)) {
-        let (unit, casts) = unit(&tris, fp32(), 64);
-        for r in &rays {
-            let mut counters = UnitCounters::default();
-            let got = unit.trace(r, &mut counters).unwrap();
-            let want = brute_force(&fp32(), &tris, &casts, r);
-            if r.any_hit {
-                prop_assert_eq!(got.is_some(), want.is_some(), "{:?}", r);
-            } else {
-                prop_assert_eq!(got, want, "{:?}", r);
+    fn fp32_answers_equal_brute_force(
+        tris in mesh(),
+        rays in prop::collection::vec(ray(), 1..24),
+        scale in prop_oneof![Just(0), -100i32..-20, 20i32..100],
+    ) {
+        let (tris, rays) = scaled(&tris, &rays, scale);
+        for nodes in NodeFormat::ALL {
+            let (unit, casts) = unit_in(&tris, fp32(), 64, nodes);
+            for r in &rays {
+                let mut counters = UnitCounters::default();
+                let got = unit.trace(r, &mut counters).unwrap();
+                let want = brute_force(&fp32(), &tris, &casts, r);
+                if r.any_hit {
+                    prop_assert_eq!(got.is_some(), want.is_some(), "{} {:?}", nodes.name(), r);
+                } else {
+                    prop_assert_eq!(got, want, "{} {:?}", nodes.name(), r);
+                }
+                prop_assert!(counters.mt_tests <= tris.len() as u64);
             }
-            prop_assert!(counters.mt_tests <= tris.len() as u64);
         }
     }
 }
@@ -104,27 +148,34 @@ fn rays_with_nan_or_infinite_components_end_as_misses_like_the_software() {
             object: 0,
         })
         .collect();
-    let (unit, casts) = unit(&tris, fp32(), 64);
     let (nan, inf) = (f32::NAN, f32::INFINITY);
-    for (orig, dir, t_max) in [
-        ([nan, 0.2, 1.0], [0.0, 0.0, -1.0], NO_BOUND),
-        ([0.2, 0.2, 1.0], [nan, 0.0, -1.0], NO_BOUND),
-        ([inf, 0.2, 1.0], [0.0, 0.0, -1.0], NO_BOUND),
-        ([0.2, 0.2, 1.0], [0.0, 0.0, -inf], NO_BOUND),
-        ([0.2, 0.2, 1.0], [0.0, 0.0, -1.0], nan),
-        ([0.2, 0.2, 1.0], [0.0, 0.0, 0.0], NO_BOUND),
-    ] {
-        for any_hit in [false, true] {
-            let r = UnitRay {
-                orig,
-                dir,
-                t_max,
-                any_hit,
-                id: 7,
-                ..UnitRay::default()
-            };
-            let got = unit.trace(&r, &mut UnitCounters::default()).unwrap();
-            assert_eq!(got, brute_force(&fp32(), &tris, &casts, &r), "{r:?}");
+    for nodes in NodeFormat::ALL {
+        let (unit, casts) = unit_in(&tris, fp32(), 64, nodes);
+        for (orig, dir, t_max) in [
+            ([nan, 0.2, 1.0], [0.0, 0.0, -1.0], NO_BOUND),
+            ([0.2, 0.2, 1.0], [nan, 0.0, -1.0], NO_BOUND),
+            ([inf, 0.2, 1.0], [0.0, 0.0, -1.0], NO_BOUND),
+            ([0.2, 0.2, 1.0], [0.0, 0.0, -inf], NO_BOUND),
+            ([0.2, 0.2, 1.0], [0.0, 0.0, -1.0], nan),
+            ([0.2, 0.2, 1.0], [0.0, 0.0, 0.0], NO_BOUND),
+        ] {
+            for any_hit in [false, true] {
+                let r = UnitRay {
+                    orig,
+                    dir,
+                    t_max,
+                    any_hit,
+                    id: 7,
+                    ..UnitRay::default()
+                };
+                let got = unit.trace(&r, &mut UnitCounters::default()).unwrap();
+                assert_eq!(
+                    got,
+                    brute_force(&fp32(), &tris, &casts, &r),
+                    "{} {r:?}",
+                    nodes.name()
+                );
+            }
         }
     }
 }
@@ -141,27 +192,29 @@ fn t_min_and_the_excluded_triangle_remove_hits_and_exclusion_saves_its_test() {
         normals: [V3::new(0.0, 0.0, 1.0); 3],
         object: 0,
     };
-    let (unit, _) = unit(&[tri(0.0), tri(-1.0)], fp32(), 64);
-    let trace = |t_min, exclude, any_hit| {
-        let r = UnitRay {
-            orig: [0.25, 0.25, 1.0],
-            dir: [0.0, 0.0, -1.0],
-            t_max: NO_BOUND,
-            t_min,
-            exclude,
-            any_hit,
-            id: 0,
+    for nodes in NodeFormat::ALL {
+        let (unit, _) = unit_in(&[tri(0.0), tri(-1.0)], fp32(), 64, nodes);
+        let trace = |t_min, exclude, any_hit| {
+            let r = UnitRay {
+                orig: [0.25, 0.25, 1.0],
+                dir: [0.0, 0.0, -1.0],
+                t_max: NO_BOUND,
+                t_min,
+                exclude,
+                any_hit,
+                id: 0,
+            };
+            let mut counters = UnitCounters::default();
+            let hit = unit.trace(&r, &mut counters).unwrap().map(|h| h.triangle);
+            (hit, counters.mt_tests)
         };
-        let mut counters = UnitCounters::default();
-        let hit = unit.trace(&r, &mut counters).unwrap().map(|h| h.triangle);
-        (hit, counters.mt_tests)
-    };
-    assert_eq!(trace(0.0, None, false), (Some(0), 2));
-    assert_eq!(trace(1.0, None, false).0, Some(1), "t = t_min is a miss");
-    assert_eq!(trace(2.0, None, false).0, None);
-    assert_eq!(trace(0.0, Some(0), false), (Some(1), 1));
-    assert_eq!(trace(0.0, Some(1), true).0, Some(0));
-    assert_eq!(trace(1.5, Some(1), true).0, None);
+        assert_eq!(trace(0.0, None, false), (Some(0), 2));
+        assert_eq!(trace(1.0, None, false).0, Some(1), "t = t_min is a miss");
+        assert_eq!(trace(2.0, None, false).0, None);
+        assert_eq!(trace(0.0, Some(0), false), (Some(1), 1));
+        assert_eq!(trace(0.0, Some(1), true).0, Some(0));
+        assert_eq!(trace(1.5, Some(1), true).0, None);
+    }
 }
 
 #[test]
@@ -181,30 +234,32 @@ fn a_stack_too_small_for_the_walk_is_an_error_naming_the_ray_and_sizes() {
             }
         })
         .collect();
-    let (unit, _) = unit(&tris, fp32(), 1);
-    // A grazing ray along the grid enters many boxes at once.
-    let r = UnitRay {
-        orig: [-1.0, 0.3, 0.0],
-        dir: [1.0, 0.4, 0.0],
-        t_max: NO_BOUND,
-        any_hit: false,
-        id: 42,
-        ..UnitRay::default()
-    };
-    let e = unit.trace(&r, &mut UnitCounters::default()).unwrap_err();
-    assert!(matches!(
-        e,
-        TraversalError::StackOverflow {
+    for nodes in NodeFormat::ALL {
+        let (unit, _) = unit_in(&tris, fp32(), 1, nodes);
+        // A grazing ray along the grid enters many boxes at once.
+        let r = UnitRay {
+            orig: [-1.0, 0.3, 0.0],
+            dir: [1.0, 0.4, 0.0],
+            t_max: NO_BOUND,
+            any_hit: false,
             id: 42,
-            capacity: 1,
-            ..
-        }
-    ));
-    let text = e.to_string();
-    assert!(
-        text.contains("ray 42") && text.contains("more than 1 entries"),
-        "{text}"
-    );
+            ..UnitRay::default()
+        };
+        let e = unit.trace(&r, &mut UnitCounters::default()).unwrap_err();
+        assert!(matches!(
+            e,
+            TraversalError::StackOverflow {
+                id: 42,
+                capacity: 1,
+                ..
+            }
+        ));
+        let text = e.to_string();
+        assert!(
+            text.contains("ray 42") && text.contains("more than 1 entries"),
+            "{text}"
+        );
+    }
 }
 
 fn small(
@@ -230,15 +285,24 @@ fn fp32_renders_of_the_builtin_scenes_equal_the_software() {
         advance: Advance::None,
         timing: None,
         memory: SceneMemory::Unbounded,
+        nodes: NodeFormat::Bvh2Fp32,
     };
-    for name in sw_renderer::scene::builtin::names() {
-        let scene = Scene::load(name).unwrap();
-        let diff = compare(
-            &small(&scene, &engine, 64, 36),
-            &small(&scene, &F32Intersector, 64, 36),
-        )
-        .unwrap();
-        assert_eq!(diff.differing_pixels, 0, "{name}: {diff:?}");
+    for nodes in NodeFormat::ALL {
+        let engine = TraversalEngine { nodes, ..engine };
+        for name in sw_renderer::scene::builtin::names() {
+            let scene = Scene::load(name).unwrap();
+            let diff = compare(
+                &small(&scene, &engine, 64, 36),
+                &small(&scene, &F32Intersector, 64, 36),
+            )
+            .unwrap();
+            assert_eq!(
+                diff.differing_pixels,
+                0,
+                "{name} {}: {diff:?}",
+                nodes.name()
+            );
+        }
     }
 }
 
@@ -256,15 +320,24 @@ fn fp32_renders_of_the_thesis_scenes_equal_the_software() {
         advance: Advance::None,
         timing: None,
         memory: SceneMemory::Unbounded,
+        nodes: NodeFormat::Bvh2Fp32,
     };
-    for name in thesis_scenes::SCENE_DIRS {
-        let scene = Scene::load(root.join(name).to_str().unwrap()).unwrap();
-        let diff = compare(
-            &small(&scene, &engine, 48, 27),
-            &small(&scene, &F32Intersector, 48, 27),
-        )
-        .unwrap();
-        assert_eq!(diff.differing_pixels, 0, "{name}: {diff:?}");
+    for nodes in NodeFormat::ALL {
+        let engine = TraversalEngine { nodes, ..engine };
+        for name in thesis_scenes::SCENE_DIRS {
+            let scene = Scene::load(root.join(name).to_str().unwrap()).unwrap();
+            let diff = compare(
+                &small(&scene, &engine, 48, 27),
+                &small(&scene, &F32Intersector, 48, 27),
+            )
+            .unwrap();
+            assert_eq!(
+                diff.differing_pixels,
+                0,
+                "{name} {}: {diff:?}",
+                nodes.name()
+            );
+        }
     }
 }
 
@@ -278,6 +351,7 @@ fn a_render_whose_stack_overflows_fails_with_the_engines_error() {
         advance: Advance::None,
         timing: None,
         memory: SceneMemory::Unbounded,
+        nodes: NodeFormat::Bvh2Fp32,
     };
     let opts = RenderOptions {
         width: Some(16),
@@ -310,6 +384,7 @@ fn format_aware_renders_equal_the_bvh_path_in_a_narrow_scaled_format() {
             advance: Advance::None,
             timing: None,
             memory: SceneMemory::Unbounded,
+            nodes: NodeFormat::Bvh2Fp32,
         };
         let bvh = ModelIntersector {
             scale_exp,
@@ -353,9 +428,9 @@ proptest! {
         (nodes, leaf_units, extra) in capacity(),
     ) {
         let (whole, casts) = unit(&tris, fp32(), 64);
-        let image = whole.image();
+        let UnitImage::Binary(image) = whole.image() else { unreachable!("a binary unit") };
         let cap = SceneCapacity { nodes, triangles: largest_leaf(image) * leaf_units.max(1) + extra };
-        let parts = chunks(image, SceneMemory::Chunked(cap)).unwrap();
+        let parts = chunks(image, SceneMemory::Chunked(cap), NodeFormat::Bvh2Fp32).unwrap();
         let fits = cap.holds(SceneCapacity::of(image));
         prop_assert_eq!(parts.len() == 1, fits);
         let mut indices = Vec::new();
@@ -367,7 +442,7 @@ proptest! {
         indices.sort_unstable();
         prop_assert_eq!(indices, (0..tris.len() as u32).collect::<Vec<_>>());
 
-        let chunked = ChunkedModel::new(fp32(), 64, 0, image, SceneMemory::Chunked(cap)).unwrap();
+        let chunked = ChunkedModel::new(fp32(), 64, 0, image, SceneMemory::Chunked(cap), NodeFormat::Bvh2Fp32).unwrap();
         prop_assert_eq!(chunked.chunks().len(), parts.len());
         for r in &rays {
             let want = whole.trace(r, &mut UnitCounters::default()).unwrap();
@@ -392,12 +467,28 @@ proptest! {
             }
         }
 
+        // Chunks of wide nodes: each holds its wide nodes within the capacity (a leaf chunk
+        // takes one node), and the answers are the whole scene's.
+        for nodes in [NodeFormat::Bvh4Q8, NodeFormat::Bvh8Q8] {
+            let cap = SceneCapacity { nodes: cap.nodes.max(1), ..cap };
+            let parts = chunks(image, SceneMemory::Chunked(cap), nodes).unwrap();
+            for c in &parts {
+                prop_assert!(cap.holds(needs(c, nodes)), "{} {:?}", nodes.name(), needs(c, nodes));
+            }
+            let chunked = ChunkedModel::new(fp32(), 64, 0, image, SceneMemory::Chunked(cap), nodes).unwrap();
+            for r in rays.iter().filter(|r| !r.any_hit) {
+                let want = whole.trace(r, &mut UnitCounters::default()).unwrap();
+                let got = chunked.trace(r, &mut UnitCounters::default()).unwrap();
+                prop_assert_eq!(got, want, "{} {:?}", nodes.name(), r);
+            }
+        }
+
         // With the leaf advance in a narrow format a chunk's leaf is entered at the distance
         // the whole scene's walk enters it (a chunk's root box is its subtree's box), so the
         // answers stay the whole scene's.
         let e5m14: Format = "e5m14".parse().unwrap();
         let whole = TraversalModel::new(e5m14, 64, image.clone()).advanced(Advance::LeafBox);
-        let chunked = ChunkedModel::new(e5m14, 64, 0, image, SceneMemory::Chunked(cap))
+        let chunked = ChunkedModel::new(e5m14, 64, 0, image, SceneMemory::Chunked(cap), NodeFormat::Bvh2Fp32)
             .unwrap()
             .advanced(Advance::LeafBox);
         for r in &rays {
@@ -449,9 +540,17 @@ fn an_equally_near_hit_with_a_lower_index_in_a_later_chunk_wins() {
         nodes: 0,
         triangles: 1,
     };
-    let chunked = ChunkedModel::new(fp32(), 8, 0, &image, SceneMemory::Chunked(cap)).unwrap();
+    let chunked = ChunkedModel::new(
+        fp32(),
+        8,
+        0,
+        &image,
+        SceneMemory::Chunked(cap),
+        NodeFormat::Bvh2Fp32,
+    )
+    .unwrap();
     assert_eq!(chunked.chunks().len(), 2);
-    assert_eq!(chunked.chunks()[0].image().triangles[0].index, 1);
+    assert_eq!(chunked.chunks()[0].image().triangles()[0].index, 1);
     assert_eq!(
         chunked.trace(&ray, &mut UnitCounters::default()).unwrap(),
         want
@@ -533,7 +632,7 @@ fn chunked_renders_of_the_thesis_scenes_equal_the_unchunked_unit() {
             triangles: (need.triangles / 3).max(largest_leaf(&image)),
         };
         let memory = SceneMemory::Chunked(third);
-        let parts = chunks(&image, memory).unwrap().len();
+        let parts = chunks(&image, memory, NodeFormat::Bvh2Fp32).unwrap().len();
         if need.nodes > 0 {
             assert!(parts >= 3, "{name}: {parts} chunks");
         }
@@ -561,5 +660,6 @@ fn fp32_unit(memory: SceneMemory) -> TraversalEngine {
         advance: Advance::None,
         timing: None,
         memory,
+        nodes: NodeFormat::Bvh2Fp32,
     }
 }

@@ -31,3 +31,4 @@ pub mod timing;
 pub mod unit;
 pub mod unit_axil;
 pub mod unit_top;
+pub mod wide;

@@ -3,9 +3,10 @@
 //! unit's RTL is co-simulated.
 
 use hw_model::traversal::schedule::UnitTiming;
+use hw_model::traversal::NodeFormat;
 use hw_model::{Advance, HwFormat};
 
-use super::{box_test, far_end, leaf_advance, ray_setup};
+use super::{box_test, far_end, leaf_advance, ray_setup, wide};
 use crate::formats::fp32;
 use crate::mt::schedule::OpLatencies;
 
@@ -38,8 +39,9 @@ pub fn unit_timing(
     UnitTiming {
         slots,
         lanes,
+        box_ports: 1,
         setup_latency: cycles(ray_setup::latency(depth) + SLOT_UPDATE),
-        box_latency: cycles(MEMORY_READ + box_test::latency(depth) + SLOT_UPDATE),
+        box_latency: box_port_latency(NodeFormat::Bvh2Fp32, depth),
         // Triangle read, the lane (behind the leaf advance, `t + t0` after it), the (t,
         // index) comparison with the slot's nearest hit, then the far end of the new bound.
         mt_latency: cycles(
@@ -53,4 +55,23 @@ pub fn unit_timing(
         // Stack read, then the entry's distance against the far end.
         pop_latency: cycles(MEMORY_READ + lt + SLOT_UPDATE),
     }
+}
+
+/// `t` with its inner nodes stored as `nodes` and `box_ports` box ports.
+pub fn node_timing(t: UnitTiming, nodes: NodeFormat, depth: usize, box_ports: usize) -> UnitTiming {
+    UnitTiming {
+        box_ports,
+        box_latency: box_port_latency(nodes, depth),
+        ..t
+    }
+}
+
+/// Node read, the box test (the fp32 one of both children, or the wide stage testing all of a
+/// wide node's children: [`wide::latency`]) and the slot's update.
+fn box_port_latency(nodes: NodeFormat, depth: usize) -> u64 {
+    let test = match nodes.width() {
+        Some(_) => wide::latency(depth),
+        None => box_test::latency(depth),
+    };
+    (MEMORY_READ + test + SLOT_UPDATE) as u64
 }

@@ -69,6 +69,7 @@ fn the_leaf_advance_reaches_the_units_model() {
         advance: Advance::LeafBox,
         timing: None,
         memory: SceneMemory::Unbounded,
+        nodes: hw_model::traversal::NodeFormat::Bvh2Fp32,
     };
     let opts = RenderOptions {
         spawn: spawn_policy(&e5m14, 0),

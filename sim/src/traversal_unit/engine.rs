@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 use hdl::traversal::config::UnitConfig;
 use hw_model::traversal::capacity::{chunks, run_passes};
 use hw_model::traversal::scene_image::SceneImage;
-use hw_model::traversal::{SceneCapacity, SceneMemory, UnitRay};
+use hw_model::traversal::{NodeFormat, SceneCapacity, SceneMemory, UnitRay};
 use sw_renderer::hit::Hit;
 use sw_renderer::rays::{CastStats, EngineError, Ray, RayCaster, RayEngine};
 use sw_renderer::trace::PreparedScene;
@@ -91,7 +91,8 @@ impl RayEngine for UnitEngine {
         &'a self,
         scene: &'a PreparedScene,
     ) -> Result<Box<dyn RayCaster + 'a>, EngineError> {
-        let parts = chunks(&SceneImage::new(scene), self.memory())?;
+        // The RTL unit walks the binary fp32 tree.
+        let parts = chunks(&SceneImage::new(scene), self.memory(), NodeFormat::Bvh2Fp32)?;
         Ok(Box::new(Caster {
             engine: self,
             bytes: parts.iter().map(|c| c.bytes() as u64).collect(),

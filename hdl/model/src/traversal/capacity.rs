@@ -23,12 +23,13 @@
 
 use std::fmt;
 
-use super::scene_image::{ImageNode, Link, SceneImage};
+use super::scene_image::{ImageNode, Link, SceneImage, SceneImageError};
 use sw_renderer::hit::{nearer, remaining_bound, Hit};
 use sw_renderer::rays::CastStats;
 use thiserror::Error;
 
-use super::{TraversalError, TraversalModel, UnitCounters, UnitRay};
+use super::wide::collapse;
+use super::{NodeFormat, TraversalError, TraversalModel, UnitCounters, UnitRay};
 use crate::format::Format;
 use crate::Advance;
 
@@ -118,10 +119,26 @@ impl fmt::Display for Why {
     }
 }
 
-/// The scene images the unit loads for `image`: the image itself if it fits (or the memory
-/// is unbounded), else its chunks in depth-first order.
-pub fn chunks(image: &SceneImage, memory: SceneMemory) -> Result<Vec<SceneImage>, CapacityError> {
-    let need = SceneCapacity::of(image);
+/// What the binary image (or subtree) `image` needs when the unit holds it in `nodes`: its
+/// triangles, and its binary nodes or the wide nodes it collapses to.
+pub fn needs(image: &SceneImage, nodes: NodeFormat) -> SceneCapacity {
+    match nodes.width() {
+        None => SceneCapacity::of(image),
+        Some(width) => SceneCapacity {
+            nodes: collapse(image, width).map_or(u32::MAX, |t| t.nodes.len() as u32),
+            triangles: image.triangles.len() as u32,
+        },
+    }
+}
+
+/// The scene images the unit loads for `image` when it holds trees in `nodes`: the image
+/// itself if it fits (or the memory is unbounded), else its chunks in depth-first order.
+pub fn chunks(
+    image: &SceneImage,
+    memory: SceneMemory,
+    nodes: NodeFormat,
+) -> Result<Vec<SceneImage>, CapacityError> {
+    let need = needs(image, nodes);
     let holds = match memory {
         SceneMemory::Unbounded => return Ok(vec![image.clone()]),
         SceneMemory::Whole(c) | SceneMemory::Chunked(c) if c.holds(need) => {
@@ -137,17 +154,19 @@ pub fn chunks(image: &SceneImage, memory: SceneMemory) -> Result<Vec<SceneImage>
         SceneMemory::Chunked(holds) => holds,
     };
     let subtree = subtree_needs(image);
-    let need_of = |link: Link| match link.is_leaf() {
-        true => SceneCapacity {
+    let need_of = |link: Link, root_box| match (link.is_leaf(), nodes.width()) {
+        (true, None) => SceneCapacity {
             nodes: 0,
             triangles: link.count,
         },
-        false => subtree[link.first as usize],
+        (false, None) => subtree[link.first as usize],
+        // Wide nodes: what the subtree collapses to (a leaf alone gets a node).
+        (_, Some(_)) => needs(&extract(image, link, root_box), nodes),
     };
     let mut out = Vec::new();
     let mut todo = vec![(image.root, image.root_box)];
     while let Some((link, root_box)) = todo.pop() {
-        if holds.holds(need_of(link)) {
+        if holds.holds(need_of(link, root_box)) {
             out.push(extract(image, link, root_box));
         } else if link.is_leaf() {
             return Err(CapacityError {
@@ -332,14 +351,17 @@ impl ChunkedModel {
         scale_exp: i32,
         image: &SceneImage,
         memory: SceneMemory,
+        nodes: NodeFormat,
     ) -> Result<ChunkedModel, sw_renderer::rays::EngineError> {
-        let chunks = chunks(image, memory)?
+        let chunks = chunks(image, memory, nodes)?
             .iter()
             .map(|c| {
                 let loaded = SceneImage::from_words(&c.to_words())?;
-                Ok(TraversalModel::new(format, stack_depth, loaded).scaled(scale_exp))
+                TraversalModel::new(format, stack_depth, loaded)
+                    .scaled(scale_exp)
+                    .with_nodes(nodes)
             })
-            .collect::<Result<_, super::scene_image::SceneImageError>>()?;
+            .collect::<Result<_, SceneImageError>>()?;
         Ok(ChunkedModel { chunks })
     }
 

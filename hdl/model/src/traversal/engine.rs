@@ -7,7 +7,7 @@ use sw_renderer::trace::PreparedScene;
 
 use super::capacity::{run_passes, ChunkedModel, SceneMemory};
 use super::schedule::{schedule, UnitTiming};
-use super::{Step, TraversalError, UnitCounters, UnitRay};
+use super::{NodeFormat, Step, TraversalError, UnitCounters, UnitRay};
 use crate::catalogue::catalogue;
 use crate::format::Format;
 use crate::Advance;
@@ -27,6 +27,8 @@ pub struct TraversalEngine {
     pub advance: Advance,
     pub timing: Option<UnitTiming>,
     pub memory: SceneMemory,
+    /// How the scene memory stores the tree's inner nodes.
+    pub nodes: NodeFormat,
 }
 
 impl RayEngine for TraversalEngine {
@@ -54,6 +56,7 @@ impl RayEngine for TraversalEngine {
                 self.scale_exp,
                 &image,
                 self.memory,
+                self.nodes,
             )?
             .advanced(self.advance),
             timing: self.timing,

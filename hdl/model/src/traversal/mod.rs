@@ -31,6 +31,7 @@ pub mod scene_image;
 pub mod schedule;
 #[cfg(feature = "strategies")]
 pub mod strategies;
+pub mod wide;
 
 pub use capacity::{run_passes, CapacityError, ChunkedModel, SceneCapacity, SceneMemory};
 pub use engine::TraversalEngine;
@@ -45,7 +46,10 @@ use crate::format::Format;
 use crate::mt::mt_model_scaled;
 use crate::{Advance, Edges};
 use box_test::{box_test, ray_setup, t_hi, BoxResult};
-use scene_image::{ImageTriangle, Link, SceneImage};
+use scene_image::{ImageTriangle, Link, SceneImage, SceneImageError, UnitImage};
+use wide::box_test::{wide_box_test, NodeEntry, WideRay};
+use wide::image::WideImage;
+pub use wide::{NodeFormat, WideError, WideTree};
 
 /// Entries of a ray's traversal stack unless configured otherwise: a walk pushes at most one
 /// subtree per inner node it passes, and the deepest thesis scene (All materials) is 25
@@ -137,20 +141,34 @@ pub struct TraversalModel {
     /// Where a leaf's Möller-Trumbore queries start (`None` or `LeafBox`).
     advance: Advance,
     stack_depth: usize,
-    image: SceneImage,
+    image: UnitImage,
 }
 
 impl TraversalModel {
     /// A unit computing Möller-Trumbore in `format`, with `stack_depth` stack entries per
-    /// ray, holding `image` (checked by `SceneImage::from_words` or `check`).
-    pub fn new(format: Format, stack_depth: usize, image: SceneImage) -> TraversalModel {
+    /// ray, holding `image` of either node format (checked by its `from_words` or `check`).
+    pub fn new(format: Format, stack_depth: usize, image: impl Into<UnitImage>) -> TraversalModel {
         TraversalModel {
             format,
             scale_exp: 0,
             advance: Advance::None,
             stack_depth,
-            image,
+            image: image.into(),
         }
+    }
+
+    /// The unit holding its binary image's tree in `nodes`: the wide ones written from it
+    /// (`WideImage::of`) and read back through their word stream (so the loader's checks
+    /// run). A wide image stays as it is; so does a binary one asked for `bvh2-fp32`.
+    pub fn with_nodes(self, nodes: NodeFormat) -> Result<TraversalModel, SceneImageError> {
+        let image = match (&self.image, nodes.width()) {
+            (UnitImage::Binary(binary), Some(width)) => {
+                let words = WideImage::of(binary, width)?.to_words();
+                UnitImage::Wide(WideImage::from_words(&words)?)
+            }
+            _ => return Ok(self),
+        };
+        Ok(TraversalModel { image, ..self })
     }
 
     /// The unit starting its Möller-Trumbore queries where `advance` says (the hardware
@@ -165,7 +183,7 @@ impl TraversalModel {
         TraversalModel { scale_exp, ..self }
     }
 
-    pub fn image(&self) -> &SceneImage {
+    pub fn image(&self) -> &UnitImage {
         &self.image
     }
 
@@ -187,10 +205,11 @@ impl TraversalModel {
         step: &mut dyn FnMut(Step),
     ) -> Result<Option<Hit>, TraversalError> {
         counters.rays += 1;
-        let img = &self.image;
-        if img.triangles.is_empty() {
-            return Ok(None);
-        }
+        let img = match &self.image {
+            _ if self.image.triangles().is_empty() => return Ok(None),
+            UnitImage::Wide(wide) => return self.walk_wide(wide, ray, counters, step),
+            UnitImage::Binary(img) => img,
+        };
         let mut setup = ray_setup(ray.orig, ray.dir, ray.t_max);
         let root = root_boxes(img);
         counters.box_tests += 1;
@@ -252,6 +271,75 @@ impl TraversalModel {
             }
         }
         Ok(best)
+    }
+}
+
+impl TraversalModel {
+    /// The walk of a wide tree: each inner node's children tested in one box test, the
+    /// nearest entered taken, the others pushed farthest first (so popped nearest first),
+    /// each with where the walk enters it; a popped child entered beyond the far end is
+    /// skipped. The first step is the root node's test.
+    fn walk_wide(
+        &self,
+        image: &WideImage,
+        ray: &UnitRay,
+        counters: &mut UnitCounters,
+        step: &mut dyn FnMut(Step),
+    ) -> Result<Option<Hit>, TraversalError> {
+        let setup = ray_setup(ray.orig, ray.dir, ray.t_max);
+        let mut wide_ray = WideRay::from_setup(ray.orig, &setup);
+        let window = ray.window();
+        let mut best: Option<Hit> = None;
+        let mut stack: Vec<(Link, NodeEntry)> = Vec::with_capacity(self.stack_depth);
+        let tree = &image.tree;
+        let (mut link, mut at) = (tree.root, NodeEntry::ROOT);
+        loop {
+            counters.node_visits += 1;
+            if link.is_leaf() {
+                let leaf = link.first as usize..(link.first + link.count) as usize;
+                let tested = counters.mt_tests;
+                let triangles = &image.triangles[leaf];
+                let answer = self.leaf(ray, &window, at.t0, triangles, counters, &mut best);
+                step(Step::Leaf((counters.mt_tests - tested) as u32));
+                match answer {
+                    Leaf::Occluded(hit) => return Ok(Some(hit)),
+                    Leaf::Closer => {
+                        wide_ray.t_hi = t_hi(remaining_bound(best, ray.t_max), setup.pad)
+                    }
+                    Leaf::Same => {}
+                }
+            } else {
+                let node = &tree.nodes[link.first as usize];
+                counters.box_tests += 1;
+                step(Step::Box);
+                let entered = wide_box_test(&wide_ray, node, at);
+                if let Some((nearest, rest)) = entered.split_first() {
+                    if stack.len() + rest.len() > self.stack_depth {
+                        return Err(TraversalError::StackOverflow {
+                            id: ray.id,
+                            capacity: self.stack_depth,
+                            depth: image.depth(),
+                        });
+                    }
+                    for e in rest.iter().rev() {
+                        stack.push((node.children[e.slot].link, e.entry));
+                    }
+                    (link, at) = (node.children[nearest.slot].link, nearest.entry);
+                    continue;
+                }
+            }
+            loop {
+                let Some((next, entry)) = stack.pop() else {
+                    return Ok(best);
+                };
+                step(Step::Pop);
+                if wide_ray.t_hi < entry.t0 {
+                    continue;
+                }
+                (link, at) = (next, entry);
+                break;
+            }
+        }
     }
 }
 

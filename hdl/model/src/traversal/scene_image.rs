@@ -19,6 +19,10 @@
 //!
 //! A link `(first, count)` is an inner node `first` if `count == 0`, else the leaf of
 //! triangle records `first .. first + count` (triangles are stored in leaf order).
+//!
+//! Version 3 holds wide nodes instead ([`super::wide::image`], docs/wide-nodes.md): header
+//! word 13 is the node width K, the nodes are wide records, the triangles as above.
+//! [`UnitImage::from_words`] reads either version.
 
 use sw_renderer::bvh::Bvh;
 use sw_renderer::trace::PreparedScene;
@@ -29,6 +33,8 @@ use thiserror::Error;
 pub const MAGIC: u32 = u32::from_le_bytes(*b"RTSI");
 /// Version 2: header word 12 holds the scene's triangle count (chunks of a larger scene).
 pub const VERSION: u32 = 2;
+/// Version 3: wide nodes (header word 13: their width).
+pub const VERSION_WIDE: u32 = 3;
 pub const HEADER_WORDS: usize = 16;
 pub const NODE_WORDS: usize = 16;
 pub const TRIANGLE_WORDS: usize = 12;
@@ -92,7 +98,7 @@ pub enum SceneImageError {
     TooShort { words: usize },
     #[error("scene image starts with {found:#010x}, not the magic word {MAGIC:#010x} (\"RTSI\")")]
     BadMagic { found: u32 },
-    #[error("scene image version {found}; this unit reads version {VERSION}")]
+    #[error("scene image version {found}; this unit reads version {VERSION} (binary nodes) and {VERSION_WIDE} (wide nodes)")]
     BadVersion { found: u32 },
     #[error(
         "scene image of {words} words, but its header's {nodes} nodes and {triangles} triangles need {expected}"
@@ -143,6 +149,23 @@ pub enum SceneImageError {
     },
     #[error("scene image: triangle record {slot} has flags {flags:#x}; only bit 0 (casts shadows) is defined")]
     UnknownFlags { slot: usize, flags: u32 },
+    #[error(
+        "scene image: wide nodes of {width} children; the unit reads widths {:?}",
+        super::wide::WIDTHS
+    )]
+    BadWidth { width: u32 },
+    #[error("scene image: node {node} has {children} children; a node of width {width} has 1 to {width}")]
+    ChildCount {
+        node: usize,
+        children: u32,
+        width: usize,
+    },
+    #[error("scene image: {from} links to a leaf of {count} triangles; a wide node's leaf holds 1 to {}", super::wide::MAX_LEAF_TRIANGLES)]
+    LongLeaf { from: String, count: u32 },
+    #[error("scene image: the root of wide nodes is inner node 0, not {first}+{count}")]
+    WideRoot { first: u32, count: u32 },
+    #[error("scene image: {0}")]
+    Wide(#[from] super::wide::WideError),
 }
 
 impl SceneImage {
@@ -181,17 +204,18 @@ impl SceneImage {
     pub fn to_words(&self) -> Vec<u32> {
         let mut w = Vec::with_capacity(self.words());
         let f = |x: f32| x.to_bits();
-        w.extend([
-            MAGIC,
-            VERSION,
-            self.nodes.len() as u32,
-            self.triangles.len() as u32,
-            self.root.first,
-            self.root.count,
-        ]);
-        w.extend(self.root_box.0.map(f));
-        w.extend(self.root_box.1.map(f));
-        w.extend([self.scene_triangles, 0, 0, 0]);
+        w.extend(
+            Header {
+                version: VERSION,
+                nodes: self.nodes.len() as u32,
+                triangles: self.triangles.len() as u32,
+                root: self.root,
+                root_box: self.root_box,
+                scene_triangles: self.scene_triangles,
+                width: 0,
+            }
+            .words(),
+        );
         for n in &self.nodes {
             w.extend(n.boxes.min.iter().flatten().map(|&x| f(x)));
             w.extend(n.boxes.max.iter().flatten().map(|&x| f(x)));
@@ -199,10 +223,7 @@ impl SceneImage {
                 w.extend([c.first, c.count]);
             }
         }
-        for t in &self.triangles {
-            w.extend(t.verts.iter().flatten().map(|&x| f(x)));
-            w.extend([t.index, u32::from(t.casts_shadow), 0]);
-        }
+        write_triangles(&self.triangles, &mut w);
         w
     }
 
@@ -215,45 +236,18 @@ impl SceneImage {
     /// node reached twice (so no cycle), global indices a permutation, no unknown flags or
     /// reserved bits. What passes can be walked without an out-of-range access or a loop.
     pub fn from_words(w: &[u32]) -> Result<SceneImage, SceneImageError> {
-        if w.len() < HEADER_WORDS {
-            return Err(SceneImageError::TooShort { words: w.len() });
-        }
-        if w[0] != MAGIC {
-            return Err(SceneImageError::BadMagic { found: w[0] });
-        }
-        if w[1] != VERSION {
-            return Err(SceneImageError::BadVersion { found: w[1] });
-        }
-        let (nodes, triangles) = (w[2], w[3]);
-        let expected = HEADER_WORDS as u64
-            + NODE_WORDS as u64 * u64::from(nodes)
-            + TRIANGLE_WORDS as u64 * u64::from(triangles);
-        if w.len() as u64 != expected {
-            return Err(SceneImageError::SizeMismatch {
-                words: w.len(),
-                nodes,
-                triangles,
-                expected,
-            });
-        }
-        let reserved = |word: usize| match w[word] {
-            0 => Ok(()),
-            value => Err(SceneImageError::Reserved { word, value }),
-        };
-        (13..HEADER_WORDS).try_for_each(reserved)?;
+        let h = Header::read(w, VERSION, |_| NODE_WORDS)?;
         let f = |i: usize| f32::from_bits(w[i]);
-        let xyz = |i: usize| [f(i), f(i + 1), f(i + 2)];
         let pairs = |i: usize| [[f(i), f(i + 1)], [f(i + 2), f(i + 3)], [f(i + 4), f(i + 5)]];
         let link = |i: usize| Link {
             first: w[i],
             count: w[i + 1],
         };
         let node_at = |k: usize| HEADER_WORDS + NODE_WORDS * k;
-        let tri_at = |k: usize| node_at(nodes as usize) + TRIANGLE_WORDS * k;
         let image = SceneImage {
-            root: link(4),
-            root_box: (xyz(6), xyz(9)),
-            nodes: (0..nodes as usize)
+            root: h.root,
+            root_box: h.root_box,
+            nodes: (0..h.nodes as usize)
                 .map(|k| {
                     let i = node_at(k);
                     ImageNode {
@@ -265,113 +259,22 @@ impl SceneImage {
                     }
                 })
                 .collect(),
-            triangles: (0..triangles as usize)
-                .map(|k| {
-                    let i = tri_at(k);
-                    ImageTriangle {
-                        verts: [xyz(i), xyz(i + 3), xyz(i + 6)],
-                        index: w[i + 9],
-                        casts_shadow: w[i + 10] & CASTS_SHADOW != 0,
-                    }
-                })
-                .collect(),
-            scene_triangles: w[12],
+            triangles: read_triangles(w, node_at(h.nodes as usize), h.triangles)?,
+            scene_triangles: h.scene_triangles,
         };
-        for k in 0..triangles as usize {
-            let i = tri_at(k);
-            if w[i + 10] & !CASTS_SHADOW != 0 {
-                return Err(SceneImageError::UnknownFlags {
-                    slot: k,
-                    flags: w[i + 10],
-                });
-            }
-            reserved(i + 11)?;
-        }
         image.check()?;
         Ok(image)
     }
 
     /// The structural checks of [`SceneImage::from_words`] on an image in memory.
     pub fn check(&self) -> Result<(), SceneImageError> {
-        let (n, t) = (self.nodes.len() as u32, self.triangles.len() as u32);
-        let scene_triangles = self.scene_triangles;
-        if t > scene_triangles {
-            return Err(SceneImageError::MoreThanTheScene {
-                triangles: t,
-                scene_triangles,
-            });
-        }
-        if let Some((slot, tri)) =
-            (self.triangles.iter().enumerate()).find(|(_, tri)| tri.index >= scene_triangles)
-        {
-            return Err(SceneImageError::IndexOutOfRange {
-                slot,
-                index: tri.index,
-                scene_triangles,
-            });
-        }
-        // Sorted (index, slot) pairs, not a table of S entries: S is a word of the stream.
-        let mut by_index: Vec<(u32, usize)> = (self.triangles.iter().enumerate())
-            .map(|(slot, tri)| (tri.index, slot))
-            .collect();
-        by_index.sort_unstable();
-        // The first slot (in record order) whose index an earlier record already has.
-        if let Some((index, first, second)) = by_index
-            .windows(2)
-            .filter(|p| p[0].0 == p[1].0)
-            .map(|p| (p[0].0, p[0].1, p[1].1))
-            .min_by_key(|&(_, _, second)| second)
-        {
-            return Err(SceneImageError::DuplicateIndex {
-                index,
-                first,
-                second,
-            });
-        }
-        if t == 0 {
-            // An empty scene: nothing to walk, and no node may claim otherwise.
-            return match (n, self.root) {
-                (0, Link { first: 0, count: 0 }) => Ok(()),
-                _ => Err(SceneImageError::LeafOutOfRange {
-                    from: "the root of an empty scene".into(),
-                    first: self.root.first,
-                    count: self.root.count,
-                    triangles: 0,
-                }),
-            };
-        }
-        let mut reached = vec![false; self.nodes.len()];
-        let mut todo = vec![("the root".to_string(), self.root)];
-        while let Some((from, link)) = todo.pop() {
-            if link.is_leaf() {
-                if u64::from(link.first) + u64::from(link.count) > u64::from(t) {
-                    return Err(SceneImageError::LeafOutOfRange {
-                        from,
-                        first: link.first,
-                        count: link.count,
-                        triangles: t,
-                    });
-                }
-                continue;
-            }
-            let node = link.first;
-            let seen =
-                reached
-                    .get_mut(node as usize)
-                    .ok_or_else(|| SceneImageError::NodeOutOfRange {
-                        from: from.clone(),
-                        first: node,
-                        nodes: n,
-                    })?;
-            if *seen {
-                return Err(SceneImageError::ReachedTwice { from, node });
-            }
-            *seen = true;
-            for (c, &child) in self.nodes[node as usize].child.iter().enumerate() {
-                todo.push((format!("node {node} child {c}"), child));
-            }
-        }
-        Ok(())
+        check_triangles(&self.triangles, self.scene_triangles)?;
+        check_links(
+            self.root,
+            self.triangles.len() as u32,
+            self.nodes.len() as u32,
+            |node| self.nodes[node as usize].child.to_vec(),
+        )
     }
 
     /// Inner nodes on the longest path from the root to a leaf: the traversal stack a ray
@@ -395,6 +298,303 @@ impl SceneImage {
     /// The image's size in bytes (as loaded).
     pub fn bytes(&self) -> usize {
         4 * self.words()
+    }
+}
+
+/// The header of either version.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Header {
+    pub version: u32,
+    pub nodes: u32,
+    pub triangles: u32,
+    pub root: Link,
+    pub root_box: ([f32; 3], [f32; 3]),
+    pub scene_triangles: u32,
+    /// Wide nodes' width (version 3); 0 in version 2, whose word 13 is reserved.
+    pub width: u32,
+}
+
+impl Header {
+    pub fn words(&self) -> [u32; HEADER_WORDS] {
+        let f = |x: f32| x.to_bits();
+        let (min, max) = self.root_box;
+        [
+            MAGIC,
+            self.version,
+            self.nodes,
+            self.triangles,
+            self.root.first,
+            self.root.count,
+            f(min[0]),
+            f(min[1]),
+            f(min[2]),
+            f(max[0]),
+            f(max[1]),
+            f(max[2]),
+            self.scene_triangles,
+            self.width,
+            0,
+            0,
+        ]
+    }
+
+    /// Reads and checks the header of a `version` image whose nodes take `node_words(width)`
+    /// words each: magic, version, the stream's length, reserved words.
+    pub fn read(
+        w: &[u32],
+        version: u32,
+        node_words: impl Fn(u32) -> usize,
+    ) -> Result<Header, SceneImageError> {
+        if w.len() < HEADER_WORDS {
+            return Err(SceneImageError::TooShort { words: w.len() });
+        }
+        if w[0] != MAGIC {
+            return Err(SceneImageError::BadMagic { found: w[0] });
+        }
+        if w[1] != version {
+            return Err(SceneImageError::BadVersion { found: w[1] });
+        }
+        let reserved_from = if version == VERSION { 13 } else { 14 };
+        (reserved_from..HEADER_WORDS).try_for_each(|word| reserved(w, word))?;
+        let width = if version == VERSION { 0 } else { w[13] };
+        if version == VERSION_WIDE && !super::wide::WIDTHS.contains(&(width as usize)) {
+            return Err(SceneImageError::BadWidth { width });
+        }
+        let (nodes, triangles) = (w[2], w[3]);
+        let expected = HEADER_WORDS as u64
+            + node_words(width) as u64 * u64::from(nodes)
+            + TRIANGLE_WORDS as u64 * u64::from(triangles);
+        if w.len() as u64 != expected {
+            return Err(SceneImageError::SizeMismatch {
+                words: w.len(),
+                nodes,
+                triangles,
+                expected,
+            });
+        }
+        let f = |i: usize| f32::from_bits(w[i]);
+        let xyz = |i: usize| [f(i), f(i + 1), f(i + 2)];
+        Ok(Header {
+            version,
+            nodes,
+            triangles,
+            root: Link {
+                first: w[4],
+                count: w[5],
+            },
+            root_box: (xyz(6), xyz(9)),
+            scene_triangles: w[12],
+            width,
+        })
+    }
+}
+
+/// Word `word` of `w` must be 0.
+pub(crate) fn reserved(w: &[u32], word: usize) -> Result<(), SceneImageError> {
+    match w[word] {
+        0 => Ok(()),
+        value => Err(SceneImageError::Reserved { word, value }),
+    }
+}
+
+/// Appends the triangle records' words.
+pub(crate) fn write_triangles(triangles: &[ImageTriangle], w: &mut Vec<u32>) {
+    for t in triangles {
+        w.extend(t.verts.iter().flatten().map(|&x| x.to_bits()));
+        w.extend([t.index, u32::from(t.casts_shadow), 0]);
+    }
+}
+
+/// `count` triangle records from word `at`, their flags and reserved words checked.
+pub(crate) fn read_triangles(
+    w: &[u32],
+    at: usize,
+    count: u32,
+) -> Result<Vec<ImageTriangle>, SceneImageError> {
+    (0..count as usize)
+        .map(|k| {
+            let i = at + TRIANGLE_WORDS * k;
+            let f = |i: usize| f32::from_bits(w[i]);
+            let xyz = |i: usize| [f(i), f(i + 1), f(i + 2)];
+            if w[i + 10] & !CASTS_SHADOW != 0 {
+                return Err(SceneImageError::UnknownFlags {
+                    slot: k,
+                    flags: w[i + 10],
+                });
+            }
+            reserved(w, i + 11)?;
+            Ok(ImageTriangle {
+                verts: [xyz(i), xyz(i + 3), xyz(i + 6)],
+                index: w[i + 9],
+                casts_shadow: w[i + 10] & CASTS_SHADOW != 0,
+            })
+        })
+        .collect()
+}
+
+/// The triangle records' global indices: below the scene's count, each once.
+pub(crate) fn check_triangles(
+    triangles: &[ImageTriangle],
+    scene_triangles: u32,
+) -> Result<(), SceneImageError> {
+    let t = triangles.len() as u32;
+    if t > scene_triangles {
+        return Err(SceneImageError::MoreThanTheScene {
+            triangles: t,
+            scene_triangles,
+        });
+    }
+    if let Some((slot, tri)) =
+        (triangles.iter().enumerate()).find(|(_, tri)| tri.index >= scene_triangles)
+    {
+        return Err(SceneImageError::IndexOutOfRange {
+            slot,
+            index: tri.index,
+            scene_triangles,
+        });
+    }
+    // Sorted (index, slot) pairs, not a table of S entries: S is a word of the stream.
+    let mut by_index: Vec<(u32, usize)> = (triangles.iter().enumerate())
+        .map(|(slot, tri)| (tri.index, slot))
+        .collect();
+    by_index.sort_unstable();
+    // The first slot (in record order) whose index an earlier record already has.
+    if let Some((index, first, second)) = by_index
+        .windows(2)
+        .filter(|p| p[0].0 == p[1].0)
+        .map(|p| (p[0].0, p[0].1, p[1].1))
+        .min_by_key(|&(_, _, second)| second)
+    {
+        return Err(SceneImageError::DuplicateIndex {
+            index,
+            first,
+            second,
+        });
+    }
+    Ok(())
+}
+
+/// Every link reached from `root` in range (a node below `nodes`, a leaf within `triangles`
+/// records) and no node reached twice (so no cycle); an empty scene has no root. `children`
+/// lists a node's links.
+pub(crate) fn check_links(
+    root: Link,
+    triangles: u32,
+    nodes: u32,
+    children: impl Fn(u32) -> Vec<Link>,
+) -> Result<(), SceneImageError> {
+    if triangles == 0 {
+        // An empty scene: nothing to walk, and no node may claim otherwise.
+        return match (nodes, root) {
+            (0, Link { first: 0, count: 0 }) => Ok(()),
+            _ => Err(SceneImageError::LeafOutOfRange {
+                from: "the root of an empty scene".into(),
+                first: root.first,
+                count: root.count,
+                triangles: 0,
+            }),
+        };
+    }
+    let mut reached = vec![false; nodes as usize];
+    let mut todo = vec![("the root".to_string(), root)];
+    while let Some((from, link)) = todo.pop() {
+        if link.is_leaf() {
+            if u64::from(link.first) + u64::from(link.count) > u64::from(triangles) {
+                return Err(SceneImageError::LeafOutOfRange {
+                    from,
+                    first: link.first,
+                    count: link.count,
+                    triangles,
+                });
+            }
+            continue;
+        }
+        let node = link.first;
+        let seen =
+            reached
+                .get_mut(node as usize)
+                .ok_or_else(|| SceneImageError::NodeOutOfRange {
+                    from: from.clone(),
+                    first: node,
+                    nodes,
+                })?;
+        if *seen {
+            return Err(SceneImageError::ReachedTwice { from, node });
+        }
+        *seen = true;
+        for (c, child) in children(node).into_iter().enumerate() {
+            todo.push((format!("node {node} child {c}"), child));
+        }
+    }
+    Ok(())
+}
+
+/// A scene image of either version, as the unit loads it.
+#[derive(Clone, Debug, PartialEq)]
+pub enum UnitImage {
+    Binary(SceneImage),
+    Wide(super::wide::image::WideImage),
+}
+
+impl UnitImage {
+    /// Reads and checks a word stream of either version.
+    pub fn from_words(w: &[u32]) -> Result<UnitImage, SceneImageError> {
+        match w.get(1) {
+            Some(&VERSION_WIDE) if w.first() == Some(&MAGIC) => Ok(UnitImage::Wide(
+                super::wide::image::WideImage::from_words(w)?,
+            )),
+            _ => Ok(UnitImage::Binary(SceneImage::from_words(w)?)),
+        }
+    }
+
+    pub fn to_words(&self) -> Vec<u32> {
+        match self {
+            UnitImage::Binary(i) => i.to_words(),
+            UnitImage::Wide(i) => i.to_words(),
+        }
+    }
+
+    pub fn triangles(&self) -> &[ImageTriangle] {
+        match self {
+            UnitImage::Binary(i) => &i.triangles,
+            UnitImage::Wide(i) => &i.triangles,
+        }
+    }
+
+    /// Inner nodes held.
+    pub fn nodes(&self) -> usize {
+        match self {
+            UnitImage::Binary(i) => i.nodes.len(),
+            UnitImage::Wide(i) => i.tree.nodes.len(),
+        }
+    }
+
+    /// Inner nodes on the longest path from the root to a leaf.
+    pub fn depth(&self) -> usize {
+        match self {
+            UnitImage::Binary(i) => i.depth(),
+            UnitImage::Wide(i) => i.depth(),
+        }
+    }
+
+    /// The image's size in bytes (as loaded).
+    pub fn bytes(&self) -> usize {
+        match self {
+            UnitImage::Binary(i) => i.bytes(),
+            UnitImage::Wide(i) => i.bytes(),
+        }
+    }
+}
+
+impl From<SceneImage> for UnitImage {
+    fn from(i: SceneImage) -> UnitImage {
+        UnitImage::Binary(i)
+    }
+}
+
+impl From<super::wide::image::WideImage> for UnitImage {
+    fn from(i: super::wide::image::WideImage) -> UnitImage {
+        UnitImage::Wide(i)
     }
 }
 

@@ -19,6 +19,8 @@ use super::Step;
 pub struct UnitTiming {
     pub slots: usize,
     pub lanes: usize,
+    /// Box ports: slot `s` uses port `s mod box_ports` (each its own node read and box test).
+    pub box_ports: usize,
     /// Ray in → first box test possible (reciprocals, padding, the far end).
     pub setup_latency: u64,
     /// Node read + box-test pipeline + the slot's update.
@@ -37,10 +39,13 @@ pub enum TimingError {
     NoSlots(usize),
     #[error("{lanes} Möller-Trumbore lanes for {slots} ray slots: each lane serves its own slots, so 1 to {slots}")]
     Lanes { lanes: usize, slots: usize },
+    #[error("{ports} box ports for {slots} ray slots: each port serves its own slots, so 1 to {slots}")]
+    BoxPorts { ports: usize, slots: usize },
 }
 
 impl UnitTiming {
-    /// Whether the schedule model can time this unit: a slot, and 1 lane to one per slot.
+    /// Whether the schedule model can time this unit: a slot, and 1 lane (box port) to one per
+    /// slot.
     pub fn check(&self) -> Result<(), TimingError> {
         if self.slots == 0 {
             return Err(TimingError::NoSlots(self.slots));
@@ -48,6 +53,12 @@ impl UnitTiming {
         if !(1..=self.slots).contains(&self.lanes) {
             return Err(TimingError::Lanes {
                 lanes: self.lanes,
+                slots: self.slots,
+            });
+        }
+        if !(1..=self.slots).contains(&self.box_ports) {
+            return Err(TimingError::BoxPorts {
+                ports: self.box_ports,
                 slots: self.slots,
             });
         }
@@ -124,8 +135,9 @@ pub fn schedule(t: &UnitTiming, walks: &[Vec<Step>]) -> Schedule {
     let mut done = 0;
     let mut out = Schedule::default();
     let mut cycle = 0u64;
-    // The last grant of each arbiter: box port, stack port, hit output, then one per lane.
-    let mut last = vec![usize::MAX; 3 + t.lanes];
+    // The last grant of each arbiter: stack port, hit output, one per lane, one per box port.
+    let mut last = vec![usize::MAX; 2 + t.lanes + t.box_ports];
+    let box_arbiter = 2 + t.lanes;
     while done < walks.len() {
         // One ray enters the lowest free slot.
         if next_ray < walks.len() {
@@ -140,21 +152,26 @@ pub fn schedule(t: &UnitTiming, walks: &[Vec<Step>]) -> Schedule {
                 next_ray += 1;
             }
         }
-        if let Some(k) = round_robin(&slots, &mut last[0], cycle, |_, w| w == Want::Box) {
+        for port in 0..t.box_ports {
+            let Some(k) = round_robin(&slots, &mut last[box_arbiter + port], cycle, |k, w| {
+                k % t.box_ports == port && w == Want::Box
+            }) else {
+                continue;
+            };
             let s = &mut slots[k];
             s.ready_at = cycle + t.box_latency;
             s.step += 1;
             s.advance(&walks[s.ray]);
             out.box_busy += 1;
         }
-        if let Some(k) = round_robin(&slots, &mut last[1], cycle, |_, w| w == Want::Pop) {
+        if let Some(k) = round_robin(&slots, &mut last[0], cycle, |_, w| w == Want::Pop) {
             let s = &mut slots[k];
             s.ready_at = cycle + t.pop_latency;
             s.step += 1;
             s.advance(&walks[s.ray]);
         }
         for lane in 0..t.lanes {
-            let Some(k) = round_robin(&slots, &mut last[3 + lane], cycle, |k, w| {
+            let Some(k) = round_robin(&slots, &mut last[2 + lane], cycle, |k, w| {
                 k % t.lanes == lane && matches!(w, Want::Leaf(_))
             }) else {
                 continue;
@@ -176,7 +193,7 @@ pub fn schedule(t: &UnitTiming, walks: &[Vec<Step>]) -> Schedule {
             }
         }
         // One hit leaves the unit, freeing its slot.
-        if let Some(k) = round_robin(&slots, &mut last[2], cycle, |_, w| w == Want::Out) {
+        if let Some(k) = round_robin(&slots, &mut last[1], cycle, |_, w| w == Want::Out) {
             slots[k].want = Want::Free;
             done += 1;
         }
@@ -223,6 +240,7 @@ mod tests {
     const T: UnitTiming = UnitTiming {
         slots: 1,
         lanes: 1,
+        box_ports: 1,
         setup_latency: 5,
         box_latency: 10,
         mt_latency: 20,
