@@ -21,6 +21,7 @@ use super::{
 };
 use crate::formats::fp32::{Mul, Sub};
 use crate::mt::delay::Delay;
+use crate::harness::{built_verilog, simulate_cycles, Stepped};
 use crate::traversal::box_test::Tag;
 
 /// `n` delay lines of `cycles` each.
@@ -465,10 +466,21 @@ fn width_of(word: u64) -> i16 {
     ((word << 6) as u16 as i16) >> 6
 }
 
-impl WideBoxStage<LINK_BITS> {
+impl Stepped for WideBoxStage<LINK_BITS> {
+    type Input = WideInput;
+    type Output = WideOutput;
+
+    fn idle() -> WideInput {
+        WideInput::idle()
+    }
+
+    fn clock_input(&mut self) -> &mut Signal<In, Clock> {
+        &mut self.clock
+    }
+
     /// Drives the inputs with one test (the simulator's side of the ports, from
     /// [`WideInput::port_words`]): a node's missing children are zero words.
-    pub fn set_inputs(&mut self, x: &WideInput) {
+    fn apply(&mut self, x: &WideInput) {
         let width = self.width();
         assert!(
             x.node.children.len() <= width,
@@ -504,7 +516,7 @@ impl WideBoxStage<LINK_BITS> {
     }
 
     /// What the outputs show ([`WideOutput::from_port_words`]).
-    pub fn outputs(&self) -> WideOutput {
+    fn observe(&self) -> WideOutput {
         let mut w = vec![
             u64::from(self.valid_out.val()),
             self.tag_out.val().to_u64(),
@@ -583,37 +595,15 @@ pub fn simulate_wide_box_stage(
     inputs: &[WideInput],
     flush: usize,
 ) -> Vec<WideOutput> {
-    let inputs = inputs.to_vec();
-    crate::top::with_build_stack(move || {
-        let mut uut = WideBoxStage::<LINK_BITS>::new(width, depth);
-        uut.connect_all();
-        let idle = WideInput::idle();
-        (0..inputs.len() + flush)
-            .map(|cycle| {
-                uut.set_inputs(inputs.get(cycle).unwrap_or(&idle));
-                uut.clock.next = Clock { clk: false };
-                assert!(
-                    simulate(&mut uut, 10_000),
-                    "wide box stage logic did not settle"
-                );
-                let out = uut.outputs();
-                uut.clock.next = Clock { clk: true };
-                assert!(
-                    simulate(&mut uut, 10_000),
-                    "wide box stage logic did not settle"
-                );
-                out
-            })
-            .collect()
-    })
+    simulate_cycles(
+        move || WideBoxStage::<LINK_BITS>::new(width, depth),
+        inputs,
+        flush,
+    )
 }
 
 /// Verilog of the stage of `width` children at `depth` ([`LINK_BITS`]-bit links), top
 /// module `top`.
 pub fn wide_box_stage_verilog(width: usize, depth: usize) -> String {
-    crate::top::with_build_stack(move || {
-        let mut uut = WideBoxStage::<LINK_BITS>::new(width, depth);
-        uut.connect_all();
-        generate_verilog(&uut)
-    })
+    built_verilog(move || WideBoxStage::<LINK_BITS>::new(width, depth))
 }
