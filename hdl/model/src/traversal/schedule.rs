@@ -39,7 +39,9 @@ pub enum TimingError {
     NoSlots(usize),
     #[error("{lanes} Möller-Trumbore lanes for {slots} ray slots: each lane serves its own slots, so 1 to {slots}")]
     Lanes { lanes: usize, slots: usize },
-    #[error("{ports} box ports for {slots} ray slots: each port serves its own slots, so 1 to {slots}")]
+    #[error(
+        "{ports} box ports for {slots} ray slots: each port serves its own slots, so 1 to {slots}"
+    )]
     BoxPorts { ports: usize, slots: usize },
 }
 

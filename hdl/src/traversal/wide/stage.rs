@@ -20,8 +20,8 @@ use super::{
     schedule, Code, Count, Magnitude, Shift, Slot, WideSchedule, WidthExp, Word, MAX_WIDTH,
 };
 use crate::formats::fp32::{Mul, Sub};
-use crate::mt::delay::Delay;
 use crate::harness::{built_verilog, simulate_cycles, Stepped};
+use crate::mt::delay::Delay;
 use crate::traversal::box_test::Tag;
 
 /// `n` delay lines of `cycles` each.
