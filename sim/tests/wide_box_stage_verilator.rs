@@ -1,13 +1,16 @@
 //! The wide box stage (`hdl::traversal::wide`), Verilated and streamed one node test per cycle
 //! (II = 1, `valid_in` low every seventh cycle), bit for bit against
 //! `hw_model::traversal::wide::box_test::wide_box_test`, with `valid_out` and the tag
-//! following `valid_in` and `tag_in` by `latency(depth)`; for nodes of 2, 4 and 8 children
-//! at depth 1 and at the maximum. The tests are random and adversarial
+//! following `valid_in` and `tag_in` by `latency(depth)`. The tests are random and adversarial
 //! (`hw_model::traversal::wide::cases::random_test`, 20k per width and depth) and the thesis
 //! scenes' own: every node test of the rays of a small render of each scene, recorded by
 //! descending the scene's wide tree along the model's answers (tests/wide_box_stage.rs in hdl
-//! runs the rust-hdl simulation of the same stage).
-//! `cargo test --release -p sim --test wide_box_stage_verilator -- --nocapture`
+//! runs the rust-hdl simulation of the same stage at every width and depth).
+//! Each width and depth is its own Verilator model, so `make test` builds two — the narrowest
+//! stage at depth 1 and the widest at the maximum, where the thesis tests run — and the rest
+//! of the matrix (nodes of 2, 4 and 8 children at depth 1 and at the maximum, every thesis
+//! test at each width) is ignored:
+//! `cargo test --release -p sim --test wide_box_stage_verilator -- --include-ignored --nocapture`
 
 use std::sync::Mutex;
 
@@ -138,14 +141,37 @@ fn random_tests(width: usize, seed: u64) -> Vec<NodeTest> {
         .collect()
 }
 
+/// The widths and depths `make test` checks: the narrowest stage at depth 1, the widest at
+/// the maximum.
+fn default_configurations() -> [(NodeFormat, usize); 2] {
+    [(NodeFormat::Bvh2Q8, 1), (NodeFormat::Bvh8Q8, max_depth())]
+}
+
+/// Every node format with wide nodes at depth 1 and at the maximum.
+fn every_configuration() -> Vec<(NodeFormat, usize)> {
+    [NodeFormat::Bvh2Q8, NodeFormat::Bvh4Q8, NodeFormat::Bvh8Q8]
+        .into_iter()
+        .flat_map(|nodes| [(nodes, 1), (nodes, max_depth())])
+        .collect()
+}
+
+fn check_random_tests(configurations: &[(NodeFormat, usize)]) {
+    for &(nodes, depth) in configurations {
+        let width = nodes.width().expect("wide nodes");
+        let several = run_width(width, depth, &random_tests(width, 40 + width as u64));
+        assert!(several > RANDOM_TESTS / 20, "{several} of {RANDOM_TESTS}");
+    }
+}
+
 #[test]
 fn wide_stage_matches_the_model_on_random_tests() {
-    for (k, width) in [2, 4, 8].into_iter().enumerate() {
-        for depth in [1, max_depth()] {
-            let several = run_width(width, depth, &random_tests(width, 40 + k as u64));
-            assert!(several > RANDOM_TESTS / 20, "{several} of {RANDOM_TESTS}");
-        }
-    }
+    check_random_tests(&default_configurations());
+}
+
+#[test]
+#[ignore = "four more Verilator models: every width at depth 1 and at the maximum"]
+fn wide_stage_matches_the_model_on_random_tests_at_every_width_and_depth() {
+    check_random_tests(&every_configuration());
 }
 
 /// Records every wide node test of the rays it is asked to cast: from the root, each node
@@ -212,15 +238,14 @@ impl RayCaster for RecordingCaster<'_> {
     }
 }
 
-#[test]
-fn wide_stage_matches_the_model_on_the_thesis_scenes_node_tests() {
-    let Some(root) = thesis_scenes::for_test(
-        "wide_box_stage_verilator::wide_stage_matches_the_model_on_the_thesis_scenes_node_tests",
-    ) else {
+/// Every node test of the thesis scenes' small renders through the stage of each of `formats`
+/// at the maximum depth.
+fn check_thesis_tests(test: &str, formats: &[NodeFormat]) {
+    let Some(root) = thesis_scenes::for_test(test) else {
         return;
     };
-    for nodes in [NodeFormat::Bvh2Q8, NodeFormat::Bvh4Q8, NodeFormat::Bvh8Q8] {
-        let width = nodes.width().unwrap();
+    for &nodes in formats {
+        let width = nodes.width().expect("wide nodes");
         let recorder = Recorder {
             nodes,
             tests: Mutex::new(Vec::new()),
@@ -243,4 +268,21 @@ fn wide_stage_matches_the_model_on_the_thesis_scenes_node_tests() {
         );
         assert!(several > tests.len() / 20, "{several} of {}", tests.len());
     }
+}
+
+#[test]
+fn wide_stage_matches_the_model_on_the_thesis_scenes_node_tests() {
+    check_thesis_tests(
+        "wide_box_stage_verilator::wide_stage_matches_the_model_on_the_thesis_scenes_node_tests",
+        &[NodeFormat::Bvh8Q8],
+    );
+}
+
+#[test]
+#[ignore = "two more Verilator models: the thesis tests through the stages of 2 and 4 children"]
+fn wide_stage_matches_the_model_on_the_thesis_scenes_node_tests_at_every_width() {
+    check_thesis_tests(
+        "wide_box_stage_verilator::wide_stage_matches_the_model_on_the_thesis_scenes_node_tests_at_every_width",
+        &[NodeFormat::Bvh2Q8, NodeFormat::Bvh4Q8],
+    );
 }
