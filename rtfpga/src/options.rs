@@ -114,6 +114,7 @@ pub const RULES: &[Rule] = &[
         applies: &[
             (UnitModel, Values::Any),
             (Unit, Values::Only(&["bvh2-fp32"])),
+            (FrameModel, Values::Any),
         ],
     },
     Rule {

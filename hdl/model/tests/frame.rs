@@ -6,6 +6,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use hw_model::frame::{Frame, FrameError, FrameLimits, FrameOutput, RayKind, WAVEFRONT};
+use hw_model::traversal::wide::NodeFormat;
 use hw_model::traversal::{SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
 use hw_model::{Advance, Format};
 use image::RgbImage;
@@ -33,6 +34,7 @@ fn traversal() -> TraversalEngine {
         advance: Advance::None,
         timing: None,
         memory: SceneMemory::Unbounded,
+        nodes: NodeFormat::Bvh2Fp32,
     }
 }
 
