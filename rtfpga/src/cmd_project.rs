@@ -16,7 +16,7 @@ use sim::projection::{
 use sw_renderer::render::RenderOptions;
 use sw_renderer::scene::Scene;
 
-use crate::engine::{ChunkArgs, Datapath, HwConfig, SceneMemoryArg, UnitArgs};
+use crate::engine::{ChunkArgs, Datapath, HwConfig, UnitArgs};
 use crate::options::{Given, Target};
 use crate::report::{self, Line};
 
@@ -68,10 +68,9 @@ pub struct Args {
     /// MT lanes (the traversal unit: 1 to 3); the thesis design: its accelerators.
     #[arg(long, default_value_t = 1)]
     lanes: u32,
-    /// Ray slots of the traversal unit (its schedule model times 1 to 1024; the RTL has 32).
-    #[arg(long, default_value_t = hdl::traversal::timing::DEFAULT_SLOTS as u32,
-          value_parser = clap::value_parser!(u32).range(1..=1024))]
-    slots: u32,
+    /// The traversal unit's slots, scene memory, node format and box ports.
+    #[command(flatten)]
+    unit: UnitArgs,
     /// Fabric clock f_PL in MHz.
     #[arg(long, default_value_t = 100.0)]
     fpl_mhz: f64,
@@ -89,8 +88,6 @@ pub struct Args {
     /// ray and read its answer).
     #[arg(long, default_value_t = 40.0)]
     pack_cycles: f64,
-    #[command(flatten)]
-    memory: SceneMemoryArg,
     #[command(flatten)]
     chunks: ChunkArgs,
     /// Edge of the renderer's square tiles: one tile's rays per level form a wavefront (a
@@ -238,7 +235,7 @@ fn stored_or_fitted(a: &Args, thesis: Option<&Path>, store: &Path) -> Result<Boa
 }
 
 /// The traversal design's unit: the traversal engine `render --engine traversal` makes in
-/// this configuration (its checks of depth, lanes and slots included).
+/// this configuration (its checks of depth, lanes, slots and box ports included).
 fn traversal_engine(a: &Args) -> Result<TraversalEngine> {
     let hw = HwConfig {
         datapath: Datapath {
@@ -246,10 +243,7 @@ fn traversal_engine(a: &Args) -> Result<TraversalEngine> {
             depth: a.depth,
             lanes: a.lanes as usize,
         },
-        unit: UnitArgs {
-            slots: a.slots,
-            memory: a.memory.clone(),
-        },
+        unit: a.unit.clone(),
         dual_filter: None,
     };
     hw.traversal_engine(0, Advance::None, &a.chunks)
@@ -341,7 +335,9 @@ fn design_line(a: &Args, d: &Design) -> Line {
             .kv("format", a.format)
             .kv("depth", a.depth)
             .kv("lanes", a.lanes)
-            .kv("slots", a.slots)
+            .kv("slots", a.unit.slots)
+            .kv("nodes", a.unit.nodes.name())
+            .kv("box_ports", a.unit.box_ports)
             .kv("hp_ports", hp_ports)
             .kv("dma_efficiency", dma_efficiency)
             .kv("pack_cycles", pack_arm_cycles),

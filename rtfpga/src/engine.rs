@@ -347,7 +347,7 @@ pub enum ScaleKind {
 
 /// The parser of a closed list of choices (`--spawn`, `--edges`, `--advance`): its names,
 /// listed in the help.
-fn choice<T: NamedChoice>() -> impl TypedValueParser<Value = T> {
+pub(crate) fn choice<T: NamedChoice>() -> impl TypedValueParser<Value = T> {
     clap::builder::PossibleValuesParser::new(T::CHOICES.iter().map(|c| c.choice_name()))
         .try_map(|name| name.parse::<T>())
 }

@@ -115,11 +115,16 @@ pub const RULES: &[Rule] = &[
             (UnitModel, Values::Any),
             (Unit, Values::Only(&["bvh2-fp32"])),
             (FrameModel, Values::Any),
+            (TraversalDesign, Values::Any),
         ],
     },
     Rule {
         arg: "box_ports",
-        applies: &[(UnitModel, Values::Any), (Unit, Values::Only(&["1"]))],
+        applies: &[
+            (UnitModel, Values::Any),
+            (Unit, Values::Only(&["1"])),
+            (TraversalDesign, Values::Any),
+        ],
     },
     Rule {
         arg: "no_chunks",

@@ -1,7 +1,7 @@
 //! `rtfpga render`: the image a render writes is the library's for the same engine.
 
 use hw_model::frame::{Frame, FrameLimits, WAVEFRONT};
-use hw_model::traversal::{SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
+use hw_model::traversal::{NodeFormat, SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
 use hw_model::{Advance, Format, ModelIntersector};
 use image::RgbImage;
 use sw_renderer::intersect::F32Intersector;
@@ -94,6 +94,7 @@ fn library_frame(scene: &str, w: u32, h: u32, format: Format) -> RgbImage {
         advance: Advance::None,
         timing: None,
         memory: SceneMemory::Unbounded,
+        nodes: NodeFormat::Bvh2Fp32,
     };
     let frame = Frame::new(&scene, &prepared, &unit, w, h, &FrameLimits::HW).expect("loaded");
     frame.render(16, WAVEFRONT, &|| {}).expect("rendered").image

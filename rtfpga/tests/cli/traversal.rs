@@ -147,3 +147,66 @@ fn scene_image_writes_the_words_it_reports() {
     let image = hw_model::traversal::scene_image::SceneImage::from_words(&words).unwrap();
     assert_eq!(image.triangles.len(), 6322);
 }
+
+#[test]
+fn scene_image_writes_wide_nodes_and_their_record_sizes() {
+    let dir = tmp();
+    let binary = rtfpga(&["scene-image", "--scene", "utah_teapot"]).ok();
+    assert_eq!(value(&binary, "node_format").as_deref(), Some("bvh2-fp32"));
+    assert_eq!(
+        value(&binary, "node_bytes").as_deref(),
+        Some("64"),
+        "{binary}"
+    );
+    assert_eq!(
+        value(&binary, "triangle_bytes").as_deref(),
+        Some("48"),
+        "{binary}"
+    );
+    let count = |out: &str| value(out, "nodes").unwrap().parse::<usize>().unwrap();
+    let mut fewer = count(&binary);
+    for (nodes, width) in [("bvh4-q8", 4), ("bvh8-q8", 8)] {
+        let file = at(&dir, &format!("{nodes}.rtsi"));
+        let out = rtfpga(&[
+            "scene-image",
+            "--scene",
+            "utah_teapot",
+            "--nodes",
+            nodes,
+            "--out",
+            s(&file),
+        ])
+        .ok();
+        let words: Vec<u32> = std::fs::read(&file)
+            .unwrap()
+            .chunks_exact(4)
+            .map(|w| u32::from_le_bytes(w.try_into().unwrap()))
+            .collect();
+        assert_eq!(
+            value(&out, "bytes"),
+            Some((4 * words.len()).to_string()),
+            "{out}"
+        );
+        let image = hw_model::traversal::wide::image::WideImage::from_words(&words).unwrap();
+        assert_eq!(image.tree.width, width);
+        assert_eq!(count(&out), image.tree.nodes.len(), "{out}");
+        assert!(count(&out) < fewer, "{nodes}: {out}");
+        fewer = count(&out);
+        let node_bytes = 4 * hw_model::traversal::wide::image::node_words(width);
+        assert_eq!(value(&out, "node_bytes"), Some(node_bytes.to_string()));
+    }
+    let chunked = rtfpga(&[
+        "scene-image",
+        "--scene",
+        "utah_teapot",
+        "--nodes",
+        "bvh8-q8",
+        "--scene-memory",
+        "100,2000",
+    ])
+    .ok();
+    assert!(
+        value(&chunked, "chunks").unwrap().parse::<usize>().unwrap() >= 4,
+        "{chunked}"
+    );
+}
