@@ -10,6 +10,9 @@ fn sample(option: &str) -> Option<&'static [&'static str]> {
         "--depth" => &["2"],
         "--lanes" => &["2"],
         "--slots" => &["16"],
+        // Values every target of the option builds, so that only where it acts is tested.
+        "--nodes" => &["bvh2-fp32"],
+        "--box-ports" => &["1"],
         "--scene-memory" => &["2048,4096"],
         "--no-chunks" | "--no-fit" => &[],
         "--dual-filter" => &["bfp"],

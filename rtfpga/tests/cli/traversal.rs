@@ -23,7 +23,7 @@ fn an_fp32_traversal_render_is_the_software_image_and_reports_the_units_schedule
     );
     let schedule = last_line(&out);
     assert!(
-        schedule.starts_with("unit_schedule slots=16 lanes=1 "),
+        schedule.starts_with("unit_schedule nodes=bvh2-fp32 slots=16 box_ports=1 lanes=1 "),
         "{out}"
     );
     for key in [
