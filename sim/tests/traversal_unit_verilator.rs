@@ -3,12 +3,13 @@
 //! random meshes and rays (proptest), with gaps and back-pressure on both streams, rays with
 //! NaN and infinite components; its failure modes (a scene too big, a malformed image, a
 //! stack overflow) as errors; the 7 thesis scenes rendered through it identical to the
-//! software. One Verilated build of the CLI's default configuration (fp32, depth 1, one
-//! lane, 4,096 nodes and 8,192 triangles) serves every default test but the two of the
-//! second build: two lanes (the XC7Z020 memory beside them, 2,048 nodes and 4,096
-//! triangles) in the narrow float [`NARROW`] with the leaf advance, against the advanced
-//! model on random meshes and on two thesis scenes. Ignored (each its own build): chunked
-//! passes through the smallest memory, 3 lanes, fp16 without the advance.
+//! software, in cycles within 2 % of the schedule model's. One Verilated build of the CLI's
+//! default configuration (fp32, depth 1, one lane, 4,096 nodes and 8,192 triangles) serves
+//! every default test but the two of the second build: two lanes (the XC7Z020 memory beside
+//! them, 2,048 nodes and 4,096 triangles) in the narrow float [`NARROW`] with the leaf
+//! advance, against the advanced model on random meshes and on two thesis scenes. Ignored
+//! (each its own build): chunked passes through the smallest memory, 3 lanes, fp16 without
+//! the advance.
 //! Time: BENCHMARKS.md "make test".
 
 use std::cell::Cell;
@@ -485,6 +486,9 @@ fn model_engine(c: &UnitConfig, advance: Advance) -> TraversalEngine {
     }
 }
 
+/// The thesis scenes through the unit render as the software does, and the schedule model
+/// (`hdl::traversal::timing`: the latencies the blocks define) times them within 2 % of the
+/// unit's cycles.
 #[test]
 fn thesis_scenes_render_identical_to_the_software() {
     let Some((scenes, opts)) =
@@ -492,12 +496,31 @@ fn thesis_scenes_render_identical_to_the_software() {
     else {
         return;
     };
-    let engine = UnitEngine::new(&config(), Traffic::FULL_SPEED, true).unwrap();
+    let c = config();
+    let engine = UnitEngine::new(&c, Traffic::FULL_SPEED, true).unwrap();
+    let model = TraversalEngine {
+        timing: Some(c.timing()),
+        ..model_engine(&c, c.advance)
+    };
     for scene in &scenes {
         let hw = render(scene, &engine, &opts).unwrap();
         let sw = render(scene, &F32Intersector, &opts).unwrap();
         let diff = compare(&hw.image, &sw.image).unwrap();
         assert_eq!(diff.differing_pixels, 0, "{}: {diff:?}", scene.name);
+        let cycles = hw.stats.trace.cast.cycles;
+        let modelled = render(scene, &model, &opts)
+            .unwrap()
+            .stats
+            .trace
+            .cast
+            .cycles;
+        let off = cycles as f64 / modelled as f64 - 1.0;
+        assert!(
+            off.abs() <= 0.02,
+            "{}: {cycles} cycles, the schedule model {modelled} ({:+.2} %)",
+            scene.name,
+            off * 100.0
+        );
     }
 }
 

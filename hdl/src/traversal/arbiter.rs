@@ -8,21 +8,27 @@
 
 use rust_hdl::prelude::*;
 
-/// `grant` is the first requesting slot after `last` (cyclically), or the first requesting
-/// slot when none follows it; `last` becomes the grant at the clock edge.
+/// `grant` is the first requesting slot after the last grant (cyclically), or the first
+/// requesting slot when none follows it.
+///
+/// For the clock: the slots after the last grant are kept as a registered mask, not derived
+/// from the last grant, so that a grant is one carry chain (`x & −x`, the lowest set bit, of
+/// the masked and of the plain requests side by side) and a multiplexer from the registers;
+/// the next mask, `x ^ −x` (the bits above the lowest set bit), comes off the same chains.
 #[derive(LogicBlock)]
 pub struct RoundRobin<const S: usize> {
     pub clock: Signal<In, Clock>,
     pub request: Signal<In, Bits<S>>,
     /// One-hot, or 0 when nothing is requested.
     pub grant: Signal<Out, Bits<S>>,
-    /// The last grant (one-hot; 0 before the first).
-    last: DFF<Bits<S>>,
+    /// The slots after the last grant (0 before the first: none, so every slot).
+    after_last: DFF<Bits<S>>,
     one: Constant<Bits<S>>,
-    /// Requests of the slots after the last grant.
+    /// The requests of the slots after the last grant.
     after: Signal<Local, Bits<S>>,
-    /// The requests the grant is taken from.
-    pool: Signal<Local, Bits<S>>,
+    /// −after and −request (two's complement).
+    after_neg: Signal<Local, Bits<S>>,
+    request_neg: Signal<Local, Bits<S>>,
 }
 
 impl<const S: usize> Default for RoundRobin<S> {
@@ -31,10 +37,11 @@ impl<const S: usize> Default for RoundRobin<S> {
             clock: Default::default(),
             request: Default::default(),
             grant: Default::default(),
-            last: Default::default(),
+            after_last: Default::default(),
             one: Constant::new(1.into()),
             after: Default::default(),
-            pool: Default::default(),
+            after_neg: Default::default(),
+            request_neg: Default::default(),
         }
     }
 }
@@ -42,19 +49,21 @@ impl<const S: usize> Default for RoundRobin<S> {
 impl<const S: usize> Logic for RoundRobin<S> {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, last);
-        // The slots above the last grant: !(2·last − 1) (all slots while last is 0, whose
-        // mask would be 0: the fallback below takes the whole request then).
-        self.after.next = self.request.val() & !((self.last.q.val() << 1) - self.one.val());
-        self.pool.next = self.request.val();
+        clock!(self, clock, after_last);
+        self.after.next = self.request.val() & self.after_last.q.val();
+        self.after_neg.next = !self.after.val() + self.one.val();
+        self.request_neg.next = !self.request.val() + self.one.val();
+        // The lowest set bit of the requests after the last grant, else of all requests.
+        self.grant.next = self.request.val() & self.request_neg.val();
         if self.after.val().any() {
-            self.pool.next = self.after.val();
+            self.grant.next = self.after.val() & self.after_neg.val();
         }
-        // The lowest set bit: x & −x.
-        self.grant.next = self.pool.val() & (!self.pool.val() + self.one.val());
-        self.last.d.next = self.last.q.val();
-        if self.request.val().any() {
-            self.last.d.next = self.grant.val();
+        // The slots above the grant (none above the last slot).
+        self.after_last.d.next = self.after_last.q.val();
+        if self.after.val().any() {
+            self.after_last.d.next = self.after.val() ^ self.after_neg.val();
+        } else if self.request.val().any() {
+            self.after_last.d.next = self.request.val() ^ self.request_neg.val();
         }
     }
 }

@@ -1,7 +1,10 @@
 //! The stack port: the slots' stacks ([`SlotStacks`], one push and one pop a cycle) behind
-//! the pop scheduler's grant. A pop answers the next cycle with a [`LinkStep`]: the popped
-//! entry entered, or popped again when it was entered beyond the slot's far end `t_hi`, or
-//! the end of the walk when the stack is empty. A push onto a full stack is dropped and
+//! the pop scheduler's grant. The grant is registered first (for the clock: the scheduler's
+//! pick and the granted slot's words fill the grant's cycle, the stack pointer's select and
+//! the stack RAM's address the next), then the stack is read; a pop answers [`LATENCY`]
+//! cycles after its grant with a [`LinkStep`]: the popped entry entered, or popped again when
+//! it was entered beyond the slot's far end `t_hi`, or the end of the walk when the stack is
+//! empty. A push onto a full stack is dropped and
 //! reported once, sticky, with its ray's id (`overflow`, `overflow_ray`; the model's
 //! `TraversalError::StackOverflow`).
 //!
@@ -13,6 +16,11 @@ use rust_hdl::prelude::*;
 use super::hit_update::F32Order;
 use super::slot_ports::{Entered, LinkStep, PopGrant, PushSink};
 use super::stack::SlotStacks;
+use super::timing::MEMORY_READ;
+
+/// Cycles from a pop's grant to its step: the grant's register, then the stack read (the
+/// step's comparison with the far end is combinational).
+pub const LATENCY: usize = 1 + MEMORY_READ;
 
 #[derive(LogicBlock)]
 pub struct StackPort<
@@ -34,6 +42,10 @@ pub struct StackPort<
     pub overflow: Signal<Out, Bit>,
     pub overflow_ray: Signal<Out, Bits<32>>,
     stacks: SlotStacks<S, SB, PB, AB, W>,
+    /// The grant, registered.
+    granted: DFF<Bit>,
+    granted_slot: DFF<Bits<SB>>,
+    granted_t_hi: DFF<Bits<32>>,
     /// The granted slot, registered beside the stack read.
     valid: DFF<Bit>,
     slot: DFF<Bits<SB>>,
@@ -71,6 +83,9 @@ impl<
             overflow: Default::default(),
             overflow_ray: Default::default(),
             stacks: SlotStacks::new(depth),
+            granted: Default::default(),
+            granted_slot: Default::default(),
+            granted_t_hi: Default::default(),
             valid: Default::default(),
             slot: Default::default(),
             t_hi: Default::default(),
@@ -96,7 +111,18 @@ impl<
     #[hdl_gen]
     fn update(&mut self) {
         clock!(self, clock, stacks);
-        dff_setup!(self, clock, valid, slot, t_hi, overflow_q, overflow_ray_q);
+        dff_setup!(
+            self,
+            clock,
+            granted,
+            granted_slot,
+            granted_t_hi,
+            valid,
+            slot,
+            t_hi,
+            overflow_q,
+            overflow_ray_q
+        );
         self.ids.read_clock.next = self.clock.val();
         self.ids.write_clock.next = self.clock.val();
         self.stacks.push.next = self.push.valid.val();
@@ -105,12 +131,15 @@ impl<
         self.stacks.clear.next = self.entered.valid.val();
         self.stacks.clear_slot.next = self.entered.slot.val();
 
-        // The grant pops; the entry arrives the next cycle.
-        self.stacks.pop.next = self.grant.valid.val();
-        self.stacks.pop_slot.next = self.grant.slot.val();
-        self.valid.d.next = self.grant.valid.val();
-        self.slot.d.next = self.grant.slot.val();
-        self.t_hi.d.next = self.grant.t_hi.val();
+        // The registered grant pops; the entry arrives the next cycle.
+        self.granted.d.next = self.grant.valid.val();
+        self.granted_slot.d.next = self.grant.slot.val();
+        self.granted_t_hi.d.next = self.grant.t_hi.val();
+        self.stacks.pop.next = self.granted.q.val();
+        self.stacks.pop_slot.next = self.granted_slot.q.val();
+        self.valid.d.next = self.granted.q.val();
+        self.slot.d.next = self.granted_slot.q.val();
+        self.t_hi.d.next = self.granted_t_hi.q.val();
         self.step.valid.next = self.valid.q.val();
         self.step.slot.next = self.slot.q.val();
         self.step.first.next = bit_cast::<LF, W>(self.stacks.pop_data.val() >> self.at_first.val());

@@ -6,7 +6,7 @@ use hw_model::traversal::schedule::UnitTiming;
 use hw_model::traversal::NodeFormat;
 use hw_model::{Advance, HwFormat};
 
-use super::{box_test, far_end, leaf_advance, ray_setup, wide};
+use super::{box_test, far_end, leaf_advance, ray_setup, stack_port, wide};
 use crate::formats::fp32;
 use crate::mt::schedule::OpLatencies;
 
@@ -52,8 +52,9 @@ pub fn unit_timing(
                 + far_end::latency(depth)
                 + SLOT_UPDATE,
         ),
-        // Stack read, then the entry's distance against the far end.
-        pop_latency: cycles(MEMORY_READ + lt + SLOT_UPDATE),
+        // The stack port (its grant register, the stack read and the entry's distance against
+        // the far end), then the slot's update.
+        pop_latency: cycles(stack_port::LATENCY + SLOT_UPDATE),
     }
 }
 

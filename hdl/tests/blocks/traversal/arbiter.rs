@@ -42,6 +42,9 @@ fn grants_follow_the_reference_on_random_requests() {
     let mut rng = StdRng::seed_from_u64(5);
     run::<5>((0..2_000).map(|_| rng.gen_range(0..32)));
     run::<16>((0..2_000).map(|_| rng.gen_range(0..1 << 16) & rng.gen_range(0..1 << 16)));
+    // The unit's 32 slots: requests of a few slots too (the last slot granted, then none).
+    run::<32>((0..2_000).map(|_| rng.gen_range(0..1u64 << 32) & rng.gen_range(0..1u64 << 32)));
+    run::<32>((0..2_000).map(|_| 1 << rng.gen_range(0..32) | 1 << rng.gen_range(0..32)));
 }
 
 #[test]

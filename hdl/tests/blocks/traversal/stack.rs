@@ -1,6 +1,7 @@
-//! `hdl::traversal::stack`.
+//! `hdl::traversal::stack` and `hdl::traversal::stack_port`.
 
 use hdl::traversal::stack::*;
+use hdl::traversal::stack_port::{StackPort, LATENCY};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
@@ -78,4 +79,73 @@ fn pushes_and_pops_follow_a_stack_per_slot() {
         assert!(simulate(&mut uut, 100));
     }
     assert!(pops > 500 && empties > 100 && overflowed.is_some() && drops > 10);
+}
+
+/// 4 slots of 4 entries; links of 4 + 4 bits.
+type Port = StackPort<4, 2, 3, 4, 40, 4, 4>;
+
+/// The port's step for a pop granted at cycle 0: the cycle it arrives and its (enter, pop,
+/// first, count, entry).
+fn pop_step(uut: &mut Port, slot: u64, t_hi: f32) -> (usize, (bool, bool, u64, u64, u32)) {
+    let tick = |uut: &mut Port| {
+        uut.clock.next = Clock { clk: true };
+        assert!(simulate(uut, 100));
+        uut.clock.next = Clock { clk: false };
+        assert!(simulate(uut, 100));
+    };
+    uut.grant.valid.next = true;
+    uut.grant.slot.next = slot.into();
+    uut.grant.t_hi.next = u64::from(t_hi.to_bits()).into();
+    assert!(simulate(uut, 100));
+    for cycle in 0..10 {
+        tick(uut);
+        uut.grant.valid.next = false;
+        assert!(simulate(uut, 100));
+        if uut.step.valid.val() {
+            assert_eq!(uut.step.slot.val().to_u64(), slot);
+            let step = (
+                uut.step.enter.val(),
+                uut.step.pop.val(),
+                uut.step.first.val().to_u64(),
+                uut.step.count.val().to_u64(),
+                uut.step.entry.val().to_u64() as u32,
+            );
+            return (cycle + 1, step);
+        }
+    }
+    panic!("no step for the pop of slot {slot}");
+}
+
+/// A pop answers `LATENCY` cycles after its grant (the figure the schedule model times pops
+/// with): the entry entered within the far end, popped again beyond it, the end when empty.
+#[test]
+fn a_pop_answers_latency_cycles_after_its_grant() {
+    let mut uut = Port::new(4);
+    uut.connect_all();
+    uut.reset_n.next = true;
+    uut.clock.next = Clock { clk: false };
+    assert!(simulate(&mut uut, 100));
+    // Slot 2 pushes two entries (first 5, count 0, at 1.5; first 9, count 3, at 4.0).
+    for (first, count, entry) in [(5u64, 0u64, 1.5f32), (9, 3, 4.0)] {
+        uut.push.valid.next = true;
+        uut.push.slot.next = 2.into();
+        uut.push.data.next = (u64::from(entry.to_bits()) | count << 32 | first << 36).into();
+        uut.clock.next = Clock { clk: true };
+        assert!(simulate(&mut uut, 100));
+        uut.clock.next = Clock { clk: false };
+        assert!(simulate(&mut uut, 100));
+    }
+    uut.push.valid.next = false;
+    let steps = [
+        pop_step(&mut uut, 2, 3.0),
+        pop_step(&mut uut, 2, 3.0),
+        pop_step(&mut uut, 2, 3.0),
+    ];
+    for (cycles, _) in steps {
+        assert_eq!(cycles, LATENCY);
+    }
+    // Beyond the far end (4.0 > 3.0): popped again; within: entered; then empty: the end.
+    assert_eq!(steps[0].1, (false, true, 9, 3, 4.0f32.to_bits()));
+    assert_eq!(steps[1].1, (true, false, 5, 0, 1.5f32.to_bits()));
+    assert_eq!((steps[2].1 .0, steps[2].1 .1), (false, false));
 }
