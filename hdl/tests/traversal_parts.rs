@@ -17,6 +17,7 @@ use hdl::traversal::stack::SlotStacks;
 use hdl::traversal::stack_port::StackPort;
 use hdl::verilog::verilator_lint;
 use rust_hdl::prelude::*;
+use sim::verilator::Direction;
 
 #[test]
 fn control_parts_pass_verilator_lint() {
@@ -151,46 +152,41 @@ impl Logic for PopPath {
 /// estimate, which leaves module ports unconstrained, times the block's paths to and from its
 /// neighbours as if they were registers.
 fn between_registers(verilog: &str) -> String {
-    let body = verilog.replacen("module top(", "module top_body(", 1);
-    let header = &verilog[verilog.find("module top(").expect("a top module")..];
-    let header = &header[..header.find("endmodule").unwrap()];
-    let (mut ports, mut decls, mut regs, mut body_ports) = (vec![], vec![], vec![], vec![]);
-    for line in header.lines().map(str::trim) {
-        let (dir, rest) = match line.split_once(' ') {
-            Some((d @ ("input" | "output"), rest)) => (d, rest),
-            _ => continue,
-        };
-        let rest = rest
-            .trim_start_matches("wire")
-            .trim_start_matches("reg")
-            .trim();
-        let (range, name) = match rest.rsplit_once(' ') {
-            Some((r, n)) => (r.trim(), n.trim_end_matches(';')),
-            None => ("", rest.trim_end_matches(';')),
-        };
-        ports.push(name.to_string());
+    let ports = sim::verilator::parse_ports(verilog, "top").expect("a top module");
+    let (mut decls, mut regs, mut body_ports) = (vec![], vec![], vec![]);
+    for port in &ports {
+        let name = &port.name;
         if name == "clock" {
             decls.push("    input wire clock;".to_string());
             body_ports.push(".clock(clock)".to_string());
             continue;
         }
+        let range = match port.width {
+            1 => String::new(),
+            w => format!("[{}:0]", w - 1),
+        };
         let r = format!("r_{}", name.replace('$', "_"));
-        if dir == "input" {
-            decls.push(format!(
-                "    input wire {range} {name};\n    reg {range} {r};"
-            ));
-            regs.push(format!("        {r} <= {name};"));
-        } else {
-            decls.push(format!(
-                "    output reg {range} {name};\n    wire {range} {r};"
-            ));
-            regs.push(format!("        {name} <= {r};"));
+        match port.direction {
+            Direction::Input => {
+                decls.push(format!(
+                    "    input wire {range} {name};\n    reg {range} {r};"
+                ));
+                regs.push(format!("        {r} <= {name};"));
+            }
+            Direction::Output => {
+                decls.push(format!(
+                    "    output reg {range} {name};\n    wire {range} {r};"
+                ));
+                regs.push(format!("        {name} <= {r};"));
+            }
         }
         body_ports.push(format!(".{name}({r})"));
     }
+    let names: Vec<&str> = ports.iter().map(|p| p.name.as_str()).collect();
     format!(
-        "{body}\nmodule top({});\n{}\n    always @(posedge clock) begin\n{}\n    end\n    top_body body({});\nendmodule\n",
-        ports.join(","),
+        "{}\nmodule top({});\n{}\n    always @(posedge clock) begin\n{}\n    end\n    top_body body({});\nendmodule\n",
+        verilog.replacen("module top(", "module top_body(", 1),
+        names.join(","),
         decls.join("\n"),
         regs.join("\n"),
         body_ports.join(", ")
