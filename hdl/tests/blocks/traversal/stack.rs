@@ -84,15 +84,17 @@ fn pushes_and_pops_follow_a_stack_per_slot() {
 /// 4 slots of 4 entries; links of 4 + 4 bits.
 type Port = StackPort<4, 2, 3, 4, 40, 4, 4>;
 
+/// One clock cycle: the inputs set before it are registered at its rising edge.
+fn tick(uut: &mut Port) {
+    uut.clock.next = Clock { clk: true };
+    assert!(simulate(uut, 100));
+    uut.clock.next = Clock { clk: false };
+    assert!(simulate(uut, 100));
+}
+
 /// The port's step for a pop granted at cycle 0: the cycle it arrives and its (enter, pop,
 /// first, count, entry).
 fn pop_step(uut: &mut Port, slot: u64, t_hi: f32) -> (usize, (bool, bool, u64, u64, u32)) {
-    let tick = |uut: &mut Port| {
-        uut.clock.next = Clock { clk: true };
-        assert!(simulate(uut, 100));
-        uut.clock.next = Clock { clk: false };
-        assert!(simulate(uut, 100));
-    };
     uut.grant.valid.next = true;
     uut.grant.slot.next = slot.into();
     uut.grant.t_hi.next = u64::from(t_hi.to_bits()).into();
@@ -130,10 +132,7 @@ fn a_pop_answers_latency_cycles_after_its_grant() {
         uut.push.valid.next = true;
         uut.push.slot.next = 2.into();
         uut.push.data.next = (u64::from(entry.to_bits()) | count << 32 | first << 36).into();
-        uut.clock.next = Clock { clk: true };
-        assert!(simulate(&mut uut, 100));
-        uut.clock.next = Clock { clk: false };
-        assert!(simulate(&mut uut, 100));
+        tick(&mut uut);
     }
     uut.push.valid.next = false;
     let steps = [
