@@ -2,7 +2,7 @@
 # Installs the system tools the project drives: Verilator (co-simulation), Yosys (resource
 # reports), Icarus Verilog (a second compiler check), Tcl (checks of the Vivado scripts). Debian/Ubuntu, run as root or with sudo.
 # Then FuseSoC (pip) for the lint target of rtfpga.core; without pip it says so and goes on
-# (hdl/tests/fusesoc_core.rs then skips its fusesoc run).
+# (hdl/tests/integration/fusesoc_core.rs then skips its fusesoc run).
 set -euo pipefail
 
 install_fusesoc() {

@@ -17,7 +17,7 @@
 //! flip-flop delay lines; they are short (a few cycles), so no block RAM rings as in the lane.
 //!
 //! Latency at depth 0..=5: 0, 7, 9, 11, 12, 13 (5 = [`max_depth`]). yosys xc7 (Yosys 0.23,
-//! `cargo test --release -p hdl --test box_test -- --ignored --nocapture box_test_resources`):
+//! `cargo test --release -p hdl --test integration -- --ignored --nocapture box_test::box_test_resources`):
 //! depth 1: 12791 LUT, 2751 FF, 24 DSP48E1, logic depth 26; depth 5: 10072 LUT, 5763 FF,
 //! 24 DSP48E1, logic depth 10.
 //!

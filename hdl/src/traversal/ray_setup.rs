@@ -23,7 +23,7 @@
 //! lines; valid and the tag ride through the far end with the bound.
 //!
 //! Latency at depth 0..=5: 0, 5, 7, 9, 11, 13 (5 = [`max_depth`]). yosys xc7 (Yosys 0.23,
-//! `cargo test --release -p hdl --test ray_setup -- --ignored --nocapture ray_setup_resources`):
+//! `cargo test --release -p hdl --test integration -- --ignored --nocapture ray_setup::ray_setup_resources`):
 //! depth 1: 8598 LUT, 1137 FF, 148 SRL, 19 DSP48E1, logic depth 37; depth 5: 5246 LUT,
 //! 2673 FF, 533 SRL, 19 DSP48E1, logic depth 8.
 //!

@@ -1,0 +1,27 @@
+//! hdl's integration tests, one binary: the tests of the blocks and helpers (`blocks`, one
+//! module per source file) and of the assembled designs (one module each). One binary
+//! because a release build monomorphises rust-hdl's generic blocks again in every test
+//! binary and links the whole crate into each: twenty binaries cost CI minutes of compile
+//! for no test. A module's tests run alone with `cargo test -p hdl --release --test
+//! integration <module>::`.
+
+mod axil_slave;
+mod blocks;
+mod box_test;
+mod common;
+mod fixed_ops;
+mod float_ops;
+mod fusesoc_core;
+mod mt_lane;
+mod ray_setup;
+mod regmap_cgen;
+mod scene_memory;
+mod synth_report;
+mod timing;
+mod top_generated;
+mod top_system;
+mod top_verilog;
+mod traversal_parts;
+mod traversal_unit;
+mod traversal_unit_axil;
+mod wide_box_stage;
