@@ -148,6 +148,13 @@ pub fn verilator_args(top: &str, trace: bool, extra: &[String]) -> Vec<String> {
         "--noassert",
         "--prefix",
         "Vmodel",
+        // Cut the generated functions at 2,000 statements: the C++ compiler's time grows
+        // faster than linearly with a function's size. Measured on the fp16 d1 l1
+        // accelerator (3 MB of Verilog): -O3 compile 57 → 39 CPU-s, simulation speed
+        // unchanged within the measurement's noise (±5 %); -O1 instead saved as much
+        // compile time and simulated about a third slower.
+        "--output-split-cfuncs",
+        "2000",
     ]
     .map(String::from)
     .to_vec();
