@@ -10,7 +10,10 @@
 //! nearest hit is read a cycle ahead from a slot RAM, a write in that cycle forwarded) and
 //! reported as a [`LeafStep`]; after a leaf's last triangle a closest-hit ray whose hit got
 //! nearer has its far end recomputed from `next_up(t)` ([`FarEnd`]) before it pops, an
-//! any-hit ray with a hit is done.
+//! any-hit ray with a hit is done. The judgement and `next_up` end in the comparison's
+//! registers (as many as an fp32 `lt` has at the depth) before the far end's multiplier: the
+//! two together were the unit's longest path (yosys: 24 levels, a 28-bit carry into a DSP48E1
+//! without an input register).
 //!
 //! The port keeps its lane's copies of the slot words it reads (every copy written at
 //! entry) and of the nearest hit (only this lane writes it, so each RAM has one writer):
@@ -28,7 +31,9 @@ use super::scene_memory::{INDEX_BITS, VERTEX_BITS};
 use super::slot_ports::{
     Entered, LeafGrant, LeafStep, NearestHit, SetUp, LANE_WORDS_BITS, LEAF_WORDS_BITS,
 };
+use crate::formats::fp32;
 use crate::mt::delay::Delay;
+use crate::mt::schedule::OpLatencies;
 use crate::mt::{LanePort, T_MIN_WORD};
 use crate::top::stream::QUERY_BITS;
 
@@ -92,6 +97,11 @@ pub struct LeafPort<const SB: usize, const TB: usize, const LF: usize> {
     forward: DFF<Bit>,
     written_q: DFF<NearestHit>,
     update: HitUpdate,
+    /// The far end's inputs in the comparison's registers.
+    far_valid_at: Delay<Bit>,
+    far_slot_at: Delay<Bits<SB>>,
+    far_bound_at: Delay<Bits<32>>,
+    far_pad_at: Delay<Bits<32>>,
     far: FarEnd,
     abs_mask: Constant<Bits<32>>,
     /// The granted slot's lane words and excluded triangle (the cycle after the grant).
@@ -113,6 +123,7 @@ impl<const SB: usize, const TB: usize, const LF: usize> LeafPort<SB, TB, LF> {
     /// A port whose operators have `depth` pipeline registers each, beside a lane of
     /// `lane_latency` cycles (query to answer, with whatever sits around the lane).
     pub fn new(depth: usize, lane_latency: usize) -> Self {
+        let compare = OpLatencies::for_depth(depth, fp32::max_stages).lt;
         Self {
             clock: Default::default(),
             grant: Default::default(),
@@ -147,6 +158,10 @@ impl<const SB: usize, const TB: usize, const LF: usize> LeafPort<SB, TB, LF> {
             forward: Default::default(),
             written_q: Default::default(),
             update: Default::default(),
+            far_valid_at: Delay::new(compare),
+            far_slot_at: Delay::new(compare),
+            far_bound_at: Delay::new(compare),
+            far_pad_at: Delay::new(compare),
             far: FarEnd::new(depth),
             abs_mask: Constant::new(0x7FFF_FFFFu64.into()),
             lane_words: Default::default(),
@@ -166,8 +181,22 @@ impl<const SB: usize, const TB: usize, const LF: usize> Logic for LeafPort<SB, T
     #[hdl_gen]
     fn update(&mut self) {
         clock!(
-            self, clock, issued_at, tested_at, last_at, index_at, t_min_at, t_max_at, any_hit_at,
-            pad_at, slot_at, far
+            self,
+            clock,
+            issued_at,
+            tested_at,
+            last_at,
+            index_at,
+            t_min_at,
+            t_max_at,
+            any_hit_at,
+            pad_at,
+            slot_at,
+            far_valid_at,
+            far_slot_at,
+            far_bound_at,
+            far_pad_at,
+            far
         );
         dff_setup!(
             self,
@@ -283,13 +312,17 @@ impl<const SB: usize, const TB: usize, const LF: usize> Logic for LeafPort<SB, T
         } else {
             self.next_up.next = self.new_t.val() + 1;
         }
-        self.far.valid_in.next = self.issued_at.q.val()
+        self.far_valid_at.d.next = self.issued_at.q.val()
             & self.last_at.q.val()
             & !self.any_hit_at.q.val()
             & self.got_nearer.val();
-        self.far.tag_in.next = bit_cast::<16, SB>(self.answer_slot.q.val());
-        self.far.bound.next = self.next_up.val();
-        self.far.pad.next = self.pad_at.q.val();
+        self.far_slot_at.d.next = self.answer_slot.q.val();
+        self.far_bound_at.d.next = self.next_up.val();
+        self.far_pad_at.d.next = self.pad_at.q.val();
+        self.far.valid_in.next = self.far_valid_at.q.val();
+        self.far.tag_in.next = bit_cast::<16, SB>(self.far_slot_at.q.val());
+        self.far.bound.next = self.far_bound_at.q.val();
+        self.far.pad.next = self.far_pad_at.q.val();
         self.step.far_valid.next = self.far.valid_out.val();
         self.step.far_slot.next = bit_cast::<SB, 16>(self.far.tag_out.val());
         self.step.t_hi.next = self.far.t_hi.val();

@@ -43,7 +43,8 @@ pub fn unit_timing(
         setup_latency: cycles(ray_setup::latency(depth) + SLOT_UPDATE),
         box_latency: box_port_latency(NodeFormat::Bvh2Fp32, depth),
         // Triangle read, the lane (behind the leaf advance, `t + t0` after it), the (t,
-        // index) comparison with the slot's nearest hit, then the far end of the new bound.
+        // index) comparison with the slot's nearest hit (its registers are the leaf port's
+        // before the far end), then the far end of the new bound.
         mt_latency: cycles(
             MEMORY_READ
                 + crate::mt::latency(format, depth)

@@ -7,6 +7,7 @@ use hdl::traversal::config::{
     stack_entry_bits, SLOT_BITS, STACK_ADDRESS_BITS, STACK_POINTER_BITS, UNIT_SLOTS,
 };
 use hdl::traversal::hit_update::HitUpdate;
+use hdl::traversal::leaf_port::LeafPort;
 use hdl::traversal::scene_records::{link_count_bits, link_first_bits};
 use hdl::traversal::slot_ports::{
     BoxGrantSource, Entered, LeafGrantSource, LeafStepSink, LinkStep, LinkStepSink, OutGrantSource,
@@ -16,6 +17,7 @@ use hdl::traversal::slots::SlotState;
 use hdl::traversal::stack::SlotStacks;
 use hdl::traversal::stack_port::StackPort;
 use hdl::verilog::verilator_lint;
+use hw_model::HwFormat;
 use rust_hdl::prelude::*;
 use sim::verilator::Direction;
 
@@ -202,7 +204,25 @@ fn between_registers(verilog: &str) -> String {
 fn pop_path_timing() {
     let mut path = PopPath::default();
     path.connect_all();
-    let verilog = between_registers(&generate_verilog(&path));
+    print_timing(&generate_verilog(&path));
+}
+
+/// The same for a leaf port of the default unit (fp32 lane at depth 5): the lane's answer
+/// judged against the slot's nearest hit, next_up of the new bound, the far end:
+/// `cargo test --release -p hdl --test integration -- --ignored --nocapture traversal_parts::leaf_port_timing`
+#[test]
+#[ignore]
+fn leaf_port_timing() {
+    let depth = 5;
+    let lane_latency = hdl::mt::latency(HwFormat::named("fp32"), depth);
+    let mut port = LeafPort::<SB, 13, LF>::new(depth, lane_latency);
+    port.connect_all();
+    print_timing(&generate_verilog(&port));
+}
+
+/// yosys' timing estimate of `verilog`'s top with every port registered.
+fn print_timing(verilog: &str) {
+    let verilog = between_registers(verilog);
     let report =
         hdl::synth::synthesize(&verilog, "top", &hdl::synth::SynthOptions::default()).unwrap();
     let critical = report.critical_path.as_ref().unwrap();
