@@ -268,8 +268,13 @@ fn gaps_and_back_pressure_on_both_streams_give_the_same_answers() {
         assert_eq!(run.counters, counters, "{traffic:?}");
         cycles.push(run.cycles);
     }
-    // The throttled streams took longer: the traffic reached the unit.
-    assert!(cycles[0] < cycles[1] && cycles[1] < cycles[2], "{cycles:?}");
+    // The traffic reached the unit: each run was timed differently, the heavily throttled one
+    // slowest. (A light throttle need not be slower: a ray held back can let another's walk
+    // through the ports sooner.)
+    assert!(
+        cycles[1] != cycles[0] && cycles[0] < cycles[2] && cycles[1] < cycles[2],
+        "{cycles:?}"
+    );
 }
 
 #[test]
