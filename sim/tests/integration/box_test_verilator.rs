@@ -2,8 +2,9 @@
 //! bit against `hw_model::traversal::box_test::box_test`, with `valid_out` and the tag
 //! checked to follow `valid_in` and `tag_in` by `latency(depth)`. The rust-hdl simulation of
 //! the same block (hdl/tests/integration/box_test.rs) carries the hand-picked special cases; this one
-//! runs many random tests on the generated Verilog. Default: 50k tests at depth 1 and at the
-//! maximum depth; 500k at depths 0 and max:
+//! runs many random tests on the generated Verilog. Default: 50k tests at the maximum depth
+//! (each depth is its own Verilator model, a build `make test` pays for on a cold cache;
+//! rust-hdl's simulation checks every depth); 50k at depth 1 and 500k at depths 0 and max:
 //! `cargo test --release -p sim --test integration box_test_verilator:: -- --ignored`.
 
 use hdl::traversal::box_test::{box_test_verilog, latency, max_depth, BoxOutput};
@@ -153,6 +154,7 @@ fn run(depth: usize, tests: &[(RaySetup, ChildBoxes)]) {
 }
 
 #[test]
+#[ignore = "one more Verilator model"]
 fn box_test_at_depth_1_matches_the_model() {
     run(1, &tests(50_000, 1));
 }
