@@ -92,10 +92,12 @@ struct PopPath {
 }
 
 const SB: usize = SLOT_BITS;
-/// The default unit's scene memory (12/13 address bits).
-const LF: usize = link_first_bits(12, 13);
-const LC: usize = link_count_bits(13);
-const W: usize = stack_entry_bits(12, 13);
+/// The default unit's scene memory: node and triangle address bits.
+const NB: usize = 12;
+const TB: usize = 13;
+const LF: usize = link_first_bits(NB, TB);
+const LC: usize = link_count_bits(TB);
+const W: usize = stack_entry_bits(NB, TB);
 
 impl Default for PopPath {
     fn default() -> Self {
@@ -215,7 +217,7 @@ fn pop_path_timing() {
 fn leaf_port_timing() {
     let depth = 5;
     let lane_latency = hdl::mt::latency(HwFormat::named("fp32"), depth);
-    let mut port = LeafPort::<SB, 13, LF>::new(depth, lane_latency);
+    let mut port = LeafPort::<SB, TB, LF>::new(depth, lane_latency);
     port.connect_all();
     print_timing(&generate_verilog(&port));
 }
