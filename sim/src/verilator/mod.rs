@@ -30,7 +30,7 @@ use std::ffi::OsString;
 use std::path::PathBuf;
 
 /// Bump when the build recipe changes, so old cache entries are not reused.
-const RECIPE_VERSION: &str = "rtfpga-verilator-builder-1";
+const RECIPE_VERSION: &str = "rtfpga-verilator-builder-2";
 
 /// The design to build.
 #[derive(Clone, Debug)]
@@ -115,18 +115,9 @@ pub fn build(spec: &ModelSpec, options: &BuildOptions) -> Result<Model, SimError
     } else {
         let progress =
             progress::BuildProgress::start(&format!("the Verilated model {}", &name[..14]), &root);
-        let built = compile::runtime(&tc, &root, &progress).and_then(|runtime| {
+        let built = compile::runtime(&tc, &root, options.trace, &progress).and_then(|runtime| {
             cache::get_or_build(&root, &name, |tmp| {
-                compile::model(
-                    &progress,
-                    &tc,
-                    &runtime,
-                    tmp,
-                    &spec.verilog,
-                    &args,
-                    &iface,
-                    options.trace,
-                )
+                compile::model(&progress, &tc, &runtime, tmp, &spec.verilog, &args, &iface)
             })
         });
         progress.finish(built.is_ok());

@@ -221,6 +221,60 @@ fn second_build_is_cached() {
     std::fs::remove_dir_all(entry).unwrap();
 }
 
+/// Every model's C++ starts with a precompiled `verilated.h` from the cache; one that does not
+/// match the compiler (another GCC, a damaged file) must cost time, not the build.
+#[test]
+fn a_precompiled_header_that_does_not_match_falls_back_to_the_header() {
+    let spec = |verilog: String| ModelSpec {
+        verilog,
+        top: "wide".into(),
+        ports: None,
+        clock: None,
+    };
+    // The shared cache's runtime and precompiled headers, copied into a cache of our own.
+    let shared = build(&spec(WIDE.into()), &BuildOptions::default()).unwrap();
+    let shared_root = shared.path().parent().unwrap().parent().unwrap();
+    let own = tempfile::tempdir().unwrap();
+    let mut damaged = 0;
+    for entry in std::fs::read_dir(shared_root).unwrap().flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if !(name.starts_with("runtime-") || name.starts_with("pch-")) {
+            continue;
+        }
+        let to = own.path().join(&name);
+        std::fs::create_dir(&to).unwrap();
+        for file in std::fs::read_dir(entry.path()).unwrap().flatten() {
+            let target = to.join(file.file_name());
+            if file.path().extension().is_some_and(|e| e == "gch") {
+                std::fs::write(&target, b"not a precompiled header").unwrap();
+                damaged += 1;
+            } else {
+                std::fs::copy(file.path(), &target).unwrap();
+            }
+        }
+    }
+    assert_eq!(
+        damaged, 2,
+        "one header for the evaluation, one for the rest"
+    );
+    let options = BuildOptions {
+        cache_dir: Some(own.path().to_path_buf()),
+        ..BuildOptions::default()
+    };
+    let model = build(
+        &spec(format!("// {}\n{WIDE}", own.path().display())),
+        &options,
+    )
+    .unwrap();
+    assert!(!model.cached);
+    let mut out = [0u32; 5];
+    model
+        .instantiate()
+        .eval(&[1, 2, 3, 4, 5], &mut out)
+        .unwrap();
+    assert_eq!(out, [!1, !2, !3, !4 & 0xF, 6]);
+}
+
 /// A combinational design with ports wider than 64 bits and `$` in names (as rust-hdl emits for
 /// interface fields).
 const WIDE: &str = "module wide(input wire [99:0] x$in, input wire [6:0] k, output wire [99:0] y$out, output wire [7:0] k1);\n\
