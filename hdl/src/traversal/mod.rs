@@ -8,6 +8,7 @@
 //! wired by the bundles of `ports` (outside) and `slot_ports` (inside).
 
 pub mod arbiter;
+pub mod banked_stack;
 pub mod box_port;
 pub mod box_test;
 pub mod config;

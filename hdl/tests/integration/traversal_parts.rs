@@ -3,6 +3,7 @@
 //! beside them (`hdl/src/traversal/{arbiter,stack,hit_update}.rs`).
 
 use hdl::traversal::arbiter::RoundRobin;
+use hdl::traversal::banked_stack::BankedStacks;
 use hdl::traversal::config::{
     stack_entry_bits, SLOT_BITS, STACK_ADDRESS_BITS, STACK_POINTER_BITS, UNIT_SLOTS,
 };
@@ -41,6 +42,17 @@ fn control_parts_pass_verilator_lint() {
     let v = generate_verilog(&update);
     assert!(v.contains("closer") && v.contains("best_triangle"));
     verilator_lint(&v).unwrap_or_else(|e| panic!("hit update: {e}"));
+}
+
+/// The wide unit's stacks: 64 slots of 32 entries over 8 banks (a link of 13 + 4 bits, t0 and
+/// a width exponent: 59 bits).
+#[test]
+fn banked_stacks_pass_verilator_lint() {
+    let mut stacks = BankedStacks::<64, 6, 6, 8, 59>::new(8, 32);
+    stacks.connect_all();
+    let v = generate_verilog(&stacks);
+    assert!(v.contains("push_count") && v.contains("pop_data"));
+    verilator_lint(&v).unwrap_or_else(|e| panic!("banked stacks: {e}"));
 }
 
 /// yosys xc7 resources and register-to-register logic depth of the control parts at the

@@ -33,6 +33,7 @@ mod synth;
 mod top;
 mod traversal {
     mod arbiter;
+    mod banked_stack;
     mod box_test;
     mod far_end;
     mod hit_update;
