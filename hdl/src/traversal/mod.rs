@@ -33,3 +33,4 @@ pub mod unit;
 pub mod unit_axil;
 pub mod unit_top;
 pub mod wide;
+pub mod wide_scene_memory;

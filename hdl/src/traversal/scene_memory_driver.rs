@@ -1,14 +1,18 @@
 //! The scene memory's driver side: the checks before an image is streamed, and the memory's
 //! status turned into an error that names what is wrong and the sizes.
 //!
-//! The split: the memory checks every word as it passes (`scene_memory`); what needs the whole
-//! tree — a node reached twice (a cycle or a shared subtree), duplicate global indices — is
-//! [`check_before_load`]'s, which runs the software's checking loader
-//! (`SceneImage::from_words`) and the capacity check on the words before they are streamed.
+//! The split: the memory checks every word as it passes (`scene_memory`, `wide_scene_memory`);
+//! what needs the whole tree — a node reached twice (a cycle or a shared subtree), duplicate
+//! global indices, a wide child's box enclosing its triangles — is [`check_before_load`]'s
+//! ([`check_before_load_wide`]'s), which runs the software's checking loader
+//! (`SceneImage::from_words`, `WideImage::from_words`) and the capacity check on the words
+//! before they are streamed.
 
 use hw_model::traversal::scene_image::{
     SceneImage, SceneImageError, HEADER_WORDS, MAGIC, NODE_WORDS, TRIANGLE_WORDS, VERSION,
+    VERSION_WIDE,
 };
+use hw_model::traversal::wide::image::{link_of, node_words, WideImage};
 use thiserror::Error;
 
 use super::scene_memory::{capacity_for, LoadError, INDEX_BITS};
@@ -57,6 +61,10 @@ pub enum SceneMemoryError {
         node_bits: usize,
         triangle_bits: usize,
     },
+    #[error(
+        "a scene image of {image}-wide nodes cannot load into a memory of {memory}-wide nodes"
+    )]
+    Width { image: usize, memory: usize },
     #[error("scene memory refused the image at stream word {word} ({place}): {detail}")]
     Refused {
         error: LoadError,
@@ -93,12 +101,98 @@ pub fn check_before_load(
     Ok(image)
 }
 
+/// What [`check_before_load_wide`] checks before streaming `words` into a memory of `config`
+/// holding `width`-wide nodes: the whole image (`WideImage::from_words`: sizes, links, no node
+/// reached twice, every child's box enclosing its triangles), its width and that it fits.
+pub fn check_before_load_wide(
+    words: &[u32],
+    config: MemoryConfig,
+    width: usize,
+) -> Result<WideImage, SceneMemoryError> {
+    let image = WideImage::from_words(words)?;
+    if image.tree.width != width {
+        return Err(SceneMemoryError::Width {
+            image: image.tree.width,
+            memory: width,
+        });
+    }
+    let (max_nodes, max_triangles) = config.capacity();
+    let (nodes, triangles) = (image.tree.nodes.len(), image.triangles.len());
+    if nodes > max_nodes || triangles > max_triangles {
+        return Err(SceneMemoryError::TooBig {
+            nodes,
+            triangles,
+            max_nodes,
+            max_triangles,
+            node_bits: config.node_bits,
+            triangle_bits: config.triangle_bits,
+        });
+    }
+    Ok(image)
+}
+
+/// How a memory's image lays out its nodes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NodeLayout {
+    /// Version 2: binary nodes of fp32 boxes.
+    Binary,
+    /// Version 3: wide nodes of this many children.
+    Wide(usize),
+}
+
+impl NodeLayout {
+    fn version(self) -> u32 {
+        match self {
+            NodeLayout::Binary => VERSION,
+            NodeLayout::Wide(_) => VERSION_WIDE,
+        }
+    }
+
+    fn node_words(self) -> u64 {
+        match self {
+            NodeLayout::Binary => NODE_WORDS as u64,
+            NodeLayout::Wide(width) => node_words(width) as u64,
+        }
+    }
+
+    /// The field of a node's word `w`.
+    fn node_field(self, w: u64) -> String {
+        match self {
+            NodeLayout::Binary => {
+                let field = match w {
+                    0..=11 => "box",
+                    12 | 14 => "link first",
+                    _ => "link count",
+                };
+                match w {
+                    0..=11 => field.to_string(),
+                    _ => format!("{field} of child {}", (w - 12) / 2),
+                }
+            }
+            NodeLayout::Wide(width) => {
+                let links = self.node_words() - width as u64;
+                match w {
+                    0..=2 => "grid origin".to_string(),
+                    3 => "exponents and child count".to_string(),
+                    _ if w < links => "child box codes".to_string(),
+                    _ => format!("link of child {}", w - links),
+                }
+            }
+        }
+    }
+}
+
 /// Where stream word `word` is in an image of `nodes` nodes: header, node or triangle field.
 pub fn word_place(word: u32, nodes: u32) -> String {
+    word_place_in(word, nodes, NodeLayout::Binary)
+}
+
+/// [`word_place`] in an image of `layout`.
+pub fn word_place_in(word: u32, nodes: u32, layout: NodeLayout) -> String {
     let word = word as u64;
     let (header, node, triangle) = (
         HEADER_WORDS as u64,
-        NODE_WORDS as u64,
+        layout.node_words(),
         TRIANGLE_WORDS as u64,
     );
     if word < header {
@@ -107,17 +201,7 @@ pub fn word_place(word: u32, nodes: u32) -> String {
     let in_nodes = word - header;
     if in_nodes < node * u64::from(nodes) {
         let (k, w) = (in_nodes / node, in_nodes % node);
-        let field = match w {
-            0..=11 => "box",
-            12 | 14 => "link first",
-            _ => "link count",
-        };
-        let child = if w < 12 {
-            String::new()
-        } else {
-            format!(" of child {}", (w - 12) / 2)
-        };
-        return format!("node {k} word {w}: {field}{child}");
+        return format!("node {k} word {w}: {}", layout.node_field(w));
     }
     let in_tris = in_nodes - node * u64::from(nodes);
     let (k, w) = (in_tris / triangle, in_tris % triangle);
@@ -137,6 +221,16 @@ pub fn status_result(
     words: &[u32],
     config: MemoryConfig,
 ) -> Result<(), SceneMemoryError> {
+    status_result_in(status, words, config, NodeLayout::Binary)
+}
+
+/// [`status_result`] of a memory holding `layout`'s nodes.
+pub fn status_result_in(
+    status: &LoadStatus,
+    words: &[u32],
+    config: MemoryConfig,
+    layout: NodeLayout,
+) -> Result<(), SceneMemoryError> {
     if status.error_code == 0 {
         return match status.loaded {
             true => Ok(()),
@@ -153,17 +247,20 @@ pub fn status_result(
     })?;
     let (max_nodes, max_triangles) = config.capacity();
     let (n, t) = (status.nodes, status.triangles);
-    // A link's first is the word before its count.
-    let first = (word as usize)
-        .checked_sub(1)
-        .and_then(|i| words.get(i))
-        .copied()
-        .unwrap_or_default();
+    // A binary link's first is the word before its count; a wide link is one word.
+    let (first, count) = match layout {
+        NodeLayout::Binary => {
+            let first = (word as usize).checked_sub(1).and_then(|i| words.get(i));
+            (first.copied().unwrap_or_default(), value)
+        }
+        NodeLayout::Wide(_) => (link_of(value).first, link_of(value).count),
+    };
+    let version = layout.version();
     let detail = match error {
         LoadError::BadMagic => {
             format!("found {value:#010x}, not the magic word {MAGIC:#010x} (\"RTSI\")")
         }
-        LoadError::BadVersion => format!("version {value}; this memory reads version {VERSION}"),
+        LoadError::BadVersion => format!("version {value}; this memory reads version {version}"),
         LoadError::TooManyNodes => format!(
             "{value} inner nodes, but this memory holds {max_nodes} ({} address bits)",
             config.node_bits
@@ -172,11 +269,34 @@ pub fn status_result(
             "{value} triangles, but this memory holds {max_triangles} ({} address bits)",
             config.triangle_bits
         ),
+        LoadError::NodeLink if layout != NodeLayout::Binary && (word as usize) < HEADER_WORDS => {
+            format!(
+                "the root of a wide image is node 0, link (0, 0), and a scene of {t} triangles \
+                 has nodes ({n})"
+            )
+        }
         LoadError::NodeLink => {
             format!("links to inner node {first}, but there are {n} nodes")
         }
         LoadError::LeafLink => {
-            format!("links to triangles {first}..{first}+{value}, but there are {t} triangles")
+            format!("links to triangles {first}..{first}+{count}, but there are {t} triangles")
+        }
+        LoadError::Width => {
+            let memory = match layout {
+                NodeLayout::Wide(width) => width.to_string(),
+                NodeLayout::Binary => "binary".to_string(),
+            };
+            format!("nodes of {value} children; this memory holds {memory}-wide nodes")
+        }
+        LoadError::ChildCount => {
+            let width = match layout {
+                NodeLayout::Wide(width) => width,
+                NodeLayout::Binary => 2,
+            };
+            format!(
+                "{} children; a node of this memory has 1 to {width}",
+                value >> 24
+            )
         }
         LoadError::GlobalIndex => {
             let scene = words.get(12).copied().unwrap_or_default();
@@ -189,7 +309,7 @@ pub fn status_result(
         LoadError::EarlyLast => format!(
             "tlast before the image's last word (the header's {n} nodes and {t} triangles need \
              {} words)",
-            image_words(n, t)
+            image_words(n, t, layout)
         ),
         LoadError::SceneTriangles => format!(
             "the scene's triangle count is {value}; it must be at least the image's {t} \
@@ -199,18 +319,18 @@ pub fn status_result(
         LoadError::MissingLast => format!(
             "no tlast on the image's last word (the header's {n} nodes and {t} triangles need \
              {} words)",
-            image_words(n, t)
+            image_words(n, t, layout)
         ),
     };
     Err(SceneMemoryError::Refused {
         error,
         word,
-        place: word_place(word, n),
+        place: word_place_in(word, n, layout),
         detail,
     })
 }
 
 /// Words of an image of `n` nodes and `t` triangles.
-fn image_words(n: u32, t: u32) -> u64 {
-    HEADER_WORDS as u64 + NODE_WORDS as u64 * u64::from(n) + TRIANGLE_WORDS as u64 * u64::from(t)
+fn image_words(n: u32, t: u32, layout: NodeLayout) -> u64 {
+    HEADER_WORDS as u64 + layout.node_words() * u64::from(n) + TRIANGLE_WORDS as u64 * u64::from(t)
 }

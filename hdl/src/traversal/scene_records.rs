@@ -29,13 +29,15 @@ pub const ERROR_CODE_BITS: usize = 4;
 pub enum LoadError {
     /// Word 0 is not [`MAGIC`](hw_model::traversal::scene_image::MAGIC).
     BadMagic = 1,
-    /// Word 1 is not [`VERSION`](hw_model::traversal::scene_image::VERSION).
+    /// Word 1 is not [`VERSION`](hw_model::traversal::scene_image::VERSION) (a wide memory:
+    /// [`VERSION_WIDE`](hw_model::traversal::scene_image::VERSION_WIDE)).
     BadVersion = 2,
     /// N (word 2) is beyond the node capacity.
     TooManyNodes = 3,
     /// T (word 3) is beyond the triangle capacity.
     TooManyTriangles = 4,
-    /// A link's count is 0 and its first ≥ N (the word is the count; the first precedes it).
+    /// A link's count is 0 and its first ≥ N (the word is the count; the first precedes it;
+    /// a wide link is one word). A wide image's root is not node 0.
     NodeLink = 5,
     /// A link's first + count > T (the word is the count).
     LeafLink = 6,
@@ -51,10 +53,14 @@ pub enum LoadError {
     MissingLast = 11,
     /// The scene's triangle count S (word 12) is below T or beyond 2^[`INDEX_BITS`].
     SceneTriangles = 12,
+    /// A wide image's width K (word 13) is not the memory's.
+    Width = 13,
+    /// A wide node's child count (byte 3 of its word 3) is 0 or beyond K.
+    ChildCount = 14,
 }
 
 impl LoadError {
-    pub const ALL: [LoadError; 12] = [
+    pub const ALL: [LoadError; 14] = [
         LoadError::BadMagic,
         LoadError::BadVersion,
         LoadError::TooManyNodes,
@@ -67,6 +73,8 @@ impl LoadError {
         LoadError::EarlyLast,
         LoadError::MissingLast,
         LoadError::SceneTriangles,
+        LoadError::Width,
+        LoadError::ChildCount,
     ];
 
     pub fn code(self) -> u64 {
@@ -129,4 +137,28 @@ const _: () = assert!(VERTEX_BITS == 288);
 /// `TW`: vertices, the flag (bit [`VERTEX_BITS`]) and the global index (from the next bit).
 pub const fn triangle_record_bits() -> usize {
     VERTEX_BITS + 1 + INDEX_BITS
+}
+
+/// Wide node records (version 3, `--nodes bvh2-q8 | bvh4-q8 | bvh8-q8`; the memory:
+/// [`super::wide_scene_memory`]), bit 0 first: the image's node words 0 to 3 + 1.5·K as they
+/// arrive ([`wide_head_bits`]: origin x y z in bits 0–95, exponents x y z in bits 96–119, the
+/// child count in bits 120–127, then 6 code bytes a child: lo x y z, hi x y z), then K links
+/// of [`wide_link_bits`] each: `first` (`LF` bits) and `count` ([`WIDE_COUNT_BITS`] above it).
+pub const WIDE_COUNT_BITS: usize = 32 - hw_model::traversal::wide::image::FIRST_BITS as usize;
+const _: () =
+    assert!(hw_model::traversal::wide::MAX_LEAF_TRIANGLES as usize == (1 << WIDE_COUNT_BITS) - 1);
+
+/// `HB`: a wide node record's origin, exponents, count and codes.
+pub const fn wide_head_bits(width: usize) -> usize {
+    128 + 48 * width
+}
+
+/// `LK`: a wide node's link: a node or triangle index and a leaf's count.
+pub const fn wide_link_bits(node_bits: usize, triangle_bits: usize) -> usize {
+    link_first_bits(node_bits, triangle_bits) + WIDE_COUNT_BITS
+}
+
+/// `NW` of a wide node record of `width` children.
+pub const fn wide_node_record_bits(width: usize, node_bits: usize, triangle_bits: usize) -> usize {
+    wide_head_bits(width) + width * wide_link_bits(node_bits, triangle_bits)
 }

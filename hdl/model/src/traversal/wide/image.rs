@@ -14,7 +14,7 @@ use super::super::scene_image::{
 use super::{check, collapse, Child, WideError, WideNode, WideTree, MAX_LEAF_TRIANGLES};
 
 /// Bits of a link word's `first`; `count` takes the 4 bits above.
-const FIRST_BITS: u32 = 28;
+pub const FIRST_BITS: u32 = 28;
 
 /// A child's link as its record's link word: `first` in bits 0–27, `count` in bits 28–31.
 pub fn link_word(link: Link) -> u32 {
