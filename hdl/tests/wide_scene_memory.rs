@@ -579,3 +579,28 @@ fn the_zynq_wide_memory_passes_verilator_lint() {
     assert!(v.contains("node_ram") && v.contains("link$7"));
     verilator_lint(&v).unwrap_or_else(|e| panic!("wide scene memory: {e}"));
 }
+
+/// yosys xc7 resources of the 8-wide XC7Z020 memory with one triangle port (block RAM
+/// primitives by kind, LUT, FF, logic depth):
+/// `cargo test --release -p hdl --test wide_scene_memory -- --ignored --nocapture resources`.
+#[test]
+#[ignore]
+fn wide_scene_memory_resources() {
+    use hdl::synth::{synthesize, SynthOptions};
+    let mut memory = WideSceneMemory8w11x13::new(8, 1);
+    memory.connect_all();
+    let v = generate_verilog(&memory);
+    let r = synthesize(&v, hdl::verilog::TOP, &SynthOptions::default()).unwrap();
+    let cell = |c: &str| r.cells.get(c).copied().unwrap_or(0);
+    println!("| memory | nodes | triangles | RAMB36 | RAMB18 | LUT | LUTRAM | FF | logic depth |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!(
+        "| 8-wide, 11/13 | 2048 | 8192 | {} | {} | {} | {} | {} | {} |",
+        cell("RAMB36E1"),
+        cell("RAMB18E1"),
+        r.lut,
+        r.lutram,
+        r.ff,
+        r.logic_depth
+    );
+}

@@ -2,6 +2,7 @@
 //! Verilog ([`unit_verilog`]).
 
 use hw_model::traversal::schedule::UnitTiming;
+use hw_model::traversal::wide::NodeFormat;
 use hw_model::{Advance, HwFormat};
 use thiserror::Error;
 
@@ -51,6 +52,8 @@ pub const MAX_LANES: usize = 3;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct UnitConfig {
     pub format: HwFormat,
+    /// How the scene memory holds the inner nodes (`--nodes`).
+    pub nodes: NodeFormat,
     pub depth: usize,
     pub lanes: usize,
     pub slots: usize,
@@ -72,6 +75,8 @@ pub enum UnitConfigError {
         depth: usize,
         max: usize,
     },
+    #[error("the traversal unit's RTL walks bvh2-fp32 nodes, not {}: the wide unit is not built yet", .0.name())]
+    Nodes(NodeFormat),
     #[error("the traversal unit's RTL has {UNIT_SLOTS} ray slots, not {0}")]
     Slots(usize),
     #[error("a stack of {0} entries: the unit's stacks hold 1 to {MAX_STACK_DEPTH}")]
@@ -86,12 +91,13 @@ pub enum UnitConfigError {
 }
 
 impl UnitConfig {
-    /// `slots` and `stack_depth` at their defaults, the scene memory that fits the XC7Z020
-    /// beside `lanes` lanes.
+    /// Binary fp32 nodes, `slots` and `stack_depth` at their defaults, the scene memory that
+    /// fits the XC7Z020 beside `lanes` lanes.
     pub fn new(format: HwFormat, depth: usize, lanes: usize) -> UnitConfig {
         let (node_bits, triangle_bits) = zynq_address_bits(lanes);
         UnitConfig {
             format,
+            nodes: NodeFormat::Bvh2Fp32,
             depth,
             lanes,
             slots: UNIT_SLOTS,
@@ -127,6 +133,9 @@ impl UnitConfig {
                 depth: self.depth,
                 max,
             });
+        }
+        if self.nodes != NodeFormat::Bvh2Fp32 {
+            return Err(UnitConfigError::Nodes(self.nodes));
         }
         if self.slots != UNIT_SLOTS {
             return Err(UnitConfigError::Slots(self.slots));

@@ -10,6 +10,7 @@ use hdl::traversal::scene_memory_driver::{check_before_load, status_result, Load
 use hdl::verilog::{verilator_lint_waiving, UNIT_VERILATOR_WAIVERS};
 use hw_model::traversal::packet::{hit_from_words, HIT_WORDS, RAY_WORDS};
 use hw_model::traversal::scene_image::SceneImage;
+use hw_model::traversal::wide::NodeFormat;
 use hw_model::traversal::{TraversalModel, UnitCounters, UnitRay};
 use hw_model::{Advance, Format, HwFormat};
 use rand::rngs::StdRng;
@@ -314,6 +315,11 @@ fn unsupported_configurations_are_errors() {
         .unwrap_err(),
         UnitConfigError::StackDepth(33)
     );
+    for nodes in [NodeFormat::Bvh2Q8, NodeFormat::Bvh4Q8, NodeFormat::Bvh8Q8] {
+        let e = unit_verilog(&UnitConfig { nodes, ..ok }).unwrap_err();
+        assert_eq!(e, UnitConfigError::Nodes(nodes));
+        assert!(e.to_string().contains(nodes.name()), "{e}");
+    }
     let triangle_box = UnitConfig {
         advance: Advance::TriangleBox,
         ..ok
