@@ -8,15 +8,18 @@
 
 use hdl::synth::{synthesize, SynthOptions};
 use hdl::traversal::wide::ones::Ones;
+use hdl::traversal::wide::pad_in_t::{simulate_pad_in_t, PadInT, PadInput};
 use hdl::traversal::wide::plane::Plane;
 use hdl::traversal::wide::{
     latency, max_depth, schedule, simulate_wide_box_stage, wide_box_stage_verilog, WideInput,
     WideOutput,
 };
+use hw_model::traversal::box_test::ray_setup;
+use hw_model::traversal::wide::box_test::WideRay;
 use hw_model::traversal::wide::cases::random_test;
 use hw_model::traversal::wide::WIDTHS;
 use rand::rngs::StdRng;
-use rand::SeedableRng;
+use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
 
 /// Idle cycles before the tests.
@@ -252,4 +255,53 @@ fn resources_8_children_depth_2() {
 #[ignore]
 fn resources_4_children_depth_2() {
     resources(4, 2);
+}
+
+/// The wide ray's `pad_t` from the ray setup's words, bit for bit `WideRay::from_setup`, one
+/// ray a cycle with bubbles, at depth 0, 1 and the maximum: rays of random origins (far and
+/// near the origin) and directions with zero, tiny and huge components (the setup's
+/// `±HUGE_SLOPE` reciprocals), negative ones (`|inv_dir|`).
+#[test]
+fn pad_in_t_is_the_wide_ray_setups() {
+    let mut rng = StdRng::seed_from_u64(41);
+    let component = |rng: &mut StdRng| -> f32 {
+        match rng.gen_range(0..6) {
+            0 => 0.0,
+            1 => -0.0,
+            2 => rng.gen_range(-1e-30..1e-30),
+            3 => rng.gen_range(-1e30..1e30),
+            _ => rng.gen_range(-10.0..10.0),
+        }
+    };
+    let rays: Vec<WideRay> = (0..400)
+        .map(|_| {
+            let orig = [0; 3].map(|_| component(&mut rng));
+            let dir = [0; 3].map(|_| component(&mut rng));
+            WideRay::from_setup(orig, &ray_setup(orig, dir, rng.gen_range(0.0..1e6)))
+        })
+        .collect();
+    let inputs: Vec<PadInput> = (rays.iter().enumerate())
+        .map(|(i, r)| PadInput {
+            valid: i % 5 != 4,
+            pad: r.pad.to_bits(),
+            inv_dir: r.inv_dir.map(f32::to_bits),
+        })
+        .collect();
+    for depth in [0, 1, max_depth()] {
+        let latency = PadInT::latency(depth);
+        let out = simulate_pad_in_t(depth, &inputs, latency + 1);
+        for (i, (x, r)) in inputs.iter().zip(&rays).enumerate() {
+            let y = out[i + latency];
+            assert_eq!(y.valid, x.valid, "depth {depth} ray {i}");
+            assert_eq!(
+                y.pad_t,
+                r.pad_t.map(f32::to_bits),
+                "depth {depth} ray {i}: {r:?}"
+            );
+        }
+    }
+    let mut block = PadInT::new(max_depth());
+    block.connect_all();
+    hdl::verilog::verilator_lint(&generate_verilog(&block))
+        .unwrap_or_else(|e| panic!("pad in t: {e}"));
 }

@@ -17,6 +17,8 @@
 //! ```
 //! Every other path (the node's codes and links, τ, the extent, `valid` and the tag) is padded
 //! with flip-flop delay lines (synthesis packs them into SRLs).
+//!
+//! Beside the stage, [`pad_in_t::PadInT`] computes the ray's `pad_t` after the fp32 ray setup.
 
 pub mod axis;
 pub mod entry;
@@ -26,6 +28,7 @@ pub mod fold;
 pub mod grid;
 pub mod ones;
 pub mod order;
+pub mod pad_in_t;
 pub mod plane;
 pub mod scaled;
 pub mod select;
