@@ -35,7 +35,7 @@ use crate::defaults;
 use hw_model::traversal::scene_image::{HEADER_WORDS, MAGIC, NODE_WORDS, TRIANGLE_WORDS, VERSION};
 
 /// A load error's code, as the kernel compares it.
-fn code(error: LoadError) -> Constant<Bits<ERROR_CODE_BITS>> {
+pub(super) fn code(error: LoadError) -> Constant<Bits<ERROR_CODE_BITS>> {
     Constant::new(error.code().into())
 }
 
@@ -43,7 +43,7 @@ fn code(error: LoadError) -> Constant<Bits<ERROR_CODE_BITS>> {
 /// rust-hdl's `LogicState` enums leave unused parameters that fail Verilator's lint).
 #[derive(Copy, Clone, Debug, PartialEq)]
 #[repr(u8)]
-enum LoadState {
+pub(super) enum LoadState {
     Idle,
     Header,
     Nodes,
@@ -56,13 +56,13 @@ enum LoadState {
 }
 
 /// Width of the `state` register.
-const STATE_BITS: usize = 3;
+pub(super) const STATE_BITS: usize = 3;
 
 // Power-up: the `state` register starts at 0, idle.
 const _: () = assert!(LoadState::Idle as u8 == 0);
 
 impl LoadState {
-    fn constant(self) -> Constant<Bits<STATE_BITS>> {
+    pub(super) fn constant(self) -> Constant<Bits<STATE_BITS>> {
         Constant::new((self as u64).into())
     }
 }

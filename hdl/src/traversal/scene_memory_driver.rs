@@ -86,8 +86,13 @@ pub fn check_before_load(
     config: MemoryConfig,
 ) -> Result<SceneImage, SceneMemoryError> {
     let image = SceneImage::from_words(words)?;
+    fits(config, image.nodes.len(), image.triangles.len())?;
+    Ok(image)
+}
+
+/// Whether `nodes` and `triangles` fit a memory of `config`.
+fn fits(config: MemoryConfig, nodes: usize, triangles: usize) -> Result<(), SceneMemoryError> {
     let (max_nodes, max_triangles) = config.capacity();
-    let (nodes, triangles) = (image.nodes.len(), image.triangles.len());
     if nodes > max_nodes || triangles > max_triangles {
         return Err(SceneMemoryError::TooBig {
             nodes,
@@ -98,7 +103,7 @@ pub fn check_before_load(
             triangle_bits: config.triangle_bits,
         });
     }
-    Ok(image)
+    Ok(())
 }
 
 /// What [`check_before_load_wide`] checks before streaming `words` into a memory of `config`
@@ -116,18 +121,7 @@ pub fn check_before_load_wide(
             memory: width,
         });
     }
-    let (max_nodes, max_triangles) = config.capacity();
-    let (nodes, triangles) = (image.tree.nodes.len(), image.triangles.len());
-    if nodes > max_nodes || triangles > max_triangles {
-        return Err(SceneMemoryError::TooBig {
-            nodes,
-            triangles,
-            max_nodes,
-            max_triangles,
-            node_bits: config.node_bits,
-            triangle_bits: config.triangle_bits,
-        });
-    }
+    fits(config, image.tree.nodes.len(), image.triangles.len())?;
     Ok(image)
 }
 

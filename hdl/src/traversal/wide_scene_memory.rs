@@ -26,41 +26,13 @@
 
 use rust_hdl::prelude::*;
 
+use super::scene_memory::{code, LoadState, STATE_BITS};
 use super::scene_records::*;
 use super::wide::{Code, Count};
 use crate::defaults;
 use hw_model::traversal::scene_image::{HEADER_WORDS, MAGIC, TRIANGLE_WORDS, VERSION_WIDE};
 use hw_model::traversal::wide::image::node_words;
 use hw_model::traversal::wide::WIDTHS;
-
-/// A load error's code, as the kernel compares it.
-fn code(error: LoadError) -> Constant<Bits<ERROR_CODE_BITS>> {
-    Constant::new(error.code().into())
-}
-
-/// The loader's states, as the `state` register's values (as the binary memory's).
-#[derive(Copy, Clone, Debug, PartialEq)]
-#[repr(u8)]
-enum LoadState {
-    Idle,
-    Header,
-    Nodes,
-    Triangles,
-    Loaded,
-    /// Refused; the rest of the packet is dropped up to its `tlast`.
-    Drain,
-    /// Refused, packet over.
-    Failed,
-}
-
-const STATE_BITS: usize = 3;
-const _: () = assert!(LoadState::Idle as u8 == 0);
-
-impl LoadState {
-    fn constant(self) -> Constant<Bits<STATE_BITS>> {
-        Constant::new((self as u64).into())
-    }
-}
 
 /// Bits of the image's words per node ([`node_words`], at most 24), so of `last`'s
 /// shift-and-add multiply.
