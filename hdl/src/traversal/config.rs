@@ -165,3 +165,19 @@ pub fn unit_verilog(config: &UnitConfig) -> Result<String, UnitConfigError> {
     let config = *config;
     Ok(with_build_stack(move || super::unit_top::verilog(&config)))
 }
+
+/// The wide unit's banked stacks (`wide_unit::wide_unit_sized!`) for `k`-wide nodes: pointer
+/// bits (a pointer up to the depth plus a push of K − 1) and bank address bits (`slots` ×
+/// ⌈depth / K⌉ rows a bank).
+pub const fn wide_stack_pointer_bits(k: usize) -> usize {
+    (MAX_STACK_DEPTH + k - 1).ilog2() as usize + 1
+}
+pub const fn wide_stack_row_bits(k: usize, slots: usize) -> usize {
+    let rows = (slots * MAX_STACK_DEPTH.div_ceil(k)).ilog2() as usize;
+    let pointer = wide_stack_pointer_bits(k);
+    if rows > pointer {
+        rows
+    } else {
+        pointer
+    }
+}

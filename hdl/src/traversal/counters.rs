@@ -17,6 +17,9 @@ pub struct Counters {
     pub box_visit: Signal<In, Bit>,
     pub pop_visit: Signal<In, Bit>,
     pub mt_test: Vec<Signal<In, Bit>>,
+    /// The wide unit's (none in the binary unit's): a new ray's root node visited (its box
+    /// test granted), in the same cycle as the box and the stack port's visits.
+    pub root_visit: Vec<Signal<In, Bit>>,
     pub busy: Signal<In, Bit>,
     pub port: CounterPort,
     rays: DFF<Bits<32>>,
@@ -31,6 +34,15 @@ pub struct Counters {
 impl Counters {
     /// The counters of a unit with `lanes` lanes.
     pub fn new(lanes: usize) -> Self {
+        Self::with_root_visits(lanes, 0)
+    }
+
+    /// The wide unit's: a root node's visit counted besides the ports'.
+    pub fn wide(lanes: usize) -> Self {
+        Self::with_root_visits(lanes, 1)
+    }
+
+    fn with_root_visits(lanes: usize, root_visits: usize) -> Self {
         Self {
             clock: Default::default(),
             reset_n: Default::default(),
@@ -39,6 +51,7 @@ impl Counters {
             box_visit: Default::default(),
             pop_visit: Default::default(),
             mt_test: crate::defaults(lanes),
+            root_visit: crate::defaults(root_visits),
             busy: Default::default(),
             port: Default::default(),
             rays: Default::default(),
@@ -80,6 +93,16 @@ impl Logic for Counters {
             self.node_visits.d.next = self.node_visits.q.val() + 2;
         } else if self.box_visit.val() | self.pop_visit.val() {
             self.node_visits.d.next = self.node_visits.q.val() + 1;
+        }
+        for r in 0..self.root_visit.len() {
+            if self.root_visit[r].val() {
+                self.node_visits.d.next = self.node_visits.q.val() + 1;
+                if self.box_visit.val() & self.pop_visit.val() {
+                    self.node_visits.d.next = self.node_visits.q.val() + 3;
+                } else if self.box_visit.val() | self.pop_visit.val() {
+                    self.node_visits.d.next = self.node_visits.q.val() + 2;
+                }
+            }
         }
         if self.busy.val() {
             self.busy_cycles.d.next = self.busy_cycles.q.val() + 1;

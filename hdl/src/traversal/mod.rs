@@ -33,4 +33,8 @@ pub mod unit;
 pub mod unit_axil;
 pub mod unit_top;
 pub mod wide;
+pub mod wide_box_port;
 pub mod wide_scene_memory;
+pub mod wide_set_up;
+pub mod wide_stack_port;
+pub mod wide_unit;

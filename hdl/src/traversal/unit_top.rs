@@ -5,6 +5,38 @@
 
 use super::config::UnitConfig;
 
+/// The unit top's wiring, the same for the binary and the wide core: `$top`'s `Logic` over
+/// its const parameters `$g`.
+macro_rules! top_logic {
+    ($top:ident<$($g:ident),*>) => {
+        impl<$(const $g: usize),*> Logic for $top<$($g),*> {
+            #[hdl_gen]
+            fn update(&mut self) {
+                clock!(self, clock, core);
+                self.core.reset_n.next = self.reset_n.val();
+                SceneStream::link(&mut self.scene, &mut self.core.scene);
+                RayStream::link(&mut self.ray, &mut self.core.ray);
+                HitStream::link(&mut self.hit, &mut self.core.hit);
+                ControlPort::link(&mut self.control, &mut self.core.control);
+                CounterPort::link(&mut self.counters, &mut self.core.counters);
+                for l in 0..self.lanes.len() {
+                    clock!(self, clock, lanes[l]);
+                }
+                // The leaf advance, when built, between the core and each lane.
+                for l in 0..self.around.len() {
+                    clock!(self, clock, around[l]);
+                    LanePort::join(&mut self.core.lane[l], &mut self.around[l].core);
+                    self.around[l].entry.next = self.core.lane_entry[l].val();
+                    LanePort::join(&mut self.around[l].lane, &mut self.lanes[l].port);
+                }
+                for l in self.around.len()..self.lanes.len() {
+                    LanePort::join(&mut self.core.lane[l], &mut self.lanes[l].port);
+                }
+            }
+        }
+    };
+}
+
 /// Defines `UnitTop` over the lane type `$lane` (the accelerator's `LaneSlot` of a format:
 /// the MT lane behind a packed query port) and its latency `$latency(depth)`, its aliases per
 /// scene memory size and `verilog`.
@@ -18,6 +50,7 @@ macro_rules! unit_top {
             ControlPort, CounterPort, HitStream, RayStream, SceneStream,
         };
         use $crate::traversal::unit::{unit_sized, TraversalCore};
+        use $crate::traversal::wide_unit::{wide_unit_sized, WideTraversalCore};
 
         /// The unit: the core's ports (docs/traversal-unit.md "Ports"), its lanes beside it.
         #[derive(LogicBlock)]
@@ -94,44 +127,95 @@ macro_rules! unit_top {
             }
         }
 
+        top_logic!(UnitTop<NB, TB, LF, LC, NW, TW, S, SB, PB, AB, W>);
+        top_logic!(WideUnitTop<NB, TB, LF, LK, HB, LB, NW, TW, S, SB, PB, RB, W>);
+
+        /// The wide unit (`--nodes bvh2-q8 | bvh4-q8 | bvh8-q8`): the wide core's ports, as
+        /// the binary unit's, its lanes beside it.
+        #[derive(LogicBlock)]
+        pub struct WideUnitTop<
+            const NB: usize,
+            const TB: usize,
+            const LF: usize,
+            const LK: usize,
+            const HB: usize,
+            const LB: usize,
+            const NW: usize,
+            const TW: usize,
+            const S: usize,
+            const SB: usize,
+            const PB: usize,
+            const RB: usize,
+            const W: usize,
+        > {
+            pub clock: Signal<In, Clock>,
+            pub reset_n: Signal<In, Bit>,
+            pub scene: SceneStream,
+            pub ray: RayStream,
+            pub hit: HitStream,
+            pub control: ControlPort,
+            pub counters: CounterPort,
+            core: WideTraversalCore<NB, TB, LF, LK, HB, LB, NW, TW, S, SB, PB, RB, W>,
+            lanes: Vec<$lane>,
+            around: Vec<AroundLane>,
+        }
+
         impl<
                 const NB: usize,
                 const TB: usize,
                 const LF: usize,
-                const LC: usize,
+                const LK: usize,
+                const HB: usize,
+                const LB: usize,
                 const NW: usize,
                 const TW: usize,
                 const S: usize,
                 const SB: usize,
                 const PB: usize,
-                const AB: usize,
+                const RB: usize,
                 const W: usize,
-            > Logic for UnitTop<NB, TB, LF, LC, NW, TW, S, SB, PB, AB, W>
+            > WideUnitTop<NB, TB, LF, LK, HB, LB, NW, TW, S, SB, PB, RB, W>
         {
-            #[hdl_gen]
-            fn update(&mut self) {
-                clock!(self, clock, core);
-                self.core.reset_n.next = self.reset_n.val();
-                SceneStream::link(&mut self.scene, &mut self.core.scene);
-                RayStream::link(&mut self.ray, &mut self.core.ray);
-                HitStream::link(&mut self.hit, &mut self.core.hit);
-                ControlPort::link(&mut self.control, &mut self.core.control);
-                CounterPort::link(&mut self.counters, &mut self.core.counters);
-                for l in 0..self.lanes.len() {
-                    clock!(self, clock, lanes[l]);
-                }
-                // The leaf advance, when built, between the core and each lane.
-                for l in 0..self.around.len() {
-                    clock!(self, clock, around[l]);
-                    LanePort::join(&mut self.core.lane[l], &mut self.around[l].core);
-                    self.around[l].entry.next = self.core.lane_entry[l].val();
-                    LanePort::join(&mut self.around[l].lane, &mut self.lanes[l].port);
-                }
-                for l in self.around.len()..self.lanes.len() {
-                    LanePort::join(&mut self.core.lane[l], &mut self.lanes[l].port);
+            /// The unit for nodes of `width` children; the rest as [`UnitTop::new`]'s.
+            pub fn new(
+                width: usize,
+                depth: usize,
+                stack_depth: usize,
+                lanes: usize,
+                advance: Advance,
+            ) -> Self {
+                let lane_latency = $latency(depth);
+                let (around, around_latency) = match advance {
+                    Advance::LeafBox => (lanes, around_lane_latency(depth)),
+                    Advance::None | Advance::TriangleBox => (0, 0),
+                };
+                Self {
+                    clock: Default::default(),
+                    reset_n: Default::default(),
+                    scene: Default::default(),
+                    ray: Default::default(),
+                    hit: Default::default(),
+                    control: Default::default(),
+                    counters: Default::default(),
+                    core: WideTraversalCore::new(
+                        width,
+                        depth,
+                        stack_depth,
+                        lanes,
+                        lane_latency + around_latency,
+                        around > 0,
+                    ),
+                    lanes: (0..lanes).map(|_| <$lane>::new(depth)).collect(),
+                    around: (0..around)
+                        .map(|_| AroundLane::new(depth, lane_latency))
+                        .collect(),
                 }
             }
         }
+
+        /// The wide unit for the small test memories (16 nodes, 32 triangles), 64 slots.
+        pub type WideUnit4w4x5 = wide_unit_sized!(WideUnitTop, 4, 4, 5, 64, 6);
+        pub type WideUnit8w4x5 = wide_unit_sized!(WideUnitTop, 8, 4, 5, 64, 6);
 
         /// The unit at each scene memory size of `unit::TraversalCore4x5` and its siblings.
         pub type Unit4x5 = unit_sized!(UnitTop, 4, 5);

@@ -8,6 +8,7 @@
 mod axil_slave;
 mod blocks;
 mod box_test;
+#[macro_use]
 mod common;
 mod fixed_ops;
 mod float_ops;

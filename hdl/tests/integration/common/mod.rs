@@ -1,5 +1,8 @@
 //! Scenes and rays shared by the traversal unit's rust-hdl tests.
 
+#[macro_use]
+mod bench;
+
 use hw_model::traversal::UnitRay;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};

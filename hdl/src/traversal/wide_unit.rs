@@ -1,0 +1,308 @@
+//! The traversal core walking wide nodes (`--nodes bvh2-q8 | bvh4-q8 | bvh8-q8`): the binary
+//! core's blocks ([`super::unit`]: ray entry, slots, leaf ports, hit output, counters) around
+//! the wide scene memory, the wide box port and the wide stack port. Bit for bit
+//! `hw_model::traversal::TraversalModel` walking a `UnitImage::Wide` (answers and counters).
+//!
+//! ```text
+//!  ray stream ─► RayEntry ─► WideSetUp (pad_t) ──► SetUp: slots, box port, leaf ports
+//!   BoxPort    node read + WideBoxStage ─► LinkStep; push of up to K − 1 ─► StackPort
+//!   StackPort  BankedStacks: pop, t_hi < t0? ─► LinkStep, entry word ─► BoxPort
+//!   LeafPort l, HitOutput, Counters: as the binary core's
+//! ```
+//!
+//! A new ray's walk starts at the root node (node 0) entered at 0, unbounded: its first box
+//! test is the root node's, counted as a node visit at its grant.
+
+use rust_hdl::prelude::*;
+
+use super::config::MAX_LANES;
+use super::counters::Counters;
+use super::hit_output::HitOutput;
+use super::leaf_port::LeafPort;
+use super::ports::{ControlPort, CounterPort, HitStream, RayStream, SceneStream};
+use super::ray_entry::RayEntry;
+use super::scene_records::WIDE_COUNT_BITS;
+use super::slot_ports::{
+    BoxGrantSource, EnteredSource, LeafGrantSource, LeafStep, LinkStep, OutGrantSource,
+    PopGrantSource, SetUpSource,
+};
+use super::slots::SlotState;
+use super::wide_box_port::WideBoxPort;
+use super::wide_scene_memory::WideSceneMemory;
+use super::wide_set_up::WideSetUp;
+use super::wide_stack_port::WideStackPort;
+use crate::defaults;
+use crate::macros::clock;
+use crate::mt::LanePort;
+
+/// The wide core. Const parameters (computed by [`wide_unit_sized!`]): the wide scene
+/// memory's `NB, TB, LF, LK, HB, LB, NW, TW` (see [`WideSceneMemory`]); `S` slots of `SB`
+/// bits; the banked stacks' pointer bits `PB` and bank address bits `RB`; a stack entry of
+/// `W` bits (`wide_box_port::wide_stack_entry_bits`).
+#[derive(LogicBlock)]
+pub struct WideTraversalCore<
+    const NB: usize,
+    const TB: usize,
+    const LF: usize,
+    const LK: usize,
+    const HB: usize,
+    const LB: usize,
+    const NW: usize,
+    const TW: usize,
+    const S: usize,
+    const SB: usize,
+    const PB: usize,
+    const RB: usize,
+    const W: usize,
+> {
+    pub clock: Signal<In, Clock>,
+    /// Synchronous, active low: empties the slots, clears the overflow bit and the counters.
+    pub reset_n: Signal<In, Bit>,
+    pub scene: SceneStream,
+    pub ray: RayStream,
+    pub hit: HitStream,
+    pub control: ControlPort,
+    pub counters: CounterPort,
+    /// The Möller-Trumbore lanes, outside the core (as the binary core's).
+    pub lane: Vec<LanePort>,
+    /// With the leaf advance (else none): the entry t0 of the query's leaf.
+    pub lane_entry: Vec<Signal<Out, Bits<32>>>,
+    memory: WideSceneMemory<NB, TB, LF, LK, HB, LB, NW, TW>,
+    entry: RayEntry<SB>,
+    wide_set_up: WideSetUp<SB>,
+    slots: SlotState<S, SB, LF, WIDE_COUNT_BITS>,
+    box_port: WideBoxPort<S, SB, NB, LF, LK, W>,
+    stack_port: WideStackPort<S, SB, PB, RB, W, LF>,
+    leaf: Vec<LeafPort<SB, TB, LF>>,
+    hits: HitOutput<SB>,
+    counting: Counters,
+}
+
+impl<
+        const NB: usize,
+        const TB: usize,
+        const LF: usize,
+        const LK: usize,
+        const HB: usize,
+        const LB: usize,
+        const NW: usize,
+        const TW: usize,
+        const S: usize,
+        const SB: usize,
+        const PB: usize,
+        const RB: usize,
+        const W: usize,
+    > WideTraversalCore<NB, TB, LF, LK, HB, LB, NW, TW, S, SB, PB, RB, W>
+{
+    /// A core for nodes of `width` children; the rest as `unit::TraversalCore::new`'s.
+    pub fn new(
+        width: usize,
+        depth: usize,
+        stack_depth: usize,
+        lanes: usize,
+        lane_latency: usize,
+        entries: bool,
+    ) -> Self {
+        assert!(
+            (1..=MAX_LANES).contains(&lanes),
+            "{lanes} lanes: 1 to {MAX_LANES}"
+        );
+        Self {
+            clock: Default::default(),
+            reset_n: Default::default(),
+            scene: Default::default(),
+            ray: Default::default(),
+            hit: Default::default(),
+            control: Default::default(),
+            counters: Default::default(),
+            lane: defaults(lanes),
+            lane_entry: defaults(if entries { lanes } else { 0 }),
+            memory: WideSceneMemory::new(width, lanes),
+            entry: RayEntry::new(depth),
+            wide_set_up: WideSetUp::new(depth),
+            slots: SlotState::new(lanes, entries),
+            box_port: WideBoxPort::new(width, depth),
+            stack_port: WideStackPort::new(width, stack_depth),
+            leaf: (0..lanes)
+                .map(|_| LeafPort::new(depth, lane_latency))
+                .collect(),
+            hits: HitOutput::new(lanes),
+            counting: Counters::wide(lanes),
+        }
+    }
+}
+
+impl<
+        const NB: usize,
+        const TB: usize,
+        const LF: usize,
+        const LK: usize,
+        const HB: usize,
+        const LB: usize,
+        const NW: usize,
+        const TW: usize,
+        const S: usize,
+        const SB: usize,
+        const PB: usize,
+        const RB: usize,
+        const W: usize,
+    > Logic for WideTraversalCore<NB, TB, LF, LK, HB, LB, NW, TW, S, SB, PB, RB, W>
+{
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(
+            self,
+            clock,
+            memory,
+            entry,
+            wide_set_up,
+            slots,
+            box_port,
+            stack_port,
+            hits,
+            counting
+        );
+        self.entry.reset_n.next = self.reset_n.val();
+        self.slots.reset_n.next = self.reset_n.val();
+        self.stack_port.reset_n.next = self.reset_n.val();
+        self.hits.reset_n.next = self.reset_n.val();
+        self.counting.reset_n.next = self.reset_n.val();
+
+        // ---- The scene stream into the scene memory, and the load's status.
+        self.memory.start_load.next = self.control.scene_start.val();
+        self.memory.s_tdata.next = self.scene.tdata.val();
+        self.memory.s_tvalid.next = self.scene.tvalid.val();
+        self.memory.s_tlast.next = self.scene.tlast.val();
+        self.scene.tready.next = self.memory.s_tready.val();
+        self.control.scene_loaded.next = self.memory.loaded.val();
+        self.control.scene_error.next = self.memory.error.val();
+        self.control.scene_error_code.next = self.memory.error_code.val();
+        self.control.scene_error_word.next = self.memory.error_word.val();
+        self.control.scene_error_value.next = self.memory.error_value.val();
+
+        // ---- Rays in, to the slots and to every block that keeps a slot word.
+        RayStream::link(&mut self.ray, &mut self.entry.ray);
+        self.entry.loaded.next = self.memory.loaded.val();
+        self.entry.free.next = self.slots.free.val();
+        self.entry.slot.next = self.slots.enter_slot.val();
+        self.slots.has_triangles.next = self.memory.triangles.val().any();
+        EnteredSource::<SB>::join(&mut self.entry.entered, &mut self.slots.entered);
+        EnteredSource::<SB>::join(&mut self.entry.entered, &mut self.stack_port.entered);
+        EnteredSource::<SB>::join(&mut self.entry.entered, &mut self.hits.entered);
+        EnteredSource::<SB>::join(&mut self.entry.entered, &mut self.box_port.entered);
+        SetUpSource::<SB>::join(&mut self.entry.set_up, &mut self.wide_set_up.fp32);
+        SetUpSource::<SB>::join(&mut self.wide_set_up.set_up, &mut self.slots.set_up);
+        SetUpSource::<SB>::join(&mut self.wide_set_up.set_up, &mut self.box_port.set_up);
+
+        // ---- The box port: the node read, its steps and pushes.
+        BoxGrantSource::<SB, LF>::join(&mut self.slots.box_grant, &mut self.box_port.grant);
+        self.memory.node_address.next = self.box_port.node_address.val();
+        for a in 0..3 {
+            self.box_port.origin[a].next = self.memory.origin[a].val();
+            self.box_port.exp[a].next = self.memory.exp[a].val();
+        }
+        self.box_port.children.next = self.memory.children.val();
+        for i in 0..self.box_port.lo.len() {
+            self.box_port.lo[i].next = self.memory.lo[i].val();
+            self.box_port.hi[i].next = self.memory.hi[i].val();
+        }
+        for c in 0..self.box_port.link.len() {
+            self.box_port.link[c].next = self.memory.link[c].val();
+        }
+        LinkStep::<SB, LF, WIDE_COUNT_BITS>::join(
+            &mut self.box_port.step,
+            &mut self.slots.box_step,
+        );
+        self.stack_port.push_count.next = self.box_port.push_count.val();
+        self.stack_port.push_slot.next = self.box_port.push_slot.val();
+        for j in 0..self.box_port.push_data.len() {
+            self.stack_port.push_data[j].next = self.box_port.push_data[j].val();
+        }
+
+        // ---- The stack port; an entered pop's entry word goes to the box port.
+        PopGrantSource::<SB>::join(&mut self.slots.pop_grant, &mut self.stack_port.grant);
+        LinkStep::<SB, LF, WIDE_COUNT_BITS>::join(
+            &mut self.stack_port.step,
+            &mut self.slots.pop_step,
+        );
+        self.box_port.popped.next =
+            self.stack_port.step.valid.val() & self.stack_port.step.enter.val();
+        self.box_port.popped_slot.next = self.stack_port.step.slot.val();
+        self.box_port.popped_entry.next = self.stack_port.step_entry.val();
+
+        // ---- The leaf ports, one per lane, each with its lane's triangle read.
+        for l in 0..self.leaf.len() {
+            clock!(self, clock, leaf[l]);
+            EnteredSource::<SB>::join(&mut self.entry.entered, &mut self.leaf[l].entered);
+            SetUpSource::<SB>::join(&mut self.wide_set_up.set_up, &mut self.leaf[l].set_up);
+            LeafGrantSource::<SB, LF>::join(&mut self.slots.leaf_grant[l], &mut self.leaf[l].grant);
+            LeafStep::<SB>::join(&mut self.leaf[l].step, &mut self.slots.leaf_step[l]);
+            self.memory.triangle_address[l].next = self.leaf[l].triangle_address.val();
+            self.leaf[l].vertices.next = self.memory.vertices[l].val();
+            self.leaf[l].global_index.next = self.memory.global_index[l].val();
+            self.leaf[l].casts_shadow.next = self.memory.casts_shadow[l].val();
+            LanePort::link(&mut self.lane[l], &mut self.leaf[l].lane);
+            self.leaf[l].out_slot.next = self.slots.out_grant.slot.val();
+            self.hits.lane_best[l].next = self.leaf[l].out_best.val();
+            self.counting.mt_test[l].next = self.lane[l].valid.val();
+        }
+        for l in 0..self.lane_entry.len() {
+            self.lane_entry[l].next = self.slots.lane_entry[l].val();
+        }
+
+        // ---- The hit output.
+        OutGrantSource::<SB>::join(&mut self.slots.out_grant, &mut self.hits.grant);
+        HitStream::link(&mut self.hit, &mut self.hits.hit);
+
+        // ---- Status and counters (the root node's visit at its grant).
+        self.control.idle.next = !self.slots.occupied.val() & !self.hits.pending.val();
+        self.control.overflow.next = self.stack_port.overflow.val();
+        self.control.overflow_ray.next = self.stack_port.overflow_ray.val();
+        self.counting.ray.next = self.entry.entered.valid.val();
+        self.counting.box_test.next = self.slots.box_grant.valid.val();
+        self.counting.box_visit.next =
+            self.box_port.step.valid.val() & self.box_port.step.enter.val();
+        self.counting.pop_visit.next =
+            self.stack_port.step.valid.val() & self.stack_port.step.enter.val();
+        for r in 0..self.counting.root_visit.len() {
+            self.counting.root_visit[r].next =
+                self.slots.box_grant.valid.val() & self.slots.box_grant.root.val();
+        }
+        self.counting.busy.next = self.slots.occupied.val();
+        CounterPort::link(&mut self.counters, &mut self.counting.port);
+    }
+}
+
+/// `$block` (the wide core, or the unit top over it) for `$k`-wide nodes with a scene memory
+/// of `$nb` node and `$tb` triangle address bits and `$s` slots of `$sb` bits, every width
+/// parameter computed: the memory's, the banked stacks' pointer and bank address bits, a
+/// stack entry.
+macro_rules! wide_unit_sized {
+    ($block:ident, $k:literal, $nb:literal, $tb:literal, $s:literal, $sb:literal) => {
+        $block<
+            $nb,
+            $tb,
+            { $crate::traversal::scene_records::link_first_bits($nb, $tb) },
+            { $crate::traversal::scene_records::wide_link_bits($nb, $tb) },
+            { $crate::traversal::scene_records::wide_head_bits($k) },
+            { $k * $crate::traversal::scene_records::wide_link_bits($nb, $tb) },
+            { $crate::traversal::scene_records::wide_node_record_bits($k, $nb, $tb) },
+            { $crate::traversal::scene_records::triangle_record_bits() },
+            $s,
+            $sb,
+            { $crate::traversal::config::wide_stack_pointer_bits($k) },
+            { $crate::traversal::config::wide_stack_row_bits($k, $s) },
+            {
+                $crate::traversal::wide_box_port::wide_stack_entry_bits(
+                    $crate::traversal::scene_records::wide_link_bits($nb, $tb),
+                )
+            },
+        >
+    };
+}
+pub(crate) use wide_unit_sized;
+
+/// The wide cores: the small test memories (16 nodes, 32 triangles) and the XC7Z020's, with
+/// 64 slots.
+pub type WideCore4w4x5 = wide_unit_sized!(WideTraversalCore, 4, 4, 5, 64, 6);
+pub type WideCore8w4x5 = wide_unit_sized!(WideTraversalCore, 8, 4, 5, 64, 6);
