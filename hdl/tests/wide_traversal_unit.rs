@@ -5,16 +5,20 @@
 //! counters equal to the model's.
 
 use hdl::top::with_build_stack;
+use hdl::traversal::config::{unit_verilog, UnitConfig};
 use hdl::traversal::scene_memory_driver::{
     check_before_load_wide, status_result_in, LoadStatus, MemoryConfig, NodeLayout,
 };
+use hdl::verilog::{verilator_lint_waiving, UNIT_VERILATOR_WAIVERS};
 use hw_model::traversal::packet::{hit_from_words, HIT_WORDS, RAY_WORDS};
 use hw_model::traversal::scene_image::SceneImage;
 use hw_model::traversal::wide::image::WideImage;
+use hw_model::traversal::wide::NodeFormat;
 use hw_model::traversal::{TraversalModel, UnitCounters, UnitRay};
-use hw_model::{Advance, Format};
+use hw_model::{Advance, Format, HwFormat};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
+use rayon::prelude::*;
 use rust_hdl::prelude::*;
 use sw_renderer::bvh::Bvh;
 use sw_renderer::hit::Hit;
@@ -130,5 +134,27 @@ fn the_8_wide_unit_answers_and_counts_as_the_model() {
             fp32_8_wide::Bench::load,
             fp32_8_wide::Bench::run,
         )
+    });
+}
+
+/// The wide units' Verilog (fp32, 4- and 8-wide with the small memory, 8-wide with the
+/// XC7Z020's) passes Verilator's lint.
+#[test]
+fn the_wide_units_verilog_passes_verilator_lint() {
+    let small = |nodes| {
+        let mut c = UnitConfig::new(HwFormat::FP32, DEPTH, 1).with_nodes(nodes);
+        c.memory = MEMORY;
+        c
+    };
+    [
+        small(NodeFormat::Bvh4Q8),
+        small(NodeFormat::Bvh8Q8),
+        UnitConfig::new(HwFormat::FP32, 5, 1).with_nodes(NodeFormat::Bvh8Q8),
+    ]
+    .into_par_iter()
+    .for_each(|config| {
+        let verilog = unit_verilog(&config).unwrap();
+        verilator_lint_waiving(&verilog, UNIT_VERILATOR_WAIVERS)
+            .unwrap_or_else(|e| panic!("{}: {e}", config.nodes.name()));
     });
 }

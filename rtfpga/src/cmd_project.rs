@@ -335,7 +335,7 @@ fn design_line(a: &Args, d: &Design) -> Line {
             .kv("format", a.format)
             .kv("depth", a.depth)
             .kv("lanes", a.lanes)
-            .kv("slots", a.unit.slots)
+            .kv("slots", a.unit.slots())
             .kv("nodes", a.unit.nodes.name())
             .kv("box_ports", a.unit.box_ports)
             .kv("hp_ports", hp_ports)

@@ -125,7 +125,7 @@ pub fn run(a: Args, given: &Given) -> Result<()> {
         let box_ports = a.hw.unit.box_ports as f64;
         Line::labelled("unit_schedule")
             .kv("nodes", a.hw.unit.nodes.name())
-            .kv("slots", a.hw.unit.slots)
+            .kv("slots", a.hw.unit.slots())
             .kv("box_ports", a.hw.unit.box_ports)
             .kv("lanes", a.hw.datapath.lanes)
             .kv("cycles", c.cycles)

@@ -104,7 +104,7 @@ pub fn run(a: Args) -> Result<()> {
         Some(_) => Some(
             hw_model::traversal::capacity::chunks(
                 &binary,
-                a.memory.model_memory(1, &ChunkArgs::default()),
+                a.memory.model_memory(1, a.nodes, &ChunkArgs::default()),
                 a.nodes,
             )?
             .iter()

@@ -10,7 +10,9 @@ use clap::builder::TypedValueParser;
 use clap::{Args as ClapArgs, ValueEnum};
 use hdl::dual::pair::SlotFilter;
 use hdl::top::TopConfig;
-use hdl::traversal::config::{UnitConfig, BUILT_MEMORY_BITS};
+use hdl::traversal::config::{
+    UnitConfig, BUILT_MEMORY_BITS, BUILT_WIDE_MEMORY_BITS, ZYNQ_WIDE_MEMORY_BITS,
+};
 use hdl::traversal::scene_memory;
 use hw_model::dual::{DualIntersector, Filter, FilterKind, FormatChoice};
 use hw_model::precision::{auto_scale_exp, SceneRange, SpawnChoice};
@@ -131,6 +133,14 @@ pub struct Datapath {
     pub lanes: usize,
 }
 
+/// The scene memory the XC7Z020 holds beside `lanes` lanes for `nodes`.
+fn zynq_bits(lanes: usize, nodes: NodeFormat) -> (usize, usize) {
+    match nodes.width() {
+        Some(_) => ZYNQ_WIDE_MEMORY_BITS,
+        None => scene_memory::zynq_address_bits(lanes),
+    }
+}
+
 fn capacity_text((node_bits, triangle_bits): (usize, usize)) -> String {
     let (nodes, triangles) = scene_memory::capacity_for(node_bits, triangle_bits);
     format!("{nodes},{triangles}")
@@ -138,11 +148,12 @@ fn capacity_text((node_bits, triangle_bits): (usize, usize)) -> String {
 
 /// The scene memories the RTL is built with, "16,32, 512,1024, … and 4096,8192".
 fn built_memories() -> String {
-    let all: Vec<String> = BUILT_MEMORY_BITS
-        .iter()
-        .copied()
-        .map(capacity_text)
-        .collect();
+    memories_text(&BUILT_MEMORY_BITS)
+}
+
+/// Memories as "16,32, 512,1024 and 4096,8192".
+fn memories_text(memories: &[(usize, usize)]) -> String {
+    let all: Vec<String> = memories.iter().copied().map(capacity_text).collect();
     match all.split_last() {
         Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
         _ => all.join(""),
@@ -173,10 +184,10 @@ pub struct SceneMemoryArg {
 /// `--slots` and `--scene-memory`: the traversal unit's.
 #[derive(ClapArgs, Clone, Debug)]
 pub struct UnitArgs {
-    /// Ray slots of the traversal unit: the RTL has 32, the schedule model times 1 to 1024.
-    #[arg(long, default_value_t = hdl::traversal::timing::DEFAULT_SLOTS as u32,
-          value_parser = clap::value_parser!(u32).range(1..=1024))]
-    pub slots: u32,
+    /// Ray slots of the traversal unit: the RTL has 32 with bvh2-fp32 nodes and 64 with wide
+    /// ones; the schedule model times 1 to 1024 [default: the RTL's for --nodes].
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub slots: Option<u32>,
     #[command(flatten)]
     pub memory: SceneMemoryArg,
     /// How the scene memory stores the tree's inner nodes: bvh2-fp32 (binary, fp32 boxes; the
@@ -188,6 +199,15 @@ pub struct UnitArgs {
     /// schedule model times 1 to 8.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=8))]
     pub box_ports: u32,
+}
+
+impl UnitArgs {
+    /// `--slots`, else the RTL's for `--nodes`.
+    pub fn slots(&self) -> usize {
+        (self.slots).map_or(hdl::traversal::config::slots_for(self.nodes), |s| {
+            s as usize
+        })
+    }
 }
 
 /// `--no-chunks`.
@@ -482,11 +502,11 @@ fn parse_capacity(s: &str) -> Result<SceneCapacity, String> {
 }
 
 impl SceneMemoryArg {
-    /// The model's scene memory for a unit of `lanes` lanes: `--scene-memory`, else the one
-    /// the XC7Z020 holds beside them; chunked unless `chunks` says no.
-    pub fn model_memory(&self, lanes: usize, chunks: &ChunkArgs) -> SceneMemory {
+    /// The model's scene memory for a unit of `lanes` lanes holding `nodes`: `--scene-memory`,
+    /// else the one the XC7Z020 holds beside them; chunked unless `chunks` says no.
+    pub fn model_memory(&self, lanes: usize, nodes: NodeFormat, chunks: &ChunkArgs) -> SceneMemory {
         let capacity = self.scene_memory.unwrap_or_else(|| {
-            let (node_bits, triangle_bits) = scene_memory::zynq_address_bits(lanes);
+            let (node_bits, triangle_bits) = zynq_bits(lanes, nodes);
             let (nodes, triangles) = scene_memory::capacity_for(node_bits, triangle_bits);
             SceneCapacity {
                 nodes: nodes as u32,
@@ -500,21 +520,30 @@ impl SceneMemoryArg {
     }
 
     /// The RTL's scene memory as address bits: `--scene-memory` must name one of the memories
-    /// built (in the units typed), else the one the XC7Z020 holds beside `lanes` lanes.
-    pub fn rtl_bits(&self, lanes: usize) -> Result<(usize, usize)> {
+    /// built (in the units typed) for `nodes`, else the one the XC7Z020 holds beside `lanes`
+    /// lanes.
+    pub fn rtl_bits(&self, lanes: usize, nodes: NodeFormat) -> Result<(usize, usize)> {
         let Some(c) = self.scene_memory else {
-            return Ok(scene_memory::zynq_address_bits(lanes));
+            return Ok(zynq_bits(lanes, nodes));
         };
-        BUILT_MEMORY_BITS
+        let built: Vec<(usize, usize)> = match nodes.width() {
+            None => BUILT_MEMORY_BITS.to_vec(),
+            Some(width) => (BUILT_WIDE_MEMORY_BITS.iter())
+                .filter(|(k, _, _)| *k == width)
+                .map(|&(_, n, t)| (n, t))
+                .collect(),
+        };
+        built
             .iter()
             .copied()
             .find(|&bits| capacity_text(bits) == format!("{},{}", c.nodes, c.triangles))
             .with_context(|| {
                 format!(
-                    "--scene-memory {},{}: the traversal unit's RTL is built with scene memories of {} (NODES,TRIANGLES)",
+                    "--scene-memory {},{}: the traversal unit's RTL for {} nodes is built with scene memories of {} (NODES,TRIANGLES)",
                     c.nodes,
                     c.triangles,
-                    built_memories()
+                    nodes.name(),
+                    memories_text(&built)
                 )
             })
     }
@@ -600,7 +629,7 @@ impl HwConfig {
                     ..UnitConfig::new(f, d.depth, d.lanes)
                 };
                 rtl.check()?;
-                let slots = self.unit.slots as usize;
+                let slots = self.unit.slots();
                 let t = hdl::traversal::timing::unit_timing(f, d.depth, d.lanes, slots, advance);
                 let t = hdl::traversal::timing::node_timing(
                     t,
@@ -619,7 +648,7 @@ impl HwConfig {
             scale_exp,
             advance,
             timing,
-            memory: self.unit.memory.model_memory(d.lanes, chunks),
+            memory: (self.unit.memory).model_memory(d.lanes, self.unit.nodes, chunks),
             nodes: self.unit.nodes,
         })
     }
@@ -628,11 +657,12 @@ impl HwConfig {
     /// says: an error naming what the RTL does not build.
     pub fn unit_config(&self, advance: Advance) -> Result<UnitConfig> {
         let d = &self.datapath;
-        let mut config = UnitConfig::new(d.single_format()?.try_into()?, d.depth, d.lanes);
-        config.slots = self.unit.slots as usize;
+        let mut config = UnitConfig::new(d.single_format()?.try_into()?, d.depth, d.lanes)
+            .with_nodes(self.unit.nodes);
+        config.slots = self.unit.slots();
         config.advance = advance;
         (config.memory.node_bits, config.memory.triangle_bits) =
-            self.unit.memory.rtl_bits(d.lanes)?;
+            self.unit.memory.rtl_bits(d.lanes, self.unit.nodes)?;
         config.check()?;
         Ok(config)
     }
@@ -648,11 +678,19 @@ mod tests {
         let arg = |nodes, triangles| SceneMemoryArg {
             scene_memory: Some(SceneCapacity { nodes, triangles }),
         };
-        assert_eq!(arg(2048, 4096).rtl_bits(1).unwrap(), (11, 12));
-        let e = arg(100, 100).rtl_bits(1).unwrap_err().to_string();
+        assert_eq!(
+            arg(2048, 4096).rtl_bits(1, NodeFormat::Bvh2Fp32).unwrap(),
+            (11, 12)
+        );
+        let e = arg(100, 100)
+            .rtl_bits(1, NodeFormat::Bvh2Fp32)
+            .unwrap_err()
+            .to_string();
         assert!(e.starts_with("--scene-memory 100,100: "), "{e}");
         assert_eq!(
-            SceneMemoryArg::default().rtl_bits(1).unwrap(),
+            SceneMemoryArg::default()
+                .rtl_bits(1, NodeFormat::Bvh2Fp32)
+                .unwrap(),
             scene_memory::zynq_address_bits(1)
         );
     }

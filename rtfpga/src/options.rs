@@ -113,7 +113,7 @@ pub const RULES: &[Rule] = &[
         arg: "nodes",
         applies: &[
             (UnitModel, Values::Any),
-            (Unit, Values::Only(&["bvh2-fp32"])),
+            (Unit, Values::Only(&["bvh2-fp32", "bvh4-q8", "bvh8-q8"])),
             (FrameModel, Values::Any),
             (TraversalDesign, Values::Any),
         ],

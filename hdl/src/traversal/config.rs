@@ -8,7 +8,7 @@ use thiserror::Error;
 
 use super::scene_memory::{link_count_bits, link_first_bits, zynq_address_bits};
 use super::scene_memory_driver::MemoryConfig;
-use super::timing::unit_timing;
+use super::timing::{node_timing, unit_timing};
 use crate::top::with_build_stack;
 
 /// Slots of every built unit, and the deepest stack its stack RAM holds.
@@ -26,16 +26,43 @@ const _: () = assert!(
         && MAX_LANES <= UNIT_SLOTS
 );
 
+/// Slots of the wide unit: 8-wide nodes with 32 slots are latency-bound (the schedule model
+/// on the Utah teapot: 6.9 cycles a ray with 32 slots, 4.99 with 64).
+pub const WIDE_SLOTS: usize = 64;
+pub const WIDE_SLOT_BITS: usize = WIDE_SLOTS.ilog2() as usize;
+const _: () = assert!(WIDE_SLOTS.is_power_of_two() && MAX_LANES <= WIDE_SLOTS);
+
+/// The slots of a unit of `nodes`.
+pub fn slots_for(nodes: NodeFormat) -> usize {
+    match nodes.width() {
+        Some(_) => WIDE_SLOTS,
+        None => UNIT_SLOTS,
+    }
+}
+
+/// The wide units the RTL builds, as (node width, node bits, triangle bits): the small test
+/// memories and the XC7Z020's 8-wide memory (2,048 nodes, 8,192 triangles).
+pub const BUILT_WIDE_MEMORY_BITS: [(usize, usize, usize); 3] = [(4, 4, 5), (8, 4, 5), (8, 11, 13)];
+/// The wide memory on the XC7Z020.
+pub const ZYNQ_WIDE_MEMORY_BITS: (usize, usize) = (11, 13);
+
 /// The scene memories the RTL builds, as (node, triangle) address bits: a type each
 /// (`scene_memory::SceneMemory4x5` …, `unit_top::<format>::Unit4x5` …).
 pub const BUILT_MEMORY_BITS: [(usize, usize); 4] = [(4, 5), (9, 10), (11, 12), (12, 13)];
 
-/// [`BUILT_MEMORY_BITS`] as "4/5, 9/10, …".
-fn built_memory_bits() -> String {
-    let sizes: Vec<String> = BUILT_MEMORY_BITS
-        .iter()
-        .map(|(n, t)| format!("{n}/{t}"))
-        .collect();
+/// The scene memories the RTL builds for `nodes`, as "4/5, 9/10, …".
+fn built_memory_bits(nodes: NodeFormat) -> String {
+    let sizes: Vec<String> = match nodes.width() {
+        None => BUILT_MEMORY_BITS
+            .iter()
+            .map(|(n, t)| format!("{n}/{t}"))
+            .collect(),
+        Some(width) => BUILT_WIDE_MEMORY_BITS
+            .iter()
+            .filter(|(k, _, _)| *k == width)
+            .map(|(_, n, t)| format!("{n}/{t}"))
+            .collect(),
+    };
     sizes.join(", ")
 }
 
@@ -75,16 +102,17 @@ pub enum UnitConfigError {
         depth: usize,
         max: usize,
     },
-    #[error("the traversal unit's RTL walks bvh2-fp32 nodes, not {}: the wide unit is not built yet", .0.name())]
+    #[error("the traversal unit's RTL walks bvh2-fp32, bvh4-q8 and bvh8-q8 nodes, not {}", .0.name())]
     Nodes(NodeFormat),
-    #[error("the traversal unit's RTL has {UNIT_SLOTS} ray slots, not {0}")]
-    Slots(usize),
+    #[error("the traversal unit's RTL for {} nodes has {} ray slots, not {slots}", .nodes.name(), slots_for(*.nodes))]
+    Slots { nodes: NodeFormat, slots: usize },
     #[error("a stack of {0} entries: the unit's stacks hold 1 to {MAX_STACK_DEPTH}")]
     StackDepth(usize),
     #[error("the traversal unit's RTL advances to the leaf box (leaf-box) or not at all (none), not {}", .0.name())]
     Advance(Advance),
-    #[error("no scene memory of {node_bits} node and {triangle_bits} triangle address bits is built (sizes: {})", built_memory_bits())]
+    #[error("no scene memory of {node_bits} node and {triangle_bits} triangle address bits is built for {} nodes (sizes: {})", .nodes.name(), built_memory_bits(*.nodes))]
     Memory {
+        nodes: NodeFormat,
         node_bits: usize,
         triangle_bits: usize,
     },
@@ -110,15 +138,39 @@ impl UnitConfig {
         }
     }
 
+    /// The unit walking `nodes` (its slots and, for wide nodes, the XC7Z020's wide memory).
+    pub fn with_nodes(self, nodes: NodeFormat) -> UnitConfig {
+        let memory = match nodes.width() {
+            Some(_) => MemoryConfig {
+                node_bits: ZYNQ_WIDE_MEMORY_BITS.0,
+                triangle_bits: ZYNQ_WIDE_MEMORY_BITS.1,
+            },
+            None => {
+                let (node_bits, triangle_bits) = zynq_address_bits(self.lanes);
+                MemoryConfig {
+                    node_bits,
+                    triangle_bits,
+                }
+            }
+        };
+        UnitConfig {
+            nodes,
+            slots: slots_for(nodes),
+            memory,
+            ..self
+        }
+    }
+
     /// The unit's timing, as the schedule model takes it.
     pub fn timing(&self) -> UnitTiming {
-        unit_timing(
+        let binary = unit_timing(
             self.format,
             self.depth,
             self.lanes,
             self.slots,
             self.advance,
-        )
+        );
+        node_timing(binary, self.nodes, self.depth, 1)
     }
 
     /// Whether the RTL builds this configuration.
@@ -134,11 +186,14 @@ impl UnitConfig {
                 max,
             });
         }
-        if self.nodes != NodeFormat::Bvh2Fp32 {
+        if self.nodes == NodeFormat::Bvh2Q8 {
             return Err(UnitConfigError::Nodes(self.nodes));
         }
-        if self.slots != UNIT_SLOTS {
-            return Err(UnitConfigError::Slots(self.slots));
+        if self.slots != slots_for(self.nodes) {
+            return Err(UnitConfigError::Slots {
+                nodes: self.nodes,
+                slots: self.slots,
+            });
         }
         if !(1..=MAX_STACK_DEPTH).contains(&self.stack_depth) {
             return Err(UnitConfigError::StackDepth(self.stack_depth));
@@ -147,10 +202,15 @@ impl UnitConfig {
             return Err(UnitConfigError::Advance(self.advance));
         }
         let (node_bits, triangle_bits) = (self.memory.node_bits, self.memory.triangle_bits);
-        if BUILT_MEMORY_BITS.contains(&(node_bits, triangle_bits)) {
+        let built = match self.nodes.width() {
+            None => BUILT_MEMORY_BITS.contains(&(node_bits, triangle_bits)),
+            Some(k) => BUILT_WIDE_MEMORY_BITS.contains(&(k, node_bits, triangle_bits)),
+        };
+        if built {
             Ok(())
         } else {
             Err(UnitConfigError::Memory {
+                nodes: self.nodes,
                 node_bits,
                 triangle_bits,
             })
@@ -167,13 +227,13 @@ pub fn unit_verilog(config: &UnitConfig) -> Result<String, UnitConfigError> {
 }
 
 /// The wide unit's banked stacks (`wide_unit::wide_unit_sized!`) for `k`-wide nodes: pointer
-/// bits (a pointer up to the depth plus a push of K − 1) and bank address bits (`slots` ×
+/// bits (a pointer up to the depth plus a push of K − 1) and bank address bits (slots ×
 /// ⌈depth / K⌉ rows a bank).
 pub const fn wide_stack_pointer_bits(k: usize) -> usize {
     (MAX_STACK_DEPTH + k - 1).ilog2() as usize + 1
 }
-pub const fn wide_stack_row_bits(k: usize, slots: usize) -> usize {
-    let rows = (slots * MAX_STACK_DEPTH.div_ceil(k)).ilog2() as usize;
+pub const fn wide_stack_row_bits(k: usize) -> usize {
+    let rows = (WIDE_SLOTS * MAX_STACK_DEPTH.div_ceil(k)).ilog2() as usize;
     let pointer = wide_stack_pointer_bits(k);
     if rows > pointer {
         rows

@@ -13,6 +13,7 @@ use hw_model::traversal::scene_image::{
     VERSION_WIDE,
 };
 use hw_model::traversal::wide::image::{link_of, node_words, WideImage};
+use hw_model::traversal::wide::NodeFormat;
 use thiserror::Error;
 
 use super::scene_memory::{capacity_for, LoadError, INDEX_BITS};
@@ -125,6 +126,20 @@ pub fn check_before_load_wide(
     Ok(image)
 }
 
+/// What the driver checks before streaming `words` into a memory of `config` holding
+/// `layout`'s nodes ([`check_before_load`] or [`check_before_load_wide`]), and the image's
+/// tree depth.
+pub fn check_before_load_in(
+    words: &[u32],
+    config: MemoryConfig,
+    layout: NodeLayout,
+) -> Result<usize, SceneMemoryError> {
+    Ok(match layout {
+        NodeLayout::Binary => check_before_load(words, config)?.depth(),
+        NodeLayout::Wide(width) => check_before_load_wide(words, config, width)?.depth(),
+    })
+}
+
 /// How a memory's image lays out its nodes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum NodeLayout {
@@ -135,6 +150,14 @@ pub enum NodeLayout {
 }
 
 impl NodeLayout {
+    /// The layout of a memory holding `nodes`.
+    pub fn of(nodes: NodeFormat) -> NodeLayout {
+        match nodes.width() {
+            Some(width) => NodeLayout::Wide(width),
+            None => NodeLayout::Binary,
+        }
+    }
+
     fn version(self) -> u32 {
         match self {
             NodeLayout::Binary => VERSION,

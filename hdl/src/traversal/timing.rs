@@ -59,10 +59,16 @@ pub fn unit_timing(
     }
 }
 
-/// `t` with its inner nodes stored as `nodes` and `box_ports` box ports.
+/// `t` with its inner nodes stored as `nodes` and `box_ports` box ports: for wide nodes the
+/// ray setup is followed by its padding in t (`wide::pad_in_t::PadInT`).
 pub fn node_timing(t: UnitTiming, nodes: NodeFormat, depth: usize, box_ports: usize) -> UnitTiming {
+    let pad_in_t = match nodes.width() {
+        Some(_) => wide::pad_in_t::PadInT::latency(depth),
+        None => 0,
+    };
     UnitTiming {
         box_ports,
+        setup_latency: t.setup_latency + pad_in_t as u64,
         box_latency: box_port_latency(nodes, depth),
         ..t
     }

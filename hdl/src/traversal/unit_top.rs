@@ -37,6 +37,13 @@ macro_rules! top_logic {
     };
 }
 
+/// A unit's Verilog (top module `top`).
+fn generate<U: rust_hdl::prelude::Block>(unit: U) -> String {
+    let mut unit = Box::new(unit);
+    unit.connect_all();
+    rust_hdl::prelude::generate_verilog(unit.as_ref())
+}
+
 /// Defines `UnitTop` over the lane type `$lane` (the accelerator's `LaneSlot` of a format:
 /// the MT lane behind a packed query port) and its latency `$latency(depth)`, its aliases per
 /// scene memory size and `verilog`.
@@ -50,6 +57,7 @@ macro_rules! unit_top {
             ControlPort, CounterPort, HitStream, RayStream, SceneStream,
         };
         use $crate::traversal::unit::{unit_sized, TraversalCore};
+        use $crate::traversal::unit_top::generate;
         use $crate::traversal::wide_unit::{wide_unit_sized, WideTraversalCore};
 
         /// The unit: the core's ports (docs/traversal-unit.md "Ports"), its lanes beside it.
@@ -213,9 +221,30 @@ macro_rules! unit_top {
             }
         }
 
-        /// The wide unit for the small test memories (16 nodes, 32 triangles), 64 slots.
-        pub type WideUnit4w4x5 = wide_unit_sized!(WideUnitTop, 4, 4, 5, 64, 6);
-        pub type WideUnit8w4x5 = wide_unit_sized!(WideUnitTop, 8, 4, 5, 64, 6);
+        /// The wide units (`config::BUILT_WIDE_MEMORY_BITS`): the small test memories (16
+        /// nodes, 32 triangles) and the XC7Z020's 8-wide memory.
+        pub type WideUnit4w4x5 = wide_unit_sized!(WideUnitTop, 4, 4, 5);
+        pub type WideUnit8w4x5 = wide_unit_sized!(WideUnitTop, 8, 4, 5);
+        pub type WideUnit8w11x13 = wide_unit_sized!(WideUnitTop, 8, 11, 13);
+
+        /// The wide unit's Verilog for nodes of `width` children with a scene memory of
+        /// `(node bits, triangle bits)`, one of the aliases' (checked by `UnitConfig::check`).
+        pub fn wide_verilog(
+            width: usize,
+            depth: usize,
+            stack_depth: usize,
+            lanes: usize,
+            memory: (usize, usize),
+            advance: Advance,
+        ) -> String {
+            match (width, memory) {
+                (4, _) => generate(WideUnit4w4x5::new(4, depth, stack_depth, lanes, advance)),
+                (8, (4, 5)) => {
+                    generate(WideUnit8w4x5::new(8, depth, stack_depth, lanes, advance))
+                }
+                _ => generate(WideUnit8w11x13::new(8, depth, stack_depth, lanes, advance)),
+            }
+        }
 
         /// The unit at each scene memory size of `unit::TraversalCore4x5` and its siblings.
         pub type Unit4x5 = unit_sized!(UnitTop, 4, 5);
@@ -232,11 +261,6 @@ macro_rules! unit_top {
             memory: (usize, usize),
             advance: Advance,
         ) -> String {
-            fn generate<U: Block>(unit: U) -> String {
-                let mut unit = Box::new(unit);
-                unit.connect_all();
-                generate_verilog(unit.as_ref())
-            }
             match memory {
                 (4, 5) => generate(Unit4x5::new(depth, stack_depth, lanes, advance)),
                 (9, 10) => generate(Unit9x10::new(depth, stack_depth, lanes, advance)),
@@ -263,6 +287,9 @@ macro_rules! per_format {
         /// Verilog generators of the units, in catalogue order.
         static UNITS: &[fn(usize, usize, usize, (usize, usize), hw_model::Advance) -> String] =
             &[$($name::verilog),*];
+        /// The wide units', in catalogue order.
+        static WIDE_UNITS: &[fn(usize, usize, usize, usize, (usize, usize), hw_model::Advance) -> String] =
+            &[$($name::wide_verilog),*];
     };
 }
 
@@ -271,7 +298,18 @@ hw_model::hw_formats!(per_format);
 /// The Verilog of a checked configuration (`unit::unit_verilog` checks and calls this).
 pub(super) fn verilog(config: &UnitConfig) -> String {
     let memory = (config.memory.node_bits, config.memory.triangle_bits);
-    UNITS[usize::from(config.format.code())](
+    let format = usize::from(config.format.code());
+    if let Some(width) = config.nodes.width() {
+        return WIDE_UNITS[format](
+            width,
+            config.depth,
+            config.stack_depth,
+            config.lanes,
+            memory,
+            config.advance,
+        );
+    }
+    UNITS[format](
         config.depth,
         config.stack_depth,
         config.lanes,

@@ -274,11 +274,11 @@ impl<
 }
 
 /// `$block` (the wide core, or the unit top over it) for `$k`-wide nodes with a scene memory
-/// of `$nb` node and `$tb` triangle address bits and `$s` slots of `$sb` bits, every width
-/// parameter computed: the memory's, the banked stacks' pointer and bank address bits, a
-/// stack entry.
+/// of `$nb` node and `$tb` triangle address bits, every width parameter computed: the
+/// memory's, [`WIDE_SLOTS`](super::config::WIDE_SLOTS) slots and their index bits, the banked
+/// stacks' pointer and bank address bits, a stack entry.
 macro_rules! wide_unit_sized {
-    ($block:ident, $k:literal, $nb:literal, $tb:literal, $s:literal, $sb:literal) => {
+    ($block:ident, $k:literal, $nb:literal, $tb:literal) => {
         $block<
             $nb,
             $tb,
@@ -288,10 +288,10 @@ macro_rules! wide_unit_sized {
             { $k * $crate::traversal::scene_records::wide_link_bits($nb, $tb) },
             { $crate::traversal::scene_records::wide_node_record_bits($k, $nb, $tb) },
             { $crate::traversal::scene_records::triangle_record_bits() },
-            $s,
-            $sb,
+            { $crate::traversal::config::WIDE_SLOTS },
+            { $crate::traversal::config::WIDE_SLOT_BITS },
             { $crate::traversal::config::wide_stack_pointer_bits($k) },
-            { $crate::traversal::config::wide_stack_row_bits($k, $s) },
+            { $crate::traversal::config::wide_stack_row_bits($k) },
             {
                 $crate::traversal::wide_box_port::wide_stack_entry_bits(
                     $crate::traversal::scene_records::wide_link_bits($nb, $tb),
@@ -301,8 +301,3 @@ macro_rules! wide_unit_sized {
     };
 }
 pub(crate) use wide_unit_sized;
-
-/// The wide cores: the small test memories (16 nodes, 32 triangles) and the XC7Z020's, with
-/// 64 slots.
-pub type WideCore4w4x5 = wide_unit_sized!(WideTraversalCore, 4, 4, 5, 64, 6);
-pub type WideCore8w4x5 = wide_unit_sized!(WideTraversalCore, 8, 4, 5, 64, 6);

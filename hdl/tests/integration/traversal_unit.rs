@@ -196,11 +196,41 @@ fn unsupported_configurations_are_errors() {
         .unwrap_err(),
         UnitConfigError::StackDepth(33)
     );
-    for nodes in [NodeFormat::Bvh2Q8, NodeFormat::Bvh4Q8, NodeFormat::Bvh8Q8] {
-        let e = unit_verilog(&UnitConfig { nodes, ..ok }).unwrap_err();
-        assert_eq!(e, UnitConfigError::Nodes(nodes));
-        assert!(e.to_string().contains(nodes.name()), "{e}");
-    }
+    let e = unit_verilog(&ok.with_nodes(NodeFormat::Bvh2Q8)).unwrap_err();
+    assert_eq!(e, UnitConfigError::Nodes(NodeFormat::Bvh2Q8));
+    assert!(e.to_string().contains("not bvh2-q8"), "{e}");
+    // Wide nodes need the wide unit's 64 slots, the binary ones 32.
+    let e = unit_verilog(&UnitConfig {
+        nodes: NodeFormat::Bvh8Q8,
+        ..ok
+    })
+    .unwrap_err();
+    assert_eq!(
+        e,
+        UnitConfigError::Slots {
+            nodes: NodeFormat::Bvh8Q8,
+            slots: 32
+        }
+    );
+    assert!(
+        e.to_string()
+            .contains("bvh8-q8 nodes has 64 ray slots, not 32"),
+        "{e}"
+    );
+    let e = unit_verilog(&UnitConfig { slots: 64, ..ok }).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("bvh2-fp32 nodes has 32 ray slots, not 64"),
+        "{e}"
+    );
+    // 4-wide nodes are built with the small test memory only.
+    let e = unit_verilog(&config().with_nodes(NodeFormat::Bvh4Q8)).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("11 node and 13 triangle address bits")
+            && e.to_string().contains("for bvh4-q8 nodes (sizes: 4/5)"),
+        "{e}"
+    );
     let triangle_box = UnitConfig {
         advance: Advance::TriangleBox,
         ..ok

@@ -4,9 +4,11 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use hdl::traversal::config::UnitConfig;
+use hdl::traversal::scene_memory_driver::NodeLayout;
 use hw_model::traversal::capacity::{chunks, run_passes};
 use hw_model::traversal::scene_image::SceneImage;
-use hw_model::traversal::{NodeFormat, SceneCapacity, SceneMemory, UnitRay};
+use hw_model::traversal::wide::image::WideImage;
+use hw_model::traversal::{SceneCapacity, SceneMemory, UnitRay};
 use sw_renderer::hit::Hit;
 use sw_renderer::rays::{CastStats, EngineError, Ray, RayCaster, RayEngine};
 use sw_renderer::trace::PreparedScene;
@@ -81,22 +83,41 @@ impl UnitEngine {
 
 impl RayEngine for UnitEngine {
     /// "hw traversal fp32 d5 l1": like the accelerator's "hw fp32 d5 l1 stream" (the
-    /// bit-accurate model of the unit is "traversal model fp32").
+    /// bit-accurate model of the unit is "traversal model fp32"); a wide unit's name ends with
+    /// its node format ("… bvh8-q8").
     fn name(&self) -> String {
         let c = self.config();
-        format!("hw traversal {} d{} l{}", c.format, c.depth, c.lanes)
+        let name = format!("hw traversal {} d{} l{}", c.format, c.depth, c.lanes);
+        match c.nodes.width() {
+            Some(_) => format!("{name} {}", c.nodes.name()),
+            None => name,
+        }
     }
 
     fn prepare<'a>(
         &'a self,
         scene: &'a PreparedScene,
     ) -> Result<Box<dyn RayCaster + 'a>, EngineError> {
-        // The RTL unit walks the binary fp32 tree.
-        let parts = chunks(&SceneImage::new(scene), self.memory(), NodeFormat::Bvh2Fp32)?;
+        // The chunks as the unit's nodes hold them: the binary images, or each written wide.
+        let nodes = self.config().nodes;
+        let parts = chunks(&SceneImage::new(scene), self.memory(), nodes)?;
+        let (bytes, chunks) = match nodes.width() {
+            None => (parts.iter())
+                .map(|c| (c.bytes() as u64, c.to_words()))
+                .unzip(),
+            Some(width) => {
+                let wide: Vec<WideImage> = (parts.iter())
+                    .map(|c| WideImage::of(c, width))
+                    .collect::<Result<_, _>>()?;
+                wide.iter()
+                    .map(|w| (w.bytes() as u64, w.to_words()))
+                    .unzip()
+            }
+        };
         Ok(Box::new(Caster {
             engine: self,
-            bytes: parts.iter().map(|c| c.bytes() as u64).collect(),
-            chunks: parts.iter().map(SceneImage::to_words).collect(),
+            bytes,
+            chunks,
             pool: Mutex::default(),
         }))
     }
@@ -128,7 +149,7 @@ impl Caster<'_> {
             .unwrap_or_else(|p| p.into_inner())
             .instances += 1;
         Ok(Instance {
-            driver: UnitDriver::new(unit, c.memory, c.stack_depth)?,
+            driver: UnitDriver::new(unit, c.memory, NodeLayout::of(c.nodes), c.stack_depth)?,
             loaded: None,
         })
     }

@@ -16,7 +16,7 @@ pub use verilated::{unit_model, UnitModel, VerilatedUnit};
 use std::collections::HashMap;
 
 use hdl::traversal::scene_memory_driver::{
-    check_before_load, status_result, LoadStatus, MemoryConfig, SceneMemoryError,
+    check_before_load_in, status_result_in, LoadStatus, MemoryConfig, NodeLayout, SceneMemoryError,
 };
 use hw_model::traversal::packet::{hit_from_words, HIT_WORDS, RAY_WORDS};
 use hw_model::traversal::scene_image::SceneImageError;
@@ -251,11 +251,12 @@ impl Counts {
     }
 }
 
-/// Drives one unit whose scene memory is `memory` and whose rays have `stack_depth` stack
-/// entries.
+/// Drives one unit whose scene memory is `memory` holding `layout`'s nodes and whose rays
+/// have `stack_depth` stack entries.
 pub struct UnitDriver<P: UnitPorts> {
     ports: P,
     memory: MemoryConfig,
+    layout: NodeLayout,
     stack_depth: usize,
     /// The tree depth of the loaded scene; `None` until a checked load succeeds.
     loaded_depth: Option<usize>,
@@ -266,11 +267,13 @@ impl<P: UnitPorts> UnitDriver<P> {
     pub fn new(
         ports: P,
         memory: MemoryConfig,
+        layout: NodeLayout,
         stack_depth: usize,
     ) -> Result<UnitDriver<P>, UnitError> {
         let mut d = UnitDriver {
             ports,
             memory,
+            layout,
             stack_depth,
             loaded_depth: None,
         };
@@ -305,14 +308,14 @@ impl<P: UnitPorts> UnitDriver<P> {
     }
 
     /// Loads a scene image: the driver's checks of the whole image and its size
-    /// ([`check_before_load`]), then the words streamed; the memory's status is judged by
-    /// [`status_result`].
+    /// ([`check_before_load_in`]: version 2 or 3 as the memory holds), then the words
+    /// streamed; the memory's status is judged by [`status_result_in`].
     pub fn load(&mut self, words: &[u32]) -> Result<(), UnitError> {
-        let image = check_before_load(words, self.memory)?;
+        let depth = check_before_load_in(words, self.memory, self.layout)?;
         self.loaded_depth = None;
         let status = self.stream_image(words)?;
-        status_result(&status, words, self.memory)?;
-        self.loaded_depth = Some(image.depth());
+        status_result_in(&status, words, self.memory, self.layout)?;
+        self.loaded_depth = Some(depth);
         Ok(())
     }
 

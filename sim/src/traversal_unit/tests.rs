@@ -260,7 +260,13 @@ fn rays(n: usize) -> Vec<UnitRay> {
 }
 
 fn driver(fault: Fault, stack_depth: usize) -> UnitDriver<FakeUnit> {
-    UnitDriver::new(FakeUnit::new(stack_depth, fault), MEMORY, stack_depth).unwrap()
+    UnitDriver::new(
+        FakeUnit::new(stack_depth, fault),
+        MEMORY,
+        NodeLayout::Binary,
+        stack_depth,
+    )
+    .unwrap()
 }
 
 #[test]

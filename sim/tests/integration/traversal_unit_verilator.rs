@@ -15,6 +15,7 @@
 use std::cell::Cell;
 
 use hdl::traversal::config::UnitConfig;
+use hdl::traversal::scene_memory_driver::NodeLayout;
 use hw_model::precision::SpawnChoice;
 use hw_model::traversal::scene_image::{ChildBoxes, ImageNode, ImageTriangle, Link, SceneImage};
 use hw_model::traversal::strategies::{mesh, ray};
@@ -64,7 +65,13 @@ fn unit() -> UnitDriver<VerilatedUnit> {
 /// A fresh, reset unit of `c`.
 fn unit_of(c: UnitConfig) -> UnitDriver<VerilatedUnit> {
     let model = unit_model(&c).unwrap();
-    UnitDriver::new(VerilatedUnit::new(&model).unwrap(), c.memory, c.stack_depth).unwrap()
+    UnitDriver::new(
+        VerilatedUnit::new(&model).unwrap(),
+        c.memory,
+        NodeLayout::of(c.nodes),
+        c.stack_depth,
+    )
+    .unwrap()
 }
 
 /// `tris` as a scene image (objects of 8 triangles; odd objects cast no shadow).

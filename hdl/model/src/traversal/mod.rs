@@ -328,11 +328,13 @@ impl TraversalModel {
                     continue;
                 }
             }
+            // Every pop is a step, the empty stack's too: the unit learns there that the
+            // walk is over (the binary walk's root box needs none).
             loop {
+                step(Step::Pop);
                 let Some((next, entry)) = stack.pop() else {
                     return Ok(best);
                 };
-                step(Step::Pop);
                 if wide_ray.t_hi < entry.t0 {
                     continue;
                 }
@@ -350,7 +352,8 @@ pub enum Step {
     Box,
     /// A leaf: this many Möller-Trumbore tests (after skipping non-shadow-casters).
     Leaf(u32),
-    /// A subtree taken from the stack (then skipped if entered beyond the far end).
+    /// A subtree taken from the stack (then skipped if entered beyond the far end); in a
+    /// wide walk also the empty stack's pop that ends it.
     Pop,
 }
 
