@@ -5,6 +5,7 @@
 
 use super::*;
 use hdl::traversal::scene_memory::LoadError;
+use hdl::traversal::scene_memory_driver::status_result;
 use hw_model::lookup;
 use hw_model::traversal::scene_image::{SceneImage, MAGIC};
 use hw_model::traversal::TraversalModel;
