@@ -41,6 +41,34 @@ use crate::defaults;
 use crate::macros::clock;
 use crate::mt::LanePort;
 
+/// The struct literal of a core (the binary or the wide one) for `lanes` lanes whose answers
+/// come `lane_latency` cycles after their queries (with `entries`, each beside its leaf's
+/// entry), operators of `depth` registers: the shared blocks, then the core's own (`own`:
+/// its scene memory, ports and counters).
+macro_rules! core_new {
+    ($lanes:expr, $lane_latency:expr, $entries:expr, $depth:expr, { $($own:tt)* }) => {
+        Self {
+            clock: Default::default(),
+            reset_n: Default::default(),
+            scene: Default::default(),
+            ray: Default::default(),
+            hit: Default::default(),
+            control: Default::default(),
+            counters: Default::default(),
+            lane: defaults($lanes),
+            lane_entry: defaults(if $entries { $lanes } else { 0 }),
+            entry: RayEntry::new($depth),
+            slots: SlotState::new($lanes, $entries),
+            leaf: (0..$lanes)
+                .map(|_| LeafPort::new($depth, $lane_latency))
+                .collect(),
+            hits: HitOutput::new($lanes),
+            $($own)*
+        }
+    };
+}
+pub(crate) use core_new;
+
 /// The core. Const parameters (rust-hdl cannot derive widths; [`unit_sized!`] computes them
 /// from a scene memory size): the scene memory's `NB, TB, LF, LC, NW, TW` (see
 /// [`SceneMemory`]); `S` slots addressed by `SB` bits; the stacks' pointer bits `PB` and RAM
@@ -114,80 +142,142 @@ impl<
             (1..=MAX_LANES).contains(&lanes),
             "{lanes} lanes: 1 to {MAX_LANES}"
         );
-        Self {
-            clock: Default::default(),
-            reset_n: Default::default(),
-            scene: Default::default(),
-            ray: Default::default(),
-            hit: Default::default(),
-            control: Default::default(),
-            counters: Default::default(),
-            lane: defaults(lanes),
-            lane_entry: defaults(if entries { lanes } else { 0 }),
+        core_new!(lanes, lane_latency, entries, depth, {
             memory: SceneMemory::new(lanes),
-            entry: RayEntry::new(depth),
-            slots: SlotState::new(lanes, entries),
             box_port: BoxPort::new(depth),
             stack_port: StackPort::new(stack_depth),
-            leaf: (0..lanes)
-                .map(|_| LeafPort::new(depth, lane_latency))
-                .collect(),
-            hits: HitOutput::new(lanes),
             counting: Counters::new(lanes),
-        }
+        })
     }
 }
 
-impl<
-        const NB: usize,
-        const TB: usize,
-        const LF: usize,
-        const LC: usize,
-        const NW: usize,
-        const TW: usize,
-        const S: usize,
-        const SB: usize,
-        const PB: usize,
-        const AB: usize,
-        const W: usize,
-    > Logic for TraversalCore<NB, TB, LF, LC, NW, TW, S, SB, PB, AB, W>
-{
+/// The core's wiring, the same for the binary core and the wide one
+/// (`wide_unit::WideTraversalCore`): `$core`'s `Logic` over its const parameters, with what differs
+/// said by each — the blocks it clocks, the blocks beside the slots that take a new ray (`entered`)
+/// and the ray setup's answer (`set_up`, `leaf_set_up` its source), the box port's node fields, its
+/// push, the stack port's further wiring, the counters of its own; `count` the width of a link's
+/// count. A macro rather than a generic block: the binary core's Verilog stays its own. `self` and
+/// `#[hdl_gen]` come from the caller (macro hygiene: the attribute's `connect` takes the caller's
+/// `self`), as do the statements that use `self`.
+macro_rules! core_logic {
+    (
+        $pound:tt $hdl_gen:tt
+        $this:ident,
+        $core:ident<$($g:ident),*>,
+        count: $lc:tt,
+        clocked: { $($clocked:tt)* },
+        entered: { $($entered:tt)* },
+        set_up: { $($set_up:tt)* },
+        leaf_set_up: { $($leaf_set_up:tt)* },
+        box_port: { $($box_port:tt)* },
+        push: { $($push:tt)* },
+        stack_port: { $($stack_port:tt)* },
+        counters: { $($counters:tt)* },
+    ) => {
+        impl<$(const $g: usize),*> Logic for $core<$($g),*> {
+            $pound $hdl_gen
+            fn update(&mut $this) {
+                clock!($this, clock, $($clocked)*);
+                $this.entry.reset_n.next = $this.reset_n.val();
+                $this.slots.reset_n.next = $this.reset_n.val();
+                $this.stack_port.reset_n.next = $this.reset_n.val();
+                $this.hits.reset_n.next = $this.reset_n.val();
+                $this.counting.reset_n.next = $this.reset_n.val();
+
+                // ---- The scene stream into the scene memory, and the load's status.
+                $this.memory.start_load.next = $this.control.scene_start.val();
+                $this.memory.s_tdata.next = $this.scene.tdata.val();
+                $this.memory.s_tvalid.next = $this.scene.tvalid.val();
+                $this.memory.s_tlast.next = $this.scene.tlast.val();
+                $this.scene.tready.next = $this.memory.s_tready.val();
+                $this.control.scene_loaded.next = $this.memory.loaded.val();
+                $this.control.scene_error.next = $this.memory.error.val();
+                $this.control.scene_error_code.next = $this.memory.error_code.val();
+                $this.control.scene_error_word.next = $this.memory.error_word.val();
+                $this.control.scene_error_value.next = $this.memory.error_value.val();
+
+                // ---- Rays in, to the slots and to every block that keeps a slot word.
+                RayStream::link(&mut $this.ray, &mut $this.entry.ray);
+                $this.entry.loaded.next = $this.memory.loaded.val();
+                $this.entry.free.next = $this.slots.free.val();
+                $this.entry.slot.next = $this.slots.enter_slot.val();
+                $this.slots.has_triangles.next = $this.memory.triangles.val().any();
+                EnteredSource::<SB>::join(&mut $this.entry.entered, &mut $this.slots.entered);
+                EnteredSource::<SB>::join(&mut $this.entry.entered, &mut $this.stack_port.entered);
+                EnteredSource::<SB>::join(&mut $this.entry.entered, &mut $this.hits.entered);
+                $($entered)*
+                $($set_up)*
+
+                // ---- The box port: the node read, its steps and pushes.
+                BoxGrantSource::<SB, LF>::join(&mut $this.slots.box_grant, &mut $this.box_port.grant);
+                $this.memory.node_address.next = $this.box_port.node_address.val();
+                $($box_port)*
+                LinkStep::<SB, LF, $lc>::join(&mut $this.box_port.step, &mut $this.slots.box_step);
+                $($push)*
+
+                // ---- The stack port.
+                PopGrantSource::<SB>::join(&mut $this.slots.pop_grant, &mut $this.stack_port.grant);
+                LinkStep::<SB, LF, $lc>::join(&mut $this.stack_port.step, &mut $this.slots.pop_step);
+                $($stack_port)*
+
+                // ---- The leaf ports, one per lane, each with its lane's triangle read.
+                for l in 0..$this.leaf.len() {
+                    clock!($this, clock, leaf[l]);
+                    EnteredSource::<SB>::join(&mut $this.entry.entered, &mut $this.leaf[l].entered);
+                    SetUpSource::<SB>::join(&mut $($leaf_set_up)*, &mut $this.leaf[l].set_up);
+                    LeafGrantSource::<SB, LF>::join(&mut $this.slots.leaf_grant[l], &mut $this.leaf[l].grant);
+                    LeafStep::<SB>::join(&mut $this.leaf[l].step, &mut $this.slots.leaf_step[l]);
+                    $this.memory.triangle_address[l].next = $this.leaf[l].triangle_address.val();
+                    $this.leaf[l].vertices.next = $this.memory.vertices[l].val();
+                    $this.leaf[l].global_index.next = $this.memory.global_index[l].val();
+                    $this.leaf[l].casts_shadow.next = $this.memory.casts_shadow[l].val();
+                    LanePort::link(&mut $this.lane[l], &mut $this.leaf[l].lane);
+                    $this.leaf[l].out_slot.next = $this.slots.out_grant.slot.val();
+                    $this.hits.lane_best[l].next = $this.leaf[l].out_best.val();
+                    // (A linked bundle is read on the core's side: the port's own name is the
+                    // link's.)
+                    $this.counting.mt_test[l].next = $this.lane[l].valid.val();
+                }
+                for l in 0..$this.lane_entry.len() {
+                    $this.lane_entry[l].next = $this.slots.lane_entry[l].val();
+                }
+
+                // ---- The hit output.
+                OutGrantSource::<SB>::join(&mut $this.slots.out_grant, &mut $this.hits.grant);
+                HitStream::link(&mut $this.hit, &mut $this.hits.hit);
+
+                // ---- Status and counters.
+                $this.control.idle.next = !$this.slots.occupied.val() & !$this.hits.pending.val();
+                $this.control.overflow.next = $this.stack_port.overflow.val();
+                $this.control.overflow_ray.next = $this.stack_port.overflow_ray.val();
+                $this.counting.ray.next = $this.entry.entered.valid.val();
+                $this.counting.box_test.next = $this.slots.box_grant.valid.val();
+                $this.counting.box_visit.next =
+                    $this.box_port.step.valid.val() & $this.box_port.step.enter.val();
+                $this.counting.pop_visit.next =
+                    $this.stack_port.step.valid.val() & $this.stack_port.step.enter.val();
+                $($counters)*
+                $this.counting.busy.next = $this.slots.occupied.val();
+                CounterPort::link(&mut $this.counters, &mut $this.counting.port);
+            }
+        }
+    };
+}
+pub(crate) use core_logic;
+
+core_logic! {
     #[hdl_gen]
-    fn update(&mut self) {
-        clock!(self, clock, memory, entry, slots, box_port, stack_port, hits, counting);
-        self.entry.reset_n.next = self.reset_n.val();
-        self.slots.reset_n.next = self.reset_n.val();
-        self.stack_port.reset_n.next = self.reset_n.val();
-        self.hits.reset_n.next = self.reset_n.val();
-        self.counting.reset_n.next = self.reset_n.val();
-
-        // ---- The scene stream into the scene memory, and the load's status.
-        self.memory.start_load.next = self.control.scene_start.val();
-        self.memory.s_tdata.next = self.scene.tdata.val();
-        self.memory.s_tvalid.next = self.scene.tvalid.val();
-        self.memory.s_tlast.next = self.scene.tlast.val();
-        self.scene.tready.next = self.memory.s_tready.val();
-        self.control.scene_loaded.next = self.memory.loaded.val();
-        self.control.scene_error.next = self.memory.error.val();
-        self.control.scene_error_code.next = self.memory.error_code.val();
-        self.control.scene_error_word.next = self.memory.error_word.val();
-        self.control.scene_error_value.next = self.memory.error_value.val();
-
-        // ---- Rays in, to the slots and to every block that keeps a slot word.
-        RayStream::link(&mut self.ray, &mut self.entry.ray);
-        self.entry.loaded.next = self.memory.loaded.val();
-        self.entry.free.next = self.slots.free.val();
-        self.entry.slot.next = self.slots.enter_slot.val();
-        self.slots.has_triangles.next = self.memory.triangles.val().any();
-        EnteredSource::<SB>::join(&mut self.entry.entered, &mut self.slots.entered);
-        EnteredSource::<SB>::join(&mut self.entry.entered, &mut self.stack_port.entered);
-        EnteredSource::<SB>::join(&mut self.entry.entered, &mut self.hits.entered);
+    self,
+    TraversalCore<NB, TB, LF, LC, NW, TW, S, SB, PB, AB, W>,
+    count: LC,
+    clocked: { memory, entry, slots, box_port, stack_port, hits, counting },
+    entered: {},
+    set_up: {
         SetUpSource::<SB>::join(&mut self.entry.set_up, &mut self.slots.set_up);
         SetUpSource::<SB>::join(&mut self.entry.set_up, &mut self.box_port.set_up);
-
-        // ---- The box port: the node read, its steps and pushes.
-        BoxGrantSource::<SB, LF>::join(&mut self.slots.box_grant, &mut self.box_port.grant);
-        self.memory.node_address.next = self.box_port.node_address.val();
+    },
+    leaf_set_up: { self.entry.set_up },
+    box_port: {
         for j in 0..6 {
             self.box_port.min[j].next = self.memory.min[j].val();
             self.box_port.max[j].next = self.memory.max[j].val();
@@ -202,51 +292,10 @@ impl<
         }
         self.box_port.root_first.next = self.memory.root_first.val();
         self.box_port.root_count.next = self.memory.root_count.val();
-        LinkStep::<SB, LF, LC>::join(&mut self.box_port.step, &mut self.slots.box_step);
-        Push::<SB, W>::join(&mut self.box_port.push, &mut self.stack_port.push);
-
-        // ---- The stack port.
-        PopGrantSource::<SB>::join(&mut self.slots.pop_grant, &mut self.stack_port.grant);
-        LinkStep::<SB, LF, LC>::join(&mut self.stack_port.step, &mut self.slots.pop_step);
-
-        // ---- The leaf ports, one per lane, each with its lane's triangle read.
-        for l in 0..self.leaf.len() {
-            clock!(self, clock, leaf[l]);
-            EnteredSource::<SB>::join(&mut self.entry.entered, &mut self.leaf[l].entered);
-            SetUpSource::<SB>::join(&mut self.entry.set_up, &mut self.leaf[l].set_up);
-            LeafGrantSource::<SB, LF>::join(&mut self.slots.leaf_grant[l], &mut self.leaf[l].grant);
-            LeafStep::<SB>::join(&mut self.leaf[l].step, &mut self.slots.leaf_step[l]);
-            self.memory.triangle_address[l].next = self.leaf[l].triangle_address.val();
-            self.leaf[l].vertices.next = self.memory.vertices[l].val();
-            self.leaf[l].global_index.next = self.memory.global_index[l].val();
-            self.leaf[l].casts_shadow.next = self.memory.casts_shadow[l].val();
-            LanePort::link(&mut self.lane[l], &mut self.leaf[l].lane);
-            self.leaf[l].out_slot.next = self.slots.out_grant.slot.val();
-            self.hits.lane_best[l].next = self.leaf[l].out_best.val();
-            // (A linked bundle is read on the core's side: the port's own name is the link's.)
-            self.counting.mt_test[l].next = self.lane[l].valid.val();
-        }
-        for l in 0..self.lane_entry.len() {
-            self.lane_entry[l].next = self.slots.lane_entry[l].val();
-        }
-
-        // ---- The hit output.
-        OutGrantSource::<SB>::join(&mut self.slots.out_grant, &mut self.hits.grant);
-        HitStream::link(&mut self.hit, &mut self.hits.hit);
-
-        // ---- Status and counters.
-        self.control.idle.next = !self.slots.occupied.val() & !self.hits.pending.val();
-        self.control.overflow.next = self.stack_port.overflow.val();
-        self.control.overflow_ray.next = self.stack_port.overflow_ray.val();
-        self.counting.ray.next = self.entry.entered.valid.val();
-        self.counting.box_test.next = self.slots.box_grant.valid.val();
-        self.counting.box_visit.next =
-            self.box_port.step.valid.val() & self.box_port.step.enter.val();
-        self.counting.pop_visit.next =
-            self.stack_port.step.valid.val() & self.stack_port.step.enter.val();
-        self.counting.busy.next = self.slots.occupied.val();
-        CounterPort::link(&mut self.counters, &mut self.counting.port);
-    }
+    },
+    push: { Push::<SB, W>::join(&mut self.box_port.push, &mut self.stack_port.push); },
+    stack_port: {},
+    counters: {},
 }
 
 /// `$block` (the core, or the unit top over it) with a scene memory of `$nb` node and `$tb`

@@ -27,6 +27,7 @@ use super::slot_ports::{
     PopGrantSource, SetUpSource,
 };
 use super::slots::SlotState;
+use super::unit::{core_logic, core_new};
 use super::wide_box_port::WideBoxPort;
 use super::wide_scene_memory::WideSceneMemory;
 use super::wide_set_up::WideSetUp;
@@ -107,96 +108,32 @@ impl<
             (1..=MAX_LANES).contains(&lanes),
             "{lanes} lanes: 1 to {MAX_LANES}"
         );
-        Self {
-            clock: Default::default(),
-            reset_n: Default::default(),
-            scene: Default::default(),
-            ray: Default::default(),
-            hit: Default::default(),
-            control: Default::default(),
-            counters: Default::default(),
-            lane: defaults(lanes),
-            lane_entry: defaults(if entries { lanes } else { 0 }),
+        core_new!(lanes, lane_latency, entries, depth, {
             memory: WideSceneMemory::new(width, lanes),
-            entry: RayEntry::new(depth),
             wide_set_up: WideSetUp::new(depth),
-            slots: SlotState::new(lanes, entries),
             box_port: WideBoxPort::new(width, depth),
             stack_port: WideStackPort::new(width, stack_depth),
-            leaf: (0..lanes)
-                .map(|_| LeafPort::new(depth, lane_latency))
-                .collect(),
-            hits: HitOutput::new(lanes),
             counting: Counters::wide(lanes),
-        }
+        })
     }
 }
 
-impl<
-        const NB: usize,
-        const TB: usize,
-        const LF: usize,
-        const LK: usize,
-        const HB: usize,
-        const LB: usize,
-        const NW: usize,
-        const TW: usize,
-        const S: usize,
-        const SB: usize,
-        const PB: usize,
-        const RB: usize,
-        const W: usize,
-    > Logic for WideTraversalCore<NB, TB, LF, LK, HB, LB, NW, TW, S, SB, PB, RB, W>
-{
+core_logic! {
     #[hdl_gen]
-    fn update(&mut self) {
-        clock!(
-            self,
-            clock,
-            memory,
-            entry,
-            wide_set_up,
-            slots,
-            box_port,
-            stack_port,
-            hits,
-            counting
-        );
-        self.entry.reset_n.next = self.reset_n.val();
-        self.slots.reset_n.next = self.reset_n.val();
-        self.stack_port.reset_n.next = self.reset_n.val();
-        self.hits.reset_n.next = self.reset_n.val();
-        self.counting.reset_n.next = self.reset_n.val();
-
-        // ---- The scene stream into the scene memory, and the load's status.
-        self.memory.start_load.next = self.control.scene_start.val();
-        self.memory.s_tdata.next = self.scene.tdata.val();
-        self.memory.s_tvalid.next = self.scene.tvalid.val();
-        self.memory.s_tlast.next = self.scene.tlast.val();
-        self.scene.tready.next = self.memory.s_tready.val();
-        self.control.scene_loaded.next = self.memory.loaded.val();
-        self.control.scene_error.next = self.memory.error.val();
-        self.control.scene_error_code.next = self.memory.error_code.val();
-        self.control.scene_error_word.next = self.memory.error_word.val();
-        self.control.scene_error_value.next = self.memory.error_value.val();
-
-        // ---- Rays in, to the slots and to every block that keeps a slot word.
-        RayStream::link(&mut self.ray, &mut self.entry.ray);
-        self.entry.loaded.next = self.memory.loaded.val();
-        self.entry.free.next = self.slots.free.val();
-        self.entry.slot.next = self.slots.enter_slot.val();
-        self.slots.has_triangles.next = self.memory.triangles.val().any();
-        EnteredSource::<SB>::join(&mut self.entry.entered, &mut self.slots.entered);
-        EnteredSource::<SB>::join(&mut self.entry.entered, &mut self.stack_port.entered);
-        EnteredSource::<SB>::join(&mut self.entry.entered, &mut self.hits.entered);
+    self,
+    WideTraversalCore<NB, TB, LF, LK, HB, LB, NW, TW, S, SB, PB, RB, W>,
+    count: WIDE_COUNT_BITS,
+    clocked: { memory, entry, wide_set_up, slots, box_port, stack_port, hits, counting },
+    entered: {
         EnteredSource::<SB>::join(&mut self.entry.entered, &mut self.box_port.entered);
+    },
+    set_up: {
         SetUpSource::<SB>::join(&mut self.entry.set_up, &mut self.wide_set_up.fp32);
         SetUpSource::<SB>::join(&mut self.wide_set_up.set_up, &mut self.slots.set_up);
         SetUpSource::<SB>::join(&mut self.wide_set_up.set_up, &mut self.box_port.set_up);
-
-        // ---- The box port: the node read, its steps and pushes.
-        BoxGrantSource::<SB, LF>::join(&mut self.slots.box_grant, &mut self.box_port.grant);
-        self.memory.node_address.next = self.box_port.node_address.val();
+    },
+    leaf_set_up: { self.wide_set_up.set_up },
+    box_port: {
         for a in 0..3 {
             self.box_port.origin[a].next = self.memory.origin[a].val();
             self.box_port.exp[a].next = self.memory.exp[a].val();
@@ -209,68 +146,28 @@ impl<
         for c in 0..self.box_port.link.len() {
             self.box_port.link[c].next = self.memory.link[c].val();
         }
-        LinkStep::<SB, LF, WIDE_COUNT_BITS>::join(
-            &mut self.box_port.step,
-            &mut self.slots.box_step,
-        );
+    },
+    push: {
         self.stack_port.push_count.next = self.box_port.push_count.val();
         self.stack_port.push_slot.next = self.box_port.push_slot.val();
         for j in 0..self.box_port.push_data.len() {
             self.stack_port.push_data[j].next = self.box_port.push_data[j].val();
         }
-
-        // ---- The stack port; an entered pop's entry word goes to the box port.
-        PopGrantSource::<SB>::join(&mut self.slots.pop_grant, &mut self.stack_port.grant);
-        LinkStep::<SB, LF, WIDE_COUNT_BITS>::join(
-            &mut self.stack_port.step,
-            &mut self.slots.pop_step,
-        );
+    },
+    // An entered pop's entry word goes to the box port.
+    stack_port: {
         self.box_port.popped.next =
             self.stack_port.step.valid.val() & self.stack_port.step.enter.val();
         self.box_port.popped_slot.next = self.stack_port.step.slot.val();
         self.box_port.popped_entry.next = self.stack_port.step_entry.val();
-
-        // ---- The leaf ports, one per lane, each with its lane's triangle read.
-        for l in 0..self.leaf.len() {
-            clock!(self, clock, leaf[l]);
-            EnteredSource::<SB>::join(&mut self.entry.entered, &mut self.leaf[l].entered);
-            SetUpSource::<SB>::join(&mut self.wide_set_up.set_up, &mut self.leaf[l].set_up);
-            LeafGrantSource::<SB, LF>::join(&mut self.slots.leaf_grant[l], &mut self.leaf[l].grant);
-            LeafStep::<SB>::join(&mut self.leaf[l].step, &mut self.slots.leaf_step[l]);
-            self.memory.triangle_address[l].next = self.leaf[l].triangle_address.val();
-            self.leaf[l].vertices.next = self.memory.vertices[l].val();
-            self.leaf[l].global_index.next = self.memory.global_index[l].val();
-            self.leaf[l].casts_shadow.next = self.memory.casts_shadow[l].val();
-            LanePort::link(&mut self.lane[l], &mut self.leaf[l].lane);
-            self.leaf[l].out_slot.next = self.slots.out_grant.slot.val();
-            self.hits.lane_best[l].next = self.leaf[l].out_best.val();
-            self.counting.mt_test[l].next = self.lane[l].valid.val();
-        }
-        for l in 0..self.lane_entry.len() {
-            self.lane_entry[l].next = self.slots.lane_entry[l].val();
-        }
-
-        // ---- The hit output.
-        OutGrantSource::<SB>::join(&mut self.slots.out_grant, &mut self.hits.grant);
-        HitStream::link(&mut self.hit, &mut self.hits.hit);
-
-        // ---- Status and counters (the root node's visit at its grant).
-        self.control.idle.next = !self.slots.occupied.val() & !self.hits.pending.val();
-        self.control.overflow.next = self.stack_port.overflow.val();
-        self.control.overflow_ray.next = self.stack_port.overflow_ray.val();
-        self.counting.ray.next = self.entry.entered.valid.val();
-        self.counting.box_test.next = self.slots.box_grant.valid.val();
-        self.counting.box_visit.next =
-            self.box_port.step.valid.val() & self.box_port.step.enter.val();
-        self.counting.pop_visit.next =
-            self.stack_port.step.valid.val() & self.stack_port.step.enter.val();
+    },
+    // The root node's visit at its grant.
+    counters: {
         for r in 0..self.counting.root_visit.len() {
             self.counting.root_visit[r].next =
                 self.slots.box_grant.valid.val() & self.slots.box_grant.root.val();
         }
-        self.counting.busy.next = self.slots.occupied.val();
-        CounterPort::link(&mut self.counters, &mut self.counting.port);
-    }
+    },
 }
 
 /// `$block` (the wide core, or the unit top over it) for `$k`-wide nodes with a scene memory
