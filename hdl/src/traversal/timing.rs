@@ -53,6 +53,8 @@ pub fn unit_timing(
                 + far_end::latency(depth)
                 + SLOT_UPDATE,
         ),
+        // A leaf that leaves the hit as it was steps on from the answer (`LeafPort`'s pop).
+        far_latency: cycles(lt + far_end::latency(depth)),
         // The stack port (its grant register, the stack read and the entry's distance against
         // the far end), then the slot's update.
         pop_latency: cycles(stack_port::LATENCY + SLOT_UPDATE),

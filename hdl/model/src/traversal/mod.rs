@@ -231,10 +231,9 @@ impl TraversalModel {
                 counters.node_visits += 1;
                 if link.is_leaf() {
                     let leaf = link.first as usize..(link.first + link.count) as usize;
-                    let tested = counters.mt_tests;
                     let triangles = &img.triangles[leaf];
                     let answer = self.leaf(ray, &window, entry, triangles, counters, &mut best);
-                    step(Step::Leaf((counters.mt_tests - tested) as u32));
+                    step(Step::leaf(triangles, &answer));
                     match answer {
                         Leaf::Occluded(hit) => return Ok(Some(hit)),
                         Leaf::Closer => {
@@ -297,10 +296,9 @@ impl TraversalModel {
             counters.node_visits += 1;
             if link.is_leaf() {
                 let leaf = link.first as usize..(link.first + link.count) as usize;
-                let tested = counters.mt_tests;
                 let triangles = &image.triangles[leaf];
                 let answer = self.leaf(ray, &window, at.t0, triangles, counters, &mut best);
-                step(Step::Leaf((counters.mt_tests - tested) as u32));
+                step(Step::leaf(triangles, &answer));
                 match answer {
                     Leaf::Occluded(hit) => return Ok(Some(hit)),
                     Leaf::Closer => {
@@ -350,11 +348,24 @@ impl TraversalModel {
 pub enum Step {
     /// A box test: the root's box, or an inner node's two child boxes.
     Box,
-    /// A leaf: this many Möller-Trumbore tests (after skipping non-shadow-casters).
-    Leaf(u32),
+    /// A leaf of `triangles`, each issued to the lane in a cycle of its own: tested, or
+    /// skipped (a non-shadow-caster for an any-hit ray, the excluded triangle), which takes
+    /// its issue cycle and the lane's latency all the same. `nearer`: the leaf made a
+    /// closest-hit ray's hit nearer, so the unit recomputes its far end before the next step.
+    Leaf { triangles: u32, nearer: bool },
     /// A subtree taken from the stack (then skipped if entered beyond the far end); in a
     /// wide walk also the empty stack's pop that ends it.
     Pop,
+}
+
+impl Step {
+    /// The step of a leaf of `triangles` that answered `answer`.
+    fn leaf(triangles: &[ImageTriangle], answer: &Leaf) -> Step {
+        Step::Leaf {
+            triangles: triangles.len() as u32,
+            nearer: matches!(answer, Leaf::Closer),
+        }
+    }
 }
 
 /// What a leaf did to the ray's answer.

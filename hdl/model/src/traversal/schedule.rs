@@ -28,6 +28,9 @@ pub struct UnitTiming {
     /// Last triangle read issued → its answer folded into the slot's hit (read + MT lane +
     /// reduction and the far end's update).
     pub mt_latency: u64,
+    /// Of `mt_latency`, the part only a leaf that made the hit nearer takes (the far end's
+    /// recomputation); any other leaf's slot is ready `far_latency` cycles sooner.
+    pub far_latency: u64,
     /// Stack read + far-end check.
     pub pop_latency: u64,
 }
@@ -74,7 +77,7 @@ pub struct Schedule {
     pub cycles: u64,
     /// Cycles the box port issued a test.
     pub box_busy: u64,
-    /// Lane-cycles that issued a test.
+    /// Lane-cycles that issued a triangle (tested or skipped).
     pub mt_busy: u64,
 }
 
@@ -92,8 +95,8 @@ enum Want {
     Free,
     Box,
     Pop,
-    /// Triangles of its leaf not issued yet.
-    Leaf(u32),
+    /// Triangles of its leaf not issued yet; whether the leaf makes the hit nearer.
+    Leaf(u32, bool),
     /// Its answer to the hit output.
     Out,
 }
@@ -110,14 +113,14 @@ struct Slot {
 impl Slot {
     /// Moves to the next step that needs a resource (an empty leaf needs none).
     fn advance(&mut self, walk: &[Step]) {
-        while walk.get(self.step) == Some(&Step::Leaf(0)) {
+        while matches!(walk.get(self.step), Some(Step::Leaf { triangles: 0, .. })) {
             self.step += 1;
         }
         self.want = match walk.get(self.step) {
             None => Want::Out,
             Some(Step::Box) => Want::Box,
             Some(Step::Pop) => Want::Pop,
-            Some(&Step::Leaf(n)) => Want::Leaf(n),
+            Some(&Step::Leaf { triangles, nearer }) => Want::Leaf(triangles, nearer),
         };
     }
 }
@@ -174,23 +177,23 @@ pub fn schedule(t: &UnitTiming, walks: &[Vec<Step>]) -> Schedule {
         }
         for lane in 0..t.lanes {
             let Some(k) = round_robin(&slots, &mut last[2 + lane], cycle, |k, w| {
-                k % t.lanes == lane && matches!(w, Want::Leaf(_))
+                k % t.lanes == lane && matches!(w, Want::Leaf(..))
             }) else {
                 continue;
             };
             let s = &mut slots[k];
-            let Want::Leaf(left) = s.want else {
+            let Want::Leaf(left, nearer) = s.want else {
                 unreachable!("granted for a leaf")
             };
             out.mt_busy += 1;
             // One triangle a cycle per slot: it is next ready in the next cycle, or when
-            // its leaf's last answer is in.
+            // its leaf's last answer is in (and a nearer hit's far end).
             if left == 1 {
-                s.ready_at = cycle + t.mt_latency;
+                s.ready_at = cycle + t.mt_latency - if nearer { 0 } else { t.far_latency };
                 s.step += 1;
                 s.advance(&walks[s.ray]);
             } else {
-                s.want = Want::Leaf(left - 1);
+                s.want = Want::Leaf(left - 1, nearer);
                 s.ready_at = cycle + 1;
             }
         }
@@ -246,15 +249,40 @@ mod tests {
         setup_latency: 5,
         box_latency: 10,
         mt_latency: 20,
+        far_latency: 4,
         pop_latency: 2,
     };
 
     #[test]
     fn one_slot_runs_a_walk_step_after_step() {
-        // setup 5, box 10, leaf of 3: issues at 15, 16, 17, answer at 37, out at 37.
-        let walk = vec![Step::Box, Step::Leaf(3)];
+        // setup 5, box 10, leaf of 3 with a nearer hit: issues at 15, 16, 17, answer and
+        // far end at 37, out at 37.
+        let walk = vec![
+            Step::Box,
+            Step::Leaf {
+                triangles: 3,
+                nearer: true,
+            },
+        ];
         let s = schedule(&T, &[walk]);
         assert_eq!((s.cycles, s.box_busy, s.mt_busy), (38, 1, 3));
+    }
+
+    #[test]
+    fn a_leaf_that_leaves_the_hit_as_it_was_skips_the_far_end() {
+        let walk = |nearer| {
+            vec![
+                Step::Box,
+                Step::Leaf {
+                    triangles: 3,
+                    nearer,
+                },
+                Step::Pop,
+            ]
+        };
+        let nearer = schedule(&T, &[walk(true)]).cycles;
+        let same = schedule(&T, &[walk(false)]).cycles;
+        assert_eq!(nearer - same, T.far_latency);
     }
 
     #[test]
@@ -295,7 +323,11 @@ mod tests {
 
     #[test]
     fn lanes_share_the_leaf_tests_of_different_slots() {
-        let walks = vec![vec![Step::Leaf(8)]; 32];
+        let leaf = Step::Leaf {
+            triangles: 8,
+            nearer: false,
+        };
+        let walks = vec![vec![leaf]; 32];
         let one_lane = schedule(&UnitTiming { slots: 32, ..T }, &walks);
         let two_lanes = schedule(
             &UnitTiming {
@@ -311,7 +343,11 @@ mod tests {
 
     #[test]
     fn empty_leaves_and_pops_take_no_box_or_lane() {
-        let walks = vec![vec![Step::Box, Step::Leaf(0), Step::Pop]];
+        let empty = Step::Leaf {
+            triangles: 0,
+            nearer: false,
+        };
+        let walks = vec![vec![Step::Box, empty, Step::Pop]];
         let s = schedule(&T, &walks);
         assert_eq!((s.cycles, s.box_busy, s.mt_busy), (5 + 10 + 2 + 1, 1, 0));
     }

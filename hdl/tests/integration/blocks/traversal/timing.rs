@@ -20,6 +20,11 @@ fn deeper_pipelines_take_longer_and_every_step_takes_a_cycle() {
         deep.box_latency,
         (MEMORY_READ + box_test::latency(5) + SLOT_UPDATE) as u64
     );
+    // The far end a nearer hit recomputes is part of the leaf's latency (none at depth 0).
+    for t in [shallow, deep] {
+        assert!(t.far_latency < t.mt_latency, "{t:?}");
+    }
+    assert!(shallow.far_latency < deep.far_latency);
 }
 
 /// The leaf advance lengthens only the lane's answer path, by its block and its adder.
