@@ -26,3 +26,5 @@ mod traversal_parts;
 mod traversal_unit;
 mod traversal_unit_axil;
 mod wide_box_stage;
+mod wide_scene_memory;
+mod wide_traversal_unit;

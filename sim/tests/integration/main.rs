@@ -19,3 +19,4 @@ mod sweep;
 mod traversal_unit_verilator;
 mod verilator_builder;
 mod wide_box_stage_verilator;
+mod wide_traversal_unit_verilator;
