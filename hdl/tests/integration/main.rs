@@ -11,6 +11,7 @@ mod box_test;
 mod common;
 mod fixed_ops;
 mod float_ops;
+mod float_sqrt;
 mod fusesoc_core;
 mod mt_lane;
 mod ray_setup;
