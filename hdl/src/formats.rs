@@ -1,5 +1,5 @@
 //! The catalogue's formats as rust-hdl operator types: one module a format of
-//! `hw_model::hw_formats!`, each holding the same names (`Add`, `Sub`, `Mul`, `Recip`, `Lt`,
+//! `hw_model::hw_formats!`, each holding the same names (`Add`, `Sub`, `Mul`, `Recip`, `Lt`, (float) `Sqrt`,
 //! `FromF32`, `ToF32`, `WIDTH`, `FORMAT`, `NAME`) so pipelines can be written over
 //! `formats::<name>`, and entry points ([`rtl`], [`max_stages`], [`raw_fp32`]) that take a
 //! [`HwFormat`].
@@ -15,9 +15,22 @@ use crate::operator::{Op, OperatorError};
 use crate::verilog::OperatorRtl;
 
 /// Per-format `max_stages(op)` and `rtl(op, stages)` over the module's operator types:
-/// every format module (float or fixed) invokes it after defining them.
+/// every format module invokes it after defining them, a float format with `float` (it has
+/// `Sqrt`), a fixed-point one with `fixed` (it has none: `max_stages(Op::Sqrt)` is 0 and
+/// `rtl(Op::Sqrt, _)` the error [`OperatorError::NotInFormat`]).
 macro_rules! operator_table {
-    () => {
+    (@sqrt_max float) => { <Sqrt as $crate::operator::Operator>::max_stages() };
+    (@sqrt_max fixed) => { 0 };
+    (@sqrt_missing float, $op:ident) => { None };
+    (@sqrt_missing fixed, $op:ident) => {
+        ($op == $crate::operator::Op::Sqrt).then(|| $crate::operator::OperatorError::NotInFormat {
+            format: NAME.to_string(),
+            op: $op,
+        })
+    };
+    (@sqrt_rtl float, $stages:ident) => { $crate::verilog::operator_verilog::<Sqrt>($stages) };
+    (@sqrt_rtl fixed, $stages:ident) => { unreachable!("refused above: no fixed-point square root") };
+    ($kind:ident) => {
         /// The format as the rest of the toolkit names it.
         pub const HW: hw_model::HwFormat = hw_model::HwFormat::named(NAME);
 
@@ -32,6 +45,7 @@ macro_rules! operator_table {
                 Op::Lt => <Lt as Operator>::max_stages(),
                 Op::FromF32 => <FromF32 as Operator>::max_stages(),
                 Op::ToF32 => <ToF32 as Operator>::max_stages(),
+                Op::Sqrt => $crate::formats::operator_table!(@sqrt_max $kind),
             }
         }
 
@@ -42,6 +56,9 @@ macro_rules! operator_table {
         ) -> Result<$crate::verilog::OperatorRtl, $crate::operator::OperatorError> {
             use $crate::operator::Op;
             use $crate::verilog::operator_verilog;
+            if let Some(missing) = $crate::formats::operator_table!(@sqrt_missing $kind, op) {
+                return Err(missing);
+            }
             let max = max_stages(op);
             if stages > max {
                 return Err($crate::operator::OperatorError::TooManyStages {
@@ -59,6 +76,7 @@ macro_rules! operator_table {
                 Op::Lt => operator_verilog::<Lt>(stages),
                 Op::FromF32 => operator_verilog::<FromF32>(stages),
                 Op::ToF32 => operator_verilog::<ToF32>(stages),
+                Op::Sqrt => $crate::formats::operator_table!(@sqrt_rtl $kind, stages),
             })
         }
 
@@ -86,17 +104,20 @@ macro_rules! float_format {
             /// The operators' widths (`crate::widths`).
             const WIDTHS: crate::widths::FloatWidths = crate::widths::FloatWidths::of($e, $m);
             const RECIP: crate::widths::RecipWidths = WIDTHS.recip;
+            const SQRT: crate::widths::SqrtWidths = WIDTHS.sqrt;
             pub type Add = FloatAdd<$e, $m, { WIDTHS.word }, { WIDTHS.significand }, { WIDTHS.exponent }, { WIDTHS.aligned }, { WIDTHS.sum }, false>;
             pub type Sub = FloatAdd<$e, $m, { WIDTHS.word }, { WIDTHS.significand }, { WIDTHS.exponent }, { WIDTHS.aligned }, { WIDTHS.sum }, true>;
             pub type Mul = FloatMul<$e, $m, { WIDTHS.word }, { WIDTHS.significand }, { WIDTHS.product }, { WIDTHS.exponent }>;
             pub type Recip = FloatRecip<$e, $m, { WIDTHS.word }, { WIDTHS.significand }, { WIDTHS.exponent },
                 { RECIP.index }, { RECIP.d }, { RECIP.y }, { RECIP.b }, { RECIP.c }, { RECIP.d_squared },
                 { RECIP.d_squared_kept }, { RECIP.b_product }, { RECIP.c_product }, { RECIP.rounding_product }>;
+            pub type Sqrt = FloatSqrt<$e, $m, { WIDTHS.word }, { WIDTHS.significand }, { WIDTHS.exponent },
+                { SQRT.root }, { SQRT.remainder }, { SQRT.radicand }>;
             pub type Lt = FloatLt<$e, $m, { WIDTHS.word }, { WIDTHS.significand }>;
             // FromF32: X = 10, the signed range of fp32's exponent.
             pub type FromF32 = FloatFromF32<$e, $m, { WIDTHS.word }, { WIDTHS.significand }, 10>;
             pub type ToF32 = FloatToF32<$e, $m, { WIDTHS.word }, { WIDTHS.significand }>;
-            $crate::formats::operator_table!();
+            $crate::formats::operator_table!(float);
         }
     };
 }

@@ -33,6 +33,9 @@ pub mod traversal;
 // The block-floating-point dual-precision filter (issue 17).
 pub mod dual;
 
+// The frame unit's blocks: ray generation, shading (issue 40).
+pub mod frame;
+
 /// `n` default values: the blocks or signals of a `Vec` field, one per lane or slot.
 pub(crate) fn defaults<T: Default>(n: usize) -> Vec<T> {
     (0..n).map(|_| T::default()).collect()

@@ -19,9 +19,13 @@ pub enum Op {
     Lt,
     FromF32,
     ToF32,
+    /// The square root, float formats only (`hw_model` has no fixed-point one): a fixed-point
+    /// format's `max_stages` of it is 0 and its `rtl` [`OperatorError::NotInFormat`].
+    Sqrt,
 }
 
 impl Op {
+    /// The operators every number format provides (the MT lane's).
     pub const ALL: [Op; 7] = [
         Op::Add,
         Op::Sub,
@@ -41,6 +45,7 @@ impl Op {
             Op::Lt => "lt",
             Op::FromF32 => "from_f32",
             Op::ToF32 => "to_f32",
+            Op::Sqrt => "sqrt",
         }
     }
 }
@@ -53,8 +58,12 @@ impl fmt::Display for Op {
 
 #[derive(Debug, thiserror::Error, PartialEq, Eq)]
 pub enum OperatorError {
-    #[error("unknown operator `{0}`; expected one of add, sub, mul, recip, lt, from_f32, to_f32")]
+    #[error(
+        "unknown operator `{0}`; expected one of add, sub, mul, recip, lt, from_f32, to_f32, sqrt"
+    )]
     UnknownOp(String),
+    #[error("{format} has no {op}: a fixed-point format has no square root")]
+    NotInFormat { format: String, op: Op },
     #[error("{format} {op}: {stages} pipeline stages requested, at most {max}")]
     TooManyStages {
         format: String,
@@ -69,6 +78,7 @@ impl FromStr for Op {
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         Op::ALL
             .into_iter()
+            .chain([Op::Sqrt])
             .find(|op| op.name() == s)
             .ok_or_else(|| OperatorError::UnknownOp(s.to_string()))
     }

@@ -10,7 +10,7 @@
 //! the parameter lists from [`FloatWidths::of`] and [`FixedWidths::of`], whose fields name
 //! them: those aliases are the one place the parameters are filled.
 
-use crate::float::recip;
+use crate::float::{recip, sqrt};
 
 /// A float format's operator widths (exp = E, man = M bits). The letter is the parameter
 /// the operators take.
@@ -30,6 +30,19 @@ pub struct FloatWidths {
     pub product: usize,
     /// The reciprocal's table and product widths.
     pub recip: RecipWidths,
+    /// The square root's widths.
+    pub sqrt: SqrtWidths,
+}
+
+/// The widths of `float::sqrt::FloatSqrt` (its docs derive them) for M fraction bits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SqrtWidths {
+    /// `Q`: the root (significand, round bit and two more).
+    pub root: usize,
+    /// `R`: the partial remainder.
+    pub remainder: usize,
+    /// `RW`: the radicand's bits the rows bring down.
+    pub radicand: usize,
 }
 
 /// The widths of `float::recip::FloatRecip` (its docs derive them) for M fraction bits.
@@ -66,6 +79,11 @@ impl FloatWidths {
             sum: aligned + 1,
             product: 2 * significand,
             recip: RecipWidths::of(man),
+            sqrt: SqrtWidths {
+                root: sqrt::root_bits(man),
+                remainder: sqrt::remainder_bits(man),
+                radicand: sqrt::radicand_bits(man),
+            },
         }
     }
 }

@@ -27,7 +27,7 @@ pub struct Args {
     #[command(flatten)]
     advance: AdvanceArg,
     /// Synthesise one operator of `--format` instead of the accelerator (add, sub, mul,
-    /// recip, lt, from_f32, to_f32).
+    /// recip, lt, from_f32, to_f32; sqrt in a float format).
     #[arg(long)]
     op: Option<String>,
     /// Pipeline stages of `--op`: 0 to the operator's maximum in the format.

@@ -165,6 +165,15 @@ impl Format {
     pub fn recip(&self, a: u64) -> u64 {
         with_arith!(self, f => f.recip(a))
     }
+    /// Correctly rounded square root (`FloatFormat::sqrt`: the frame unit's normalisation);
+    /// `None` in a fixed-point format, which has no square root.
+    #[inline]
+    pub fn sqrt(&self, a: u64) -> Option<u64> {
+        match self.kind() {
+            Kind::Float(f) => Some(f.sqrt(a)),
+            Kind::Fixed(_) => None,
+        }
+    }
     #[inline]
     pub fn neg(&self, a: u64) -> u64 {
         with_arith!(self, f => f.neg(a))

@@ -64,7 +64,7 @@ macro_rules! fixed_format {
             >;
             pub type ToF32 =
                 FixedToF32<{ WIDTHS.word }, { WIDTHS.frac }, { WIDTHS.to_f32_normalized }>;
-            $crate::formats::operator_table!();
+            $crate::formats::operator_table!(fixed);
         }
     };
 }

@@ -8,6 +8,8 @@ pub mod lt;
 pub mod mul;
 pub mod recip;
 pub mod round;
+pub mod sqrt;
+pub mod sqrt_row;
 pub mod unpack;
 
 pub use add::FloatAdd;
@@ -15,3 +17,4 @@ pub use convert::{FloatFromF32, FloatToF32};
 pub use lt::FloatLt;
 pub use mul::FloatMul;
 pub use recip::FloatRecip;
+pub use sqrt::FloatSqrt;

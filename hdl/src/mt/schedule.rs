@@ -27,6 +27,8 @@ pub struct OpLatencies {
     pub lt: usize,
     pub from_f32: usize,
     pub to_f32: usize,
+    /// The square root (float formats only; not in the MT lane).
+    pub sqrt: usize,
 }
 
 impl OpLatencies {
@@ -41,6 +43,7 @@ impl OpLatencies {
             lt: at(Op::Lt),
             from_f32: at(Op::FromF32),
             to_f32: at(Op::ToF32),
+            sqrt: at(Op::Sqrt),
         }
     }
 

@@ -12,7 +12,7 @@ use rayon::prelude::*;
 
 /// Edge-case operands of a float format: zeros, subnormals, min/max normal, Inf, NaN,
 /// one and its neighbours, values whose sums/products land on rounding halfway points.
-fn edge_values(format: Format) -> Vec<u64> {
+pub(crate) fn edge_values(format: Format) -> Vec<u64> {
     let Format::Float { exp, man } = format else {
         panic!("float formats only")
     };

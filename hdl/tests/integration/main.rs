@@ -12,6 +12,8 @@ mod box_test;
 mod common;
 mod fixed_ops;
 mod float_ops;
+mod float_sqrt;
+mod frame_normalise;
 mod fusesoc_core;
 mod mt_lane;
 mod ray_setup;

@@ -12,6 +12,7 @@ fn uniform(n: usize) -> OpLatencies {
         lt: n,
         from_f32: n,
         to_f32: n,
+        sqrt: n,
     }
 }
 
@@ -60,6 +61,7 @@ fn every_path_reaches_the_output_at_the_latency() {
         lt: 1,
         from_f32: 1,
         to_f32: 5,
+        sqrt: 0,
     };
     let s = Schedule::new(ops);
     // A slow conversion out makes t, u, v the critical path.
@@ -89,7 +91,8 @@ fn depth_saturates_at_each_operators_maximum() {
             recip: 2,
             lt: 1,
             from_f32: 1,
-            to_f32: 1
+            to_f32: 1,
+            sqrt: 1
         }
     );
     assert_eq!(OpLatencies::for_depth(100, max).recip, 27);
