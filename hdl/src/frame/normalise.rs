@@ -175,8 +175,8 @@ impl Stepped for Normalise {
     }
 
     fn apply(&mut self, v: &[u32; 3]) {
-        for a in 0..3 {
-            self.v[a].next = Word::from(u64::from(v[a]));
+        for (port, &word) in self.v.iter_mut().zip(v) {
+            port.next = Word::from(u64::from(word));
         }
     }
 
