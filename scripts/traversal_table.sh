@@ -3,7 +3,8 @@
 # work per ray and its schedule model's cycles (rtfpga render --engine traversal), plus the
 # model engine's own speed on this machine.
 # Usage: scripts/traversal_table.sh [SCENES_DIR] [rtfpga render options, e.g. --slots 32 --lanes 1]
-# SCENES_DIR defaults to $RTFPGA_THESIS_SCENES, else ../shared/scenes/thesis.
+# SCENES_DIR defaults to $RTFPGA_THESIS_SCENES, else ../shared/scenes/thesis; SIZES
+# (default "320x180 1280x720") the image sizes.
 set -euo pipefail
 rtfpga=${RTFPGA:-target/release/rtfpga}
 dir=${1:-${RTFPGA_THESIS_SCENES:-../shared/scenes/thesis}}
@@ -13,10 +14,8 @@ trap 'rm -rf "$out"' EXIT
 echo "| scene | size | rays | node visits/ray | box tests/ray | MT tests/ray | cycles/ray | box unit | lanes | Mrays/s at 100 MHz | model Mrays/s |"
 echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for scene in Simple_plane_scene Simple_plane2_scene Glasses_scene Glasses_point_scene Glass_pen_scene Utah_teapot_scene All_materials_scene; do
-  for size in "320 180" "1280 720"; do
-    set -- $size "$@"
-    w=$1 h=$2
-    shift 2
+  for size in ${SIZES:-320x180 1280x720}; do
+    w=${size%x*} h=${size#*x}
     "$rtfpga" render --scene "$dir/$scene" --width "$w" --height "$h" --engine traversal "$@" \
       --quiet --out "$out/img.png" | python3 -c '
 import sys
