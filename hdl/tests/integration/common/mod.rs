@@ -2,6 +2,8 @@
 
 #[macro_use]
 mod bench;
+#[macro_use]
+mod loader;
 
 use hw_model::traversal::UnitRay;
 use rand::rngs::StdRng;
