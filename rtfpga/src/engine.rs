@@ -161,14 +161,21 @@ fn memories_text(memories: &[(usize, usize)]) -> String {
 }
 
 fn scene_memory_help() -> String {
+    let mut wide: Vec<(usize, usize)> = BUILT_WIDE_MEMORY_BITS
+        .iter()
+        .map(|&(_, nodes, triangles)| (nodes, triangles))
+        .collect();
+    wide.dedup();
     format!(
         "The traversal unit's scene memory: the inner nodes and triangles it holds. The RTL is \
-         built with {}; the model takes any, and renders a larger scene in chunked passes \
-         [default: the memory that fits the XC7Z020 beside the lanes: {} beside one lane, {} \
-         beside more]",
+         built with {} for bvh2-fp32 nodes and {} for wide ones; the model takes any, and \
+         renders a larger scene in chunked passes [default: the memory that fits the XC7Z020 \
+         beside the lanes: {} beside one lane, {} beside more; {} for wide nodes]",
         built_memories(),
+        memories_text(&wide),
         capacity_text(scene_memory::zynq_address_bits(1)),
         capacity_text(scene_memory::zynq_address_bits(2)),
+        capacity_text(ZYNQ_WIDE_MEMORY_BITS),
     )
 }
 
@@ -190,9 +197,9 @@ pub struct UnitArgs {
     pub slots: Option<u32>,
     #[command(flatten)]
     pub memory: SceneMemoryArg,
-    /// How the scene memory stores the tree's inner nodes: bvh2-fp32 (binary, fp32 boxes; the
-    /// RTL's), or wide nodes of 2, 4 or 8 children with 8-bit quantized boxes, all tested in
-    /// one beat (docs/wide-nodes.md).
+    /// How the scene memory stores the tree's inner nodes: bvh2-fp32 (binary, fp32 boxes), or
+    /// wide nodes of 2, 4 or 8 children with 8-bit quantized boxes, all tested in one beat
+    /// (docs/wide-nodes.md; the RTL builds 4 and 8).
     #[arg(long, default_value = "bvh2-fp32", value_parser = choice::<NodeFormat>())]
     pub nodes: NodeFormat,
     /// Box ports of the traversal unit (slot s uses port s mod N): the RTL has 1, the
