@@ -26,20 +26,37 @@ pub fn simulate_cycles<B: Stepped>(
     inputs: &[B::Input],
     flush: usize,
 ) -> Vec<B::Output> {
-    let inputs = inputs.to_vec();
+    let mut inputs = (inputs.iter().cloned())
+        .chain(std::iter::repeat_with(B::idle).take(flush))
+        .collect::<Vec<_>>()
+        .into_iter();
+    simulate_driven(build, move |_| inputs.next())
+        .into_iter()
+        .map(|(_, out)| out)
+        .collect()
+}
+
+/// Runs the block `build` makes in rust-hdl's simulator, the inputs of each cycle chosen by
+/// `drive` from what the outputs showed in the cycle before (`None` in the first cycle), until
+/// it returns `None`: a test bench that reacts, as a stream's sender and receiver do to
+/// `ready` and `valid`. Returns every cycle's inputs and what the outputs showed, read once
+/// the inputs have settled, before the clock rises.
+pub fn simulate_driven<B: Stepped>(
+    build: impl FnOnce() -> B + Send + 'static,
+    mut drive: impl FnMut(Option<&B::Output>) -> Option<B::Input> + Send + 'static,
+) -> Vec<(B::Input, B::Output)> {
     crate::top::with_build_stack(move || {
         let mut uut = build();
         uut.connect_all();
-        let idle = B::idle();
-        (0..inputs.len() + flush)
-            .map(|cycle| {
-                uut.apply(inputs.get(cycle).unwrap_or(&idle));
-                settle(&mut uut, false);
-                let out = uut.observe();
-                settle(&mut uut, true);
-                out
-            })
-            .collect()
+        let mut cycles: Vec<(B::Input, B::Output)> = Vec::new();
+        while let Some(input) = drive(cycles.last().map(|(_, out)| out)) {
+            uut.apply(&input);
+            settle(&mut uut, false);
+            let out = uut.observe();
+            settle(&mut uut, true);
+            cycles.push((input, out));
+        }
+        cycles
     })
 }
 

@@ -3,5 +3,9 @@
 //!
 //! - [`normalise`]: v → v·recip(sqrt((x·x + y·y) + z·z)), one vector a cycle (ray
 //!   generation's, later shading's).
+//! - [`raygen`]: pixel (i, j) → primary ray, one a cycle, valid/ready on both sides.
+//! - [`coord`]: a pixel coordinate → fp32, exactly (ray generation's).
 
+pub mod coord;
 pub mod normalise;
+pub mod raygen;
