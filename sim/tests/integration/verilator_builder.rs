@@ -253,9 +253,12 @@ fn a_precompiled_header_that_does_not_match_falls_back_to_the_header() {
             }
         }
     }
-    assert_eq!(
-        damaged, 2,
-        "one header for the evaluation, one for the rest"
+    // Two headers a set of compiler flags (one for the evaluation, one for the rest); the
+    // shared cache holds the untraced set just used, and a traced one if a test built with
+    // tracing first: all are damaged alike.
+    assert!(
+        damaged >= 2 && damaged % 2 == 0,
+        "{damaged} precompiled headers: two a set of flags expected"
     );
     let options = BuildOptions {
         cache_dir: Some(own.path().to_path_buf()),
