@@ -18,14 +18,14 @@ build: setup
 $(RTFPGA): build
 
 # Render the built-in Utah teapot (6,322 triangles) in software and through the Verilated fp32
-# accelerator (the first run builds the model, about two minutes), write software | hardware |
+# accelerator (the first run builds the model, about half a minute), write software | hardware |
 # difference side by side in $(OUT)/demo.png, print its absolute path and the PSNR (last line).
 demo: build
 	@mkdir -p $(OUT)
 	$(RTFPGA) render --scene $(DEMO_SCENE) $(DEMO_SIZE) --engine f32 --out $(OUT)/demo_sw.png
-	$(RTFPGA) cosim --scene $(DEMO_SCENE) $(DEMO_SIZE) --format fp32 --depth 1 --lanes 1 --out $(OUT)/demo_hw.png
+	$(RTFPGA) cosim --scene $(DEMO_SCENE) $(DEMO_SIZE) --format fp32 --depth 5 --lanes 1 --out $(OUT)/demo_hw.png
 	$(RTFPGA) compare $(OUT)/demo_sw.png $(OUT)/demo_hw.png --diff $(OUT)/demo_diff.png \
-		--side-by-side $(OUT)/demo.png --labels "software f32,accelerator fp32 d1 l1"
+		--side-by-side $(OUT)/demo.png --labels "software f32,accelerator fp32 d5 l1"
 
 # Formatting, lints, every test of the workspace and the checks of the Vivado scripts (what
 # CI runs). Tests that need the thesis' scenes take them from RTFPGA_THESIS_SCENES, else
@@ -34,7 +34,7 @@ test: setup
 	$(CARGO) fmt --all --check
 	$(CARGO) clippy --workspace --all-targets -- -D warnings
 	$(CARGO) test --workspace --release
-	VERILOG_DIR=generated-verilog/fp32_d1_l1 sh constraints/check.sh
+	VERILOG_DIR=generated-verilog/fp32_d5_l1 sh constraints/check.sh
 
 # Regenerate the golden images of scenes/ (a test checks they are current).
 golden: build

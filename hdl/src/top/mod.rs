@@ -87,7 +87,7 @@ impl TopConfig {
         })
     }
 
-    /// Folder name of the configuration under generated-verilog/, e.g. `fp32_d1_l4`.
+    /// Folder name of the configuration under generated-verilog/, e.g. `fp32_d5_l2`.
     pub fn dir_name(&self) -> String {
         format!("{}_d{}_l{}", self.format, self.depth, self.lanes)
     }

@@ -18,6 +18,11 @@ fn repo() -> PathBuf {
         .to_path_buf()
 }
 
+/// The default configuration's folder (the first `make verilog` writes).
+fn default_config() -> String {
+    hdl::generate::default_configs()[0].dir_name()
+}
+
 fn core_text() -> String {
     let path = repo().join("rtfpga.core");
     std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
@@ -89,9 +94,21 @@ fn core_lists_exactly_the_generated_files() {
     );
     let present = present_files();
     assert!(
-        present.contains_key("fp32_d1_l1"),
+        present.contains_key(&default_config()),
         "the default configuration"
     );
+    // Its `default` target and its lint target use the default configuration.
+    for target in ["default", "lint"] {
+        let filesets = lines(&core)
+            .iter()
+            .skip_while(|l| !l.trim().starts_with(&format!("{target}:")))
+            .find_map(|l| l.trim().strip_prefix("filesets: ").map(str::to_string));
+        assert_eq!(
+            filesets,
+            Some(format!("[rtl_{0}, sw_{0}]", default_config())),
+            "the {target} target's filesets"
+        );
+    }
     assert_eq!(
         listed_files(&core),
         present,
@@ -130,7 +147,7 @@ fn lint_target_uses_the_project_waivers() {
     assert_eq!(options, expected);
     // Every folder with Verilog (the unit's holds only its C files and config.json).
     for (config, files) in present_files() {
-        if config != "fp32_d1_l1" && files.iter().any(|f| f.ends_with(".v")) {
+        if config != default_config() && files.iter().any(|f| f.ends_with(".v")) {
             let target = format!("lint_{config}:");
             assert!(
                 lines.iter().any(|l| l.trim() == target),

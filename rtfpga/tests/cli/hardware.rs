@@ -29,15 +29,15 @@ fn formats_lists_every_catalogue_format_as_a_table_and_as_json() {
 }
 
 #[test]
-fn verilog_fp32_d1_l1_equals_the_committed_copy() {
+fn verilog_fp32_d5_l1_equals_the_committed_copy() {
     let dir = tmp();
     let out_dir = at(&dir, "v");
     rtfpga(&[
-        "verilog", "--format", "fp32", "--depth", "1", "--lanes", "1",
+        "verilog", "--format", "fp32", "--depth", "5", "--lanes", "1",
     ])
     .out(&out_dir)
     .ok();
-    let committed = Path::new(REPO).join("generated-verilog/fp32_d1_l1");
+    let committed = Path::new(REPO).join("generated-verilog/fp32_d5_l1");
     let listing = |d: &Path| {
         let mut names: Vec<String> = std::fs::read_dir(d)
             .unwrap()
@@ -58,7 +58,7 @@ fn verilog_fp32_d1_l1_equals_the_committed_copy() {
         assert!(
             std::fs::read(out_dir.join(name)).unwrap()
                 == std::fs::read(committed.join(name)).unwrap(),
-            "{name} differs from generated-verilog/fp32_d1_l1/{name} (stale: `make verilog`)"
+            "{name} differs from generated-verilog/fp32_d5_l1/{name} (stale: `make verilog`)"
         );
     }
 }
