@@ -102,7 +102,7 @@ impl Format {
 
     /// Total bits of a value.
     #[inline]
-    pub fn width(&self) -> u32 {
+    pub const fn width(&self) -> u32 {
         match *self {
             Format::Float { exp, man } => 1 + exp + man,
             Format::Fixed { int, frac, .. } => int + frac,

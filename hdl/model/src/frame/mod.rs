@@ -20,7 +20,7 @@ pub mod engine;
 pub mod raygen;
 pub mod shade;
 
-pub use accumulate::{Accumulator, Contribution};
+pub use accumulate::{Accumulator, Contribution, Settle};
 pub use constants::FrameConstants;
 pub use engine::{Frame, FrameOutput, FrameStats, RayOrder, WAVEFRONT};
 pub use shade::{FrameRay, Load, RayKind};
