@@ -5,7 +5,10 @@
 //!   generation's, later shading's).
 //! - [`raygen`]: pixel (i, j) → primary ray, one a cycle, valid/ready on both sides.
 //! - [`coord`]: a pixel coordinate → fp32, exactly (ray generation's).
+//! - [`accumulate`]: per-pixel sums and counts of rays out in block RAM, one record (open a
+//!   pixel, or settle one of its shaded rays) a cycle; finished pixels out in 8 bits.
 
+pub mod accumulate;
 pub mod coord;
 pub mod normalise;
 pub mod raygen;

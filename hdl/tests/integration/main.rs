@@ -13,6 +13,7 @@ mod common;
 mod fixed_ops;
 mod float_ops;
 mod float_sqrt;
+mod frame_accumulate;
 mod frame_normalise;
 mod frame_raygen;
 mod fusesoc_core;
