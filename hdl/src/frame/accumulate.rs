@@ -22,7 +22,9 @@
 //! registers that hold it (the slots are compared in stage 0, so stage 1's only logic is that
 //! multiplexer, the 48-bit adders and the count's 19-bit adder). A record two or more behind
 //! reads the RAM after the write. The adders are carry chains, not DSP48E1s: 3 × 48 bits is
-//! 36 CARRY4 and a LUT a bit, while the frame unit's DSP48E1s go to its fp32 multipliers.
+//! 36 CARRY4 and a LUT a bit, while the frame unit's DSP48E1s go to its fp32 multipliers
+//! (yosys: 46 CARRY4, no DSP48E1; the longest path is this stage's, the RAM's read data
+//! through the multiplexer and an adder to its write data, 15 levels).
 //!
 //! **Widths, from the model** (`hw_model::frame::accumulate`, at [`FrameLimits::HW`]): a
 //! settle's sum per channel is at most `max_contributions_per_ray` = 8 contributions of 28

@@ -531,12 +531,12 @@ fn accumulate_verilog_passes_verilator_lint() {
     }
 }
 
-/// Longer streams, more seeds (slow, about a minute):
+/// Longer streams, 30 seeds (about 20 CPU-s):
 /// `cargo test --release -p hdl --test integration -- --ignored frame_accumulate::accumulate_long_streams`.
 #[test]
 #[ignore]
 fn accumulate_long_streams() {
-    for seed in 10..14 {
+    for seed in 10..40 {
         noisy_and_flowing("256 pixels in flight", Pattern::Many(256), 6000, seed);
         noisy_and_flowing("one hot pixel", Pattern::Hot, 3000, seed);
         noisy_and_flowing("two pixels alternating", Pattern::Alternating, 3000, seed);
