@@ -5,10 +5,13 @@
 //!   generation's, later shading's).
 //! - [`raygen`]: pixel (i, j) → primary ray, one a cycle, valid/ready on both sides.
 //! - [`coord`]: a pixel coordinate → fp32, exactly (ray generation's).
+//! - [`contribution`]: an fp32 RGB → its contribution in fixed point (`fl(255·c)` in
+//!   fx<28,12>), one a cycle: the values the accumulator's settle records sum.
 //! - [`accumulate`]: per-pixel sums and counts of rays out in block RAM, one record (open a
 //!   pixel, or settle one of its shaded rays) a cycle; finished pixels out in 8 bits.
 
 pub mod accumulate;
+pub mod contribution;
 pub mod coord;
 pub mod normalise;
 pub mod raygen;

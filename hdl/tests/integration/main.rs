@@ -14,6 +14,7 @@ mod fixed_ops;
 mod float_ops;
 mod float_sqrt;
 mod frame_accumulate;
+mod frame_contribution;
 mod frame_normalise;
 mod frame_raygen;
 mod fusesoc_core;
