@@ -263,9 +263,10 @@ impl Logic for UnitControl {
     }
 }
 
-/// Defines the AXI4-Lite top `$name` around the unit top `$unit`.
+/// Defines the AXI4-Lite top `$name` around the unit top `$unit` (a wide unit's with its node
+/// width first).
 macro_rules! axil_top {
-    ($name:ident, $unit:ty) => {
+    ($name:ident, $unit:ty $(, $width:literal)?) => {
         /// The unit under AXI4-Lite control: `axi` (the unit's register map), the scene,
         /// ray and hit streams of docs/traversal-unit.md.
         #[derive(LogicBlock)]
@@ -294,6 +295,7 @@ macro_rules! axil_top {
                     hit: Default::default(),
                     control: UnitControl::new(config),
                     unit: <$unit>::new(
+                        $($width,)?
                         config.depth,
                         config.stack_depth,
                         config.lanes,
@@ -341,9 +343,13 @@ macro_rules! per_format {
                 axil_top!(Axil9x10, tops::Unit9x10);
                 axil_top!(Axil11x12, tops::Unit11x12);
                 axil_top!(Axil12x13, tops::Unit12x13);
+                axil_top!(AxilWide4w4x5, tops::WideUnit4w4x5, 4);
+                axil_top!(AxilWide8w4x5, tops::WideUnit8w4x5, 8);
+                axil_top!(AxilWide8w11x13, tops::WideUnit8w11x13, 8);
 
-                /// The top of a checked configuration at its memory size (the sizes of
-                /// `UnitConfig::check`): its ports and, with `verilog`, its Verilog.
+                /// The top of a checked configuration, binary or wide, at its memory size
+                /// (the sizes of `UnitConfig::check`, as `unit_top::verilog` dispatches):
+                /// its ports and, with `verilog`, its Verilog.
                 pub fn build(config: &UnitConfig, verilog: bool) -> AxilTop {
                     fn of<U: Block>(unit: U, verilog: bool) -> AxilTop {
                         let mut unit = Box::new(unit);
@@ -353,11 +359,15 @@ macro_rules! per_format {
                             verilog: verilog.then(|| generate_verilog(unit.as_ref())),
                         }
                     }
-                    match (config.memory.node_bits, config.memory.triangle_bits) {
-                        (4, 5) => of(Axil4x5::new(config), verilog),
-                        (9, 10) => of(Axil9x10::new(config), verilog),
-                        (11, 12) => of(Axil11x12::new(config), verilog),
-                        _ => of(Axil12x13::new(config), verilog),
+                    let memory = (config.memory.node_bits, config.memory.triangle_bits);
+                    match (config.nodes.width(), memory) {
+                        (Some(4), _) => of(AxilWide4w4x5::new(config), verilog),
+                        (Some(_), (4, 5)) => of(AxilWide8w4x5::new(config), verilog),
+                        (Some(_), _) => of(AxilWide8w11x13::new(config), verilog),
+                        (None, (4, 5)) => of(Axil4x5::new(config), verilog),
+                        (None, (9, 10)) => of(Axil9x10::new(config), verilog),
+                        (None, (11, 12)) => of(Axil11x12::new(config), verilog),
+                        (None, _) => of(Axil12x13::new(config), verilog),
                     }
                 }
             }

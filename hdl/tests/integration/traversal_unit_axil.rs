@@ -13,6 +13,7 @@ use hdl::traversal::unit_axil::{fp32::Axil4x5, unit_axil};
 use hdl::verilog::{verilator_lint_waiving, UNIT_VERILATOR_WAIVERS};
 use hw_model::traversal::packet::{hit_from_words, HIT_WORDS, RAY_WORDS};
 use hw_model::traversal::scene_image::SceneImage;
+use hw_model::traversal::wide::NodeFormat;
 use hw_model::traversal::{TraversalModel, UnitCounters, UnitRay};
 use hw_model::{Format, HwFormat};
 use rust_hdl::prelude::*;
@@ -291,6 +292,24 @@ fn the_axi4_lite_units_verilog_passes_verilator_lint() {
         assert!(verilog.contains(&decl), "no port `{decl}`");
     }
     assert!(top.ports.iter().any(|p| p.name == "axi$awaddr"));
+}
+
+/// The top holds the unit its configuration names: a wide configuration's Verilog is the wide
+/// unit's (`rtfpga verilog --unit traversal --nodes bvh8-q8` once wrote the binary unit beside
+/// a config.json of the wide one). `alpha_scaled` is a field of the wide box stage
+/// (`WideBoxStage`), `far_before_near` of the binary box test (`BoxTest`); rust-hdl names
+/// modules after fields.
+#[test]
+fn the_axi4_lite_top_holds_the_configured_node_format() {
+    for nodes in [NodeFormat::Bvh2Fp32, NodeFormat::Bvh4Q8, NodeFormat::Bvh8Q8] {
+        let mut c = config().with_nodes(nodes);
+        (c.memory.node_bits, c.memory.triangle_bits) = (4, 5);
+        let top = unit_axil(&c, true).unwrap();
+        let verilog = top.verilog.unwrap();
+        let wide = nodes.width().is_some();
+        assert_eq!(verilog.contains("$alpha_scaled"), wide, "{nodes:?}");
+        assert_eq!(verilog.contains("$far_before_near"), !wide, "{nodes:?}");
+    }
 }
 
 /// yosys resources of the unit's register slave alone (the unit's are BENCHMARKS.md
