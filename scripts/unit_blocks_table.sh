@@ -24,7 +24,7 @@ blocks=$(grep -o '^module top\$\(control\|unit\$lanes\$[0-9]*\|unit\$core\(\$[a-
   echo "synth_xilinx -family xc7 -top top -flatten -noiopad -noclkbuf"
   echo "tee -q -o $out/stat.txt stat"
 } > "$out/blocks.ys"
-yosys -q -s "$out/blocks.ys" > /dev/null
+yosys -q -s "$out/blocks.ys" > "$out/yosys.log" 2>&1 || { tail -n 30 "$out/yosys.log" >&2; exit 1; }
 python3 - "$out/stat.txt" <<'PY'
 import re, sys
 text = open(sys.argv[1]).read()
