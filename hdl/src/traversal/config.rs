@@ -50,6 +50,35 @@ pub const ZYNQ_WIDE_MEMORY_BITS: (usize, usize) = (11, 13);
 /// (`scene_memory::SceneMemory4x5` …, `unit_top::<format>::Unit4x5` …).
 pub const BUILT_MEMORY_BITS: [(usize, usize); 4] = [(4, 5), (9, 10), (11, 12), (12, 13)];
 
+/// A unit the RTL builds: one Rust type per node format and scene memory size
+/// (`unit_top::<format>::Unit4x5` … `WideUnit8w11x13`, and `unit_axil`'s AXI4-Lite tops around
+/// them). Both dispatch on it, exhaustively, so a configuration builds the same unit with and
+/// without its register slave.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BuiltUnit {
+    Binary4x5,
+    Binary9x10,
+    Binary11x12,
+    Binary12x13,
+    Wide4w4x5,
+    Wide8w4x5,
+    Wide8w11x13,
+}
+
+impl BuiltUnit {
+    /// Each unit with its node width (none: binary) and its (node, triangle) address bits:
+    /// `BUILT_MEMORY_BITS` and `BUILT_WIDE_MEMORY_BITS` (a test keeps them equal).
+    pub const ALL: [(BuiltUnit, Option<usize>, (usize, usize)); 7] = [
+        (BuiltUnit::Binary4x5, None, (4, 5)),
+        (BuiltUnit::Binary9x10, None, (9, 10)),
+        (BuiltUnit::Binary11x12, None, (11, 12)),
+        (BuiltUnit::Binary12x13, None, (12, 13)),
+        (BuiltUnit::Wide4w4x5, Some(4), (4, 5)),
+        (BuiltUnit::Wide8w4x5, Some(8), (4, 5)),
+        (BuiltUnit::Wide8w11x13, Some(8), (11, 13)),
+    ];
+}
+
 /// The scene memories the RTL builds for `nodes`, as "4/5, 9/10, …".
 fn built_memory_bits(nodes: NodeFormat) -> String {
     let sizes: Vec<String> = match nodes.width() {
@@ -201,20 +230,22 @@ impl UnitConfig {
         if self.advance == Advance::TriangleBox {
             return Err(UnitConfigError::Advance(self.advance));
         }
-        let (node_bits, triangle_bits) = (self.memory.node_bits, self.memory.triangle_bits);
-        let built = match self.nodes.width() {
-            None => BUILT_MEMORY_BITS.contains(&(node_bits, triangle_bits)),
-            Some(k) => BUILT_WIDE_MEMORY_BITS.contains(&(k, node_bits, triangle_bits)),
-        };
-        if built {
-            Ok(())
-        } else {
-            Err(UnitConfigError::Memory {
+        self.built().map(|_| ())
+    }
+
+    /// The unit type the RTL builds for this configuration's node format and memory, or the
+    /// error naming the sizes it builds.
+    pub fn built(&self) -> Result<BuiltUnit, UnitConfigError> {
+        let bits = (self.memory.node_bits, self.memory.triangle_bits);
+        BuiltUnit::ALL
+            .iter()
+            .find(|(_, width, b)| *width == self.nodes.width() && *b == bits)
+            .map(|(unit, _, _)| *unit)
+            .ok_or(UnitConfigError::Memory {
                 nodes: self.nodes,
-                node_bits,
-                triangle_bits,
+                node_bits: bits.0,
+                triangle_bits: bits.1,
             })
-        }
     }
 }
 
@@ -239,5 +270,24 @@ pub const fn wide_stack_row_bits(k: usize) -> usize {
         rows
     } else {
         pointer
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `BuiltUnit::ALL` and the memory lists the CLI names are one set of sizes.
+    #[test]
+    fn the_built_units_are_the_built_memories() {
+        let binary: Vec<(usize, usize)> = (BuiltUnit::ALL.iter())
+            .filter(|(_, width, _)| width.is_none())
+            .map(|(_, _, bits)| *bits)
+            .collect();
+        assert_eq!(binary, BUILT_MEMORY_BITS);
+        let wide: Vec<(usize, usize, usize)> = (BuiltUnit::ALL.iter())
+            .filter_map(|(_, width, (n, t))| width.map(|k| (k, *n, *t)))
+            .collect();
+        assert_eq!(wide, BUILT_WIDE_MEMORY_BITS);
     }
 }

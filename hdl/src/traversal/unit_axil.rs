@@ -333,7 +333,7 @@ macro_rules! per_format {
                 use super::{AxilTop, UnitControl};
                 use $crate::generate::block_ports;
                 use $crate::axil::AxiLiteSlavePort;
-                use $crate::traversal::config::UnitConfig;
+                use $crate::traversal::config::{BuiltUnit, UnitConfig};
                 use $crate::traversal::ports::{
                     ControlPort, CounterPort, HitStream, RayStream, SceneStream,
                 };
@@ -347,9 +347,9 @@ macro_rules! per_format {
                 axil_top!(AxilWide8w4x5, tops::WideUnit8w4x5, 8);
                 axil_top!(AxilWide8w11x13, tops::WideUnit8w11x13, 8);
 
-                /// The top of a checked configuration, binary or wide, at its memory size
-                /// (the sizes of `UnitConfig::check`, as `unit_top::verilog` dispatches):
-                /// its ports and, with `verilog`, its Verilog.
+                /// The top of a checked configuration around its unit
+                /// (`UnitConfig::built`, as `unit_top::verilog` builds it): its ports and,
+                /// with `verilog`, its Verilog.
                 pub fn build(config: &UnitConfig, verilog: bool) -> AxilTop {
                     fn of<U: Block>(unit: U, verilog: bool) -> AxilTop {
                         let mut unit = Box::new(unit);
@@ -359,15 +359,15 @@ macro_rules! per_format {
                             verilog: verilog.then(|| generate_verilog(unit.as_ref())),
                         }
                     }
-                    let memory = (config.memory.node_bits, config.memory.triangle_bits);
-                    match (config.nodes.width(), memory) {
-                        (Some(4), _) => of(AxilWide4w4x5::new(config), verilog),
-                        (Some(_), (4, 5)) => of(AxilWide8w4x5::new(config), verilog),
-                        (Some(_), _) => of(AxilWide8w11x13::new(config), verilog),
-                        (None, (4, 5)) => of(Axil4x5::new(config), verilog),
-                        (None, (9, 10)) => of(Axil9x10::new(config), verilog),
-                        (None, (11, 12)) => of(Axil11x12::new(config), verilog),
-                        (None, _) => of(Axil12x13::new(config), verilog),
+                    let c = config;
+                    match config.built().expect("a checked configuration") {
+                        BuiltUnit::Binary4x5 => of(Axil4x5::new(c), verilog),
+                        BuiltUnit::Binary9x10 => of(Axil9x10::new(c), verilog),
+                        BuiltUnit::Binary11x12 => of(Axil11x12::new(c), verilog),
+                        BuiltUnit::Binary12x13 => of(Axil12x13::new(c), verilog),
+                        BuiltUnit::Wide4w4x5 => of(AxilWide4w4x5::new(c), verilog),
+                        BuiltUnit::Wide8w4x5 => of(AxilWide8w4x5::new(c), verilog),
+                        BuiltUnit::Wide8w11x13 => of(AxilWide8w11x13::new(c), verilog),
                     }
                 }
             }

@@ -3,7 +3,7 @@
 //! The lane stays outside the core so that the large core is compiled once per scene memory
 //! size, and only this small wiring once per format.
 
-use super::config::UnitConfig;
+use super::config::{BuiltUnit, UnitConfig};
 
 /// The unit top's wiring, the same for the binary and the wide core: `$top`'s `Logic` over
 /// its const parameters `$g`.
@@ -50,6 +50,7 @@ fn generate<U: rust_hdl::prelude::Block>(unit: U) -> String {
 macro_rules! unit_top {
     ($lane:ty, $latency:path) => {
         use hw_model::Advance;
+        use $crate::traversal::config::BuiltUnit;
         use $crate::macros::prelude::*;
         use $crate::mt::LanePort;
         use $crate::traversal::leaf_advance::{around_lane_latency, AroundLane};
@@ -227,45 +228,29 @@ macro_rules! unit_top {
         pub type WideUnit8w4x5 = wide_unit_sized!(WideUnitTop, 8, 4, 5);
         pub type WideUnit8w11x13 = wide_unit_sized!(WideUnitTop, 8, 11, 13);
 
-        /// The wide unit's Verilog for nodes of `width` children with a scene memory of
-        /// `(node bits, triangle bits)`, one of the aliases' (checked by `UnitConfig::check`).
-        pub fn wide_verilog(
-            width: usize,
-            depth: usize,
-            stack_depth: usize,
-            lanes: usize,
-            memory: (usize, usize),
-            advance: Advance,
-        ) -> String {
-            match (width, memory) {
-                (4, _) => generate(WideUnit4w4x5::new(4, depth, stack_depth, lanes, advance)),
-                (8, (4, 5)) => {
-                    generate(WideUnit8w4x5::new(8, depth, stack_depth, lanes, advance))
-                }
-                _ => generate(WideUnit8w11x13::new(8, depth, stack_depth, lanes, advance)),
-            }
-        }
-
         /// The unit at each scene memory size of `unit::TraversalCore4x5` and its siblings.
         pub type Unit4x5 = unit_sized!(UnitTop, 4, 5);
         pub type Unit9x10 = unit_sized!(UnitTop, 9, 10);
         pub type Unit11x12 = unit_sized!(UnitTop, 11, 12);
         pub type Unit12x13 = unit_sized!(UnitTop, 12, 13);
 
-        /// The unit's Verilog with a scene memory of `(node bits, triangle bits)`, one of
-        /// the aliases' (checked by `UnitConfig::check`).
+        /// The Verilog of the unit `unit` (`UnitConfig::built`).
         pub fn verilog(
+            unit: BuiltUnit,
             depth: usize,
             stack_depth: usize,
             lanes: usize,
-            memory: (usize, usize),
             advance: Advance,
         ) -> String {
-            match memory {
-                (4, 5) => generate(Unit4x5::new(depth, stack_depth, lanes, advance)),
-                (9, 10) => generate(Unit9x10::new(depth, stack_depth, lanes, advance)),
-                (11, 12) => generate(Unit11x12::new(depth, stack_depth, lanes, advance)),
-                _ => generate(Unit12x13::new(depth, stack_depth, lanes, advance)),
+            let (s, l, a) = (stack_depth, lanes, advance);
+            match unit {
+                BuiltUnit::Binary4x5 => generate(Unit4x5::new(depth, s, l, a)),
+                BuiltUnit::Binary9x10 => generate(Unit9x10::new(depth, s, l, a)),
+                BuiltUnit::Binary11x12 => generate(Unit11x12::new(depth, s, l, a)),
+                BuiltUnit::Binary12x13 => generate(Unit12x13::new(depth, s, l, a)),
+                BuiltUnit::Wide4w4x5 => generate(WideUnit4w4x5::new(4, depth, s, l, a)),
+                BuiltUnit::Wide8w4x5 => generate(WideUnit8w4x5::new(8, depth, s, l, a)),
+                BuiltUnit::Wide8w11x13 => generate(WideUnit8w11x13::new(8, depth, s, l, a)),
             }
         }
     };
@@ -285,11 +270,8 @@ macro_rules! per_format {
         )*
 
         /// Verilog generators of the units, in catalogue order.
-        static UNITS: &[fn(usize, usize, usize, (usize, usize), hw_model::Advance) -> String] =
+        static UNITS: &[fn(BuiltUnit, usize, usize, usize, hw_model::Advance) -> String] =
             &[$($name::verilog),*];
-        /// The wide units', in catalogue order.
-        static WIDE_UNITS: &[fn(usize, usize, usize, usize, (usize, usize), hw_model::Advance) -> String] =
-            &[$($name::wide_verilog),*];
     };
 }
 
@@ -297,23 +279,12 @@ hw_model::hw_formats!(per_format);
 
 /// The Verilog of a checked configuration (`unit::unit_verilog` checks and calls this).
 pub(super) fn verilog(config: &UnitConfig) -> String {
-    let memory = (config.memory.node_bits, config.memory.triangle_bits);
-    let format = usize::from(config.format.code());
-    if let Some(width) = config.nodes.width() {
-        return WIDE_UNITS[format](
-            width,
-            config.depth,
-            config.stack_depth,
-            config.lanes,
-            memory,
-            config.advance,
-        );
-    }
-    UNITS[format](
+    let unit = config.built().expect("a checked configuration");
+    UNITS[usize::from(config.format.code())](
+        unit,
         config.depth,
         config.stack_depth,
         config.lanes,
-        memory,
         config.advance,
     )
 }
