@@ -35,6 +35,7 @@ mod traversal {
     mod arbiter;
     mod banked_stack;
     mod box_test;
+    mod config;
     mod far_end;
     mod hit_update;
     mod leaf_advance;
