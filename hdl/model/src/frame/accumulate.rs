@@ -55,10 +55,13 @@ impl Contribution {
     /// `c` in fixed point: per channel `fl(255·c)`, then converted to [`CONTRIBUTION`].
     pub fn of(c: Vec3) -> Contribution {
         let steps = Fp32::new(255.0);
-        Contribution(c.components().map(|x| {
-            let bits = FIXED.convert_in_f32((steps * x).f32());
-            FIXED.value(bits) as i32
-        }))
+        Contribution(c.components().map(|x| Contribution::of_steps(steps * x)))
+    }
+
+    /// One channel's value from v = fl(255·c), in steps: v in [`CONTRIBUTION`] (the
+    /// conversion [`Contribution::of`] does after the multiply).
+    pub fn of_steps(v: Fp32) -> i32 {
+        FIXED.value(FIXED.convert_in_f32(v.f32())) as i32
     }
 
     pub fn is_zero(&self) -> bool {

@@ -19,6 +19,7 @@ pub mod constants;
 pub mod engine;
 pub mod raygen;
 pub mod shade;
+pub mod shader;
 
 pub use accumulate::{Accumulator, Contribution, Settle};
 pub use constants::FrameConstants;

@@ -1,0 +1,10 @@
+//! Shading as programs: the shader core's instruction set ([`isa`]) and its semantics
+//! ([`interpret`]), one thread per shaded ray. The frame unit's hardware shades by running
+//! these programs on a time-shared fp32 datapath, so the formulas of [`super::shade`] become
+//! data loaded with the scene rather than a fixed pipeline per material.
+
+pub mod interpret;
+pub mod isa;
+
+pub use interpret::{run, Program, Pushed, RunError, ThreadInput, ThreadOutput};
+pub use isa::{Instr, IsaError, Op, Src};
