@@ -223,7 +223,7 @@ fn render_frame(a: &Args, scene: &Scene, precision: &Precision) -> Result<()> {
         .kv("zero_shadows", s.zero_shadows)
         .kv("past_depth", s.past_depth)
         .kv("total_internal", s.total_internal)
-        .kv("contributions", s.contributions)
+        .kv("contributions", s.contributions())
         .print();
     unit_memory(&s.cast);
     Ok(())

@@ -71,7 +71,7 @@ fn compare(scene: &Scene) -> (f64, FrameOutput, TraceStats) {
         s.refraction_rays,
         s.shadow_rays,
         s.zero_shadows,
-        s.contributions
+        s.contributions()
     );
     (db, model, trace)
 }
@@ -196,7 +196,7 @@ fn the_image_does_not_depend_on_the_order_rays_return_in() {
         for kind in RayKind::ALL {
             assert_eq!(a.of_kind(kind), b.of_kind(kind), "{kind:?}");
         }
-        assert_eq!(a.contributions, b.contributions);
+        assert_eq!(a.contributions(), b.contributions());
         assert!(a.cast.batches > 10 * b.cast.batches, "{a:?}");
     }
     assert!(wavefront.stats.reflection_rays > 0 && wavefront.stats.refraction_rays > 0);

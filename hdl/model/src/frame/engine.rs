@@ -3,7 +3,9 @@
 //!
 //! The image is split into tiles, each run on its own (in parallel): a tile's rays form a
 //! queue; [`RayOrder`] picks the next batch from it, the traversal unit answers the batch,
-//! each answer is shaded, its contributions added and its spawned rays queued. Pixels are
+//! each answer is shaded by the scene's compiled shading programs (as the shader core does,
+//! [`super::shader`]; a shadow ray beside it), its settle record applied to its pixel and
+//! its spawned rays queued. Pixels are
 //! independent and their sums order-independent, so the image depends neither on the tile
 //! size nor on the order: the hardware, answering rays out of order, gives the same bits.
 
@@ -19,10 +21,9 @@ use sw_renderer::trace::PreparedScene;
 
 use super::accumulate::Accumulator;
 use super::constants::FrameConstants;
-use super::raygen::primary;
-use super::shade::{shade, FrameRay, Load, RayKind, Shaded};
+use super::shade::{FrameRay, RayKind, Shaded};
+use super::shader::{compile, thread, Program, ProgramKind};
 use super::{FrameError, FrameLimits};
-use crate::fp32::Vec3;
 
 /// How the next batch is taken from a tile's queue of rays: given a seed (the tile and the
 /// step) it may reorder the queue and returns how many rays from its front go to the
@@ -49,8 +50,8 @@ pub struct FrameStats {
     pub past_depth: u64,
     /// Glass hits with total internal reflection (no refraction ray).
     pub total_internal: u64,
-    /// Contributions added to pixels.
-    pub contributions: u64,
+    /// The shader core's threads by program kind (`ProgramKind::ALL`'s order).
+    pub threads: [ShaderLoad; 5],
     /// What the traversal unit's model did.
     pub cast: CastStats,
 }
@@ -58,6 +59,13 @@ pub struct FrameStats {
 impl FrameStats {
     pub fn rays(&self) -> u64 {
         self.primary_rays + self.reflection_rays + self.refraction_rays + self.shadow_rays
+    }
+
+    /// Contributions added to pixels: a miss's, an unoccluded shadow ray's, a ray past the
+    /// depth's background.
+    pub fn contributions(&self) -> u64 {
+        let cast = self.rays() - self.shadow_rays;
+        (cast - self.hits) + (self.shadow_rays - self.occluded) + self.past_depth
     }
 
     pub fn of_kind(&self, kind: RayKind) -> u64 {
@@ -90,8 +98,26 @@ impl AddAssign for FrameStats {
         self.zero_shadows += o.zero_shadows;
         self.past_depth += o.past_depth;
         self.total_internal += o.total_internal;
-        self.contributions += o.contributions;
+        for (a, b) in self.threads.iter_mut().zip(o.threads) {
+            a.threads += b.threads;
+            a.instructions += b.instructions;
+        }
         self.cast += o.cast;
+    }
+}
+
+/// Threads of one kind of shading program and the instructions they issued (the shader core
+/// issues one a cycle).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ShaderLoad {
+    pub threads: u64,
+    pub instructions: u64,
+}
+
+impl FrameStats {
+    /// The threads of programs of `kind`.
+    pub fn shader(&self, kind: ProgramKind) -> ShaderLoad {
+        self.threads[kind.index()]
     }
 }
 
@@ -120,9 +146,11 @@ impl Tile {
     }
 }
 
-/// The frame unit with a scene loaded: its constants and its traversal unit.
+/// The frame unit with a scene loaded: its constants, its shading programs and its traversal
+/// unit.
 pub struct Frame<'a> {
     constants: FrameConstants,
+    program: Program,
     caster: Box<dyn RayCaster + 'a>,
     scene: String,
 }
@@ -140,6 +168,10 @@ impl<'a> Frame<'a> {
         limits: &FrameLimits,
     ) -> Result<Frame<'a>, FrameError> {
         let constants = FrameConstants::load(scene, prepared, width, height, limits)?;
+        let program = compile(&constants).map_err(|source| FrameError::Compile {
+            scene: scene.name.clone(),
+            source,
+        })?;
         let caster = traversal
             .prepare(prepared)
             .map_err(|source| FrameError::Traversal {
@@ -148,6 +180,7 @@ impl<'a> Frame<'a> {
             })?;
         Ok(Frame {
             constants,
+            program,
             caster,
             scene: scene.name.clone(),
         })
@@ -155,6 +188,10 @@ impl<'a> Frame<'a> {
 
     pub fn constants(&self) -> &FrameConstants {
         &self.constants
+    }
+
+    pub fn program(&self) -> &Program {
+        &self.program
     }
 
     /// The number of tiles of edge `tile_size` (≥ 1) [`Frame::render`] runs.
@@ -207,6 +244,21 @@ impl<'a> Frame<'a> {
         Ok(FrameOutput { image, stats })
     }
 
+    /// The traversal unit's answers to `batch`, into `hits`.
+    pub fn cast(
+        &self,
+        batch: &[FrameRay],
+        hits: &mut Vec<Option<Hit>>,
+    ) -> Result<CastStats, FrameError> {
+        let rays: Vec<Ray> = batch.iter().map(unit_ray).collect();
+        hits.clear();
+        hits.resize(batch.len(), None);
+        (self.caster.cast(&rays, hits)).map_err(|source| FrameError::Traversal {
+            scene: self.scene.clone(),
+            source,
+        })
+    }
+
     /// One tile: its pixels' colours (row by row) and what it did.
     fn tile(
         &self,
@@ -224,24 +276,13 @@ impl<'a> Frame<'a> {
         let mut queue: Vec<FrameRay> = Vec::with_capacity(tile.pixels());
         for j in tile.y0..tile.y1 {
             for i in tile.x0..tile.x1 {
-                let (orig, dir) = primary(&c.camera, i, j);
-                let pixel = j * c.width + i;
-                acc.issue(local(pixel));
-                queue.push(FrameRay {
-                    pixel,
-                    orig,
-                    dir,
-                    t_max: crate::fp32::Fp32::MAX,
-                    load: Load::Cast {
-                        kind: RayKind::Primary,
-                        depth: 0,
-                        weight: Vec3::of([1.0; 3]),
-                    },
-                });
+                let ray = FrameRay::primary(c, i, j);
+                acc.issue(local(ray.pixel));
+                queue.push(ray);
             }
         }
         let mut stats = FrameStats::default();
-        let (mut rays, mut hits) = (Vec::new(), Vec::<Option<Hit>>::new());
+        let mut hits = Vec::new();
         let mut shaded = Shaded::default();
         for step in 0u64.. {
             if queue.is_empty() {
@@ -249,15 +290,7 @@ impl<'a> Frame<'a> {
             }
             let n = order(index << 32 | step, &mut queue).clamp(1, queue.len());
             let batch: Vec<FrameRay> = queue.drain(..n).collect();
-            rays.clear();
-            rays.extend(batch.iter().map(unit_ray));
-            hits.clear();
-            hits.resize(batch.len(), None);
-            stats.cast +=
-                (self.caster.cast(&rays, &mut hits)).map_err(|source| FrameError::Traversal {
-                    scene: self.scene.clone(),
-                    source,
-                })?;
+            stats.cast += self.cast(&batch, &mut hits)?;
             for (ray, hit) in batch.iter().zip(&hits) {
                 stats.count(ray.kind());
                 match (ray.kind(), hit) {
@@ -266,16 +299,21 @@ impl<'a> Frame<'a> {
                     (_, Some(_)) => stats.hits += 1,
                 }
                 shaded.clear();
-                shade(c, ray, hit.as_ref(), &mut shaded);
+                let (settle, issued) =
+                    thread::shade(&self.program, c, ray, hit.as_ref(), &mut shaded).map_err(
+                        |source| FrameError::Thread {
+                            scene: self.scene.clone(),
+                            source,
+                        },
+                    )?;
+                if let Some(t) = issued {
+                    let load = &mut stats.threads[t.kind.index()];
+                    load.threads += 1;
+                    load.instructions += u64::from(t.instructions);
+                }
+                queue.extend_from_slice(&shaded.spawned);
                 let p = local(ray.pixel);
-                for &contribution in &shaded.contributions {
-                    acc.add(p, contribution);
-                }
-                for &spawned in &shaded.spawned {
-                    acc.issue(p);
-                    queue.push(spawned);
-                }
-                if let Some(rgb) = acc.retire(p) {
+                if let Some(rgb) = acc.settle(p, &settle) {
                     colours[p] = Some(rgb);
                 }
             }
@@ -283,7 +321,6 @@ impl<'a> Frame<'a> {
         stats.zero_shadows = shaded.zero_shadows;
         stats.past_depth = shaded.past_depth;
         stats.total_internal = shaded.total_internal;
-        stats.contributions = acc.added;
         let pixels = colours
             .into_iter()
             .map(|c| c.expect("every pixel retires its last ray once the queue is empty"))

@@ -12,7 +12,10 @@
 //!   a shadow ray carries the contribution it adds if it arrives unoccluded.
 //! - [`accumulate`]: per-pixel sums in fixed point, so a pixel's sum does not depend on the
 //!   order its rays return in; a pixel is final when its last ray has returned.
-//! - [`engine`]: runs a frame, its rays answered by the traversal unit's model.
+//! - [`shader`]: shading as programs of the shader core: its instruction set, its
+//!   interpreter, the compiler from the constants, and the glue to the frame's rays.
+//! - [`engine`]: runs a frame, its rays answered by the traversal unit's model and shaded by
+//!   the compiled programs.
 
 pub mod accumulate;
 pub mod constants;
@@ -23,7 +26,7 @@ pub mod shader;
 
 pub use accumulate::{Accumulator, Contribution, Settle};
 pub use constants::FrameConstants;
-pub use engine::{Frame, FrameOutput, FrameStats, RayOrder, WAVEFRONT};
+pub use engine::{Frame, FrameOutput, FrameStats, RayOrder, ShaderLoad, WAVEFRONT};
 pub use shade::{FrameRay, Load, RayKind};
 
 use sw_renderer::rays::EngineError;
@@ -101,6 +104,16 @@ pub enum FrameError {
         object: String,
         value: f32,
         limit: u32,
+    },
+    #[error("scene `{scene}`: the shader core: {source}")]
+    Compile {
+        scene: String,
+        source: shader::CompileError,
+    },
+    #[error("scene `{scene}`: a shader core thread: {source}")]
+    Thread {
+        scene: String,
+        source: shader::RunError,
     },
     #[error("scene `{scene}`: the traversal unit: {source}")]
     Traversal { scene: String, source: EngineError },

@@ -34,6 +34,7 @@ use sw_renderer::shade::{DIFFUSE_PATTERN, MIRROR_WEIGHT};
 
 use super::accumulate::Contribution;
 use super::constants::{FrameConstants, LightConstants, MaterialConstants};
+use super::raygen::primary;
 use crate::fp32::{Fp32, Vec3};
 
 /// What a ray is, for the counters and the shading.
@@ -81,6 +82,22 @@ pub struct FrameRay {
 }
 
 impl FrameRay {
+    /// Pixel (i, j)'s primary ray ([`super::raygen::primary`]): depth 0, weight 1.
+    pub fn primary(c: &FrameConstants, i: u32, j: u32) -> FrameRay {
+        let (orig, dir) = primary(&c.camera, i, j);
+        FrameRay {
+            pixel: j * c.width + i,
+            orig,
+            dir,
+            t_max: Fp32::MAX,
+            load: Load::Cast {
+                kind: RayKind::Primary,
+                depth: 0,
+                weight: Vec3::of([1.0; 3]),
+            },
+        }
+    }
+
     pub fn kind(&self) -> RayKind {
         match self.load {
             Load::Cast { kind, .. } => kind,
