@@ -599,7 +599,9 @@ fn scenes_beyond_the_shader_core_are_errors_naming_the_sizes() {
 }
 
 /// The thesis scenes at 320×180 through the frame engine (the shader core's programs):
-/// code and constants per scene, instructions issued per thread by program kind.
+/// code and constants per scene; per program kind the instructions issued per thread and
+/// the threads (`kind=instructions×threads`); all the instructions, the rays traced and the
+/// instructions per traced ray (docs/frame.md, "Shading programs").
 #[test]
 #[ignore]
 fn shader_load_of_the_thesis_scenes() {
@@ -631,10 +633,10 @@ fn shader_load_of_the_thesis_scenes() {
             instructions += load.instructions;
         }
         println!(
-            "{line} all={:.1}×{threads} per_ray={:.1} (rays {})",
+            "{line} all={:.1}×{threads} instructions={instructions} rays={} per_ray={:.1}",
             instructions as f64 / threads as f64,
+            out.stats.rays(),
             instructions as f64 / out.stats.rays() as f64,
-            out.stats.rays()
         );
     }
 }
