@@ -146,15 +146,12 @@ struct PixelSum {
 #[derive(Clone, Debug)]
 pub struct Accumulator {
     pixels: Vec<PixelSum>,
-    /// Contributions added (zero ones included).
-    pub added: u64,
 }
 
 impl Accumulator {
     pub fn new(pixels: usize) -> Accumulator {
         Accumulator {
             pixels: vec![PixelSum::default(); pixels],
-            added: 0,
         }
     }
 
@@ -168,7 +165,6 @@ impl Accumulator {
         for (s, c) in sum.iter_mut().zip(c.0) {
             *s += i64::from(c);
         }
-        self.added += 1;
     }
 
     /// A ray of pixel `p` has returned and been shaded (its spawned rays issued first): the
@@ -192,7 +188,7 @@ impl Accumulator {
     /// One shaded ray of pixel `p` as one record: its contributions' sum added, its spawned
     /// rays issued, itself retired; the pixel's 8-bit colour if that was its last ray. The
     /// same as [`Accumulator::add`] of each contribution, [`Accumulator::issue`] of each
-    /// spawned ray and [`Accumulator::retire`] (`added` counts only `add`'s contributions).
+    /// spawned ray and [`Accumulator::retire`].
     pub fn settle(&mut self, p: usize, s: &Settle) -> Option<[u8; 3]> {
         let px = &mut self.pixels[p];
         for (sum, add) in px.sum.iter_mut().zip(s.sum) {
@@ -261,7 +257,6 @@ mod tests {
         assert_eq!(acc.retire(1), None);
         acc.add(1, Contribution::of(Vec3::of([0.25, -1.0, 0.0])));
         assert_eq!(acc.retire(1), Some([191, 0, 255]));
-        assert_eq!(acc.added, 2);
     }
 
     /// A random contribution: mostly a colour's, some at the format's extremes or negative.
