@@ -598,6 +598,35 @@ fn scenes_beyond_the_shader_core_are_errors_naming_the_sizes() {
     }
 }
 
+/// A scene whose programs do not fit is a load error of the frame naming the scene and the
+/// sizes (what `rtfpga render --engine frame` reports).
+#[test]
+fn a_frame_whose_programs_do_not_fit_is_a_load_error() {
+    let mut scene = test_scene("phong");
+    let cylinder = scene.objects[1].clone();
+    for e in 0..40 {
+        let mut o = cylinder.clone();
+        o.material.n = (200 + e) as f32;
+        scene.objects.push(o);
+    }
+    while scene.lights.len() < 8 {
+        scene.lights.push(scene.lights[1].clone());
+    }
+    let prepared = PreparedScene::new(&scene).unwrap();
+    let unit = traversal();
+    let loaded = Frame::new(&scene, &prepared, &unit, 16, 9, &FrameLimits::HW);
+    match loaded {
+        Ok(_) => panic!("loaded"),
+        Err(e) => says(
+            &e.to_string(),
+            &[
+                "scene `phong`: the shader core: the shading programs take",
+                "program memory holds 2048",
+            ],
+        ),
+    };
+}
+
 /// The thesis scenes at 320×180 through the frame engine (the shader core's programs):
 /// code and constants per scene; per program kind the instructions issued per thread and
 /// the threads (`kind=instructions×threads`); all the instructions, the rays traced and the

@@ -363,15 +363,15 @@ impl Builder<'_> {
         self.add(n, reg(n), reg(s));
         self.release(s);
         self.normalise(n);
-        let b = w; // w is dead
+        let b = w; // w is no longer read: reused
         self.mul(b, reg(n), self.layout.global(Global::Shadow, 0));
         (p, n, b)
     }
 
-    /// Writes `out`'s record and pushes a cast ray of `kind` (its direction normalised) unless
-    /// it is past the depth; if it is, adds weight⊙background to `sum` and counts it. Both
-    /// only where `pred` holds (when given: predicates p and, for the past depth, q, true
-    /// when `pred` and not past / `pred` and past).
+    /// A spawned cast ray of `kind` along `dir` (normalised here) with `weight`, its origin
+    /// already in the output record: pushed under one predicate; under the other (past the
+    /// depth) its weight⊙background added to `sum` and counted. `preds` names them (push,
+    /// past); by default they are not past the depth and past it.
     fn cast(&mut self, kind: PushKind, dir: u8, weight: u8, sum: u8, preds: Option<(u8, u8)>) {
         let (push, past) = match preds {
             Some((p, q)) => (Pred::when(p), Pred::when(q)),
