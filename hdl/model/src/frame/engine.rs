@@ -5,9 +5,9 @@
 //! queue; [`RayOrder`] picks the next batch from it, the traversal unit answers the batch,
 //! each answer is shaded by the scene's compiled shading programs (as the shader core does,
 //! [`super::shader`]; a shadow ray beside it), its settle record applied to its pixel and
-//! its spawned rays queued. Pixels are
-//! independent and their sums order-independent, so the image depends neither on the tile
-//! size nor on the order: the hardware, answering rays out of order, gives the same bits.
+//! its spawned rays queued. Pixels are independent and their sums order-independent, so the
+//! image depends neither on the tile size nor on the order: the hardware, answering rays out
+//! of order, gives the same bits.
 
 use std::ops::AddAssign;
 
@@ -51,7 +51,7 @@ pub struct FrameStats {
     /// Glass hits with total internal reflection (no refraction ray).
     pub total_internal: u64,
     /// The shader core's threads by program kind (`ProgramKind::ALL`'s order).
-    pub threads: [ShaderLoad; 5],
+    pub threads: [ShaderLoad; ProgramKind::ALL.len()],
     /// What the traversal unit's model did.
     pub cast: CastStats,
 }
@@ -66,6 +66,11 @@ impl FrameStats {
     pub fn contributions(&self) -> u64 {
         let cast = self.rays() - self.shadow_rays;
         (cast - self.hits) + (self.shadow_rays - self.occluded) + self.past_depth
+    }
+
+    /// The threads of programs of `kind`.
+    pub fn shader(&self, kind: ProgramKind) -> ShaderLoad {
+        self.threads[kind.index()]
     }
 
     pub fn of_kind(&self, kind: RayKind) -> u64 {
@@ -99,8 +104,7 @@ impl AddAssign for FrameStats {
         self.past_depth += o.past_depth;
         self.total_internal += o.total_internal;
         for (a, b) in self.threads.iter_mut().zip(o.threads) {
-            a.threads += b.threads;
-            a.instructions += b.instructions;
+            *a += b;
         }
         self.cast += o.cast;
     }
@@ -114,10 +118,10 @@ pub struct ShaderLoad {
     pub instructions: u64,
 }
 
-impl FrameStats {
-    /// The threads of programs of `kind`.
-    pub fn shader(&self, kind: ProgramKind) -> ShaderLoad {
-        self.threads[kind.index()]
+impl AddAssign for ShaderLoad {
+    fn add_assign(&mut self, o: ShaderLoad) {
+        self.threads += o.threads;
+        self.instructions += o.instructions;
     }
 }
 
@@ -307,9 +311,10 @@ impl<'a> Frame<'a> {
                         },
                     )?;
                 if let Some(t) = issued {
-                    let load = &mut stats.threads[t.kind.index()];
-                    load.threads += 1;
-                    load.instructions += u64::from(t.instructions);
+                    stats.threads[t.kind.index()] += ShaderLoad {
+                        threads: 1,
+                        instructions: u64::from(t.instructions),
+                    };
                 }
                 queue.extend_from_slice(&shaded.spawned);
                 let p = local(ray.pixel);
