@@ -469,9 +469,13 @@ fn malformed_instruction_words_are_refused_naming_the_field() {
         a: Src::reg(0),
         b: Src::reg(1),
     };
-    for p in [0, 1, 8] {
-        says(&refused(with(lt, p)), &[&format!("written predicate {p}")]);
+    for p in [0, 1] {
+        says(
+            &refused(with(lt, p)),
+            &[&format!("predicate {p} is read-only")],
+        );
     }
+    says(&refused(with(lt, 8)), &["written predicate 8", "at most 7"]);
     // An operand an operation does not read, or a destination it does not write.
     let nop = Instr::new(Op::Nop).encode().unwrap();
     says(

@@ -268,6 +268,8 @@ pub enum IsaError {
         value: u64,
         max: u64,
     },
+    #[error("{instr:?}: predicate {p} is read-only (p0 is always true, p1 the past-depth flag); compares write p2 to p7")]
+    ReadOnlyPredicate { instr: Instr, p: u8 },
     #[error("{instr:?}: {what} {value} is out of range (at most {max})")]
     Operand {
         instr: Instr,
@@ -457,8 +459,14 @@ impl Instr {
         let (dest, a, b) = self.op.fields();
         match self.op {
             Op::Lt { .. } | Op::Le { .. } | Op::Nz { .. } => {
-                if dest <= PAST_DEPTH as u64 || dest >= PREDICATES as u64 {
+                if dest >= PREDICATES as u64 {
                     return err("written predicate", dest, PREDICATES as u64 - 1);
+                }
+                if dest <= PAST_DEPTH as u64 {
+                    return Err(IsaError::ReadOnlyPredicate {
+                        instr: self,
+                        p: dest as u8,
+                    });
                 }
             }
             Op::Out { .. } | Op::Push { .. } | Op::Count { .. } | Op::End { .. } | Op::Nop => {}
