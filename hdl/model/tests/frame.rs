@@ -2,6 +2,8 @@
 //! scenes, the built-in scenes and one small scene per material and light kind (each
 //! exercising its path); the image independent of the order rays return in; load errors.
 
+mod common;
+
 use std::path::Path;
 use std::sync::Arc;
 
@@ -16,6 +18,8 @@ use rand::{Rng, SeedableRng};
 use sw_renderer::compare::psnr;
 use sw_renderer::intersect::F32Intersector;
 use sw_renderer::render::{render, RenderOptions};
+
+use common::says;
 use sw_renderer::scene::{builtin, Scene};
 use sw_renderer::thesis_scenes::{for_test, SCENE_DIRS};
 use sw_renderer::trace::{PreparedScene, TraceStats};
@@ -210,12 +214,6 @@ fn load_error(scene: &Scene, width: u32, height: u32) -> String {
         Ok(_) => panic!("{}: loaded", scene.name),
         Err(e @ FrameError::Traversal { .. }) => panic!("{e}"),
         Err(e) => e.to_string(),
-    }
-}
-
-fn says(e: &str, parts: &[&str]) {
-    for p in parts {
-        assert!(e.contains(p), "`{e}` lacks `{p}`");
     }
 }
 

@@ -31,6 +31,8 @@ use sw_renderer::scene::{builtin, MaterialKind, Scene};
 use sw_renderer::thesis_scenes::{for_test, SCENE_DIRS};
 use sw_renderer::trace::PreparedScene;
 
+use common::says;
+
 fn traversal() -> TraversalEngine {
     TraversalEngine {
         format: Format::FP32,
@@ -408,12 +410,6 @@ fn refused(w: u64) -> String {
     match Instr::decode(w) {
         Ok(i) => panic!("{w:#x} decoded as {i:?}"),
         Err(e) => e.to_string(),
-    }
-}
-
-fn says(e: &str, parts: &[&str]) {
-    for p in parts {
-        assert!(e.contains(p), "`{e}` lacks `{p}`");
     }
 }
 

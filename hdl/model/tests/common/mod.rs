@@ -6,6 +6,13 @@ use hw_model::Format;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
+/// Asserts that an error message names every one of `parts`.
+pub fn says(e: &str, parts: &[&str]) {
+    for p in parts {
+        assert!(e.contains(p), "`{e}` lacks `{p}`");
+    }
+}
+
 pub fn rng(seed: u64) -> StdRng {
     StdRng::seed_from_u64(seed)
 }
