@@ -3,11 +3,14 @@
 //!
 //! - [`alu`]: the datapath, an operation on two 3-lane operands a cycle, every operation
 //!   retiring after the same latency.
+//! - [`core`]: T threads in a barrel on the datapath, one instruction issued a cycle;
+//!   thread starts in, pushed rays and settle records out.
 //!
 //! The instruction word's fields come from `isa::word`, the one table of them; the opcodes
 //! from the model's encoder ([`opcode`]).
 
 pub mod alu;
+pub mod core;
 
 use hw_model::frame::shader::isa::{word, Counter, Field, Instr, Op, PushKind, Src};
 use rust_hdl::prelude::*;
