@@ -14,7 +14,8 @@
 //! gaps and their rays and settle records taken under random back-pressure with long stalls,
 //! and again flowing: every thread's rays in order, its settle record and tag, the counters
 //! and the instructions issued equal `run()`'s, at depth 0, 1 and full; registers and
-//! constants from the edge words. Programs and starts that do not fit are errors. Lint.
+//! constants from the edge words; a second program and its constants loaded over the first
+//! between two frames. Programs and starts that do not fit are errors. Lint.
 
 use hdl::frame::shader::alu::{self, simulate_alu, AluInput};
 use hdl::frame::shader::{opcode, Kind};
@@ -142,7 +143,8 @@ fn check_alu(depth: usize, per_kind: usize, seed: u64) {
     for kind in VALUE_KINDS.into_iter().chain(PREDICATE_KINDS) {
         for n in 0..per_kind {
             let (a, b) = if n < edges.len() * edges.len() && n < per_kind / 2 {
-                // Every pair of edge words in lane x first, the other lanes random.
+                // Pairs of edge words in lane x first (in order, as many as half the
+                // operations), the other lanes random.
                 let (i, j) = (n / edges.len(), n % edges.len());
                 let mut a = [0; 3].map(|_| word(&mut rng, &edges));
                 let mut b = [0; 3].map(|_| word(&mut rng, &edges));
@@ -201,7 +203,7 @@ fn shader_alu_matches_the_interpreter_at_depth_1() {
 
 #[test]
 fn shader_alu_matches_the_interpreter_at_full_depth() {
-    check_alu(alu::full_depth(), 600, 3);
+    check_alu(alu::full_depth(), 400, 3);
 }
 
 /// The latency grows with the depth to the square root's, every operator's stages capped.
@@ -414,8 +416,10 @@ const NOISY: Traffic = Traffic {
 /// rays and settle records as `traffic` says, until every thread has settled and every ray
 /// is taken.
 struct Bench {
-    loads: Vec<Load>,
+    /// Per frame its loads and the starts up to its last (an index into `starts`).
+    frames: Vec<(Vec<Load>, usize)>,
     starts: Vec<Start>,
+    frame: usize,
     traffic: Traffic,
     rng: StdRng,
     loaded: usize,
@@ -438,22 +442,31 @@ impl Bench {
                 self.settled += 1;
             }
         }
-        // Done when every thread has settled and no ray waits.
+        // A frame is done when its every thread has settled and no ray waits; the next is
+        // loaded then.
         let drained = shown.is_some_and(|out| out.ray.is_none());
-        if (self.settled == self.starts.len() && drained) || self.cycles_left == 0 {
+        if self.settled == self.frames[self.frame].1 && drained {
+            if self.frame + 1 == self.frames.len() {
+                return None;
+            }
+            self.frame += 1;
+            self.loaded = 0;
+        }
+        if self.cycles_left == 0 {
             return None;
         }
         self.cycles_left -= 1;
-        if self.loaded < self.loads.len() {
+        let loads = &self.frames[self.frame].0;
+        if self.loaded < loads.len() {
             self.loaded += 1;
             let input = CoreInput {
-                load: Some(self.loads[self.loaded - 1]),
+                load: Some(loads[self.loaded - 1]),
                 ..CoreInput::default()
             };
             self.last = Some(input);
             return Some(input);
         }
-        if !self.offered && self.next < self.starts.len() {
+        if !self.offered && self.next < self.frames[self.frame].1 {
             self.offered = !self.rng.gen_bool(self.traffic.gap);
         }
         let mut ready = [false; 2];
@@ -475,28 +488,38 @@ impl Bench {
     }
 }
 
-/// Runs the starts through the core at `depth` and checks every thread against `run()`:
-/// its rays in order, its settle record, and the counters summed over the threads. Returns
-/// the simulated cycles.
+/// Runs frames (a program loaded, then its starts) through one core at `depth` and checks
+/// every thread against `run()` on its frame's program: its rays in order, its settle
+/// record, and the counters summed over the threads. The starts' pixels index all the
+/// frames' starts. Returns the simulated cycles.
 fn check_core(
     what: &str,
     depth: usize,
-    program: &Program,
-    starts: &[Start],
+    frames: &[(Program, Vec<Start>)],
     traffic: Traffic,
     seed: u64,
 ) -> usize {
-    let models: Vec<ThreadOutput> = starts
-        .iter()
-        .map(|s| run(program, &s.input).expect("a random program runs"))
+    let starts: Vec<Start> = frames.iter().flat_map(|(_, s)| s.clone()).collect();
+    let models: Vec<ThreadOutput> = (frames.iter())
+        .flat_map(|(program, starts)| {
+            (starts.iter()).map(|s| run(program, &s.input).expect("a random program runs"))
+        })
         .collect();
-    let load_words = loads(program).expect("the program fits");
+    let mut end = 0;
+    let frame_loads: Vec<(Vec<Load>, usize)> = (frames.iter())
+        .map(|(program, starts)| {
+            end += starts.len();
+            (loads(program).expect("the program fits"), end)
+        })
+        .collect();
     let work: u32 = models.iter().map(|m| m.instructions).sum();
-    let limit =
-        load_words.len() + 40 * (work as usize + starts.len()) * shader_core::threads(depth) + 5000;
+    let limit = frame_loads.iter().map(|(l, _)| l.len()).sum::<usize>()
+        + 40 * (work as usize + starts.len()) * shader_core::threads(depth)
+        + 5000;
     let mut bench = Bench {
-        loads: load_words,
-        starts: starts.to_vec(),
+        frames: frame_loads,
+        starts: starts.clone(),
+        frame: 0,
         traffic,
         rng: StdRng::seed_from_u64(seed),
         loaded: 0,
@@ -582,22 +605,39 @@ fn check_random(depth: usize, threads: usize, length: usize, seed: u64) {
         pushed >= threads / 2,
         "{pushed} rays pushed by {threads} threads"
     );
+    let frames = [(program, starts)];
     check_core(
         &format!("depth {depth}, noisy"),
         depth,
-        &program,
-        &starts,
+        &frames,
         NOISY,
         seed,
     );
     check_core(
         &format!("depth {depth}, flowing"),
         depth,
-        &program,
-        &starts,
+        &frames,
         FLOWING,
         seed,
     );
+}
+
+/// Two frames on one core: the second program and its constants loaded over the first's
+/// once its threads have settled, its threads running the new code.
+#[test]
+fn shader_core_reloads_between_frames() {
+    let mut rng = StdRng::seed_from_u64(13);
+    let frames: Vec<(Program, Vec<Start>)> = (0..2)
+        .map(|f| {
+            let (program, entries) = random_program(&mut rng, 3, 20);
+            let starts = random_starts(&mut rng, &entries, 8)
+                .into_iter()
+                .map(|s| Start::new(s.input, s.pixel + 8 * f, s.depth).expect("fits"))
+                .collect();
+            (program, starts)
+        })
+        .collect();
+    check_core("two frames, noisy", 1, &frames, NOISY, 13);
 }
 
 #[test]
