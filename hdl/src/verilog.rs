@@ -42,7 +42,8 @@ pub const TOP_VERILATOR_WAIVERS: &[&str] = &["-Wno-VARHIDDEN", "-Wno-SYMRSVDWORD
 ///   drives their inputs, and a block at a low depth passes some signals through zero-cycle
 ///   delay lines, so Verilator sees a loop between always blocks where every real path
 ///   crosses a register (the rust-hdl simulation settles every cycle, and the Verilated unit
-///   equals the model).
+///   equals the model). The shader core (`frame::shader::core`) is waived for the same
+///   reason: its kernel reads the write-back delay lines' outputs and drives their inputs.
 pub const UNIT_VERILATOR_WAIVERS: &[&str] = &["-Wno-UNOPTFLAT"];
 
 /// `verilator --lint-only -Wall` with [`VERILATOR_WAIVERS`] on a generated block whose top

@@ -52,7 +52,7 @@ const WIDTHS: FixedWidths = FixedWidths::of(CONTRIBUTION.width() as usize, FORMA
 pub const CONTRIBUTION_BITS: usize = WIDTHS.word;
 
 /// fp32 → [`CONTRIBUTION`].
-type ToFixed = FixedFromF32<
+pub(crate) type ToFixed = FixedFromF32<
     { WIDTHS.word },
     { WIDTHS.frac },
     { WIDTHS.from_f32_aligned },

@@ -9,9 +9,12 @@
 //!   fx<28,12>), one a cycle: the values the accumulator's settle records sum.
 //! - [`accumulate`]: per-pixel sums and counts of rays out in block RAM, one record (open a
 //!   pixel, or settle one of its shaded rays) a cycle; finished pixels out in 8 bits.
+//! - [`shader`]: the shader core, shading programs run by interleaved threads on one fp32
+//!   datapath.
 
 pub mod accumulate;
 pub mod contribution;
 pub mod coord;
 pub mod normalise;
 pub mod raygen;
+pub mod shader;

@@ -17,6 +17,7 @@ mod frame_accumulate;
 mod frame_contribution;
 mod frame_normalise;
 mod frame_raygen;
+mod frame_shader;
 mod fusesoc_core;
 mod mt_lane;
 mod ray_setup;
