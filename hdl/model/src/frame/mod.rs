@@ -21,6 +21,7 @@ pub mod accumulate;
 pub mod constants;
 pub mod engine;
 pub mod raygen;
+pub mod schedule;
 pub mod shade;
 pub mod shader;
 

@@ -22,6 +22,19 @@ pub struct Program {
     pub miss_entry: u16,
 }
 
+impl Program {
+    /// The rays a thread entering at `entry` may push: the `Push` instructions from `entry`
+    /// to its `End`, executed or not (what the frame unit reserves ray-store entries for
+    /// when the thread starts).
+    pub fn pushes_from(&self, entry: u16) -> usize {
+        let code = self.code.get(entry as usize..).unwrap_or_default();
+        code.iter()
+            .take_while(|i| !matches!(i.op, Op::End { .. }))
+            .filter(|i| matches!(i.op, Op::Push { .. }))
+            .count()
+    }
+}
+
 /// What a thread starts with.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ThreadInput {
