@@ -282,18 +282,49 @@ fn impossible_units_are_errors_naming_the_sizes() {
         ..UNIT
     })
     .starts_with("the traversal unit: a unit of 0 ray slots"));
-    // Phong under two lights pushes up to 2 shadow rays.
     assert_eq!(
         msg(FrameUnit {
             ray_store: 64,
             ..UNIT
         }),
-        "a ray store of 64 entries: this scene's threads push up to 2 rays and ray generation leaves 64 entries for spawned rays, so it needs at least 65"
+        "a ray store of 64 entries with a spawn reserve of 64: it needs at least 65"
     );
-    assert!(msg(FrameUnit {
-        ray_store: 1,
-        spawn_reserve: 0,
+    // Phong under two lights pushes up to 2 shadow rays; glass 2 reflection or refraction
+    // rays, 5 deep.
+    assert_eq!(
+        msg(FrameUnit {
+            spawn_reserve: 1,
+            ..UNIT
+        }),
+        "a spawn reserve of 1 entries: this scene's threads push up to 2 rays, 0 of them reflection or refraction rays, 4 deep, so it needs at least 2 (0·4 + 2)"
+    );
+    let glass = timed(
+        &test_scene("glass"),
+        8,
+        8,
+        &FrameUnit {
+            spawn_reserve: 11,
+            ..UNIT
+        },
+    );
+    assert_eq!(
+        glass.unwrap_err().to_string(),
+        "a spawn reserve of 11 entries: this scene's threads push up to 2 rays, 2 of them reflection or refraction rays, 5 deep, so it needs at least 12 (2·5 + 2)"
+    );
+}
+
+#[test]
+fn the_smallest_ray_store_renders_trees_deeper_than_it_is_wide() {
+    // The least reserve and store for the glass scene (depth 5, 2 cast pushes): every
+    // pixel finishes, every ray shaded once.
+    let scene = test_scene("glass");
+    let least = FrameUnit {
+        ray_store: 13,
+        spawn_reserve: 12,
         ..UNIT
-    })
-    .contains("push up to 2 rays"));
+    };
+    let s = timed(&scene, 32, 18, &least).unwrap();
+    let roomy = timed(&scene, 32, 18, &UNIT).unwrap();
+    assert_eq!(s.rays, roomy.rays);
+    assert!(s.peak_in_flight <= 13 && s.cycles > roomy.cycles, "{s:?}");
 }

@@ -16,30 +16,41 @@
 //!   rays before primary ones, so that pixels finish), one ray in a cycle when a slot is
 //!   free, one answer out a cycle;
 //! - **shading**: a shadow ray's answer settles beside the cores (a record to the
-//!   accumulator); a cast ray's answer waits for a thread (spawned rays' answers in order
-//!   before primary ones', so that pixels finish): a core with a free
-//!   context (the core with the fewest threads) and the ray store's entries for every push of
-//!   its program ([`Program::pushes_from`], its own entry counting), reserved; at most one
-//!   thread starts a cycle. A core is a barrel of `threads` contexts issuing one instruction a
-//!   cycle round robin among its ready threads; a thread is ready again `threads` cycles after
-//!   an issue (the pipeline's latency), so a thread of n instructions takes about
-//!   n·`threads` cycles and a core with fewer threads ready leaves issue slots idle. In the
-//!   cycle after its last instruction (`End`) issued, the thread's pushes join the traversal
-//!   unit's input, its unused reservations are freed, its settle record goes to the
-//!   accumulator and its context is free;
+//!   accumulator); a cast ray's answer waits for a thread, the oldest pixel's first and a
+//!   pixel's deepest first. The first waiting ray starts a thread (at most one a cycle) on
+//!   the core with the fewest threads, if one has a free context, reserving the ray-store
+//!   entries every push of its program may need ([`Program::pushes_from`]; its own entry,
+//!   read now, counting), and only if the store keeps the escape's reserve free after it,
+//!   unless its program pushes shadow rays only or it is the *escape* (below). A core is a
+//!   barrel of `threads` contexts issuing one instruction a cycle round robin among its
+//!   ready threads; a thread is ready again `threads` cycles after an issue (the pipeline's
+//!   latency), so a thread of n instructions takes about n·`threads` cycles and a core with
+//!   fewer threads ready leaves issue slots idle. In the cycle after its last instruction
+//!   (`End`) issued, the thread's pushes join the traversal unit's input, its unused
+//!   reservations are freed, its settle record goes to the accumulator and its context is
+//!   free;
 //! - **accumulator**: one record a cycle in arrival order; a pixel whose last ray settles is
 //!   finished `accumulate_latency` cycles later, and its slot free.
 //!
 //! The frame's cycles run from the first pixel to the last finished pixel.
 //!
-//! **Deadlock.** A thread starts only with every entry its pushes may need, so no ray is ever
-//! dropped; but rays waiting for a thread hold their entries, and a ray tree may grow wider
-//! than the store. Ray generation keeps `spawn_reserve` entries for the trees; if the rays
-//! in flight still fill the store so that no waiting thread can start, the schedule reports
-//! [`ScheduleError::Stalled`] with the sizes. The store needs at least the largest push count
-//! of a thread and `spawn_reserve + 1` entries ([`ScheduleError::RayStore`]).
+//! **No deadlock, no dropped ray.** A thread starts only with every entry its pushes may
+//! need, so no ray is dropped; but rays waiting for a thread hold their entries, and ray
+//! trees grow. The threads that push reflection or refraction rays leave the *escape's
+//! reserve* of C·D + M entries free (D the scene's max depth, C and M the most reflection
+//! and refraction rays and the most rays a thread pushes), ray generation `spawn_reserve` ≥
+//! that; threads that push shadow rays only may use the reserve (their rays come back and
+//! free their entries without needing more); so may the *escape*: the deepest cast ray in
+//! flight of the oldest unfinished pixel, when it is waiting. The escape walks that pixel's
+//! tree depth first, so below the reserve it holds at most its path's waiting siblings and
+//! one thread's pushes, C·D + M entries. When every ray in flight is waiting, the oldest
+//! pixel's deepest is the escape, and the store still has the entries it needs. So
+//! `spawn_reserve` must be at least C·D + M and the store one more
+//! ([`ScheduleError::SpawnReserve`], [`ScheduleError::RayStore`]); a stall would be a bug of
+//! this model, reported as [`ScheduleError::Stalled`], never a hang.
 
-use std::collections::VecDeque;
+use std::cmp::Reverse;
+use std::collections::{BTreeSet, BinaryHeap, VecDeque};
 
 use sw_renderer::hit::Hit;
 use thiserror::Error;
@@ -47,10 +58,17 @@ use thiserror::Error;
 use super::accumulate::{Accumulator, Settle};
 use super::constants::FrameConstants;
 use super::engine::{unit_ray, ShaderLoad};
-use super::shade::{FrameRay, RayKind, Shaded};
-use super::shader::{thread, Program, ProgramKind, RunError};
+use super::shade::{FrameRay, Load, RayKind, Shaded};
+use super::shader::{thread, Program, ProgramKind, Pushes, RunError};
 use crate::traversal::schedule::{Schedule, TimingError, Unit, UnitTiming};
 use crate::traversal::{Step, TraversalError, TraversalModel, UnitCounters, UnitRay};
+
+/// Ray-store entries unless configured otherwise: 512 rays of about 430 bits (docs/frame.md
+/// "No recursion stack") fill 6 of the XC7Z020's 140 RAMB36.
+pub const DEFAULT_RAY_STORE: usize = 512;
+/// Shader-core threads unless configured otherwise: the core's pipeline latency, between the
+/// fp32 multiplier's and the square root's.
+pub const DEFAULT_SHADER_THREADS: usize = 16;
 
 /// The planned frame unit's sizes and latencies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -58,7 +76,8 @@ pub struct FrameUnit {
     pub traversal: UnitTiming,
     /// Rays in flight at most (the payload RAM's entries).
     pub ray_store: usize,
-    /// Entries ray generation leaves free for spawned rays.
+    /// Entries ray generation leaves free for spawned rays (a quarter of the store unless
+    /// configured otherwise).
     pub spawn_reserve: usize,
     pub shader_cores: usize,
     /// Thread contexts of a core, and the cycles from a thread's issue to its next.
@@ -164,14 +183,21 @@ pub enum ScheduleError {
     Threads(usize),
     #[error("{0} pixel slots: the accumulator needs at least one")]
     PixelSlots(usize),
-    #[error("a ray store of {entries} entries: this scene's threads push up to {pushes} rays and ray generation leaves {reserve} entries for spawned rays, so it needs at least {needed}")]
+    #[error("a spawn reserve of {reserve} entries: this scene's threads push up to {pushes} rays, {cast} of them reflection or refraction rays, {depth} deep, so it needs at least {needed} ({cast}·{depth} + {pushes})")]
+    SpawnReserve {
+        reserve: usize,
+        pushes: usize,
+        cast: usize,
+        depth: u32,
+        needed: usize,
+    },
+    #[error("a ray store of {entries} entries with a spawn reserve of {reserve}: it needs at least {needed}")]
     RayStore {
         entries: usize,
-        pushes: usize,
         reserve: usize,
         needed: usize,
     },
-    #[error("the frame stalled at cycle {cycle} with {pixels_left} pixels unfinished: {waiting} shaded rays wait for a thread, the next needing {needed} ray-store entries, and {free} of {entries} are free; give a larger ray store or spawn reserve")]
+    #[error("the frame stalled at cycle {cycle} with {pixels_left} pixels unfinished: {waiting} shaded rays wait for a thread, the next needing {needed} ray-store entries, and {free} of {entries} are free (a bug of the schedule model)")]
     Stalled {
         cycle: u64,
         pixels_left: u64,
@@ -195,7 +221,7 @@ struct Stored {
 struct Thread {
     left: u32,
     ready_at: u64,
-    slot: usize,
+    pixel: u32,
     settle: Settle,
     spawned: Vec<FrameRay>,
     reserved: usize,
@@ -209,8 +235,13 @@ struct Core {
 
 enum Record {
     Open(usize),
-    Settle(usize, Settle),
+    /// A ray of the pixel shaded.
+    Settle(u32, Settle),
 }
+
+/// A waiting cast ray's place: its pixel, its depth (deepest first), its order of answer, its
+/// id.
+type Waiting = (u32, Reverse<u32>, u64, usize);
 
 /// The frame unit's state while a frame runs.
 struct Run<'a> {
@@ -225,8 +256,15 @@ struct Run<'a> {
     reserved: usize,
     primaries: VecDeque<(u64, usize)>,
     spawned: VecDeque<usize>,
-    /// Cast rays answered, waiting for a thread: spawned ones, then primary ones.
-    answers: [VecDeque<usize>; 2],
+    /// Cast rays answered, waiting for a thread: by pixel, deepest first, then in order.
+    answers: BinaryHeap<Reverse<Waiting>>,
+    answered: u64,
+    /// Cast rays in flight by pixel slot and depth.
+    cast_depths: Vec<Vec<u32>>,
+    /// Pixels generated and not finished.
+    unfinished: BTreeSet<u32>,
+    /// Entries threads pushing cast rays leave free: the escape's (C·D + M).
+    escape_reserve: usize,
     cores: Vec<Core>,
     records: VecDeque<Record>,
     acc: Accumulator,
@@ -258,14 +296,24 @@ pub fn schedule_frame(
         return Err(ScheduleError::PixelSlots(unit.pixel_slots));
     }
     let entries = std::iter::once(program.miss_entry).chain(program.material_entry.iter().copied());
-    let pushes = entries.map(|e| program.pushes_from(e)).max().unwrap_or(0);
-    let needed = pushes.max(unit.spawn_reserve + 1);
-    if unit.ray_store < needed {
+    let pushes: Vec<Pushes> = entries.map(|e| program.pushes_from(e)).collect();
+    let most = pushes.iter().map(|p| p.total()).max().unwrap_or(0);
+    let cast = pushes.iter().map(|p| p.cast).max().unwrap_or(0);
+    let needed = cast * c.max_depth as usize + most;
+    if unit.spawn_reserve < needed {
+        return Err(ScheduleError::SpawnReserve {
+            reserve: unit.spawn_reserve,
+            pushes: most,
+            cast,
+            depth: c.max_depth,
+            needed,
+        });
+    }
+    if unit.ray_store <= unit.spawn_reserve {
         return Err(ScheduleError::RayStore {
             entries: unit.ray_store,
-            pushes,
             reserve: unit.spawn_reserve,
-            needed,
+            needed: unit.spawn_reserve + 1,
         });
     }
     let mut run = Run {
@@ -279,7 +327,11 @@ pub fn schedule_frame(
         reserved: 0,
         primaries: VecDeque::new(),
         spawned: VecDeque::new(),
-        answers: [VecDeque::new(), VecDeque::new()],
+        answers: BinaryHeap::new(),
+        answered: 0,
+        cast_depths: vec![vec![0; c.max_depth as usize + 1]; unit.pixel_slots],
+        unfinished: BTreeSet::new(),
+        escape_reserve: needed,
         cores: (0..unit.shader_cores)
             .map(|_| Core {
                 threads: Vec::new(),
@@ -375,6 +427,7 @@ impl Run<'_> {
             (self.next_pixel / u64::from(self.c.width)) as u32,
         );
         let id = self.take(FrameRay::primary(self.c, i, j));
+        self.unfinished.insert(self.next_pixel as u32);
         self.slot_free_at[slot] = None;
         self.records.push_back(Record::Open(slot));
         self.primaries.push_back((now + self.u.raygen_latency, id));
@@ -384,6 +437,10 @@ impl Run<'_> {
     /// A free entry holding `ray` (its id).
     fn take(&mut self, ray: FrameRay) -> usize {
         let id = self.free.pop().expect("an entry was checked or reserved");
+        if let Load::Cast { depth, .. } = ray.load {
+            let slot = self.slot(&ray);
+            self.cast_depths[slot][depth as usize] += 1;
+        }
         self.store[id] = Some(Stored { ray, hit: None });
         self.out.rays[ray.kind() as usize] += 1;
         let in_flight = self.store.len() - self.free.len();
@@ -393,15 +450,22 @@ impl Run<'_> {
 
     fn release(&mut self, id: usize) -> Stored {
         self.free.push(id);
-        self.store[id].take().expect("a ray in flight is stored")
+        let stored = self.store[id].take().expect("a ray in flight is stored");
+        if let Load::Cast { depth, .. } = stored.ray.load {
+            let slot = self.slot(&stored.ray);
+            self.cast_depths[slot][depth as usize] -= 1;
+        }
+        stored
     }
 
     fn accumulate(&mut self, now: u64, record: Record) {
         self.out.records += 1;
         match record {
             Record::Open(slot) => self.acc.open(slot),
-            Record::Settle(slot, settle) => {
+            Record::Settle(pixel, settle) => {
+                let slot = pixel as usize % self.u.pixel_slots;
                 if self.acc.settle(slot, &settle).is_some() {
+                    self.unfinished.remove(&pixel);
                     self.slot_free_at[slot] = Some(now + self.u.accumulate_latency);
                     self.finished += 1;
                     self.out.cycles = now + self.u.accumulate_latency;
@@ -435,11 +499,12 @@ impl Run<'_> {
                 stored.hit.as_ref(),
                 &mut self.shaded,
             )?;
-            let slot = self.slot(&stored.ray);
-            self.records.push_back(Record::Settle(slot, settle));
+            (self.records).push_back(Record::Settle(stored.ray.pixel, settle));
         } else {
-            let primary = usize::from(kind == RayKind::Primary);
-            self.answers[primary].push_back(id);
+            let ray = &self.store[id].as_ref().expect("answered").ray;
+            let key = (ray.pixel, Reverse(depth(ray)), self.answered, id);
+            self.answers.push(Reverse(key));
+            self.answered += 1;
         }
         Ok(())
     }
@@ -448,17 +513,34 @@ impl Run<'_> {
         ray.pixel as usize % self.u.pixel_slots
     }
 
-    /// The cast ray whose thread starts next: the first spawned one answered, else the first
-    /// primary one.
+    /// The cast ray whose thread starts next.
     fn waiting(&self) -> Option<usize> {
-        self.answers.iter().find_map(|q| q.front().copied())
+        self.answers.peek().map(|Reverse((.., id))| *id)
     }
 
-    /// The entries the thread of waiting ray `id` reserves.
-    fn pushes(&self, id: usize) -> usize {
+    /// The rays the thread of waiting ray `id` may push.
+    fn pushes(&self, id: usize) -> Pushes {
         let s = self.store[id].as_ref().expect("waiting");
         thread::input(self.program, self.c, &s.ray, s.hit.as_ref())
-            .map_or(0, |t| self.program.pushes_from(t.entry))
+            .map_or(Pushes::default(), |t| self.program.pushes_from(t.entry))
+    }
+
+    /// Whether the thread of waiting ray `id` can start now (given a free context).
+    fn can_start(&self, id: usize) -> bool {
+        let need = self.pushes(id);
+        let after = (self.available() + 1).checked_sub(need.total());
+        let Some(after) = after else {
+            return false;
+        };
+        if after >= self.escape_reserve || need.cast == 0 {
+            return true;
+        }
+        // The escape: the oldest pixel's deepest cast ray in flight.
+        let ray = &self.store[id].as_ref().expect("waiting").ray;
+        let deepest = self.cast_depths[self.slot(ray)]
+            .iter()
+            .rposition(|&n| n > 0);
+        self.unfinished.first() == Some(&ray.pixel) && deepest == Some(depth(ray) as usize)
     }
 
     /// The shader cores' cycle: threads whose last result is in end, each core issues, and
@@ -503,7 +585,7 @@ impl Run<'_> {
             let id = self.take(ray);
             self.spawned.push_back(id);
         }
-        self.records.push_back(Record::Settle(th.slot, th.settle));
+        self.records.push_back(Record::Settle(th.pixel, th.settle));
     }
 
     /// The next waiting ray's thread starts, if a core has a free context and the store
@@ -518,11 +600,11 @@ impl Run<'_> {
         else {
             return Ok(());
         };
-        let reserve = self.pushes(id);
-        if self.available() + 1 < reserve {
+        if !self.can_start(id) {
             return Ok(());
         }
-        self.answers.iter_mut().find_map(VecDeque::pop_front);
+        let reserve = self.pushes(id).total();
+        self.answers.pop();
         let stored = self.release(id);
         self.shaded.clear();
         let (settle, issued) = thread::shade(
@@ -538,11 +620,10 @@ impl Run<'_> {
             instructions: u64::from(issued.instructions),
         };
         self.reserved += reserve;
-        let slot = self.slot(&stored.ray);
         self.cores[core].threads.push(Thread {
             left: issued.instructions,
             ready_at: now + 1,
-            slot,
+            pixel: stored.ray.pixel,
             settle,
             spawned: self.shaded.spawned.clone(),
             reserved: reserve,
@@ -556,8 +637,7 @@ impl Run<'_> {
         let soon = !self.records.is_empty()
             || (self.traversal.has_free_slot() && !self.spawned.is_empty())
             || self.waiting().is_some_and(|id| {
-                self.cores.iter().any(|c| c.threads.len() < self.u.threads)
-                    && self.available() + 1 >= self.pushes(id)
+                self.cores.iter().any(|c| c.threads.len() < self.u.threads) && self.can_start(id)
             });
         if soon {
             return Some(now);
@@ -582,10 +662,18 @@ impl Run<'_> {
         ScheduleError::Stalled {
             cycle: self.traversal.now(),
             pixels_left: self.out.pixels - self.finished,
-            waiting: self.answers.iter().map(VecDeque::len).sum(),
-            needed: self.waiting().map_or(0, |id| self.pushes(id)),
+            waiting: self.answers.len(),
+            needed: self.waiting().map_or(0, |id| self.pushes(id).total()),
             free: self.available(),
             entries: self.u.ray_store,
         }
+    }
+}
+
+/// A cast ray's depth (0 for a primary ray, and for a shadow ray, which never waits).
+fn depth(ray: &FrameRay) -> u32 {
+    match ray.load {
+        Load::Cast { depth, .. } => depth,
+        Load::Shadow { .. } => 0,
     }
 }
