@@ -7,7 +7,10 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Context, Result};
 use clap::{Args as ClapArgs, ValueEnum};
 use hw_model::dual::FormatChoice;
-use hw_model::traversal::TraversalEngine;
+use hw_model::frame::schedule::{self, schedule_frame, FrameUnit, Stage};
+use hw_model::frame::{Frame, FrameLimits};
+use hw_model::traversal::scene_image::SceneImage;
+use hw_model::traversal::{TraversalEngine, TraversalModel};
 use hw_model::Advance;
 use sim::projection::fit_store::{self, StoredFit};
 use sim::projection::{
@@ -15,6 +18,7 @@ use sim::projection::{
 };
 use sw_renderer::render::RenderOptions;
 use sw_renderer::scene::Scene;
+use sw_renderer::trace::PreparedScene;
 
 use crate::engine::{ChunkArgs, Datapath, HwConfig, UnitArgs};
 use crate::options::{Given, Target};
@@ -29,6 +33,9 @@ pub enum DesignKind {
     /// The traversal unit: the scene in the unit, rays in and answers out over HP ports
     /// (cycles from its schedule model on the scene's frame).
     Traversal,
+    /// The frame unit: ray generation, traversal, shading and pixels all in the fabric
+    /// (cycles from its frame schedule model; a planned design, no ARM, no board constants).
+    Frame,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -90,6 +97,21 @@ pub struct Args {
     pack_cycles: f64,
     #[command(flatten)]
     chunks: ChunkArgs,
+    /// Shader cores of the frame unit.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=64))]
+    shader_cores: u32,
+    /// Threads of a shader core, the cycles between a thread's issues (its pipeline latency).
+    #[arg(long, default_value_t = schedule::DEFAULT_SHADER_THREADS as u32,
+          value_parser = clap::value_parser!(u32).range(1..=256))]
+    shader_threads: u32,
+    /// Ray-store entries of the frame unit: the rays in flight.
+    #[arg(long, default_value_t = schedule::DEFAULT_RAY_STORE as u32,
+          value_parser = clap::value_parser!(u32).range(1..=65536))]
+    ray_store: u32,
+    /// Ray-store entries ray generation leaves for spawned rays [default: a quarter of
+    /// --ray-store].
+    #[arg(long)]
+    spawn_reserve: Option<u32>,
     /// Edge of the renderer's square tiles: one tile's rays per level form a wavefront (a
     /// chunked unit loads every chunk once per wavefront).
     #[arg(long, default_value_t = RenderOptions::default().tile_size,
@@ -119,12 +141,16 @@ impl DesignKind {
             DesignKind::Thesis => Target::ThesisDesign,
             DesignKind::Stream => Target::StreamDesign,
             DesignKind::Traversal => Target::TraversalDesign,
+            DesignKind::Frame => Target::FrameDesign,
         }
     }
 }
 
 pub fn run(a: Args, given: &Given) -> Result<()> {
     given.check(a.design.target())?;
+    if a.design == DesignKind::Frame {
+        return project_frame(&a);
+    }
     if a.scene.is_none() && !a.calibration {
         bail!("nothing to do: give --scene to project a frame and/or --calibration");
     }
@@ -249,6 +275,86 @@ fn traversal_engine(a: &Args) -> Result<TraversalEngine> {
     hw.traversal_engine(0, Advance::None, &a.chunks)
 }
 
+/// `--design frame`: the frame's cycles on the planned frame unit, from its schedule model
+/// (the scene whole in the traversal unit's memory).
+fn project_frame(a: &Args) -> Result<()> {
+    let Some(name) = &a.scene else {
+        bail!("--design frame times a frame: give --scene");
+    };
+    let scene = Scene::load(name)?;
+    let width = a.width.unwrap_or(scene.options.width);
+    let height = a.height.unwrap_or(scene.options.height);
+    let engine = traversal_engine(a)?;
+    let timing = engine
+        .timing
+        .context("the frame unit's traversal unit is timed in fp32 only")?;
+    let prepared = PreparedScene::new(&scene)?;
+    let frame = Frame::new(&scene, &prepared, &engine, width, height, &FrameLimits::HW)?;
+    let model = TraversalModel::new(
+        engine.format,
+        engine.stack_depth,
+        SceneImage::new(&prepared),
+    )
+    .with_nodes(engine.nodes)?;
+    let ray_store = a.ray_store as usize;
+    let unit = FrameUnit {
+        traversal: timing,
+        ray_store,
+        spawn_reserve: a.spawn_reserve.map_or(ray_store / 4, |r| r as usize),
+        shader_cores: a.shader_cores as usize,
+        threads: a.shader_threads as usize,
+        pixel_slots: hdl::frame::accumulate::PIXEL_SLOTS,
+        raygen_latency: hdl::frame::raygen::latency(a.depth) as u64,
+        accumulate_latency: hdl::frame::accumulate::latency() as u64,
+    };
+    let (s, took) = report::spinner("timing the frame", || {
+        schedule_frame(frame.constants(), frame.program(), &model, &unit)
+    });
+    let s = s.with_context(|| format!("scene `{}` at {width}x{height}", scene.name))?;
+    Line::new()
+        .kv("scene", &scene.name)
+        .kv("size", format_args!("{width}x{height}"))
+        .print();
+    Line::new()
+        .kv("design", "frame")
+        .kv("format", a.format)
+        .kv("depth", a.depth)
+        .kv("lanes", a.lanes)
+        .kv("slots", a.unit.slots())
+        .kv("nodes", a.unit.nodes.name())
+        .kv("box_ports", a.unit.box_ports)
+        .kv("shader_cores", unit.shader_cores)
+        .kv("shader_threads", unit.threads)
+        .kv("ray_store", unit.ray_store)
+        .kv("spawn_reserve", unit.spawn_reserve)
+        .kv("pixel_slots", unit.pixel_slots)
+        .kv("raygen_latency", unit.raygen_latency)
+        .kv("accumulate_latency", unit.accumulate_latency)
+        .print();
+    let mut rays = Line::new().kv("rays", s.rays.iter().sum::<u64>());
+    for (kind, n) in ["primary", "reflection", "refraction", "shadow"]
+        .iter()
+        .zip(s.rays)
+    {
+        rays = rays.kv(&format!("{kind}_rays"), n);
+    }
+    rays.kv("threads", s.threads.iter().map(|l| l.threads).sum::<u64>())
+        .kv("instructions", s.instructions())
+        .kv("peak_in_flight", s.peak_in_flight)
+        .print();
+    let mut line = Line::labelled("frame_schedule")
+        .kv("frame_cycles", s.cycles)
+        .fixed("fps_at_100mhz", s.fps(100.0), 2)
+        .fixed("fps", s.fps(a.fpl_mhz), 2)
+        .kv("fpl_mhz", a.fpl_mhz)
+        .kv("bound", s.busiest().name());
+    for stage in Stage::ALL {
+        line = line.fixed(stage.name(), s.utilisation(stage), 3);
+    }
+    line.fixed("schedule_s", took.as_secs_f64(), 1).print();
+    Ok(())
+}
+
 fn design(a: &Args) -> Result<Design> {
     let traversal = match a.traversal {
         Some(TraversalKind::BruteForce) => Traversal::BruteForce,
@@ -266,6 +372,7 @@ fn design(a: &Args) -> Result<Design> {
             dma_efficiency: a.dma_efficiency,
             pack_arm_cycles: a.pack_cycles,
         },
+        DesignKind::Frame => unreachable!("--design frame is timed by project_frame"),
         DesignKind::Stream => {
             // The lane's depth as the accelerator checks it.
             hdl::top::TopConfig::new(a.format, a.depth, 1).validate()?;

@@ -35,6 +35,7 @@ pub enum Target {
     ThesisDesign,
     StreamDesign,
     TraversalDesign,
+    FrameDesign,
 }
 
 use Target::*;
@@ -67,6 +68,7 @@ pub const RULES: &[Rule] = &[
             (Operator, Values::Any),
             (StreamDesign, Values::Any),
             (TraversalDesign, Values::Any),
+            (FrameDesign, Values::Only(&["fp32"])),
         ],
     },
     Rule {
@@ -78,6 +80,7 @@ pub const RULES: &[Rule] = &[
             (Unit, Values::Any),
             (StreamDesign, Values::Any),
             (TraversalDesign, Values::Any),
+            (FrameDesign, Values::Any),
         ],
     },
     Rule {
@@ -90,6 +93,7 @@ pub const RULES: &[Rule] = &[
             (ThesisDesign, Values::Any),
             (StreamDesign, Values::Any),
             (TraversalDesign, Values::Any),
+            (FrameDesign, Values::Any),
         ],
     },
     Rule {
@@ -98,6 +102,7 @@ pub const RULES: &[Rule] = &[
             (UnitModel, Values::Any),
             (Unit, Values::Any),
             (TraversalDesign, Values::Any),
+            (FrameDesign, Values::Any),
         ],
     },
     Rule {
@@ -116,6 +121,7 @@ pub const RULES: &[Rule] = &[
             (Unit, Values::Only(&["bvh2-fp32", "bvh4-q8", "bvh8-q8"])),
             (FrameModel, Values::Any),
             (TraversalDesign, Values::Any),
+            (FrameDesign, Values::Any),
         ],
     },
     Rule {
@@ -124,6 +130,7 @@ pub const RULES: &[Rule] = &[
             (UnitModel, Values::Any),
             (Unit, Values::Only(&["1"])),
             (TraversalDesign, Values::Any),
+            (FrameDesign, Values::Any),
         ],
     },
     Rule {
@@ -214,6 +221,47 @@ pub const RULES: &[Rule] = &[
         arg: "tile_size",
         applies: &[(TraversalDesign, Values::Any)],
     },
+    Rule {
+        arg: "shader_cores",
+        applies: &[(FrameDesign, Values::Any)],
+    },
+    Rule {
+        arg: "shader_threads",
+        applies: &[(FrameDesign, Values::Any)],
+    },
+    Rule {
+        arg: "ray_store",
+        applies: &[(FrameDesign, Values::Any)],
+    },
+    Rule {
+        arg: "spawn_reserve",
+        applies: &[(FrameDesign, Values::Any)],
+    },
+    // The frame design needs no board constants.
+    Rule {
+        arg: "calibration",
+        applies: &[
+            (ThesisDesign, Values::Any),
+            (StreamDesign, Values::Any),
+            (TraversalDesign, Values::Any),
+        ],
+    },
+    Rule {
+        arg: "recalibrate",
+        applies: &[
+            (ThesisDesign, Values::Any),
+            (StreamDesign, Values::Any),
+            (TraversalDesign, Values::Any),
+        ],
+    },
+    Rule {
+        arg: "thesis_scenes",
+        applies: &[
+            (ThesisDesign, Values::Any),
+            (StreamDesign, Values::Any),
+            (TraversalDesign, Values::Any),
+        ],
+    },
 ];
 
 /// A subcommand's targets, each with how its command line chooses it.
@@ -258,6 +306,7 @@ pub const SUBCOMMANDS: &[(&[&str], Targets)] = &[
             (ThesisDesign, "--design thesis"),
             (StreamDesign, "--design stream"),
             (TraversalDesign, "--design traversal"),
+            (FrameDesign, "--design frame"),
         ],
     ),
 ];

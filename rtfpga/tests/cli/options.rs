@@ -29,6 +29,12 @@ fn sample(option: &str) -> Option<&'static [&'static str]> {
         "--dma-efficiency" => &["0.5"],
         "--pack-cycles" => &["10"],
         "--tile-size" => &["8"],
+        "--shader-cores" => &["2"],
+        "--shader-threads" => &["8"],
+        "--ray-store" => &["256"],
+        "--spawn-reserve" => &["64"],
+        "--calibration" | "--recalibrate" => &[],
+        "--thesis-scenes" => &["no_such_dir"],
         _ => return None,
     })
 }
@@ -120,7 +126,12 @@ fn an_option_given_where_it_does_not_act_is_refused_naming_where_it_does() {
         ),
         (
             &["project", "--scene", "no_such_scene"],
-            &["--design thesis", "--design stream", "--design traversal"],
+            &[
+                "--design thesis",
+                "--design stream",
+                "--design traversal",
+                "--design frame",
+            ],
         ),
     ];
     let mut refused = 0;

@@ -127,3 +127,40 @@ fn the_traversal_design_takes_its_cycles_from_the_schedule_model() {
     .args(&["--cycles-per-test", "3"])
     .fails(1, &["--cycles-per-test does not act on --design traversal"]);
 }
+
+/// `--design frame`: the frame schedule model's cycles, no board constants; more shader
+/// cores never slower; options of the other designs and impossible units refused.
+#[test]
+fn the_frame_design_times_a_frame_on_the_planned_frame_unit() {
+    let frame = |extra: &[&str]| {
+        rtfpga(&[
+            "project",
+            "--scene",
+            "simple_plane",
+            "--width",
+            "32",
+            "--height",
+            "18",
+            "--design",
+            "frame",
+        ])
+        .args(extra)
+    };
+    let cycles = |cores: &str| {
+        let out = frame(&["--shader-cores", cores]).ok();
+        check_lines(&out).unwrap();
+        let line = labelled(&out, "frame_schedule");
+        let fps: f64 = value(line, "fps_at_100mhz").unwrap().parse().unwrap();
+        let cycles: f64 = value(line, "frame_cycles").unwrap().parse().unwrap();
+        assert!((fps - 1e8 / cycles).abs() < 0.01 * fps, "{out}");
+        assert_eq!(value(&out, "primary_rays").as_deref(), Some("576"), "{out}");
+        cycles
+    };
+    assert!(cycles("2") <= cycles("1"));
+    frame(&["--hp-ports", "2"]).fails(1, &["--hp-ports does not act on --design frame"]);
+    frame(&["--format", "fp16"]).fails(1, &["--format fp16: --design frame takes fp32"]);
+    frame(&["--ray-store", "8", "--spawn-reserve", "8"]).fails(
+        1,
+        &["a ray store of 8 entries with a spawn reserve of 8: it needs at least 9"],
+    );
+}

@@ -336,7 +336,7 @@ impl<'a> Frame<'a> {
 
 /// A frame ray as the traversal unit takes it: t_min 0 and nothing excluded (the thesis'
 /// spawning, by the bias).
-fn unit_ray(r: &FrameRay) -> Ray {
+pub(crate) fn unit_ray(r: &FrameRay) -> Ray {
     Ray {
         orig: V3::from_array(r.orig.to_f32()),
         dir: V3::from_array(r.dir.to_f32()),

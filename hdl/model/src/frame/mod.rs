@@ -16,11 +16,15 @@
 //!   interpreter, the compiler from the constants, and the glue to the frame's rays.
 //! - [`engine`]: runs a frame, its rays answered by the traversal unit's model and shaded by
 //!   the compiled programs.
+//! - [`schedule`]: the frame's cycles on the planned frame unit, stage by stage (the frame
+//!   schedule model: the traversal unit's schedule model fed continuously, barrel shader
+//!   cores, a bounded ray store).
 
 pub mod accumulate;
 pub mod constants;
 pub mod engine;
 pub mod raygen;
+pub mod schedule;
 pub mod shade;
 pub mod shader;
 

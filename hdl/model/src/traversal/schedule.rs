@@ -10,7 +10,9 @@
 //! resource grants round robin among the slots ready for it, from the slot after its last
 //! grant (`hdl::traversal::arbiter::RoundRobin`). Rays are independent, so a wavefront's time
 //! is this schedule from the first ray in to the last hit out; the renderer's next
-//! wavefront starts after it (the unit drains in between).
+//! wavefront starts after it (the unit drains in between). [`Unit`] is the same unit stepped
+//! a cycle at a time, fed rays as they come (the frame schedule, `crate::frame::schedule`);
+//! [`schedule`] feeds it a wavefront.
 
 use super::Step;
 
@@ -103,7 +105,7 @@ enum Want {
 
 #[derive(Clone, Copy)]
 struct Slot {
-    /// Index of the ray, and of its next step.
+    /// The caller's id of the ray, and the index of its next step.
     ray: usize,
     step: usize,
     want: Want,
@@ -125,99 +127,180 @@ impl Slot {
     }
 }
 
-/// The cycles of one wavefront whose rays walk `walks` (in the order they enter), for a
-/// unit that passes [`UnitTiming::check`] (its callers check it where the timing enters).
-pub fn schedule(t: &UnitTiming, walks: &[Vec<Step>]) -> Schedule {
-    debug_assert!(t.check().is_ok(), "{t:?}: {:?}", t.check());
-    let free = Slot {
-        ray: 0,
-        step: 0,
-        want: Want::Free,
-        ready_at: 0,
-    };
-    let mut slots = vec![free; t.slots];
-    let mut next_ray = 0;
-    let mut done = 0;
-    let mut out = Schedule::default();
-    let mut cycle = 0u64;
-    // The last grant of each arbiter: stack port, hit output, one per lane, one per box port.
-    let mut last = vec![usize::MAX; 2 + t.lanes + t.box_ports];
-    let box_arbiter = 2 + t.lanes;
-    while done < walks.len() {
-        // One ray enters the lowest free slot.
-        if next_ray < walks.len() {
-            if let Some(s) = slots.iter_mut().find(|s| s.want == Want::Free) {
-                *s = Slot {
-                    ray: next_ray,
-                    step: 0,
-                    want: Want::Free,
-                    ready_at: cycle + t.setup_latency,
-                };
-                s.advance(&walks[next_ray]);
-                next_ray += 1;
-            }
+/// The unit stepped a cycle at a time: rays enter when a slot is free ([`Unit::enter`]),
+/// [`Unit::cycle`] grants the cycle's resources and lets at most one answer out. `W` holds a
+/// ray's walk while it is in the unit (`&[Step]` or `Vec<Step>`).
+pub struct Unit<W> {
+    t: UnitTiming,
+    slots: Vec<Slot>,
+    /// The walk of each slot's ray.
+    walks: Vec<Option<W>>,
+    /// The last grant of each arbiter: stack port, hit output, one per lane, one per box port.
+    last: Vec<usize>,
+    cycle: u64,
+    busy: Schedule,
+}
+
+impl<W: AsRef<[Step]>> Unit<W> {
+    /// An empty unit at cycle 0, for a timing that passes [`UnitTiming::check`] (its callers
+    /// check it where the timing enters).
+    pub fn new(t: UnitTiming) -> Unit<W> {
+        debug_assert!(t.check().is_ok(), "{t:?}: {:?}", t.check());
+        let free = Slot {
+            ray: 0,
+            step: 0,
+            want: Want::Free,
+            ready_at: 0,
+        };
+        Unit {
+            t,
+            slots: vec![free; t.slots],
+            walks: (0..t.slots).map(|_| None).collect(),
+            last: vec![usize::MAX; 2 + t.lanes + t.box_ports],
+            cycle: 0,
+            busy: Schedule::default(),
         }
+    }
+
+    /// The current cycle.
+    pub fn now(&self) -> u64 {
+        self.cycle
+    }
+
+    /// What the unit has done so far; `cycles` is the current cycle.
+    pub fn schedule(&self) -> Schedule {
+        Schedule {
+            cycles: self.cycle,
+            ..self.busy
+        }
+    }
+
+    pub fn has_free_slot(&self) -> bool {
+        self.slots.iter().any(|s| s.want == Want::Free)
+    }
+
+    /// Ray `id` walking `walk` enters the lowest free slot in the current cycle (one ray a
+    /// cycle: call it at most once between [`Unit::cycle`]s); `false` if no slot is free.
+    pub fn enter(&mut self, id: usize, walk: W) -> bool {
+        let Some(k) = self.slots.iter().position(|s| s.want == Want::Free) else {
+            return false;
+        };
+        let s = &mut self.slots[k];
+        *s = Slot {
+            ray: id,
+            step: 0,
+            want: Want::Free,
+            ready_at: self.cycle + self.t.setup_latency,
+        };
+        s.advance(walk.as_ref());
+        self.walks[k] = Some(walk);
+        true
+    }
+
+    /// The current cycle's grants (box ports, stack port, lanes) and hit output: the id of
+    /// the ray whose answer leaves, if one does (its slot is free from the next cycle). Then
+    /// the next cycle.
+    pub fn cycle(&mut self) -> Option<usize> {
+        let (t, cycle) = (self.t, self.cycle);
+        let box_arbiter = 2 + t.lanes;
         for port in 0..t.box_ports {
-            let Some(k) = round_robin(&slots, &mut last[box_arbiter + port], cycle, |k, w| {
-                k % t.box_ports == port && w == Want::Box
-            }) else {
+            let Some(k) = round_robin(
+                &self.slots,
+                &mut self.last[box_arbiter + port],
+                cycle,
+                |k, w| k % t.box_ports == port && w == Want::Box,
+            ) else {
                 continue;
             };
-            let s = &mut slots[k];
+            let s = &mut self.slots[k];
             s.ready_at = cycle + t.box_latency;
             s.step += 1;
-            s.advance(&walks[s.ray]);
-            out.box_busy += 1;
+            s.advance(walk_of(&self.walks, k));
+            self.busy.box_busy += 1;
         }
-        if let Some(k) = round_robin(&slots, &mut last[0], cycle, |_, w| w == Want::Pop) {
-            let s = &mut slots[k];
+        if let Some(k) = round_robin(&self.slots, &mut self.last[0], cycle, |_, w| w == Want::Pop) {
+            let s = &mut self.slots[k];
             s.ready_at = cycle + t.pop_latency;
             s.step += 1;
-            s.advance(&walks[s.ray]);
+            s.advance(walk_of(&self.walks, k));
         }
         for lane in 0..t.lanes {
-            let Some(k) = round_robin(&slots, &mut last[2 + lane], cycle, |k, w| {
+            let Some(k) = round_robin(&self.slots, &mut self.last[2 + lane], cycle, |k, w| {
                 k % t.lanes == lane && matches!(w, Want::Leaf(..))
             }) else {
                 continue;
             };
-            let s = &mut slots[k];
+            let s = &mut self.slots[k];
             let Want::Leaf(left, nearer) = s.want else {
                 unreachable!("granted for a leaf")
             };
-            out.mt_busy += 1;
+            self.busy.mt_busy += 1;
             // One triangle a cycle per slot: it is next ready in the next cycle, or when
             // its leaf's last answer is in (and a nearer hit's far end).
             if left == 1 {
                 s.ready_at = cycle + t.mt_latency - if nearer { 0 } else { t.far_latency };
                 s.step += 1;
-                s.advance(&walks[s.ray]);
+                s.advance(walk_of(&self.walks, k));
             } else {
                 s.want = Want::Leaf(left - 1, nearer);
                 s.ready_at = cycle + 1;
             }
         }
         // One hit leaves the unit, freeing its slot.
-        if let Some(k) = round_robin(&slots, &mut last[1], cycle, |_, w| w == Want::Out) {
-            slots[k].want = Want::Free;
+        let out =
+            round_robin(&self.slots, &mut self.last[1], cycle, |_, w| w == Want::Out).map(|k| {
+                self.slots[k].want = Want::Free;
+                self.walks[k] = None;
+                self.slots[k].ray
+            });
+        self.cycle += 1;
+        out
+    }
+
+    /// The first cycle from now at which a ray in the unit can be granted anything (`None`
+    /// if the unit is empty): the cycles before it would do nothing.
+    pub fn next_ready(&self) -> Option<u64> {
+        (self.slots.iter())
+            .filter(|s| s.want != Want::Free)
+            .map(|s| s.ready_at.max(self.cycle))
+            .min()
+    }
+
+    /// Moves to `cycle` (not backwards), skipping cycles in which nothing enters; they would
+    /// grant nothing before [`Unit::next_ready`].
+    pub fn skip_to(&mut self, cycle: u64) {
+        self.cycle = self.cycle.max(cycle);
+    }
+}
+
+fn walk_of<W: AsRef<[Step]>>(walks: &[Option<W>], k: usize) -> &[Step] {
+    walks[k]
+        .as_ref()
+        .expect("an occupied slot holds its walk")
+        .as_ref()
+}
+
+/// The cycles of one wavefront whose rays walk `walks` (in the order they enter), for a
+/// unit that passes [`UnitTiming::check`] (its callers check it where the timing enters).
+pub fn schedule(t: &UnitTiming, walks: &[Vec<Step>]) -> Schedule {
+    let mut unit = Unit::new(*t);
+    let mut next_ray = 0;
+    let mut done = 0;
+    while done < walks.len() {
+        if next_ray < walks.len() && unit.enter(next_ray, walks[next_ray].as_slice()) {
+            next_ray += 1;
+        }
+        if unit.cycle().is_some() {
             done += 1;
         }
-        cycle += 1;
         // Nothing can happen before the next slot is ready: skip the idle cycles.
-        let entering = next_ray < walks.len() && slots.iter().any(|s| s.want == Want::Free);
-        if !entering {
-            let next = slots
-                .iter()
-                .filter(|s| s.want != Want::Free)
-                .map(|s| s.ready_at)
-                .min();
-            if let Some(next) = next {
-                cycle = cycle.max(next);
+        if !(next_ray < walks.len() && unit.has_free_slot()) {
+            if let Some(next) = unit.next_ready() {
+                unit.skip_to(next);
             }
         }
     }
-    out.cycles = cycle;
-    out
+    unit.schedule()
 }
 
 /// The first slot after `last` (cyclically) that is ready at `cycle` and `eligible(index,
@@ -350,5 +433,138 @@ mod tests {
         let walks = vec![vec![Step::Box, empty, Step::Pop]];
         let s = schedule(&T, &walks);
         assert_eq!((s.cycles, s.box_busy, s.mt_busy), (5 + 10 + 2 + 1, 1, 0));
+    }
+
+    /// `schedule` as it was before the unit was stepped incrementally ([`Unit`]): the oracle
+    /// the wrapper must equal.
+    fn wavefront_reference(t: &UnitTiming, walks: &[Vec<Step>]) -> Schedule {
+        debug_assert!(t.check().is_ok(), "{t:?}: {:?}", t.check());
+        let free = Slot {
+            ray: 0,
+            step: 0,
+            want: Want::Free,
+            ready_at: 0,
+        };
+        let mut slots = vec![free; t.slots];
+        let mut next_ray = 0;
+        let mut done = 0;
+        let mut out = Schedule::default();
+        let mut cycle = 0u64;
+        // The last grant of each arbiter: stack port, hit output, one per lane, one per box port.
+        let mut last = vec![usize::MAX; 2 + t.lanes + t.box_ports];
+        let box_arbiter = 2 + t.lanes;
+        while done < walks.len() {
+            // One ray enters the lowest free slot.
+            if next_ray < walks.len() {
+                if let Some(s) = slots.iter_mut().find(|s| s.want == Want::Free) {
+                    *s = Slot {
+                        ray: next_ray,
+                        step: 0,
+                        want: Want::Free,
+                        ready_at: cycle + t.setup_latency,
+                    };
+                    s.advance(&walks[next_ray]);
+                    next_ray += 1;
+                }
+            }
+            for port in 0..t.box_ports {
+                let Some(k) = round_robin(&slots, &mut last[box_arbiter + port], cycle, |k, w| {
+                    k % t.box_ports == port && w == Want::Box
+                }) else {
+                    continue;
+                };
+                let s = &mut slots[k];
+                s.ready_at = cycle + t.box_latency;
+                s.step += 1;
+                s.advance(&walks[s.ray]);
+                out.box_busy += 1;
+            }
+            if let Some(k) = round_robin(&slots, &mut last[0], cycle, |_, w| w == Want::Pop) {
+                let s = &mut slots[k];
+                s.ready_at = cycle + t.pop_latency;
+                s.step += 1;
+                s.advance(&walks[s.ray]);
+            }
+            for lane in 0..t.lanes {
+                let Some(k) = round_robin(&slots, &mut last[2 + lane], cycle, |k, w| {
+                    k % t.lanes == lane && matches!(w, Want::Leaf(..))
+                }) else {
+                    continue;
+                };
+                let s = &mut slots[k];
+                let Want::Leaf(left, nearer) = s.want else {
+                    unreachable!("granted for a leaf")
+                };
+                out.mt_busy += 1;
+                // One triangle a cycle per slot: it is next ready in the next cycle, or when
+                // its leaf's last answer is in (and a nearer hit's far end).
+                if left == 1 {
+                    s.ready_at = cycle + t.mt_latency - if nearer { 0 } else { t.far_latency };
+                    s.step += 1;
+                    s.advance(&walks[s.ray]);
+                } else {
+                    s.want = Want::Leaf(left - 1, nearer);
+                    s.ready_at = cycle + 1;
+                }
+            }
+            // One hit leaves the unit, freeing its slot.
+            if let Some(k) = round_robin(&slots, &mut last[1], cycle, |_, w| w == Want::Out) {
+                slots[k].want = Want::Free;
+                done += 1;
+            }
+            cycle += 1;
+            // Nothing can happen before the next slot is ready: skip the idle cycles.
+            let entering = next_ray < walks.len() && slots.iter().any(|s| s.want == Want::Free);
+            if !entering {
+                let next = slots
+                    .iter()
+                    .filter(|s| s.want != Want::Free)
+                    .map(|s| s.ready_at)
+                    .min();
+                if let Some(next) = next {
+                    cycle = cycle.max(next);
+                }
+            }
+        }
+        out.cycles = cycle;
+        out
+    }
+
+    #[test]
+    fn the_stepped_unit_times_random_wavefronts_as_the_wavefront_loop_did() {
+        use rand::{rngs::StdRng, Rng, SeedableRng};
+        let mut rng = StdRng::seed_from_u64(40);
+        for case in 0..300 {
+            let slots = rng.gen_range(1..=40);
+            let t = UnitTiming {
+                slots,
+                lanes: rng.gen_range(1..=slots.min(3)),
+                box_ports: rng.gen_range(1..=slots.min(2)),
+                setup_latency: rng.gen_range(0..30),
+                box_latency: rng.gen_range(1..30),
+                mt_latency: rng.gen_range(10..40),
+                far_latency: rng.gen_range(0..10),
+                pop_latency: rng.gen_range(1..6),
+            };
+            let walks: Vec<Vec<Step>> = (0..rng.gen_range(0..200))
+                .map(|_| {
+                    (0..rng.gen_range(0..30))
+                        .map(|_| match rng.gen_range(0..3) {
+                            0 => Step::Box,
+                            1 => Step::Pop,
+                            _ => Step::Leaf {
+                                triangles: rng.gen_range(0..5),
+                                nearer: rng.gen(),
+                            },
+                        })
+                        .collect()
+                })
+                .collect();
+            assert_eq!(
+                schedule(&t, &walks),
+                wavefront_reference(&t, &walks),
+                "case {case}: {t:?}"
+            );
+        }
     }
 }

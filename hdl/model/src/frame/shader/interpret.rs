@@ -22,6 +22,40 @@ pub struct Program {
     pub miss_entry: u16,
 }
 
+/// The rays a thread may push, by kind.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Pushes {
+    pub shadow: usize,
+    /// Reflection and refraction rays.
+    pub cast: usize,
+}
+
+impl Pushes {
+    pub fn total(self) -> usize {
+        self.shadow + self.cast
+    }
+}
+
+impl Program {
+    /// The rays a thread entering at `entry` may push: the `Push` instructions from `entry`
+    /// to its `End`, executed or not (what the frame unit reserves ray-store entries for
+    /// when the thread starts).
+    pub fn pushes_from(&self, entry: u16) -> Pushes {
+        let code = self.code.get(entry as usize..).unwrap_or_default();
+        let mut pushes = Pushes::default();
+        for i in code.iter().take_while(|i| !matches!(i.op, Op::End { .. })) {
+            match i.op {
+                Op::Push {
+                    kind: PushKind::Shadow,
+                } => pushes.shadow += 1,
+                Op::Push { .. } => pushes.cast += 1,
+                _ => {}
+            }
+        }
+        pushes
+    }
+}
+
 /// What a thread starts with.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ThreadInput {

@@ -12,5 +12,5 @@ pub mod isa;
 pub mod thread;
 
 pub use compile::{compile, CompileError, ProgramKind};
-pub use interpret::{run, Program, Pushed, RunError, ThreadInput, ThreadOutput};
+pub use interpret::{run, Program, Pushed, Pushes, RunError, ThreadInput, ThreadOutput};
 pub use isa::{Instr, IsaError, Op, Src};
