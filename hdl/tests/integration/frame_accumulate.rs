@@ -10,6 +10,7 @@
 //! the consumer stalls and never while it is always ready. Records that do not fit are
 //! errors; Verilator's lint.
 
+use crate::common::{print_synthesis_row, SYNTHESIS_COLUMNS};
 use hdl::frame::accumulate::{
     accumulate_verilog, latency, simulate_accumulate, AccumulateInput, AccumulateOutput, Command,
     Finished, Record, RecordError, PIXEL_SLOTS, QUEUE_DEPTH, SETTLE_BITS,
@@ -552,31 +553,7 @@ fn accumulate_synthesis() {
     use hdl::synth::{synthesize, SynthOptions};
     let r = synthesize(&accumulate_verilog(), "top", &SynthOptions::default())
         .expect("yosys synth_xilinx");
-    let cell = |name: &str| r.cells.get(name).copied().unwrap_or(0);
-    println!("| latency | LUT | FF | SRL | LUT RAM | RAMB36E1 | RAMB18E1 | DSP48E1 | CARRY4 | logic depth | Fmax estimate |");
+    println!("| latency | {SYNTHESIS_COLUMNS} |");
     println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
-    println!(
-        "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-        latency(),
-        r.lut,
-        r.ff,
-        r.srl,
-        r.lutram,
-        cell("RAMB36E1"),
-        cell("RAMB18E1"),
-        r.dsp48e1,
-        r.carry4,
-        r.logic_depth,
-        r.fmax_mhz_estimate()
-            .map_or("–".into(), |f| format!("{f:.0} MHz"))
-    );
-    if let Some(path) = &r.critical_path {
-        println!(
-            "critical path: {} → {}, {} levels, {:.2} ns",
-            path.start,
-            path.end,
-            path.levels,
-            path.delay_ps as f64 / 1000.0
-        );
-    }
+    print_synthesis_row(&latency().to_string(), &r);
 }

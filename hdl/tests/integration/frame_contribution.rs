@@ -7,6 +7,7 @@
 //! after its input and nothing valid in between. Inputs are raw fp32 words (subnormals and
 //! NaN payloads as they come); the model reads them with `Fp32::new`. Verilator's lint.
 
+use crate::common::{fp32_edge_words, print_critical_path};
 use hdl::frame::contribution::{
     contribution_verilog, full_depth, latency, simulate_contribution, CONTRIBUTION_BITS,
 };
@@ -20,23 +21,7 @@ fn model(c: [u32; 3]) -> Contribution {
 
 /// The edge words, one channel's worth each.
 fn edge_words() -> Vec<u32> {
-    let mut words = vec![
-        0x0000_0000, // +0
-        0x8000_0000, // −0
-        0x0000_0001, // subnormals
-        0x007F_FFFF,
-        0x8000_0001,
-        0x8040_0000,
-        0x7FC0_0000, // NaNs: canonical, signalling, negative
-        0x7F80_0001,
-        0xFFFF_FFFF,
-        f32::INFINITY.to_bits(),
-        f32::NEG_INFINITY.to_bits(),
-        f32::MAX.to_bits(),
-        f32::MIN.to_bits(),
-        f32::MIN_POSITIVE.to_bits(),
-        (-f32::MIN_POSITIVE).to_bits(),
-    ];
+    let mut words = fp32_edge_words();
     let around = |words: &mut Vec<u32>, c: f32| {
         words.extend([c.next_down(), c, c.next_up()].map(f32::to_bits));
     };
@@ -190,13 +175,5 @@ fn contribution_synthesis() {
         r.fmax_mhz_estimate()
             .map_or("–".into(), |f| format!("{f:.0} MHz"))
     );
-    if let Some(path) = &r.critical_path {
-        println!(
-            "critical path: {} → {}, {} levels, {:.2} ns",
-            path.start,
-            path.end,
-            path.levels,
-            path.delay_ps as f64 / 1000.0
-        );
-    }
+    print_critical_path(&r);
 }

@@ -17,6 +17,7 @@
 //! constants from the edge words; a second program and its constants loaded over the first
 //! between two frames. Programs and starts that do not fit are errors. Lint.
 
+use crate::common::{fp32_edge_words, print_synthesis_row, SYNTHESIS_COLUMNS};
 use hdl::frame::shader::alu::{self, simulate_alu, AluInput};
 use hdl::frame::shader::{opcode, Kind};
 use hw_model::frame::shader::isa::{Field, Instr, Op, Pred, PushKind, Src};
@@ -89,22 +90,8 @@ fn model(kind: Kind, a: [u32; 3], b: [u32; 3]) -> ([u32; 3], bool) {
 
 /// Words at the edges of fp32 and of the contribution conversion.
 fn edge_words() -> Vec<u32> {
-    let mut words = vec![
-        0x0000_0000, // ±0
-        0x8000_0000,
-        0x0000_0001, // subnormals
-        0x007F_FFFF,
-        0x8000_0001,
-        0x8040_0000,
-        0x7FC0_0000, // NaNs: canonical, signalling, negative
-        0x7F80_0001,
-        0xFFFF_FFFF,
-        f32::INFINITY.to_bits(),
-        f32::NEG_INFINITY.to_bits(),
-        f32::MAX.to_bits(),
-        f32::MIN.to_bits(),
-        f32::MIN_POSITIVE.to_bits(),
-        (-f32::MIN_POSITIVE).to_bits(),
+    let mut words = fp32_edge_words();
+    words.extend([
         1.0f32.to_bits(),
         (-1.0f32).to_bits(),
         0.5f32.to_bits(),
@@ -119,7 +106,7 @@ fn edge_words() -> Vec<u32> {
         0x7FFF_FFFF, // integer extremes for IAdd
         0x8000_0001,
         1,
-    ];
+    ]);
     words.sort_unstable();
     words.dedup();
     words
@@ -751,33 +738,8 @@ fn shader_core_verilog_passes_verilator_lint() {
 fn synthesis_row(what: &str, verilog: &str) {
     use hdl::synth::{synthesize, SynthOptions};
     let r = synthesize(verilog, "top", &SynthOptions::default()).expect("yosys synth_xilinx");
-    let cell = |name: &str| r.cells.get(name).copied().unwrap_or(0);
-    println!(
-        "| {what} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-        r.lut,
-        r.ff,
-        r.srl,
-        r.lutram,
-        cell("RAMB36E1"),
-        cell("RAMB18E1"),
-        r.dsp48e1,
-        r.carry4,
-        r.logic_depth,
-        r.fmax_mhz_estimate()
-            .map_or("–".into(), |f| format!("{f:.0} MHz"))
-    );
-    if let Some(path) = &r.critical_path {
-        println!(
-            "critical path: {} → {}, {} levels, {:.2} ns",
-            path.start,
-            path.end,
-            path.levels,
-            path.delay_ps as f64 / 1000.0
-        );
-    }
+    print_synthesis_row(what, &r);
 }
-
-const SYNTHESIS_HEADER: &str = "| block | LUT | FF | SRL | LUT RAM | RAMB36E1 | RAMB18E1 | DSP48E1 | CARRY4 | logic depth | Fmax estimate |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|";
 
 /// yosys `synth_xilinx` of the datapath and the core at depth 5 and full (slow):
 /// `cargo test --release -p hdl --test integration -- --ignored --nocapture
@@ -785,7 +747,9 @@ const SYNTHESIS_HEADER: &str = "| block | LUT | FF | SRL | LUT RAM | RAMB36E1 | 
 #[test]
 #[ignore]
 fn shader_synthesis() {
-    println!("{SYNTHESIS_HEADER}");
+    println!(
+        "| block | {SYNTHESIS_COLUMNS} |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    );
     for depth in [5, alu::full_depth()] {
         synthesis_row(
             &format!("datapath, depth {depth} (latency {})", alu::latency(depth)),

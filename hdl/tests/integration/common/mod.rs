@@ -60,3 +60,62 @@ pub fn rays(seed: u64, count: usize, triangles: u32) -> Vec<UnitRay> {
         })
         .collect()
 }
+
+/// The fp32 words at the format's edges: ±0, subnormals, NaNs (canonical, signalling,
+/// negative), ±Inf, ±MAX, ±the least normal.
+pub fn fp32_edge_words() -> Vec<u32> {
+    vec![
+        0x0000_0000, // ±0
+        0x8000_0000,
+        0x0000_0001, // subnormals
+        0x007F_FFFF,
+        0x8000_0001,
+        0x8040_0000,
+        0x7FC0_0000, // NaNs: canonical, signalling, negative
+        0x7F80_0001,
+        0xFFFF_FFFF,
+        f32::INFINITY.to_bits(),
+        f32::NEG_INFINITY.to_bits(),
+        f32::MAX.to_bits(),
+        f32::MIN.to_bits(),
+        f32::MIN_POSITIVE.to_bits(),
+        (-f32::MIN_POSITIVE).to_bits(),
+    ]
+}
+
+/// The columns [`print_synthesis_row`] prints after its first.
+pub const SYNTHESIS_COLUMNS: &str = "LUT | FF | SRL | LUT RAM | RAMB36E1 | RAMB18E1 | DSP48E1 | CARRY4 | logic depth | Fmax estimate";
+
+/// One Markdown row of yosys `synth_xilinx` figures, `first` in its first column, then the
+/// report's critical path on a line of its own.
+pub fn print_synthesis_row(first: &str, r: &hdl::synth::SynthReport) {
+    let cell = |name: &str| r.cells.get(name).copied().unwrap_or(0);
+    println!(
+        "| {first} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+        r.lut,
+        r.ff,
+        r.srl,
+        r.lutram,
+        cell("RAMB36E1"),
+        cell("RAMB18E1"),
+        r.dsp48e1,
+        r.carry4,
+        r.logic_depth,
+        r.fmax_mhz_estimate()
+            .map_or("–".into(), |f| format!("{f:.0} MHz"))
+    );
+    print_critical_path(r);
+}
+
+/// The report's critical path (start → end, levels, delay), if yosys gave one.
+pub fn print_critical_path(r: &hdl::synth::SynthReport) {
+    if let Some(path) = &r.critical_path {
+        println!(
+            "critical path: {} → {}, {} levels, {:.2} ns",
+            path.start,
+            path.end,
+            path.levels,
+            path.delay_ps as f64 / 1000.0
+        );
+    }
+}
