@@ -13,8 +13,8 @@ use hw_model::fp32::{Fp32, Vec3};
 use hw_model::frame::constants::{FrameConstants, LightConstants};
 use hw_model::frame::shade::{shade, Shaded};
 use hw_model::frame::shader::isa::{
-    word, Counter, Field, Loc, Pred, PushKind, CODE, CONSTANTS, MATERIAL_STRIDE, PREDICATES,
-    REGISTERS,
+    word, Counter, Field, Loc, OpKind, Pred, PushKind, CODE, CONSTANTS, MATERIAL_STRIDE,
+    PREDICATES, REGISTERS,
 };
 use hw_model::frame::shader::{
     compile, run, thread, CompileError, Instr, IsaError, Op, Program, ProgramKind, RunError, Src,
@@ -353,34 +353,17 @@ fn random_src(rng: &mut StdRng) -> Src {
 
 /// A random instruction the machine has: every operation, field and operand in range.
 fn random_instr(rng: &mut StdRng) -> Instr {
-    let d = rng.gen_range(0..REGISTERS as u8);
-    let p = rng.gen_range(2..PREDICATES as u8);
     let (a, b) = (random_src(rng), random_src(rng));
-    let op = match rng.gen_range(0..17) {
-        0 => Op::Nop,
-        1 => Op::Mov { d, a },
-        2 => Op::Add { d, a, b },
-        3 => Op::Mul { d, a, b },
-        4 => Op::Max { d, a, b },
-        5 => Op::Min { d, a, b },
-        6 => Op::Recip { d, a },
-        7 => Op::Sqrt { d, a },
-        8 => Op::Fix { d, a },
-        9 => Op::IAdd { d, a, b },
-        10 => Op::Lt { p, a, b },
-        11 => Op::Le { p, a, b },
-        12 => Op::Nz { p, a },
-        13 => Op::Out {
-            f: Field::ALL[rng.gen_range(0..4)],
-            a,
-        },
-        14 => Op::Push {
-            kind: PushKind::ALL[rng.gen_range(0..3)],
-        },
-        15 => Op::Count {
-            counter: Counter::ALL[rng.gen_range(0..3)],
-        },
-        _ => Op::End { a },
+    let kind = OpKind::ALL[rng.gen_range(0..OpKind::ALL.len())];
+    // The destination (register, predicate, field, push kind or counter) drawn until the
+    // machine has it.
+    let op = loop {
+        let dest = rng.gen_range(0..REGISTERS as u64);
+        if let Ok(op) = Op::from_fields(kind, dest, a, b) {
+            if Instr::new(op).check().is_ok() {
+                break op;
+            }
+        }
     };
     Instr {
         op,

@@ -19,29 +19,28 @@
 
 use crate::common::{fp32_edge_words, print_synthesis_row, SYNTHESIS_COLUMNS};
 use hdl::frame::shader::alu::{self, simulate_alu, AluInput};
-use hdl::frame::shader::{opcode, Kind};
-use hw_model::frame::shader::isa::{Field, Instr, Op, Pred, PushKind, Src};
+use hw_model::frame::shader::isa::{Field, Instr, Op, OpKind, Pred, PushKind, Src};
 use hw_model::frame::shader::{run, Program, ThreadInput};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 
 /// The kinds the datapath computes a register's value for, and the predicate ones.
-const VALUE_KINDS: [Kind; 9] = [
-    Kind::Mov,
-    Kind::Add,
-    Kind::Mul,
-    Kind::Max,
-    Kind::Min,
-    Kind::Recip,
-    Kind::Sqrt,
-    Kind::Fix,
-    Kind::IAdd,
+const VALUE_KINDS: [OpKind; 9] = [
+    OpKind::Mov,
+    OpKind::Add,
+    OpKind::Mul,
+    OpKind::Max,
+    OpKind::Min,
+    OpKind::Recip,
+    OpKind::Sqrt,
+    OpKind::Fix,
+    OpKind::IAdd,
 ];
-const PREDICATE_KINDS: [Kind; 3] = [Kind::Lt, Kind::Le, Kind::Nz];
+const PREDICATE_KINDS: [OpKind; 3] = [OpKind::Lt, OpKind::Le, OpKind::Nz];
 
 /// What the interpreter computes for `kind` on a and b: the register's value (all lanes
 /// written) or the predicate.
-fn model(kind: Kind, a: [u32; 3], b: [u32; 3]) -> ([u32; 3], bool) {
-    let op = kind.sample();
+fn model(kind: OpKind, a: [u32; 3], b: [u32; 3]) -> ([u32; 3], bool) {
+    let op = Op::from_fields(kind, 2, Src::reg(0), Src::reg(1)).unwrap();
     let is_predicate = PREDICATE_KINDS.contains(&kind);
     let code = if is_predicate {
         vec![
@@ -126,7 +125,7 @@ fn word(rng: &mut StdRng, edges: &[u32]) -> u32 {
 fn check_alu(depth: usize, per_kind: usize, seed: u64) {
     let mut rng = StdRng::seed_from_u64(seed);
     let edges = edge_words();
-    let mut ops: Vec<(Kind, [u32; 3], [u32; 3])> = Vec::new();
+    let mut ops: Vec<(OpKind, [u32; 3], [u32; 3])> = Vec::new();
     for kind in VALUE_KINDS.into_iter().chain(PREDICATE_KINDS) {
         for n in 0..per_kind {
             let (a, b) = if n < edges.len() * edges.len() && n < per_kind / 2 {
@@ -154,7 +153,7 @@ fn check_alu(depth: usize, per_kind: usize, seed: u64) {
     let inputs: Vec<AluInput> = ops
         .iter()
         .map(|&(kind, a, b)| AluInput {
-            op: opcode(kind),
+            op: kind.opcode(),
             a,
             b,
         })
@@ -233,7 +232,7 @@ use hdl::frame::shader::core::{
     LoadError, RayOut, SettleOut, Start, StartError, THREAD_BITS,
 };
 use hdl::verilog::{verilator_lint_waiving, UNIT_VERILATOR_WAIVERS};
-use hw_model::frame::shader::isa::{Counter, Loc, CODE, CONSTANTS, MATERIAL_STRIDE, REGISTERS};
+use hw_model::frame::shader::isa::{Loc, CODE, CONSTANTS, MATERIAL_STRIDE, REGISTERS};
 use hw_model::frame::shader::ThreadOutput;
 
 /// A random source operand: a register already written in full (`defined`), a constant or a
@@ -252,6 +251,20 @@ fn source(rng: &mut StdRng, defined: &[u8]) -> Src {
     }
 }
 
+/// An operation of a random kind reading `a` and `b`, its destination (register, predicate,
+/// field, push kind or counter) drawn until the machine has it.
+fn random_op(rng: &mut StdRng, a: Src, b: Src) -> Op {
+    let kind = OpKind::ALL[rng.gen_range(0..OpKind::ALL.len())];
+    loop {
+        let dest = rng.gen_range(0..REGISTERS as u64);
+        if let Ok(op) = Op::from_fields(kind, dest, a, b) {
+            if Instr::new(op).check().is_ok() {
+                return op;
+            }
+        }
+    }
+}
+
 /// A random kernel: `length` instructions of every operation, under random predicates and
 /// masks, at most `max_pushes` pushes, then End. A register is read only once an
 /// unconditional full-mask write has defined it (the others are unspecified at a start).
@@ -261,39 +274,18 @@ fn kernel(rng: &mut StdRng, length: usize, max_pushes: usize) -> Vec<Instr> {
     let mut code = Vec::new();
     for _ in 0..length {
         let d = rng.gen_range(0..REGISTERS as u8);
-        let p = rng.gen_range(2..8);
         let a = source(rng, &defined);
         let b = source(rng, &defined);
-        let op = match rng.gen_range(0..17) {
-            0 => Op::Nop,
-            1 => Op::Mov { d, a },
-            2 => Op::Add { d, a, b },
-            3 => Op::Mul { d, a, b },
-            4 => Op::Max { d, a, b },
-            5 => Op::Min { d, a, b },
-            6 => Op::Recip { d, a },
-            7 => Op::Sqrt { d, a },
-            8 => Op::Fix { d, a },
-            9 => Op::IAdd { d, a, b },
-            10 => Op::Lt { p, a, b },
-            11 => Op::Le { p, a, b },
-            12 => Op::Nz { p, a },
-            13 => Op::Out {
-                f: Field::ALL[rng.gen_range(0..4)],
-                a,
-            },
-            14 if pushes < max_pushes => {
+        let op = random_op(rng, a, b);
+        let op = match op {
+            Op::Push { .. } if pushes < max_pushes => {
                 pushes += 1;
-                Op::Push {
-                    kind: PushKind::ALL[rng.gen_range(0..3)],
-                }
+                op
             }
-            15 => Op::Count {
-                counter: Counter::ALL[rng.gen_range(0..3)],
-            },
             // Now and then an End that may not run.
-            16 if rng.gen_bool(0.2) => Op::End { a },
-            _ => Op::Mov { d, a },
+            Op::End { .. } if rng.gen_bool(0.2) => op,
+            Op::Push { .. } | Op::End { .. } => Op::Mov { d, a },
+            _ => op,
         };
         let pred = match rng.gen_range(0..10) {
             0..=5 => Pred::ALWAYS,
@@ -312,19 +304,7 @@ fn kernel(rng: &mut StdRng, length: usize, max_pushes: usize) -> Vec<Instr> {
             rng.gen_range(0..8)
         };
         let instr = Instr { op, pred, mask };
-        let writes = match op {
-            Op::Mov { d, .. }
-            | Op::Add { d, .. }
-            | Op::Mul { d, .. }
-            | Op::Max { d, .. }
-            | Op::Min { d, .. }
-            | Op::Recip { d, .. }
-            | Op::Sqrt { d, .. }
-            | Op::Fix { d, .. }
-            | Op::IAdd { d, .. } => Some(d),
-            _ => None,
-        };
-        if let Some(d) = writes {
+        if let Some(d) = op.written_register() {
             if pred == Pred::ALWAYS && mask == 0b111 && !defined.contains(&d) {
                 defined.push(d);
             }

@@ -24,7 +24,7 @@
 
 use rust_hdl::prelude::*;
 
-use super::{opcode_constant, Kind, OPCODE_BITS};
+use super::{opcode_constant, OPCODE_BITS};
 use crate::float::unpack::Unpack;
 use crate::formats::fp32::{self, Add, Lt, Mul, Recip, Sqrt, ToF32};
 use crate::frame::contribution::{ToFixed, CONTRIBUTION_BITS};
@@ -32,6 +32,7 @@ use crate::harness::{built_verilog, simulate_cycles, Stepped};
 use crate::macros::clock;
 use crate::mt::delay::Delay;
 use crate::operator::Op;
+use hw_model::frame::shader::isa::OpKind;
 
 type Word = Bits<32>;
 type Lanes = Bits<96>;
@@ -177,16 +178,16 @@ impl Alu {
             fixed: Default::default(),
             extended: Default::default(),
             swap: Default::default(),
-            op_iadd: opcode_constant(Kind::IAdd),
-            op_max: opcode_constant(Kind::Max),
-            op_min: opcode_constant(Kind::Min),
-            op_lt: opcode_constant(Kind::Lt),
-            op_le: opcode_constant(Kind::Le),
-            op_fix: opcode_constant(Kind::Fix),
-            op_mul: opcode_constant(Kind::Mul),
-            op_add: opcode_constant(Kind::Add),
-            op_recip: opcode_constant(Kind::Recip),
-            op_sqrt: opcode_constant(Kind::Sqrt),
+            op_iadd: opcode_constant(OpKind::IAdd),
+            op_max: opcode_constant(OpKind::Max),
+            op_min: opcode_constant(OpKind::Min),
+            op_lt: opcode_constant(OpKind::Lt),
+            op_le: opcode_constant(OpKind::Le),
+            op_fix: opcode_constant(OpKind::Fix),
+            op_mul: opcode_constant(OpKind::Mul),
+            op_add: opcode_constant(OpKind::Add),
+            op_recip: opcode_constant(OpKind::Recip),
+            op_sqrt: opcode_constant(OpKind::Sqrt),
             fix_sign: Constant::new((1u64 << (CONTRIBUTION_BITS - 1)).into()),
             fix_extension: Constant::new(
                 (0xffff_ffffu64 & !((1u64 << CONTRIBUTION_BITS) - 1)).into(),

@@ -56,12 +56,13 @@ use rust_hdl::prelude::*;
 use thiserror::Error;
 
 use super::alu::{self, Alu};
-use super::{opcode_constant, Kind, OPCODE_BITS};
+use super::{opcode_constant, OPCODE_BITS};
 use crate::frame::accumulate::SPAWNED_BITS;
 use crate::frame::raygen::PIXEL_BITS;
 use crate::harness::{built_verilog, simulate_driven, Stepped};
 use crate::macros::{clock, dff_setup};
 use crate::mt::delay::Delay;
+use hw_model::frame::shader::isa::OpKind;
 
 type Word = Bits<32>;
 type Lanes = Bits<96>;
@@ -423,22 +424,22 @@ impl ShaderCore {
             at_abs: position(word::SRC_ABS.0),
             at_neg: position(word::SRC_NEG.0),
             sign_bit: Constant::new(0x8000_0000u64.into()),
-            op_push: opcode_constant(Kind::Push),
-            op_end: opcode_constant(Kind::End),
-            op_count: opcode_constant(Kind::Count),
-            op_out: opcode_constant(Kind::Out),
-            op_lt: opcode_constant(Kind::Lt),
-            op_le: opcode_constant(Kind::Le),
-            op_nz: opcode_constant(Kind::Nz),
-            op_mov: opcode_constant(Kind::Mov),
-            op_add: opcode_constant(Kind::Add),
-            op_mul: opcode_constant(Kind::Mul),
-            op_max: opcode_constant(Kind::Max),
-            op_min: opcode_constant(Kind::Min),
-            op_recip: opcode_constant(Kind::Recip),
-            op_sqrt: opcode_constant(Kind::Sqrt),
-            op_fix: opcode_constant(Kind::Fix),
-            op_iadd: opcode_constant(Kind::IAdd),
+            op_push: opcode_constant(OpKind::Push),
+            op_end: opcode_constant(OpKind::End),
+            op_count: opcode_constant(OpKind::Count),
+            op_out: opcode_constant(OpKind::Out),
+            op_lt: opcode_constant(OpKind::Lt),
+            op_le: opcode_constant(OpKind::Le),
+            op_nz: opcode_constant(OpKind::Nz),
+            op_mov: opcode_constant(OpKind::Mov),
+            op_add: opcode_constant(OpKind::Add),
+            op_mul: opcode_constant(OpKind::Mul),
+            op_max: opcode_constant(OpKind::Max),
+            op_min: opcode_constant(OpKind::Min),
+            op_recip: opcode_constant(OpKind::Recip),
+            op_sqrt: opcode_constant(OpKind::Sqrt),
+            op_fix: opcode_constant(OpKind::Fix),
+            op_iadd: opcode_constant(OpKind::IAdd),
             one: Constant::new(1.into()),
             past_depth_bit: Constant::new((1u64 << PAST_DEPTH).into()),
             loading_context: Constant::new(1.into()),

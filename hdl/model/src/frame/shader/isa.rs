@@ -322,26 +322,149 @@ const NO_SRC: Src = Src {
     neg: false,
 };
 
+/// The operations by opcode, the one table of them: an [`Op`]'s opcode is its kind's
+/// position here (`Nop` = 0).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum OpKind {
+    Nop,
+    Mov,
+    Add,
+    Mul,
+    Max,
+    Min,
+    Recip,
+    Sqrt,
+    Fix,
+    IAdd,
+    Lt,
+    Le,
+    Nz,
+    Out,
+    Push,
+    Count,
+    End,
+}
+
+impl OpKind {
+    /// Every kind, in opcode order.
+    pub const ALL: [OpKind; 17] = [
+        OpKind::Nop,
+        OpKind::Mov,
+        OpKind::Add,
+        OpKind::Mul,
+        OpKind::Max,
+        OpKind::Min,
+        OpKind::Recip,
+        OpKind::Sqrt,
+        OpKind::Fix,
+        OpKind::IAdd,
+        OpKind::Lt,
+        OpKind::Le,
+        OpKind::Nz,
+        OpKind::Out,
+        OpKind::Push,
+        OpKind::Count,
+        OpKind::End,
+    ];
+
+    pub fn opcode(self) -> u64 {
+        self as u64
+    }
+
+    pub fn of_opcode(opcode: u64) -> Option<OpKind> {
+        usize::try_from(opcode)
+            .ok()
+            .and_then(|i| OpKind::ALL.get(i).copied())
+    }
+}
+
+/// A destination field beyond the list it indexes (an output field, a push kind, a
+/// counter): what it names and the largest index.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DestOutOfRange {
+    pub what: &'static str,
+    pub max: u64,
+}
+
 impl Op {
-    fn opcode(self) -> u64 {
+    pub fn kind(self) -> OpKind {
         match self {
-            Op::Nop => 0,
-            Op::Mov { .. } => 1,
-            Op::Add { .. } => 2,
-            Op::Mul { .. } => 3,
-            Op::Max { .. } => 4,
-            Op::Min { .. } => 5,
-            Op::Recip { .. } => 6,
-            Op::Sqrt { .. } => 7,
-            Op::Fix { .. } => 8,
-            Op::IAdd { .. } => 9,
-            Op::Lt { .. } => 10,
-            Op::Le { .. } => 11,
-            Op::Nz { .. } => 12,
-            Op::Out { .. } => 13,
-            Op::Push { .. } => 14,
-            Op::Count { .. } => 15,
-            Op::End { .. } => 16,
+            Op::Nop => OpKind::Nop,
+            Op::Mov { .. } => OpKind::Mov,
+            Op::Add { .. } => OpKind::Add,
+            Op::Mul { .. } => OpKind::Mul,
+            Op::Max { .. } => OpKind::Max,
+            Op::Min { .. } => OpKind::Min,
+            Op::Recip { .. } => OpKind::Recip,
+            Op::Sqrt { .. } => OpKind::Sqrt,
+            Op::Fix { .. } => OpKind::Fix,
+            Op::IAdd { .. } => OpKind::IAdd,
+            Op::Lt { .. } => OpKind::Lt,
+            Op::Le { .. } => OpKind::Le,
+            Op::Nz { .. } => OpKind::Nz,
+            Op::Out { .. } => OpKind::Out,
+            Op::Push { .. } => OpKind::Push,
+            Op::Count { .. } => OpKind::Count,
+            Op::End { .. } => OpKind::End,
+        }
+    }
+
+    /// The operation of `kind` with destination field `dest` (a register or predicate as
+    /// given, truncated to 8 bits; an index into the field, push-kind or counter list) and
+    /// the operands it reads of `a`, `b`: [`Op::kind`] and the encoded fields inverted. Only
+    /// list indices are checked here; [`Instr::check`] checks the rest.
+    pub fn from_fields(kind: OpKind, dest: u64, a: Src, b: Src) -> Result<Op, DestOutOfRange> {
+        fn pick<T: Copy>(all: &[T], dest: u64, what: &'static str) -> Result<T, DestOutOfRange> {
+            usize::try_from(dest)
+                .ok()
+                .and_then(|i| all.get(i).copied())
+                .ok_or(DestOutOfRange {
+                    what,
+                    max: all.len() as u64 - 1,
+                })
+        }
+        let d = dest as u8;
+        Ok(match kind {
+            OpKind::Nop => Op::Nop,
+            OpKind::Mov => Op::Mov { d, a },
+            OpKind::Add => Op::Add { d, a, b },
+            OpKind::Mul => Op::Mul { d, a, b },
+            OpKind::Max => Op::Max { d, a, b },
+            OpKind::Min => Op::Min { d, a, b },
+            OpKind::Recip => Op::Recip { d, a },
+            OpKind::Sqrt => Op::Sqrt { d, a },
+            OpKind::Fix => Op::Fix { d, a },
+            OpKind::IAdd => Op::IAdd { d, a, b },
+            OpKind::Lt => Op::Lt { p: d, a, b },
+            OpKind::Le => Op::Le { p: d, a, b },
+            OpKind::Nz => Op::Nz { p: d, a },
+            OpKind::Out => Op::Out {
+                f: pick(&Field::ALL, dest, "output field")?,
+                a,
+            },
+            OpKind::Push => Op::Push {
+                kind: pick(&PushKind::ALL, dest, "push kind")?,
+            },
+            OpKind::Count => Op::Count {
+                counter: pick(&Counter::ALL, dest, "counter")?,
+            },
+            OpKind::End => Op::End { a },
+        })
+    }
+
+    /// The register it writes, if any.
+    pub fn written_register(self) -> Option<u8> {
+        match self {
+            Op::Mov { d, .. }
+            | Op::Add { d, .. }
+            | Op::Mul { d, .. }
+            | Op::Max { d, .. }
+            | Op::Min { d, .. }
+            | Op::Recip { d, .. }
+            | Op::Sqrt { d, .. }
+            | Op::Fix { d, .. }
+            | Op::IAdd { d, .. } => Some(d),
+            _ => None,
         }
     }
 
@@ -457,23 +580,20 @@ impl Instr {
             return err("write mask", self.mask.into(), 0b111);
         }
         let (dest, a, b) = self.op.fields();
-        match self.op {
-            Op::Lt { .. } | Op::Le { .. } | Op::Nz { .. } => {
-                if dest >= PREDICATES as u64 {
-                    return err("written predicate", dest, PREDICATES as u64 - 1);
-                }
-                if dest <= PAST_DEPTH as u64 {
-                    return Err(IsaError::ReadOnlyPredicate {
-                        instr: self,
-                        p: dest as u8,
-                    });
-                }
+        if let Op::Lt { .. } | Op::Le { .. } | Op::Nz { .. } = self.op {
+            if dest >= PREDICATES as u64 {
+                return err("written predicate", dest, PREDICATES as u64 - 1);
             }
-            Op::Out { .. } | Op::Push { .. } | Op::Count { .. } | Op::End { .. } | Op::Nop => {}
-            _ => {
-                if dest >= REGISTERS as u64 {
-                    return err("register", dest, REGISTERS as u64 - 1);
-                }
+            if dest <= PAST_DEPTH as u64 {
+                return Err(IsaError::ReadOnlyPredicate {
+                    instr: self,
+                    p: dest as u8,
+                });
+            }
+        }
+        if let Some(d) = self.op.written_register() {
+            if d as usize >= REGISTERS {
+                return err("register", d.into(), REGISTERS as u64 - 1);
             }
         }
         a.check(self)?;
@@ -485,7 +605,7 @@ impl Instr {
         self.check()?;
         let (dest, a, b) = self.op.fields();
         let mut w = 0;
-        put(&mut w, word::OPCODE, self.op.opcode());
+        put(&mut w, word::OPCODE, self.op.kind().opcode());
         put(&mut w, word::PRED, self.pred.index.into());
         put(&mut w, word::PRED_INVERT, self.pred.invert.into());
         put(&mut w, word::MASK, self.mask.into());
@@ -509,46 +629,14 @@ impl Instr {
         let dest = get(w, word::DEST);
         let a = Src::decode(w, get(w, (word::SRC_A, word::SRC_BITS)))?;
         let b = Src::decode(w, get(w, (word::SRC_B, word::SRC_BITS)))?;
-        let pick = |what, all_len: usize| {
-            if dest as usize >= all_len {
-                Err(IsaError::Field {
-                    word: w,
-                    what,
-                    value: dest,
-                    max: all_len as u64 - 1,
-                })
-            } else {
-                Ok(dest as usize)
-            }
-        };
-        let d = dest as u8;
-        let op = match get(w, word::OPCODE) {
-            0 => Op::Nop,
-            1 => Op::Mov { d, a },
-            2 => Op::Add { d, a, b },
-            3 => Op::Mul { d, a, b },
-            4 => Op::Max { d, a, b },
-            5 => Op::Min { d, a, b },
-            6 => Op::Recip { d, a },
-            7 => Op::Sqrt { d, a },
-            8 => Op::Fix { d, a },
-            9 => Op::IAdd { d, a, b },
-            10 => Op::Lt { p: d, a, b },
-            11 => Op::Le { p: d, a, b },
-            12 => Op::Nz { p: d, a },
-            13 => Op::Out {
-                f: Field::ALL[pick("output field", Field::ALL.len())?],
-                a,
-            },
-            14 => Op::Push {
-                kind: PushKind::ALL[pick("push kind", PushKind::ALL.len())?],
-            },
-            15 => Op::Count {
-                counter: Counter::ALL[pick("counter", Counter::ALL.len())?],
-            },
-            16 => Op::End { a },
-            opcode => return Err(IsaError::Opcode { word: w, opcode }),
-        };
+        let opcode = get(w, word::OPCODE);
+        let kind = OpKind::of_opcode(opcode).ok_or(IsaError::Opcode { word: w, opcode })?;
+        let op = Op::from_fields(kind, dest, a, b).map_err(|e| IsaError::Field {
+            word: w,
+            what: e.what,
+            value: dest,
+            max: e.max,
+        })?;
         let instr = Instr {
             op,
             pred: Pred {
