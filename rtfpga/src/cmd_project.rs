@@ -3,6 +3,7 @@
 //! The model is `sim::projection`; docs/projection.md explains it.
 
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args as ClapArgs, ValueEnum};
@@ -12,6 +13,7 @@ use hw_model::frame::{Frame, FrameLimits};
 use hw_model::traversal::scene_image::SceneImage;
 use hw_model::traversal::{TraversalEngine, TraversalModel};
 use hw_model::Advance;
+use indicatif::{ProgressBar, ProgressStyle};
 use sim::projection::fit_store::{self, StoredFit};
 use sim::projection::{
     self, Board, Calibration, Design, Frontend, Role, Setup, Traversal, Workload, Workloads,
@@ -307,9 +309,19 @@ fn project_frame(a: &Args) -> Result<()> {
         raygen_latency: hdl::frame::raygen::latency(a.depth) as u64,
         accumulate_latency: hdl::frame::accumulate::latency() as u64,
     };
-    let (s, took) = report::spinner("timing the frame", || {
-        schedule_frame(frame.constants(), frame.program(), &model, &unit)
+    let bar = ProgressBar::new(u64::from(width) * u64::from(height));
+    if let Ok(style) =
+        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} pixels {elapsed}/{eta}")
+    {
+        bar.set_style(style);
+    }
+    bar.set_message(format!("{} (frame schedule)", scene.name));
+    let start = Instant::now();
+    let s = schedule_frame(frame.constants(), frame.program(), &model, &unit, &|n| {
+        bar.set_position(n)
     });
+    let took = start.elapsed();
+    bar.finish_and_clear();
     let s = s.with_context(|| format!("scene `{}` at {width}x{height}", scene.name))?;
     Line::new()
         .kv("scene", &scene.name)

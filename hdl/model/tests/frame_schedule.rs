@@ -81,7 +81,7 @@ fn timed(
         DEFAULT_STACK_DEPTH,
         SceneImage::new(&prepared),
     );
-    schedule_frame(frame.constants(), frame.program(), &model, unit)
+    schedule_frame(frame.constants(), frame.program(), &model, unit, &|_| {})
 }
 
 #[test]

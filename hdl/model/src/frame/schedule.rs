@@ -278,12 +278,13 @@ struct Run<'a> {
 }
 
 /// The cycles of a frame of `c` (its programs `program`, its rays answered by `model`) on
-/// `unit`.
+/// `unit`; `progress` is told the pixels finished so far as they finish.
 pub fn schedule_frame(
     c: &FrameConstants,
     program: &Program,
     model: &TraversalModel,
     unit: &FrameUnit,
+    progress: &dyn Fn(u64),
 ) -> Result<FrameSchedule, ScheduleError> {
     unit.traversal.check()?;
     if unit.shader_cores == 0 {
@@ -356,8 +357,13 @@ pub fn schedule_frame(
             peak_in_flight: 0,
         },
     };
+    let mut shown = 0;
     loop {
         run.cycle()?;
+        if run.finished != shown {
+            shown = run.finished;
+            progress(shown);
+        }
         if run.finished == run.out.pixels {
             break;
         }
@@ -562,8 +568,8 @@ impl Run<'_> {
             let n = core.threads.len();
             if n > 0 {
                 let start = core.last.wrapping_add(1) % n;
-                let ready = (0..n)
-                    .map(|i| (start + i) % n)
+                let ready = (start..n)
+                    .chain(0..start)
                     .find(|&i| core.threads[i].left > 0 && core.threads[i].ready_at <= now);
                 if let Some(i) = ready {
                     let th = &mut core.threads[i];

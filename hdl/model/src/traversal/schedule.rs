@@ -48,11 +48,13 @@ pub enum TimingError {
         "{ports} box ports for {slots} ray slots: each port serves its own slots, so 1 to {slots}"
     )]
     BoxPorts { ports: usize, slots: usize },
+    #[error("a {what} step that takes no cycle: every step keeps its slot busy for at least one")]
+    Latency { what: &'static str },
 }
 
 impl UnitTiming {
-    /// Whether the schedule model can time this unit: a slot, and 1 lane (box port) to one per
-    /// slot.
+    /// Whether the schedule model can time this unit: a slot, 1 lane (box port) to one per
+    /// slot, and every step taking at least a cycle.
     pub fn check(&self) -> Result<(), TimingError> {
         if self.slots == 0 {
             return Err(TimingError::NoSlots(self.slots));
@@ -68,6 +70,15 @@ impl UnitTiming {
                 ports: self.box_ports,
                 slots: self.slots,
             });
+        }
+        for (what, cycles) in [
+            ("box test", self.box_latency),
+            ("pop", self.pop_latency),
+            ("leaf", self.mt_latency.saturating_sub(self.far_latency)),
+        ] {
+            if cycles == 0 {
+                return Err(TimingError::Latency { what });
+            }
         }
         Ok(())
     }
@@ -137,9 +148,21 @@ pub struct Unit<W> {
     walks: Vec<Option<W>>,
     /// The last grant of each arbiter: stack port, hit output, one per lane, one per box port.
     last: Vec<usize>,
+    /// Per slot, its lane's and its box port's arbiter.
+    serves: Vec<(usize, usize)>,
+    /// The current cycle's grant of each arbiter so far: (distance after its last grant, slot).
+    grant: Vec<(usize, usize)>,
+    free_slots: usize,
     cycle: u64,
     busy: Schedule,
 }
+
+/// The arbiters' order in `Unit::last`: stack port, hit output, lanes, then box ports.
+/// No grant: the distance no slot has.
+const NO_GRANT: (usize, usize) = (usize::MAX, 0);
+const POP: usize = 0;
+const OUT: usize = 1;
+const LANES: usize = 2;
 
 impl<W: AsRef<[Step]>> Unit<W> {
     /// An empty unit at cycle 0, for a timing that passes [`UnitTiming::check`] (its callers
@@ -156,7 +179,12 @@ impl<W: AsRef<[Step]>> Unit<W> {
             t,
             slots: vec![free; t.slots],
             walks: (0..t.slots).map(|_| None).collect(),
-            last: vec![usize::MAX; 2 + t.lanes + t.box_ports],
+            last: vec![usize::MAX; LANES + t.lanes + t.box_ports],
+            serves: (0..t.slots)
+                .map(|k| (LANES + k % t.lanes, LANES + t.lanes + k % t.box_ports))
+                .collect(),
+            grant: vec![NO_GRANT; LANES + t.lanes + t.box_ports],
+            free_slots: t.slots,
             cycle: 0,
             busy: Schedule::default(),
         }
@@ -176,7 +204,7 @@ impl<W: AsRef<[Step]>> Unit<W> {
     }
 
     pub fn has_free_slot(&self) -> bool {
-        self.slots.iter().any(|s| s.want == Want::Free)
+        self.free_slots > 0
     }
 
     /// Ray `id` walking `walk` enters the lowest free slot in the current cycle (one ray a
@@ -194,6 +222,7 @@ impl<W: AsRef<[Step]>> Unit<W> {
         };
         s.advance(walk.as_ref());
         self.walks[k] = Some(walk);
+        self.free_slots -= 1;
         true
     }
 
@@ -201,58 +230,71 @@ impl<W: AsRef<[Step]>> Unit<W> {
     /// the ray whose answer leaves, if one does (its slot is free from the next cycle). Then
     /// the next cycle.
     pub fn cycle(&mut self) -> Option<usize> {
-        let (t, cycle) = (self.t, self.cycle);
-        let box_arbiter = 2 + t.lanes;
-        for port in 0..t.box_ports {
-            let Some(k) = round_robin(
-                &self.slots,
-                &mut self.last[box_arbiter + port],
-                cycle,
-                |k, w| k % t.box_ports == port && w == Want::Box,
-            ) else {
+        let (t, cycle, n) = (self.t, self.cycle, self.slots.len());
+        // Every arbiter's grant in one pass over the slots: the first ready slot it serves
+        // after its last grant, cyclically. The grants of a cycle are independent: a slot
+        // wants one resource, and a grant keeps it busy for at least a cycle
+        // (`UnitTiming::check`).
+        self.grant.fill(NO_GRANT);
+        for (k, s) in self.slots.iter().enumerate() {
+            if s.want == Want::Free || s.ready_at > cycle {
                 continue;
+            }
+            let a = match s.want {
+                Want::Pop => POP,
+                Want::Out => OUT,
+                Want::Leaf(..) => self.serves[k].0,
+                Want::Box => self.serves[k].1,
+                Want::Free => unreachable!("skipped"),
             };
-            let s = &mut self.slots[k];
-            s.ready_at = cycle + t.box_latency;
-            s.step += 1;
-            s.advance(walk_of(&self.walks, k));
-            self.busy.box_busy += 1;
-        }
-        if let Some(k) = round_robin(&self.slots, &mut self.last[0], cycle, |_, w| w == Want::Pop) {
-            let s = &mut self.slots[k];
-            s.ready_at = cycle + t.pop_latency;
-            s.step += 1;
-            s.advance(walk_of(&self.walks, k));
-        }
-        for lane in 0..t.lanes {
-            let Some(k) = round_robin(&self.slots, &mut self.last[2 + lane], cycle, |k, w| {
-                k % t.lanes == lane && matches!(w, Want::Leaf(..))
-            }) else {
-                continue;
-            };
-            let s = &mut self.slots[k];
-            let Want::Leaf(left, nearer) = s.want else {
-                unreachable!("granted for a leaf")
-            };
-            self.busy.mt_busy += 1;
-            // One triangle a cycle per slot: it is next ready in the next cycle, or when
-            // its leaf's last answer is in (and a nearer hit's far end).
-            if left == 1 {
-                s.ready_at = cycle + t.mt_latency - if nearer { 0 } else { t.far_latency };
-                s.step += 1;
-                s.advance(walk_of(&self.walks, k));
-            } else {
-                s.want = Want::Leaf(left - 1, nearer);
-                s.ready_at = cycle + 1;
+            let start = self.last[a].wrapping_add(1) % n;
+            let distance = if k >= start { k - start } else { k + n - start };
+            if distance < self.grant[a].0 {
+                self.grant[a] = (distance, k);
             }
         }
-        // One hit leaves the unit, freeing its slot.
-        let out =
-            round_robin(&self.slots, &mut self.last[1], cycle, |_, w| w == Want::Out).map(|k| {
-                self.slots[k].want = Want::Free;
-                self.walks[k] = None;
-                self.slots[k].ray
-            });
+        let mut out = None;
+        for (a, &(distance, k)) in self.grant.iter().enumerate() {
+            if distance == NO_GRANT.0 {
+                continue;
+            }
+            self.last[a] = k;
+            let s = &mut self.slots[k];
+            match s.want {
+                Want::Box => {
+                    s.ready_at = cycle + t.box_latency;
+                    s.step += 1;
+                    s.advance(walk_of(&self.walks, k));
+                    self.busy.box_busy += 1;
+                }
+                Want::Pop => {
+                    s.ready_at = cycle + t.pop_latency;
+                    s.step += 1;
+                    s.advance(walk_of(&self.walks, k));
+                }
+                Want::Leaf(left, nearer) => {
+                    self.busy.mt_busy += 1;
+                    // One triangle a cycle per slot: it is next ready in the next cycle, or
+                    // when its leaf's last answer is in (and a nearer hit's far end).
+                    if left == 1 {
+                        s.ready_at = cycle + t.mt_latency - if nearer { 0 } else { t.far_latency };
+                        s.step += 1;
+                        s.advance(walk_of(&self.walks, k));
+                    } else {
+                        s.want = Want::Leaf(left - 1, nearer);
+                        s.ready_at = cycle + 1;
+                    }
+                }
+                // One hit leaves the unit, freeing its slot.
+                Want::Out => {
+                    s.want = Want::Free;
+                    self.walks[k] = None;
+                    self.free_slots += 1;
+                    out = Some(s.ray);
+                }
+                Want::Free => unreachable!("granted a free slot"),
+            }
+        }
         self.cycle += 1;
         out
     }
@@ -301,24 +343,6 @@ pub fn schedule(t: &UnitTiming, walks: &[Vec<Step>]) -> Schedule {
         }
     }
     unit.schedule()
-}
-
-/// The first slot after `last` (cyclically) that is ready at `cycle` and `eligible(index,
-/// want)`; it becomes `last`.
-fn round_robin(
-    slots: &[Slot],
-    last: &mut usize,
-    cycle: u64,
-    eligible: impl Fn(usize, Want) -> bool,
-) -> Option<usize> {
-    let n = slots.len();
-    let start = last.wrapping_add(1) % n;
-    let k = (0..n).map(|i| (start + i) % n).find(|&k| {
-        let s = &slots[k];
-        s.want != Want::Free && s.ready_at <= cycle && eligible(k, s.want)
-    })?;
-    *last = k;
-    Some(k)
 }
 
 #[cfg(test)]
@@ -433,6 +457,24 @@ mod tests {
         let walks = vec![vec![Step::Box, empty, Step::Pop]];
         let s = schedule(&T, &walks);
         assert_eq!((s.cycles, s.box_busy, s.mt_busy), (5 + 10 + 2 + 1, 1, 0));
+    }
+
+    /// The first slot after `last` (cyclically) that is ready at `cycle` and `eligible(index,
+    /// want)`; it becomes `last`.
+    fn round_robin(
+        slots: &[Slot],
+        last: &mut usize,
+        cycle: u64,
+        eligible: impl Fn(usize, Want) -> bool,
+    ) -> Option<usize> {
+        let n = slots.len();
+        let start = last.wrapping_add(1) % n;
+        let k = (start..n).chain(0..start).find(|&k| {
+            let s = &slots[k];
+            s.want != Want::Free && s.ready_at <= cycle && eligible(k, s.want)
+        })?;
+        *last = k;
+        Some(k)
     }
 
     /// `schedule` as it was before the unit was stepped incrementally ([`Unit`]): the oracle
