@@ -300,14 +300,14 @@ fn run_traversal(
         .kv("loads", s.loads)
         .kv("load_cycles", s.load_cycles)
         .print();
-    // Simulator speed per core: simulated cycles over the simulator's wall time summed over
-    // the threads.
-    let sim_s = s.sim_time.as_secs_f64().max(1e-9);
+    // Simulator speed per core: simulated cycles over the simulating threads' CPU time.
+    let core_s = s.core_seconds();
     Line::new()
-        .fixed("sim_cycles_per_s", s.sim_cycles as f64 / sim_s, 0)
-        .fixed("rays_per_s", rays as f64 / sim_s, 0)
+        .fixed("sim_cycles_per_s", s.sim_cycles as f64 / core_s, 0)
+        .fixed("rays_per_s", rays as f64 / core_s, 0)
         .kv("sim_cycles", s.sim_cycles)
-        .fixed("sim_wall_s", sim_s, 2)
+        .fixed("sim_cpu_s", s.sim_cpu_time.as_secs_f64(), 2)
+        .fixed("sim_wall_s", s.sim_time.as_secs_f64(), 2)
         .fixed("wall_s", out.stats.render_time.as_secs_f64(), 2)
         .print();
     print_comparison(a, &out, &sw)

@@ -8,11 +8,12 @@
 use crate::accel_model::{top_model, Accel, TopModel, VcdWindow};
 use crate::axil_master::{AxiLiteMaster, Completion};
 use crate::cosim_error::CosimError;
+use crate::sim_clock::{core_seconds, SimClock};
 use crate::stream_driver::stream_batch;
 use hdl::top::TopConfig;
 use hw_model::{MtQuery, MtResult};
 use std::sync::{Arc, Mutex};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 use sw_renderer::intersect::Intersector;
 use sw_renderer::rays::EngineError;
 
@@ -66,12 +67,7 @@ impl HwStats {
 
     /// Seconds one core spent simulating: the CPU time, or the wall time where it is unknown.
     pub fn core_seconds(&self) -> f64 {
-        let t = if self.sim_cpu_time.is_zero() {
-            self.sim_time
-        } else {
-            self.sim_cpu_time
-        };
-        t.as_secs_f64().max(1e-9)
+        core_seconds(self.sim_time, self.sim_cpu_time)
     }
 
     /// Simulated clock cycles per second of one core.
@@ -87,34 +83,6 @@ impl HwStats {
     pub fn cycles_per_test(&self) -> f64 {
         self.cycles as f64 / self.tests.max(1) as f64
     }
-}
-
-/// CPU time the calling thread has run so far (`CLOCK_THREAD_CPUTIME_ID`, exact to the
-/// nanosecond); `None` where it cannot be read.
-#[cfg(all(target_os = "linux", target_pointer_width = "64"))]
-fn thread_cpu_time() -> Option<Duration> {
-    /// `struct timespec` of 64-bit Linux.
-    #[repr(C)]
-    struct Timespec {
-        tv_sec: i64,
-        tv_nsec: i64,
-    }
-    extern "C" {
-        fn clock_gettime(clock: i32, time: *mut Timespec) -> i32;
-    }
-    const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
-    let mut t = Timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: `t` is a valid, writable timespec; libc (linked by std) fills it or fails.
-    let ok = unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut t) } == 0;
-    ok.then(|| Duration::new(t.tv_sec as u64, t.tv_nsec as u32))
-}
-
-#[cfg(not(all(target_os = "linux", target_pointer_width = "64")))]
-fn thread_cpu_time() -> Option<Duration> {
-    None
 }
 
 /// How the register-mode bus master of an instance finishes a test.
@@ -210,8 +178,7 @@ impl HwIntersector {
                 (accel, AxiLiteMaster::new(completion(self.mode)))
             }
         };
-        let start = Instant::now();
-        let cpu_start = thread_cpu_time();
+        let clock = SimClock::start();
         let cycles_before = accel.cycles();
         // (tests, transactions) of this batch.
         let outcome = match self.mode {
@@ -229,10 +196,7 @@ impl HwIntersector {
                 run().map(|()| bus.stats.transactions() - before)
             }
         };
-        let elapsed = start.elapsed();
-        let cpu = cpu_start
-            .zip(thread_cpu_time())
-            .map_or(Duration::ZERO, |(a, b)| b.saturating_sub(a));
+        let (elapsed, cpu) = clock.elapsed();
         let mut shared = self.lock();
         shared.stats.sim_time += elapsed;
         shared.stats.sim_cpu_time += cpu;

@@ -8,6 +8,7 @@ pub mod dual_pair;
 pub mod error;
 pub mod hw_intersector;
 pub mod projection;
+pub mod sim_clock;
 pub mod stream_driver;
 pub mod sweep;
 pub mod trace;

@@ -1,7 +1,7 @@
 //! The Verilated traversal unit as the renderer's ray engine.
 
 use std::sync::{Arc, Mutex};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use hdl::traversal::config::UnitConfig;
 use hdl::traversal::scene_memory_driver::NodeLayout;
@@ -12,6 +12,8 @@ use hw_model::traversal::{SceneCapacity, SceneMemory, UnitRay};
 use sw_renderer::hit::Hit;
 use sw_renderer::rays::{CastStats, EngineError, Ray, RayCaster, RayEngine};
 use sw_renderer::trace::PreparedScene;
+
+use crate::sim_clock::{core_seconds, SimClock};
 
 use super::verilated::{unit_model, UnitModel, VerilatedUnit};
 use super::{Traffic, UnitDriver, UnitError, UnitRun};
@@ -28,8 +30,17 @@ pub struct UnitSimStats {
     pub sim_cycles: u64,
     /// Wall time inside the simulations, summed over the threads that ran them.
     pub sim_time: Duration,
+    /// CPU time those threads ran for it (zero where the OS does not say).
+    pub sim_cpu_time: Duration,
     /// Simulated units created.
     pub instances: u64,
+}
+
+impl UnitSimStats {
+    /// Seconds one core spent simulating: the CPU time, or the wall time where it is unknown.
+    pub fn core_seconds(&self) -> f64 {
+        core_seconds(self.sim_time, self.sim_cpu_time)
+    }
 }
 
 /// Renders through the Verilated unit of `config`: the scene image written from the
@@ -159,7 +170,7 @@ impl RayCaster for Caster<'_> {
     /// One pass per chunk with the rays that still need it; a unit keeps the chunk it last
     /// loaded (a resident scene is loaded once per unit).
     fn cast(&self, rays: &[Ray], hits: &mut [Option<Hit>]) -> Result<CastStats, EngineError> {
-        let started = Instant::now();
+        let clock = SimClock::start();
         let mut unit = self.instance()?;
         let first_cycle = unit.driver.cycles();
         let unit_rays: Vec<UnitRay> = (rays.iter().enumerate())
@@ -179,7 +190,7 @@ impl RayCaster for Caster<'_> {
             Ok::<_, UnitError>(())
         })?;
         sim.sim_cycles = unit.driver.cycles() - first_cycle;
-        sim.sim_time = started.elapsed();
+        (sim.sim_time, sim.sim_cpu_time) = clock.elapsed();
         // Only a unit that finished cleanly goes back: after an error its state is unknown.
         self.pool
             .lock()
@@ -198,6 +209,7 @@ impl RayCaster for Caster<'_> {
         total.load_cycles += sim.load_cycles;
         total.sim_cycles += sim.sim_cycles;
         total.sim_time += sim.sim_time;
+        total.sim_cpu_time += sim.sim_cpu_time;
         Ok(stats)
     }
 }

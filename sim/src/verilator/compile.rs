@@ -93,22 +93,33 @@ fn compile_all(
                 if first_error.lock().unwrap().is_some() {
                     break;
                 }
-                let mut cmd = Command::new(&tc.cxx);
-                cmd.arg(level.opt);
-                if let Some(pch) = level.pch {
-                    cmd.arg("-include").arg(pch);
-                }
-                cmd.args(flags)
-                    .arg(format!("-I{}", include.display()))
-                    .arg("-c")
-                    .arg(src)
-                    .arg("-o")
-                    .arg(obj);
+                let command = |pch: Option<&Path>| {
+                    let mut cmd = Command::new(&tc.cxx);
+                    cmd.arg(level.opt);
+                    if let Some(pch) = pch {
+                        cmd.arg("-include").arg(pch);
+                    }
+                    cmd.args(flags)
+                        .arg(format!("-I{}", include.display()))
+                        .arg("-c")
+                        .arg(src)
+                        .arg("-o")
+                        .arg(obj);
+                    cmd
+                };
                 let what = format!(
                     "compiling {}",
                     src.file_name().unwrap_or_default().to_string_lossy()
                 );
-                match run(cmd, "c++ compiler", &what) {
+                // A precompiled header the compiler refuses (GCC passes over one that does not
+                // match, clang stops): the file compiles without it, its own `#include` reads
+                // the header.
+                let compiled =
+                    run(command(level.pch), "c++ compiler", &what).or_else(|e| match level.pch {
+                        Some(_) => run(command(None), "c++ compiler", &what),
+                        None => Err(e),
+                    });
+                match compiled {
                     Ok(_) => {
                         let n = done.fetch_add(1, Ordering::Relaxed) + 1;
                         progress.compiled(stage, n, jobs.len());
@@ -197,7 +208,9 @@ const PCH_SOURCE: &str = "rtfpga_pch.h";
 /// cache, built on first use: parsing it took ~1 CPU-s of every file of every model, most of
 /// a small model's build. Returns the header to `-include`; GCC reads the `.gch` beside it
 /// instead when it matches the compilation, else the header itself, which includes the real
-/// one — so a stale or foreign `.gch` costs time, never a wrong build.
+/// one; clang (which reads a `.gch` too) stops at one that does not match, and `compile_all`
+/// compiles the file again without it — so a stale or foreign `.gch` costs time, never a wrong
+/// build.
 fn precompiled_header(
     tc: &Toolchain,
     cache_root: &Path,
@@ -216,11 +229,14 @@ fn precompiled_header(
         let header = tmp.join(PCH_SOURCE);
         std::fs::write(&header, "#include <verilated.h>\n")
             .map_err(|e| SimError::io(&header, e))?;
+        // Precompiled from Verilator's own header, not the copy in the temporary directory:
+        // clang's precompiled header names the file it was made from and refuses to load once
+        // that file is gone (the directory is renamed into the cache); GCC's does not care.
         let mut cmd = Command::new(&tc.cxx);
         cmd.arg(opt)
             .args(flags)
             .args(["-x", "c++-header"])
-            .arg(&header)
+            .arg(tc.include.join("verilated.h"))
             .arg("-o")
             .arg(tmp.join(format!("{PCH_SOURCE}.gch")));
         run(cmd, "c++ compiler", "precompiling verilated.h")?;

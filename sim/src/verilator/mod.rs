@@ -65,9 +65,10 @@ pub struct BuildOptions {
     pub cache_dir: Option<PathBuf>,
     /// The PATH searched for `verilator` and the C++ compiler; `None` means the process's PATH.
     pub search_path: Option<OsString>,
-    /// Names (or paths) of the tools.
+    /// Names (or paths) of the tools; `cxx: None` takes clang++ when it is on the search path,
+    /// else g++ (`toolchain::CXX_PREFERENCE`).
     pub verilator: String,
-    pub cxx: String,
+    pub cxx: Option<String>,
     /// Extra arguments for `verilator`, e.g. `-Wno-UNOPTFLAT`.
     pub verilator_args: Vec<String>,
 }
@@ -79,7 +80,7 @@ impl Default for BuildOptions {
             cache_dir: None,
             search_path: None,
             verilator: "verilator".into(),
-            cxx: "g++".into(),
+            cxx: None,
             verilator_args: Vec::new(),
         }
     }
@@ -91,7 +92,11 @@ pub fn build(spec: &ModelSpec, options: &BuildOptions) -> Result<Model, SimError
         .search_path
         .clone()
         .or_else(|| std::env::var_os("PATH"));
-    let tc = toolchain::Toolchain::locate(&options.verilator, &options.cxx, path_var.as_ref())?;
+    let tc = toolchain::Toolchain::locate(
+        &options.verilator,
+        options.cxx.as_deref(),
+        path_var.as_ref(),
+    )?;
     let ports = match &spec.ports {
         Some(p) => p.clone(),
         None => parse_ports(&spec.verilog, &spec.top)?,

@@ -552,6 +552,14 @@ fn render_identical_to_the_software(test: &str, names: &[&str]) {
             off * 100.0
         );
     }
+    // Linux tells the simulating threads' CPU time (the speed per core is taken over it); a
+    // thread's CPU time cannot exceed its wall time.
+    let s = engine.stats();
+    assert!(
+        !s.sim_cpu_time.is_zero()
+            && s.sim_cpu_time <= s.sim_time + std::time::Duration::from_millis(5),
+        "{s:?}"
+    );
 }
 
 /// Two thesis scenes through the two-lane leaf-box unit in [`NARROW`] (the random-mesh
