@@ -160,6 +160,55 @@ mod tests {
         assert_eq!(err, "verilator not found on PATH: install it with `apt-get install verilator` (or run `make setup`)");
     }
 
+    /// A directory of stand-in tools (shell scripts printing a version line; Verilator's
+    /// root with a runtime beside them) holding `compilers`.
+    #[cfg(unix)]
+    fn stand_in_tools(compilers: &[&str]) -> tempfile::TempDir {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir(dir.path().join("include")).unwrap();
+        std::fs::write(dir.path().join("include/verilated.cpp"), "").unwrap();
+        let root = dir.path().display();
+        let verilator =
+            format!("#!/bin/sh\n[ \"$1\" = --getenv ] && echo {root} || echo Verilator 5\n");
+        let tools = [("verilator", verilator)].into_iter().chain(
+            compilers
+                .iter()
+                .map(|c| (*c, format!("#!/bin/sh\necho {c} 1\n"))),
+        );
+        for (name, script) in tools {
+            let path = dir.path().join(name);
+            std::fs::write(&path, script).unwrap();
+            std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+        }
+        dir
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn the_compiler_is_clang_when_there_else_gcc() {
+        for (present, chosen) in [
+            (&["g++", "clang++"][..], "clang++"),
+            (&["g++"][..], "g++"),
+            (&["clang++"][..], "clang++"),
+        ] {
+            let dir = stand_in_tools(present);
+            let path = OsString::from(dir.path());
+            let tools = Toolchain::locate("verilator", None, Some(&path)).unwrap();
+            assert_eq!(tools.cxx, dir.path().join(chosen), "{present:?}");
+            assert!(
+                tools.versions.ends_with(&format!("{chosen} 1")),
+                "{}",
+                tools.versions
+            );
+        }
+        let dir = stand_in_tools(&[]);
+        let err = Toolchain::locate("verilator", None, Some(&OsString::from(dir.path())))
+            .unwrap_err()
+            .to_string();
+        assert!(err.starts_with("g++ not found on PATH"), "{err}");
+    }
+
     #[test]
     fn finds_sh_on_the_real_path() {
         let path = std::env::var_os("PATH");
