@@ -6,7 +6,7 @@
 //! draining and finishing when none of its rays is left, the waiting head's pixel offered as
 //! the candidate. Every
 //! designation's census takes `CENSUS_CYCLES` and is exact whatever entered or left during it
-//! (below, at and above the address read); then the escape pixel's deepest depth in flight
+//! (a third of the events at the entry read at the last edge, at this one or the next); then the escape pixel's deepest depth in flight
 //! equals the store's every cycle until it finishes. Verilator's lint.
 
 use crate::common::{print_synthesis_row, SYNTHESIS_COLUMNS};
@@ -44,6 +44,13 @@ impl Model {
 
     fn drive(&mut self, shown: Option<&EscapeOutput>) -> Option<EscapeInput> {
         let mut scanned = None;
+        // The entries about the census's address this cycle: read at the last edge, at
+        // this one, and the next.
+        let near: Vec<usize> = shown.map_or(vec![], |o| {
+            (o.scan_address..o.scan_address + 3)
+                .filter(|&i| i < IDS)
+                .collect()
+        });
         if let (Some(input), Some(out)) = (self.last.take(), shown) {
             // The cycle those inputs and outputs were of.
             let then = self.cycle - 1;
@@ -97,12 +104,25 @@ impl Model {
                 slot,
                 depth: rng.gen_range(0..DEPTHS),
             };
-            input.enter = Some((free[rng.gen_range(0..free.len())], tag));
+            let near_free: Vec<usize> = (near.iter().copied())
+                .filter(|&i| self.store[i].is_none())
+                .collect();
+            let id = if !near_free.is_empty() && rng.gen_bool(0.3) {
+                near_free[rng.gen_range(0..near_free.len())]
+            } else {
+                free[rng.gen_range(0..free.len())]
+            };
+            input.enter = Some((id, tag));
         }
         let draining: Vec<usize> = (used.iter().copied())
             .filter(|&i| self.store[i].is_some_and(|t| t.slot == retiring))
             .collect();
-        let leaving = if !draining.is_empty() && rng.gen_bool(0.5) {
+        let near_used: Vec<usize> = (near.iter().copied())
+            .filter(|&i| self.store[i].is_some() && input.enter.is_none_or(|(e, _)| e != i))
+            .collect();
+        let leaving = if !near_used.is_empty() && rng.gen_bool(0.3) {
+            &near_used
+        } else if !draining.is_empty() && rng.gen_bool(0.5) {
             &draining
         } else {
             &used
