@@ -11,10 +11,19 @@
 //!   pixel, or settle one of its shaded rays) a cycle; finished pixels out in 8 bits.
 //! - [`shader`]: the shader core, shading programs run by interleaved threads on one fp32
 //!   datapath.
+//! - [`escape`]: the escape pixel, designated until it finishes, its cast rays in flight
+//!   counted by depth (a census of the ray store's tags, then live).
+//! - [`ray_ids`]: the ray store's free entries (a ray's id in the traversal unit) and the
+//!   running threads' reservations of them; the spawn and escape reserves' decisions.
+//! - [`thread_start`]: a returned cast ray and its answer → the shader core's thread start
+//!   (the triangle's object and normals, the object's program), one a cycle.
 
 pub mod accumulate;
 pub mod contribution;
 pub mod coord;
+pub mod escape;
 pub mod normalise;
+pub mod ray_ids;
 pub mod raygen;
 pub mod shader;
+pub mod thread_start;

@@ -1,0 +1,380 @@
+//! The frame engine's thread start (`hdl::frame::thread_start`) in rust-hdl's simulator, bit
+//! for bit against `hw_model::frame::shader::thread::input` and `Program::pushes_from`: the
+//! returned cast rays of 16×9 renders of the built-in scenes and of the frame test scenes
+//! (hits and misses, every depth the scene reaches), and random rays under random depths
+//! and max depths (past depth either side of its edge) on random triangles with raw words;
+//! under random gaps and random back-pressure with long stalls: every start exactly once, in
+//! order, held while not taken, and, flowing, exactly `LATENCY` cycles after its ray.
+//! Constants and rays that do not fit are errors naming the sizes; Verilator's lint.
+
+use std::path::Path;
+
+use crate::common::{print_synthesis_row, SYNTHESIS_COLUMNS};
+use hdl::frame::thread_start::{
+    loads, simulate_thread_start, thread_start_verilog, Returned, ReturnedError, StartConstants,
+    StartInput, StartLoadError, StartOutput, Started, LATENCY, OBJECTS, TRIANGLES,
+};
+use hw_model::frame::shade::Shaded;
+use hw_model::frame::shader::{compile, thread, Program};
+use hw_model::frame::{Frame, FrameConstants, FrameLimits, FrameRay, Load, RayKind};
+use hw_model::traversal::wide::NodeFormat;
+use hw_model::traversal::{SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
+use hw_model::{Advance, Format};
+use rand::{rngs::StdRng, Rng, SeedableRng};
+use sw_renderer::hit::Hit;
+use sw_renderer::scene::{builtin, Scene};
+use sw_renderer::trace::PreparedScene;
+
+fn traversal() -> TraversalEngine {
+    TraversalEngine {
+        format: Format::FP32,
+        stack_depth: DEFAULT_STACK_DEPTH,
+        scale_exp: 0,
+        advance: Advance::None,
+        timing: None,
+        memory: SceneMemory::Unbounded,
+        nodes: NodeFormat::Bvh2Fp32,
+    }
+}
+
+/// A ray the block takes and the start the model makes of it.
+struct Case {
+    ray: Returned,
+    want: Started,
+}
+
+fn case(c: &FrameConstants, program: &Program, ray: &FrameRay, hit: Option<&Hit>) -> Case {
+    let input = thread::input(program, c, ray, hit).expect("a cast ray runs a thread");
+    let Load::Cast { depth, .. } = ray.load else {
+        unreachable!("a cast ray")
+    };
+    Case {
+        ray: Returned::of(ray, hit).unwrap_or_else(|e| panic!("{ray:?}: {e}")),
+        want: Started {
+            input,
+            pixel: ray.pixel,
+            depth,
+            casts: program.pushes_from(input.entry).cast > 0,
+        },
+    }
+}
+
+/// Every returned cast ray of a 16×9 render of `scene`, a wavefront at a time.
+fn rendered(scene: &Scene) -> (FrameConstants, Program, Vec<Case>) {
+    let prepared = PreparedScene::new(scene).unwrap();
+    let unit = traversal();
+    let frame = Frame::new(scene, &prepared, &unit, 16, 9, &FrameLimits::HW).unwrap();
+    let (c, program) = (frame.constants().clone(), frame.program().clone());
+    let mut queue: Vec<FrameRay> = (0..c.height)
+        .flat_map(|j| (0..c.width).map(move |i| (i, j)))
+        .map(|(i, j)| FrameRay::primary(&c, i, j))
+        .collect();
+    let mut cases = Vec::new();
+    let mut hits = Vec::new();
+    let mut shaded = Shaded::default();
+    while !queue.is_empty() {
+        let batch = std::mem::take(&mut queue);
+        frame.cast(&batch, &mut hits).unwrap();
+        for (ray, hit) in batch.iter().zip(&hits) {
+            if ray.kind() != RayKind::Shadow {
+                cases.push(case(&c, &program, ray, hit.as_ref()));
+            }
+            shaded.clear();
+            thread::shade(&program, &c, ray, hit.as_ref(), &mut shaded).unwrap();
+            queue.extend_from_slice(&shaded.spawned);
+        }
+    }
+    (c, program, cases)
+}
+
+/// Random cast rays of `c`'s triangles: raw words, any depth the tag holds.
+fn random_cases(rng: &mut StdRng, c: &FrameConstants, program: &Program, n: usize) -> Vec<Case> {
+    let word3 = |rng: &mut StdRng| {
+        hw_model::fp32::Vec3::new(
+            hw_model::fp32::Fp32::from_bits(rng.gen()),
+            hw_model::fp32::Fp32::from_bits(rng.gen()),
+            hw_model::fp32::Fp32::from_bits(rng.gen()),
+        )
+    };
+    (0..n)
+        .map(|_| {
+            let hit = rng.gen_bool(0.8).then(|| Hit {
+                triangle: rng.gen_range(0..c.triangles.len() as u32),
+                t: f32::from_bits(rng.gen()),
+                u: f32::from_bits(rng.gen()),
+                v: f32::from_bits(rng.gen()),
+            });
+            let ray = FrameRay {
+                pixel: rng.gen_range(0..1 << 21),
+                orig: word3(rng),
+                dir: word3(rng),
+                t_max: hw_model::fp32::Fp32::MAX,
+                load: Load::Cast {
+                    kind: RayKind::ALL[rng.gen_range(0..3)],
+                    depth: rng.gen_range(0..16),
+                    weight: word3(rng),
+                },
+            };
+            case(c, program, &ray, hit.as_ref())
+        })
+        .collect()
+}
+
+/// Back-pressure and gaps of a run.
+#[derive(Clone, Copy)]
+struct Traffic {
+    /// Chance of a cycle without a ray offered (once none is shown).
+    gap: f64,
+    /// Chance of a stall starting (`out_ready` low), lasting up to `stall_len` cycles.
+    stall: f64,
+    stall_len: usize,
+}
+
+const FLOWING: Traffic = Traffic {
+    gap: 0.0,
+    stall: 0.0,
+    stall_len: 0,
+};
+
+/// Loads `k` and streams `cases` through the block: every start in order, equal to the
+/// model's, held while not taken; flowing, each `LATENCY` cycles after its ray.
+fn run(what: &str, k: &StartConstants, cases: Vec<Case>, traffic: Traffic, seed: u64) {
+    let mut rng = StdRng::seed_from_u64(seed);
+    let base = StartInput {
+        miss_entry: k.miss_entry,
+        miss_casts: k.miss_casts,
+        max_depth: k.max_depth,
+        ..StartInput::default()
+    };
+    let mut load_words = k.loads.clone().into_iter();
+    let rays: Vec<Returned> = cases.iter().map(|c| c.ray).collect();
+    let n = rays.len();
+    let mut next = 0;
+    let mut offered: Option<Returned> = None;
+    let mut stalled = 0usize;
+    // Starts taken, whether the cycle before was ready, cycles since the last was taken.
+    let (mut taken, mut was_ready, mut after) = (0, false, 0);
+    let cycles = simulate_thread_start(move |shown: Option<&StartOutput>| {
+        let mut input = base.clone();
+        if let Some(w) = load_words.next() {
+            input.load = Some(w);
+            return Some(input);
+        }
+        if was_ready && shown.is_some_and(|s| s.start.is_some()) {
+            taken += 1;
+        }
+        if offered.is_some() && shown.is_some_and(|s| s.in_ready) {
+            offered = None;
+            next += 1;
+        }
+        if offered.is_none() && next < n && !rng.gen_bool(traffic.gap) {
+            offered = Some(rays[next]);
+        }
+        input.ray = offered;
+        if stalled == 0 && rng.gen_bool(traffic.stall) {
+            stalled = rng.gen_range(1..=traffic.stall_len.max(1));
+        }
+        input.out_ready = stalled == 0;
+        was_ready = input.out_ready;
+        stalled = stalled.saturating_sub(1);
+        if taken == n {
+            after += 1;
+        }
+        // A few cycles more: nothing else may come out.
+        (after <= LATENCY + 1).then_some(input)
+    });
+    let mut got = Vec::new();
+    let mut taken_at = Vec::new();
+    let mut held: Option<Started> = None;
+    for (cycle, (input, out)) in cycles.iter().enumerate() {
+        if let Some(h) = held {
+            assert_eq!(
+                out.start,
+                Some(h),
+                "{what}: a start not taken changed at {cycle}"
+            );
+        }
+        if input.ray.is_some() && out.in_ready {
+            taken_at.push(cycle);
+        }
+        held = None;
+        if let Some(s) = out.start {
+            if input.out_ready {
+                if traffic.stall == 0.0 {
+                    assert_eq!(
+                        cycle,
+                        taken_at[got.len()] + LATENCY,
+                        "{what}: start {} shown at {cycle}",
+                        got.len()
+                    );
+                }
+                got.push(s);
+            } else {
+                held = Some(s);
+            }
+        }
+    }
+    assert_eq!(got.len(), cases.len(), "{what}: starts");
+    for (k, (g, c)) in got.iter().zip(&cases).enumerate() {
+        assert_eq!(*g, c.want, "{what}: start {k} of {:?}", c.ray);
+    }
+}
+
+const NOISY: Traffic = Traffic {
+    gap: 0.3,
+    stall: 0.1,
+    stall_len: 12,
+};
+
+fn check_scene(what: &str, scene: &Scene, seed: u64) {
+    let (c, program, mut cases) = rendered(scene);
+    let mut rng = StdRng::seed_from_u64(seed);
+    let misses = cases.iter().filter(|k| k.ray.hit.is_none()).count();
+    assert!(
+        misses > 0 && misses < cases.len(),
+        "{what}: hits and misses"
+    );
+    cases.extend(random_cases(&mut rng, &c, &program, 60));
+    let k = loads(&c, &program).unwrap();
+    let flowing = cases.split_off(cases.len() / 2);
+    run(what, &k, cases, NOISY, seed);
+    run(what, &k, flowing, FLOWING, seed + 1);
+}
+
+#[test]
+fn thread_start_matches_the_model_on_the_builtin_scenes() {
+    for (n, name) in builtin::names().into_iter().enumerate() {
+        check_scene(name, &Scene::load(name).unwrap(), 10 + n as u64);
+    }
+}
+
+const FRAME_TEST_SCENES: [&str; 5] = [
+    "diffuse_distant",
+    "diffuse_point",
+    "mirror",
+    "glass",
+    "phong",
+];
+
+fn frame_test_scene(name: &str) -> Scene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("model/tests/frame_scenes")
+        .join(format!("{name}.toml"));
+    Scene::load(path.to_str().unwrap()).unwrap()
+}
+
+#[test]
+fn thread_start_matches_the_model_on_the_frame_test_scenes() {
+    for (n, name) in FRAME_TEST_SCENES.iter().enumerate() {
+        check_scene(name, &frame_test_scene(name), 30 + n as u64);
+    }
+}
+
+/// Past depth on either side of its edge: max depth 0, 1, 7 and 15 against depths around it.
+#[test]
+fn thread_start_sets_past_depth_at_the_max_depth() {
+    let scene = frame_test_scene("glass");
+    let (mut c, _, _) = rendered(&scene);
+    let mut rng = StdRng::seed_from_u64(5);
+    for max_depth in [0, 1, 7, 15] {
+        c.max_depth = max_depth;
+        let program = compile(&c).unwrap();
+        let cases = random_cases(&mut rng, &c, &program, 40);
+        let past = cases.iter().filter(|k| k.want.input.past_depth).count();
+        assert!(past > 0, "max depth {max_depth}: past");
+        assert!(
+            past < cases.len() || max_depth == 0,
+            "max depth {max_depth}: not past"
+        );
+        let k = loads(&c, &program).unwrap();
+        run(
+            &format!("max depth {max_depth}"),
+            &k,
+            cases,
+            NOISY,
+            50 + max_depth as u64,
+        );
+    }
+}
+
+#[test]
+fn thread_start_refuses_what_does_not_fit() {
+    let scene = frame_test_scene("glass");
+    let (c, program, cases) = rendered(&scene);
+    let mut big = c.clone();
+    big.triangles = vec![c.triangles[0]; TRIANGLES + 1];
+    let e = loads(&big, &program).unwrap_err();
+    assert_eq!(
+        e,
+        StartLoadError::Triangles {
+            count: TRIANGLES + 1
+        }
+    );
+    assert!(e.to_string().contains(&TRIANGLES.to_string()), "{e}");
+    let mut many = c.clone();
+    many.materials = vec![c.materials[0]; OBJECTS + 1];
+    let e = loads(&many, &program).unwrap_err();
+    assert!(
+        e.to_string().contains(&format!("{} objects", OBJECTS + 1)),
+        "{e}"
+    );
+    assert!(e.to_string().contains(&OBJECTS.to_string()), "{e}");
+    let mut stray = c.clone();
+    stray.triangles[0].object = c.materials.len() as u32;
+    let e = loads(&stray, &program).unwrap_err().to_string();
+    assert!(e.contains("triangle 0 has object"), "{e}");
+    let mut deep = c.clone();
+    deep.max_depth = 16;
+    let e = loads(&deep, &program).unwrap_err().to_string();
+    assert!(e.contains("max depth 16") && e.contains("15"), "{e}");
+
+    let primary = FrameRay::primary(&c, 0, 0);
+    let shadow = FrameRay {
+        load: Load::Shadow {
+            contribution: Default::default(),
+        },
+        ..primary
+    };
+    assert_eq!(Returned::of(&shadow, None), Err(ReturnedError::Shadow));
+    let far = Hit {
+        triangle: TRIANGLES as u32,
+        t: 1.0,
+        u: 0.0,
+        v: 0.0,
+    };
+    let e = Returned::of(&primary, Some(&far)).unwrap_err().to_string();
+    assert!(e.contains(&TRIANGLES.to_string()), "{e}");
+    let deep_ray = FrameRay {
+        load: Load::Cast {
+            kind: RayKind::Reflection,
+            depth: 16,
+            weight: hw_model::fp32::Vec3::of([1.0; 3]),
+        },
+        ..primary
+    };
+    assert_eq!(
+        Returned::of(&deep_ray, None),
+        Err(ReturnedError::Depth { depth: 16 })
+    );
+    assert!(!cases.is_empty());
+}
+
+#[test]
+fn thread_start_verilog_passes_verilator_lint() {
+    if let Err(e) = hdl::verilog::verilator_lint(&thread_start_verilog()) {
+        panic!("thread start: verilator lint failed:\n{e}");
+    }
+}
+
+/// yosys figures (BENCHMARKS.md "Frame unit blocks"):
+/// `cargo test --release -p hdl --test integration -- --ignored --nocapture frame_thread_start::thread_start_synthesis`.
+#[test]
+#[ignore]
+fn thread_start_synthesis() {
+    use hdl::synth::{synthesize, SynthOptions};
+    let r = synthesize(&thread_start_verilog(), "top", &SynthOptions::default())
+        .expect("yosys synth_xilinx");
+    println!("| block | {SYNTHESIS_COLUMNS} |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    print_synthesis_row("thread start", &r);
+}
