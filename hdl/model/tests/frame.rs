@@ -8,9 +8,8 @@ use std::path::Path;
 use std::sync::Arc;
 
 use hw_model::frame::{Frame, FrameError, FrameLimits, FrameOutput, RayKind, WAVEFRONT};
-use hw_model::traversal::wide::NodeFormat;
-use hw_model::traversal::{SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
-use hw_model::{Advance, Format};
+use hw_model::traversal::TraversalEngine;
+use hw_model::Format;
 use image::RgbImage;
 use rand::rngs::StdRng;
 use rand::seq::SliceRandom;
@@ -31,15 +30,7 @@ const HEIGHT: u32 = 180;
 
 /// The traversal unit's model in fp32, the whole scene resident (chunking changes no answer).
 fn traversal() -> TraversalEngine {
-    TraversalEngine {
-        format: Format::FP32,
-        stack_depth: DEFAULT_STACK_DEPTH,
-        scale_exp: 0,
-        advance: Advance::None,
-        timing: None,
-        memory: SceneMemory::Unbounded,
-        nodes: NodeFormat::Bvh2Fp32,
-    }
+    TraversalEngine::resident(Format::FP32)
 }
 
 fn frame(scene: &Scene, width: u32, height: u32, tile: u32) -> FrameOutput {

@@ -10,9 +10,8 @@ use hw_model::frame::shader::ProgramKind;
 use hw_model::frame::{Frame, FrameLimits, FrameRay, RayKind, WAVEFRONT};
 use hw_model::traversal::scene_image::SceneImage;
 use hw_model::traversal::schedule::UnitTiming;
-use hw_model::traversal::wide::NodeFormat;
-use hw_model::traversal::{SceneMemory, TraversalEngine, TraversalModel, DEFAULT_STACK_DEPTH};
-use hw_model::{Advance, Format};
+use hw_model::traversal::{TraversalEngine, TraversalModel, DEFAULT_STACK_DEPTH};
+use hw_model::Format;
 use sw_renderer::scene::Scene;
 use sw_renderer::trace::PreparedScene;
 
@@ -41,13 +40,8 @@ const UNIT: FrameUnit = FrameUnit {
 
 fn engine(timing: Option<UnitTiming>) -> TraversalEngine {
     TraversalEngine {
-        format: Format::FP32,
-        stack_depth: DEFAULT_STACK_DEPTH,
-        scale_exp: 0,
-        advance: Advance::None,
         timing,
-        memory: SceneMemory::Unbounded,
-        nodes: NodeFormat::Bvh2Fp32,
+        ..TraversalEngine::resident(Format::FP32)
     }
 }
 

@@ -21,9 +21,8 @@ use hw_model::frame::shader::{
     ThreadInput,
 };
 use hw_model::frame::{Frame, FrameLimits, FrameRay, FrameStats, Load, RayKind, Settle};
-use hw_model::traversal::wide::NodeFormat;
-use hw_model::traversal::{SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
-use hw_model::{Advance, Format};
+use hw_model::traversal::TraversalEngine;
+use hw_model::Format;
 use rand::rngs::StdRng;
 use rand::Rng;
 use sw_renderer::hit::Hit;
@@ -34,15 +33,7 @@ use sw_renderer::trace::PreparedScene;
 use common::says;
 
 fn traversal() -> TraversalEngine {
-    TraversalEngine {
-        format: Format::FP32,
-        stack_depth: DEFAULT_STACK_DEPTH,
-        scale_exp: 0,
-        advance: Advance::None,
-        timing: None,
-        memory: SceneMemory::Unbounded,
-        nodes: NodeFormat::Bvh2Fp32,
-    }
+    TraversalEngine::resident(Format::FP32)
 }
 
 fn test_scene(name: &str) -> Scene {

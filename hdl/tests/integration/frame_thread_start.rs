@@ -17,24 +17,15 @@ use hdl::frame::thread_start::{
 use hw_model::frame::shade::Shaded;
 use hw_model::frame::shader::{compile, thread, Program};
 use hw_model::frame::{Frame, FrameConstants, FrameLimits, FrameRay, Load, RayKind};
-use hw_model::traversal::wide::NodeFormat;
-use hw_model::traversal::{SceneMemory, TraversalEngine, DEFAULT_STACK_DEPTH};
-use hw_model::{Advance, Format};
+use hw_model::traversal::TraversalEngine;
+use hw_model::Format;
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use sw_renderer::hit::Hit;
 use sw_renderer::scene::{builtin, Scene};
 use sw_renderer::trace::PreparedScene;
 
 fn traversal() -> TraversalEngine {
-    TraversalEngine {
-        format: Format::FP32,
-        stack_depth: DEFAULT_STACK_DEPTH,
-        scale_exp: 0,
-        advance: Advance::None,
-        timing: None,
-        memory: SceneMemory::Unbounded,
-        nodes: NodeFormat::Bvh2Fp32,
-    }
+    TraversalEngine::resident(Format::FP32)
 }
 
 /// A ray the block takes and the start the model makes of it.

@@ -31,6 +31,23 @@ pub struct TraversalEngine {
     pub nodes: NodeFormat,
 }
 
+impl TraversalEngine {
+    /// The unit's model in `format` as the frame unit's tests and tools take it: the default
+    /// stack, unscaled queries, no advance, untimed, the whole scene resident (chunking changes
+    /// no answer), binary fp32 nodes.
+    pub fn resident(format: Format) -> TraversalEngine {
+        TraversalEngine {
+            format,
+            stack_depth: super::DEFAULT_STACK_DEPTH,
+            scale_exp: 0,
+            advance: Advance::None,
+            timing: None,
+            memory: SceneMemory::Unbounded,
+            nodes: NodeFormat::Bvh2Fp32,
+        }
+    }
+}
+
 impl RayEngine for TraversalEngine {
     /// "traversal model fp32" (the catalogue name where there is one).
     fn name(&self) -> String {
