@@ -10,7 +10,7 @@
 //! the consumer stalls and never while it is always ready. Records that do not fit are
 //! errors; Verilator's lint.
 
-use crate::common::{print_synthesis_row, SYNTHESIS_COLUMNS};
+use crate::common::{print_synthesis_row, Traffic, FLOWING, SYNTHESIS_COLUMNS};
 use hdl::frame::accumulate::{
     accumulate_verilog, latency, simulate_accumulate, AccumulateInput, AccumulateOutput, Command,
     Finished, Record, RecordError, PIXEL_SLOTS, QUEUE_DEPTH, SETTLE_BITS,
@@ -164,25 +164,6 @@ fn stream(pattern: Pattern, length: usize, seed: u64) -> Stream {
     Stream::of(records)
 }
 
-/// How the test bench offers records and takes finished pixels.
-#[derive(Clone, Copy, Debug)]
-struct Traffic {
-    /// Chance that a cycle offers no new record.
-    gap: f64,
-    /// Chance that a cycle does not take a pixel.
-    stall: f64,
-    /// Chance that a cycle starts a long stall, and its cycles.
-    long_stall: f64,
-    long: usize,
-}
-
-const FLOWING: Traffic = Traffic {
-    gap: 0.0,
-    stall: 0.0,
-    long_stall: 0.0,
-    long: 0,
-};
-
 const NOISY: Traffic = Traffic {
     gap: 0.2,
     stall: 0.3,
@@ -232,13 +213,11 @@ impl Bench {
         if !self.offered && self.next < self.records.len() {
             self.offered = !self.rng.gen_bool(self.traffic.gap);
         }
-        if self.stalled == 0 && self.rng.gen_bool(self.traffic.long_stall) {
-            self.stalled = self.traffic.long;
-        }
-        self.stalled = self.stalled.saturating_sub(1);
+        // (Past the end the draws change nothing: no record is left to offer.)
+        let ready = self.traffic.ready(&mut self.rng, &mut self.stalled);
         let input = AccumulateInput {
             record: self.offered.then(|| self.records[self.next]),
-            pixel_ready: done || (self.stalled == 0 && !self.rng.gen_bool(self.traffic.stall)),
+            pixel_ready: done || ready,
         };
         self.last = Some(input);
         Some(input)

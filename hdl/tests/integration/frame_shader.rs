@@ -17,7 +17,7 @@
 //! constants from the edge words; a second program and its constants loaded over the first
 //! between two frames. Programs and starts that do not fit are errors. Lint.
 
-use crate::common::{fp32_edge_words, print_synthesis_row, SYNTHESIS_COLUMNS};
+use crate::common::{fp32_edge_words, print_synthesis_row, Traffic, FLOWING, SYNTHESIS_COLUMNS};
 use hdl::frame::shader::alu::{self, simulate_alu, AluInput};
 use hw_model::frame::shader::isa::{Field, Instr, Op, OpKind, Pred, PushKind, Src};
 use hw_model::frame::shader::{run, Program, ThreadInput};
@@ -356,22 +356,6 @@ fn random_starts(rng: &mut StdRng, entries: &[u16], count: usize) -> Vec<Start> 
         .collect()
 }
 
-/// How the bench offers starts and takes outputs.
-#[derive(Clone, Copy, Debug)]
-struct Traffic {
-    gap: f64,
-    stall: f64,
-    long_stall: f64,
-    long: usize,
-}
-
-const FLOWING: Traffic = Traffic {
-    gap: 0.0,
-    stall: 0.0,
-    long_stall: 0.0,
-    long: 0,
-};
-
 const NOISY: Traffic = Traffic {
     gap: 0.3,
     stall: 0.4,
@@ -437,12 +421,8 @@ impl Bench {
             self.offered = !self.rng.gen_bool(self.traffic.gap);
         }
         let mut ready = [false; 2];
-        for (k, ready) in ready.iter_mut().enumerate() {
-            if self.stalled[k] == 0 && self.rng.gen_bool(self.traffic.long_stall) {
-                self.stalled[k] = self.traffic.long;
-            }
-            self.stalled[k] = self.stalled[k].saturating_sub(1);
-            *ready = self.stalled[k] == 0 && !self.rng.gen_bool(self.traffic.stall);
+        for (ready, stalled) in ready.iter_mut().zip(&mut self.stalled) {
+            *ready = self.traffic.ready(&mut self.rng, stalled);
         }
         let input = CoreInput {
             load: None,

@@ -119,3 +119,36 @@ pub fn print_critical_path(r: &hdl::synth::SynthReport) {
         );
     }
 }
+
+/// How a block's test bench offers its inputs and takes its outputs: gaps in what it
+/// offers, short and long stalls on what it takes.
+#[derive(Clone, Copy, Debug)]
+pub struct Traffic {
+    /// Chance that a cycle offers nothing new.
+    pub gap: f64,
+    /// Chance that a cycle does not take an output.
+    pub stall: f64,
+    /// Chance that a cycle starts a long stall, and its cycles.
+    pub long_stall: f64,
+    pub long: usize,
+}
+
+/// Everything offered at once, every output taken at once.
+pub const FLOWING: Traffic = Traffic {
+    gap: 0.0,
+    stall: 0.0,
+    long_stall: 0.0,
+    long: 0,
+};
+
+impl Traffic {
+    /// Whether a consumer takes an output this cycle; `stalled` holds the cycles left of its
+    /// long stall.
+    pub fn ready(&self, rng: &mut StdRng, stalled: &mut usize) -> bool {
+        if *stalled == 0 && rng.gen_bool(self.long_stall) {
+            *stalled = self.long;
+        }
+        *stalled = stalled.saturating_sub(1);
+        *stalled == 0 && !rng.gen_bool(self.stall)
+    }
+}
