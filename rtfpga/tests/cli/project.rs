@@ -3,6 +3,19 @@
 
 use crate::common::*;
 
+/// A projection of Simple plane at 32×18.
+fn small_projection() -> Run {
+    rtfpga(&[
+        "project",
+        "--scene",
+        "simple_plane",
+        "--width",
+        "32",
+        "--height",
+        "18",
+    ])
+}
+
 fn thesis(test: &str) -> bool {
     sw_renderer::thesis_scenes::for_test(&format!("cli::project::{test}")).is_some()
 }
@@ -16,18 +29,7 @@ fn the_fit_is_made_once_stored_and_reused() {
         return;
     }
     let cache = tmp();
-    let project = || {
-        rtfpga(&[
-            "project",
-            "--scene",
-            "simple_plane",
-            "--width",
-            "32",
-            "--height",
-            "18",
-        ])
-        .env("RTFPGA_CACHE", cache.path().to_str().unwrap())
-    };
+    let project = || small_projection().env("RTFPGA_CACHE", cache.path().to_str().unwrap());
     let run = |run: Run| {
         let out = run.command().assert().success().get_output().clone();
         let (stdout, stderr) = (
@@ -69,16 +71,7 @@ fn the_projection_is_a_table_and_key_value_lines() {
     if !thesis("the_projection_is_a_table_and_key_value_lines") {
         return;
     }
-    let out = rtfpga(&[
-        "project",
-        "--scene",
-        "simple_plane",
-        "--width",
-        "32",
-        "--height",
-        "18",
-    ])
-    .ok();
+    let out = small_projection().ok();
     assert!(out.contains("| term | seconds |"), "{out}");
     for (key, want) in [
         ("design", "stream"),
@@ -94,17 +87,9 @@ fn the_projection_is_a_table_and_key_value_lines() {
         !out.contains('{') && !out.contains("Stream"),
         "a debug dump: {out}"
     );
-    let out = rtfpga(&[
-        "project",
-        "--scene",
-        "simple_plane",
-        "--width",
-        "32",
-        "--height",
-        "18",
-    ])
-    .args(&["--design", "traversal", "--depth", "5"])
-    .ok();
+    let out = small_projection()
+        .args(&["--design", "traversal", "--depth", "5"])
+        .ok();
     assert!(
         value(labelled(&out, "unit_schedule"), "cycles_per_ray").is_some(),
         "{out}"
@@ -132,20 +117,7 @@ fn the_traversal_design_takes_its_cycles_from_the_schedule_model() {
 /// cores never slower; options of the other designs and impossible units refused.
 #[test]
 fn the_frame_design_times_a_frame_on_the_planned_frame_unit() {
-    let frame = |extra: &[&str]| {
-        rtfpga(&[
-            "project",
-            "--scene",
-            "simple_plane",
-            "--width",
-            "32",
-            "--height",
-            "18",
-            "--design",
-            "frame",
-        ])
-        .args(extra)
-    };
+    let frame = |extra: &[&str]| small_projection().args(&["--design", "frame"]).args(extra);
     let cycles = |cores: &str| {
         let out = frame(&["--shader-cores", cores]).ok();
         check_lines(&out).unwrap();
