@@ -37,7 +37,11 @@ for name, body in zip(parts[1::2], parts[2::2]):
     count = lambda pred: sum(n for c, n in cells.items() if pred(c))
     lut = count(lambda c: re.fullmatch(r"LUT[1-6]", c))
     srl = count(lambda c: c.startswith("SRL"))
-    lutram = 4 * cells.get("RAM32M", 0) + count(lambda c: re.fullmatch(r"RAM(64|128|256)X1[SD]", c))
+    # LUTs a LUT RAM occupies: RAM32M, RAM64M 4; RAM32X1D, RAM64X1D 2; RAM128X1D 4;
+    # RAM32X1S, RAM64X1S 1; RAM128X1S 2; RAM256X1S 4.
+    luts = {"RAM32M": 4, "RAM64M": 4, "RAM32X1D": 2, "RAM64X1D": 2, "RAM128X1D": 4,
+            "RAM32X1S": 1, "RAM64X1S": 1, "RAM128X1S": 2, "RAM256X1S": 4}
+    lutram = sum(n * cells.get(c, 0) for c, n in luts.items())
     rows.append((lut + srl + lutram, name, lut, srl, lutram, count(lambda c: c.startswith("FD")),
                  cells.get("DSP48E1", 0), cells.get("RAMB18E1", 0) + 2 * cells.get("RAMB36E1", 0)))
 total = sum(r[0] for r in rows)

@@ -10,15 +10,21 @@
 //! The ports answer with steps, each for a slot in a state of its own, so writers never
 //! collide; with several lanes the leaf ports' steps are for slots of different lanes.
 //!
-//! The words a slot's ports write while others read them stay here in flip-flops, read
-//! through one-hot selects at the grants: the far end `t_hi` (written by the setup and by a
-//! lane's far end, possibly in one cycle), the current link (written by the box step, the
-//! pop step and the leaf grants) and, with the leaf advance, the link's entry distance.
+//! The words a slot's ports write while others read them stay here, in LUT RAM
+//! ([`super::slot_banks`]: a bank per writer and reader, and a live-value table in flip-flops
+//! saying which writer wrote a slot last): the far end `t_hi` (written by the setup and by
+//! each lane's far end, possibly in one cycle; read at the box and pop grants), the current
+//! link (written by the box step, the pop step and each lane's leaf grant, which advances it;
+//! read at the box and leaf grants) and, with the leaf advance, the link's entry distance
+//! (written by the box and pop steps, read at the leaf grants). They are read asynchronously
+//! at the grant's slot and written at the edge, as flip-flops would be.
 
 use rust_hdl::prelude::*;
 
 use super::arbiter::RoundRobin;
 use super::config::MAX_LANES;
+use super::live_table::LiveTable;
+use super::slot_banks::SlotBanks;
 use super::slot_ports::{
     BoxGrantSource, Entered, LeafGrantSource, LeafStepSink, LinkStepSink, OutGrantSource,
     PopGrantSource, SetUp,
@@ -72,15 +78,24 @@ pub struct SlotState<const S: usize, const SB: usize, const LF: usize, const LC:
     best_valid: DFF<Bits<S>>,
     /// The nearest hit changed during the current leaf.
     changed: DFF<Bits<S>>,
-    // The slots' flip-flop words.
-    t_hi: Vec<DFF<Bits<32>>>,
-    /// The current link: a node, or the leaf's next triangle and how many are left.
-    link_first: Vec<DFF<Bits<LF>>>,
-    link_count: Vec<DFF<Bits<LC>>>,
-    /// With the leaf advance (else no slots): where the box test entered the current link
-    /// (the box answer's `near`, a popped entry's distance), the model's `entry`; and per
-    /// lane the granted slot's, registered at the grant.
-    link_entry: Vec<DFF<Bits<32>>>,
+    // The slots' words in LUT RAM, each with the table of its writers (`…_live`).
+    /// The far end: written by the setup (writer 0) and each lane's far end (1 + lane); read
+    /// by the box (reader 0) and pop (1) grants.
+    t_hi_live: LiveTable<S>,
+    t_hi: SlotBanks<SB, 32>,
+    /// The current link, a node or the leaf's next triangle and how many are left: written by
+    /// the box step (writer 0), the pop step (1) and each lane's leaf grant (2 + lane); its
+    /// first read by the box grant (reader 0) and each lane's (1 + lane), its count by each
+    /// lane's (lane).
+    link_live: LiveTable<S>,
+    link_first: SlotBanks<SB, LF>,
+    link_count: SlotBanks<SB, LC>,
+    /// With the leaf advance (else no readers, so nothing is built): where the box test
+    /// entered the current link (the box answer's `near`, a popped entry's distance), the
+    /// model's `entry`, written by the box (writer 0) and pop (1) steps and read by each
+    /// lane's grant; and per lane the granted slot's, registered at the grant.
+    entry_live: LiveTable<S>,
+    link_entry: SlotBanks<SB, 32>,
     leaf_entry: Vec<DFF<Bits<32>>>,
     slot_id: Vec<Constant<Bits<SB>>>,
     one: Constant<Bits<S>>,
@@ -93,6 +108,9 @@ pub struct SlotState<const S: usize, const SB: usize, const LF: usize, const LC:
     setup_done: Signal<Local, Bits<S>>,
     box_done: Signal<Local, Bits<S>>,
     pop_done: Signal<Local, Bits<S>>,
+    /// A box or pop step enters a link (writes the slot's link).
+    box_enters: Signal<Local, Bit>,
+    pop_enters: Signal<Local, Bit>,
     /// Per lane: its answer's slot and its far end's slot.
     lane_done: Vec<Signal<Local, Bits<S>>>,
     far_done: Vec<Signal<Local, Bits<S>>>,
@@ -121,7 +139,7 @@ impl<const S: usize, const SB: usize, const LF: usize, const LC: usize> SlotStat
             S.min(MAX_LANES)
         );
         let lane_mask = |l: usize| (l..S).step_by(lanes).fold(0u64, |m, s| m | 1 << s);
-        let (entry_slots, entry_lanes) = if entries { (S, lanes) } else { (0, 0) };
+        let entry_lanes = if entries { lanes } else { 0 };
         Self {
             clock: Default::default(),
             reset_n: Default::default(),
@@ -159,10 +177,13 @@ impl<const S: usize, const SB: usize, const LF: usize, const LC: usize> SlotStat
             has_exclude: Default::default(),
             best_valid: Default::default(),
             changed: Default::default(),
-            t_hi: defaults(S),
-            link_first: defaults(S),
-            link_count: defaults(S),
-            link_entry: defaults(entry_slots),
+            t_hi_live: LiveTable::new(1 + lanes, 2),
+            t_hi: SlotBanks::new(1 + lanes, 2),
+            link_live: LiveTable::new(2 + lanes, 1 + lanes),
+            link_first: SlotBanks::new(2 + lanes, 1 + lanes),
+            link_count: SlotBanks::new(2 + lanes, lanes),
+            entry_live: LiveTable::new(2, entry_lanes),
+            link_entry: SlotBanks::new(2, entry_lanes),
             leaf_entry: defaults(entry_lanes),
             slot_id: (0..S).map(|s| Constant::new((s as u64).into())).collect(),
             one: Constant::new(1.into()),
@@ -173,6 +194,8 @@ impl<const S: usize, const SB: usize, const LF: usize, const LC: usize> SlotStat
             setup_done: Default::default(),
             box_done: Default::default(),
             pop_done: Default::default(),
+            box_enters: Default::default(),
+            pop_enters: Default::default(),
             lane_done: defaults(lanes),
             far_done: defaults(lanes),
             far_done_all: Default::default(),
@@ -207,12 +230,9 @@ impl<const S: usize, const SB: usize, const LF: usize, const LC: usize> Logic
             best_valid,
             changed
         );
-        for i in 0..S {
-            dff_setup!(self, clock, t_hi[i], link_first[i], link_count[i]);
-        }
-        for i in 0..self.link_entry.len() {
-            dff_setup!(self, clock, link_entry[i]);
-        }
+        clock!(
+            self, clock, t_hi_live, t_hi, link_live, link_first, link_count, entry_live, link_entry
+        );
         for l in 0..self.leaf_arb.len() {
             clock!(self, clock, leaf_arb[l]);
         }
@@ -259,24 +279,18 @@ impl<const S: usize, const SB: usize, const LF: usize, const LC: usize> Logic
         }
         self.enter_slot.next = 0.into();
         self.box_grant.slot.next = 0.into();
-        self.box_grant.t_hi.next = 0.into();
-        self.box_grant.node.next = 0.into();
         self.pop_grant.slot.next = 0.into();
-        self.pop_grant.t_hi.next = 0.into();
         self.out_grant.slot.next = 0.into();
-        // One-hot selects: each port's grant picks its slot's words.
+        // The grants' slot indices (one-hot to binary).
         for i in 0..S {
             if self.enter.val().get_bit(i) {
                 self.enter_slot.next = self.slot_id[i].val();
             }
             if self.box_arb.grant.val().get_bit(i) {
                 self.box_grant.slot.next = self.slot_id[i].val();
-                self.box_grant.t_hi.next = self.t_hi[i].q.val();
-                self.box_grant.node.next = self.link_first[i].q.val();
             }
             if self.pop_arb.grant.val().get_bit(i) {
                 self.pop_grant.slot.next = self.slot_id[i].val();
-                self.pop_grant.t_hi.next = self.t_hi[i].q.val();
             }
             if self.out_arb.grant.val().get_bit(i) {
                 self.out_grant.slot.next = self.slot_id[i].val();
@@ -284,11 +298,46 @@ impl<const S: usize, const SB: usize, const LF: usize, const LC: usize> Logic
             for l in 0..self.leaf_arb.len() {
                 if self.leaf_arb[l].grant.val().get_bit(i) {
                     self.leaf_grant[l].slot.next = self.slot_id[i].val();
-                    self.leaf_grant[l].triangle.next = self.link_first[i].q.val();
-                    self.leaf_grant[l].last.next =
-                        self.link_count[i].q.val() == self.one_count.val();
                 }
             }
+        }
+        // Each port's grant reads its slot's words: the banks at the index, their table at
+        // the one-hot grant.
+        self.t_hi_live.read_select[0].next = self.box_arb.grant.val();
+        self.t_hi.read_slot[0].next = self.box_grant.slot.val();
+        self.t_hi.live[0].next = self.t_hi_live.live[0].val();
+        self.t_hi_live.read_select[1].next = self.pop_arb.grant.val();
+        self.t_hi.read_slot[1].next = self.pop_grant.slot.val();
+        self.t_hi.live[1].next = self.t_hi_live.live[1].val();
+        self.link_live.read_select[0].next = self.box_arb.grant.val();
+        self.link_first.read_slot[0].next = self.box_grant.slot.val();
+        self.link_first.live[0].next = self.link_live.live[0].val();
+        self.box_grant.t_hi.next = 0.into();
+        self.box_grant.node.next = 0.into();
+        if self.box_grant.valid.val() {
+            self.box_grant.t_hi.next = self.t_hi.read_data[0].val();
+            self.box_grant.node.next = self.link_first.read_data[0].val();
+        }
+        self.pop_grant.t_hi.next = 0.into();
+        if self.pop_grant.valid.val() {
+            self.pop_grant.t_hi.next = self.t_hi.read_data[1].val();
+        }
+        for l in 0..self.leaf_arb.len() {
+            self.link_live.read_select[l + 1].next = self.leaf_arb[l].grant.val();
+            self.link_first.read_slot[l + 1].next = self.leaf_grant[l].slot.val();
+            self.link_first.live[l + 1].next = self.link_live.live[l + 1].val();
+            self.link_count.read_slot[l].next = self.leaf_grant[l].slot.val();
+            self.link_count.live[l].next = self.link_live.live[l + 1].val();
+            if self.leaf_grant[l].valid.val() {
+                self.leaf_grant[l].triangle.next = self.link_first.read_data[l + 1].val();
+                self.leaf_grant[l].last.next =
+                    self.link_count.read_data[l].val() == self.one_count.val();
+            }
+        }
+        for l in 0..self.leaf_entry.len() {
+            self.entry_live.read_select[l].next = self.leaf_arb[l].grant.val();
+            self.link_entry.read_slot[l].next = self.leaf_grant[l].slot.val();
+            self.link_entry.live[l].next = self.entry_live.live[l].val();
         }
 
         // ---- The answers' slots, and the flags a lane's answer is judged by.
@@ -401,45 +450,62 @@ impl<const S: usize, const SB: usize, const LF: usize, const LC: usize> Logic
             self.has_exclude.d.next = self.has_exclude.q.val() & !self.entering.val();
         }
 
-        // ---- The slots' flip-flop words.
-        for i in 0..S {
-            if self.setup_done.val().get_bit(i) {
-                self.t_hi[i].d.next = self.set_up.t_hi.val();
-            }
-            for l in 0..self.leaf_step.len() {
-                if self.far_done[l].val().get_bit(i) {
-                    self.t_hi[i].d.next = self.leaf_step[l].t_hi.val();
-                }
-            }
-            if self.box_step.enter.val() & self.box_done.val().get_bit(i) {
-                self.link_first[i].d.next = self.box_step.first.val();
-                self.link_count[i].d.next = self.box_step.count.val();
-            }
-            if self.pop_step.enter.val() & self.pop_done.val().get_bit(i) {
-                self.link_first[i].d.next = self.pop_step.first.val();
-                self.link_count[i].d.next = self.pop_step.count.val();
-            }
-            for l in 0..self.leaf_arb.len() {
-                if self.leaf_arb[l].grant.val().get_bit(i) {
-                    self.link_first[i].d.next = self.link_first[i].q.val() + 1;
-                    self.link_count[i].d.next = self.link_count[i].q.val() - 1;
-                }
-            }
+        // ---- The slots' words, written at the edge (each writer its slot, one-hot too).
+        self.t_hi_live.write_enable[0].next = self.set_up.valid.val();
+        self.t_hi_live.write_select[0].next = self.setup_done.val();
+        self.t_hi.write_enable[0].next = self.set_up.valid.val();
+        self.t_hi.write_slot[0].next = self.set_up.slot.val();
+        self.t_hi.write_data[0].next = self.set_up.t_hi.val();
+        for l in 0..self.leaf_step.len() {
+            self.t_hi_live.write_enable[l + 1].next = self.leaf_step[l].far_valid.val();
+            self.t_hi_live.write_select[l + 1].next = self.far_done[l].val();
+            self.t_hi.write_enable[l + 1].next = self.leaf_step[l].far_valid.val();
+            self.t_hi.write_slot[l + 1].next = self.leaf_step[l].far_slot.val();
+            self.t_hi.write_data[l + 1].next = self.leaf_step[l].t_hi.val();
         }
-        // The leaf advance's entry distances (none without it).
-        for i in 0..self.link_entry.len() {
-            if self.box_step.enter.val() & self.box_done.val().get_bit(i) {
-                self.link_entry[i].d.next = self.box_step.entry.val();
-            }
-            if self.pop_step.enter.val() & self.pop_done.val().get_bit(i) {
-                self.link_entry[i].d.next = self.pop_step.entry.val();
-            }
+        // A link entered by a box or pop step; a leaf grant advances its lane's slot's link.
+        self.box_enters.next = self.box_step.valid.val() & self.box_step.enter.val();
+        self.link_live.write_enable[0].next = self.box_enters.val();
+        self.link_live.write_select[0].next = self.box_done.val();
+        self.link_first.write_enable[0].next = self.box_enters.val();
+        self.link_first.write_slot[0].next = self.box_step.slot.val();
+        self.link_first.write_data[0].next = self.box_step.first.val();
+        self.link_count.write_enable[0].next = self.box_enters.val();
+        self.link_count.write_slot[0].next = self.box_step.slot.val();
+        self.link_count.write_data[0].next = self.box_step.count.val();
+        self.pop_enters.next = self.pop_step.valid.val() & self.pop_step.enter.val();
+        self.link_live.write_enable[1].next = self.pop_enters.val();
+        self.link_live.write_select[1].next = self.pop_done.val();
+        self.link_first.write_enable[1].next = self.pop_enters.val();
+        self.link_first.write_slot[1].next = self.pop_step.slot.val();
+        self.link_first.write_data[1].next = self.pop_step.first.val();
+        self.link_count.write_enable[1].next = self.pop_enters.val();
+        self.link_count.write_slot[1].next = self.pop_step.slot.val();
+        self.link_count.write_data[1].next = self.pop_step.count.val();
+        for l in 0..self.leaf_arb.len() {
+            self.link_live.write_enable[l + 2].next = self.leaf_grant[l].valid.val();
+            self.link_live.write_select[l + 2].next = self.leaf_arb[l].grant.val();
+            self.link_first.write_enable[l + 2].next = self.leaf_grant[l].valid.val();
+            self.link_first.write_slot[l + 2].next = self.leaf_grant[l].slot.val();
+            self.link_first.write_data[l + 2].next = self.link_first.read_data[l + 1].val() + 1;
+            self.link_count.write_enable[l + 2].next = self.leaf_grant[l].valid.val();
+            self.link_count.write_slot[l + 2].next = self.leaf_grant[l].slot.val();
+            self.link_count.write_data[l + 2].next = self.link_count.read_data[l].val() - 1;
         }
+        // The leaf advance's entry distances (no readers, so none, without it).
+        self.entry_live.write_enable[0].next = self.box_enters.val();
+        self.entry_live.write_select[0].next = self.box_done.val();
+        self.link_entry.write_enable[0].next = self.box_enters.val();
+        self.link_entry.write_slot[0].next = self.box_step.slot.val();
+        self.link_entry.write_data[0].next = self.box_step.entry.val();
+        self.entry_live.write_enable[1].next = self.pop_enters.val();
+        self.entry_live.write_select[1].next = self.pop_done.val();
+        self.link_entry.write_enable[1].next = self.pop_enters.val();
+        self.link_entry.write_slot[1].next = self.pop_step.slot.val();
+        self.link_entry.write_data[1].next = self.pop_step.entry.val();
         for l in 0..self.leaf_entry.len() {
-            for i in 0..self.link_entry.len() {
-                if self.leaf_arb[l].grant.val().get_bit(i) {
-                    self.leaf_entry[l].d.next = self.link_entry[i].q.val();
-                }
+            if self.leaf_grant[l].valid.val() {
+                self.leaf_entry[l].d.next = self.link_entry.read_data[l].val();
             }
             self.lane_entry[l].next = self.leaf_entry[l].q.val();
         }

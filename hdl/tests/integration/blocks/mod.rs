@@ -41,6 +41,7 @@ mod traversal {
     mod leaf_advance;
     mod ray_setup;
     mod scene_memory_driver;
+    mod slot_banks;
     mod stack;
     mod timing;
     mod unit_axil;
