@@ -40,10 +40,6 @@ use sw_renderer::hit::Hit;
 
 type Lanes = Bits<96>;
 
-/// Address bits of the triangle memory: `FrameLimits::HW`'s triangles.
-pub const TRIANGLE_BITS: usize = 14;
-/// Triangles the memory holds.
-pub const TRIANGLES: usize = 1 << TRIANGLE_BITS;
 /// Address bits of the object table: `FrameLimits::HW`'s objects.
 pub const OBJECT_BITS: usize = 6;
 /// Objects the table holds.
@@ -53,7 +49,7 @@ const TRIANGLE_WORD_BITS: usize = 3 * 96 + OBJECT_BITS;
 /// An object's word: its program's entry point, the cast flag above it.
 const OBJECT_WORD_BITS: usize = PC_BITS + 1;
 const _: () = {
-    assert!(TRIANGLES == FrameLimits::HW.triangles && OBJECTS == FrameLimits::HW.objects);
+    assert!(OBJECTS == FrameLimits::HW.objects);
     assert!(OBJECT_BITS <= MATERIAL_BITS && 1 << PC_BITS == CODE);
     // The kernel's literal offsets and widths.
     assert!(TRIANGLE_WORD_BITS == 294 && OBJECT_WORD_BITS == 12 && PC_BITS == 11);
@@ -62,14 +58,22 @@ const _: () = {
 /// Cycles from a ray taken to its start shown, the output free.
 pub const LATENCY: usize = 2;
 
-/// Returned cast rays in, the shader core's thread starts out.
+/// Triangles a triangle memory of `bits` address bits holds.
+pub const fn triangles(bits: usize) -> usize {
+    1 << bits
+}
+
+/// Returned cast rays in, the shader core's thread starts out; a triangle memory of `TB`
+/// address bits ([`triangles`]`(TB)` triangles, at least [`OBJECTS`]: the load port's
+/// address is the triangle's), a parameter: `FrameLimits::HW`'s 16,384 (`TB` = 14) are 132
+/// RAMB36, the whole XC7Z020.
 #[derive(LogicBlock, Default)]
-pub struct ThreadStart {
+pub struct ThreadStart<const TB: usize> {
     pub clock: Signal<In, Clock>,
     // The load port, between frames: a triangle's or an object's word at `load_address`.
     pub load_triangle: Signal<In, Bit>,
     pub load_object: Signal<In, Bit>,
-    pub load_address: Signal<In, Bits<TRIANGLE_BITS>>,
+    pub load_address: Signal<In, Bits<TB>>,
     pub load_data: Signal<In, Bits<TRIANGLE_WORD_BITS>>,
     // Held while a frame runs.
     pub miss_entry: Signal<In, Bits<PC_BITS>>,
@@ -84,7 +88,7 @@ pub struct ThreadStart {
     pub in_direction: Signal<In, Lanes>,
     pub in_weight: Signal<In, Lanes>,
     pub in_hit: Signal<In, Bit>,
-    pub in_triangle: Signal<In, Bits<TRIANGLE_BITS>>,
+    pub in_triangle: Signal<In, Bits<TB>>,
     pub in_tuv: Signal<In, Lanes>,
     // Thread starts (the core's start port) and the program's cast flag.
     pub out_valid: Signal<Out, Bit>,
@@ -97,7 +101,7 @@ pub struct ThreadStart {
     pub depth: Signal<Out, Bits<DEPTH_BITS>>,
     /// The program may push reflection or refraction rays.
     pub casts: Signal<Out, Bit>,
-    triangles: RAM<Bits<TRIANGLE_WORD_BITS>, TRIANGLE_BITS>,
+    triangles: RAM<Bits<TRIANGLE_WORD_BITS>, TB>,
     objects: RAM<Bits<OBJECT_WORD_BITS>, OBJECT_BITS>,
     // Stage A.
     a_valid: DFF<Bit>,
@@ -105,7 +109,7 @@ pub struct ThreadStart {
     a_depth: DFF<Bits<DEPTH_BITS>>,
     a_ray: [DFF<Lanes>; 3],
     a_hit: DFF<Bit>,
-    a_triangle: DFF<Bits<TRIANGLE_BITS>>,
+    a_triangle: DFF<Bits<TB>>,
     a_tuv: DFF<Lanes>,
     // Stage B.
     b_valid: DFF<Bit>,
@@ -119,7 +123,7 @@ pub struct ThreadStart {
     b_free: Signal<Local, Bit>,
 }
 
-impl Logic for ThreadStart {
+impl<const TB: usize> Logic for ThreadStart<TB> {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, a_valid, a_pixel, a_depth, a_hit, a_triangle, a_tuv);
@@ -216,8 +220,8 @@ impl Logic for ThreadStart {
 /// Constants the block cannot hold.
 #[derive(Clone, Debug, Error, PartialEq, Eq)]
 pub enum StartLoadError {
-    #[error("{count} triangles: the frame engine's triangle memory holds {TRIANGLES}")]
-    Triangles { count: usize },
+    #[error("{count} triangles: the frame engine's triangle memory holds {capacity}")]
+    Triangles { count: usize, capacity: usize },
     #[error("{count} objects: the frame engine's object table holds {OBJECTS}")]
     Objects { count: usize },
     #[error("triangle {triangle} has object {object}; the scene has {objects} objects")]
@@ -270,11 +274,16 @@ fn casts(program: &Program, entry: u16) -> bool {
     program.pushes_from(entry).cast > 0
 }
 
-/// The block's constants for frames of `c`, shaded by `program` (compiled from `c`).
-pub fn loads(c: &FrameConstants, program: &Program) -> Result<StartConstants, StartLoadError> {
-    if c.triangles.len() > TRIANGLES {
+/// The constants of a block of `TB` triangle address bits for frames of `c`, shaded by
+/// `program` (compiled from `c`).
+pub fn loads<const TB: usize>(
+    c: &FrameConstants,
+    program: &Program,
+) -> Result<StartConstants, StartLoadError> {
+    if c.triangles.len() > triangles(TB) {
         return Err(StartLoadError::Triangles {
             count: c.triangles.len(),
+            capacity: triangles(TB),
         });
     }
     if c.materials.len() > OBJECTS {
@@ -342,8 +351,8 @@ pub enum ReturnedError {
     Pixel { pixel: u32 },
     #[error("depth {depth} does not fit the tag's {DEPTH_BITS} bits")]
     Depth { depth: u32 },
-    #[error("triangle {triangle}: the frame engine's triangle memory holds {TRIANGLES}")]
-    Triangle { triangle: u32 },
+    #[error("triangle {triangle}: the frame engine's triangle memory holds {capacity}")]
+    Triangle { triangle: u32, capacity: usize },
 }
 
 fn words(v: hw_model::fp32::Vec3) -> Word3 {
@@ -351,8 +360,12 @@ fn words(v: hw_model::fp32::Vec3) -> Word3 {
 }
 
 impl Returned {
-    /// A cast ray of the frame model and its answer, as the ray store holds them.
-    pub fn of(ray: &FrameRay, hit: Option<&Hit>) -> Result<Returned, ReturnedError> {
+    /// A cast ray of the frame model and its answer, as the ray store of a block of `TB`
+    /// triangle address bits holds them.
+    pub fn of<const TB: usize>(
+        ray: &FrameRay,
+        hit: Option<&Hit>,
+    ) -> Result<Returned, ReturnedError> {
         let hw_model::frame::Load::Cast { depth, weight, .. } = ray.load else {
             return Err(ReturnedError::Shadow);
         };
@@ -364,9 +377,10 @@ impl Returned {
         }
         let hit = match hit {
             None => None,
-            Some(h) if h.triangle as usize >= TRIANGLES => {
+            Some(h) if h.triangle as usize >= triangles(TB) => {
                 return Err(ReturnedError::Triangle {
                     triangle: h.triangle,
+                    capacity: triangles(TB),
                 })
             }
             Some(h) => Some((
@@ -423,7 +437,7 @@ fn of_lanes(l: Lanes) -> Word3 {
     [0, 1, 2].map(|k| (v >> (32 * k)) as u32)
 }
 
-impl Stepped for ThreadStart {
+impl<const TB: usize> Stepped for ThreadStart<TB> {
     type Input = StartInput;
     type Output = StartOutput;
 
@@ -510,13 +524,15 @@ impl Stepped for ThreadStart {
 
 /// Runs a freshly built block in rust-hdl's simulator, the inputs of each cycle chosen by
 /// `drive` from the outputs of the cycle before (see [`simulate_driven`]).
-pub fn simulate_thread_start(
+pub fn simulate_thread_start<const TB: usize>(
     drive: impl FnMut(Option<&StartOutput>) -> Option<StartInput> + Send + 'static,
 ) -> Vec<(StartInput, StartOutput)> {
-    simulate_driven(ThreadStart::default, drive)
+    const { assert!(TB >= OBJECT_BITS) };
+    simulate_driven(ThreadStart::<TB>::default, drive)
 }
 
 /// Verilog of the block, top module `top`.
-pub fn thread_start_verilog() -> String {
-    built_verilog(ThreadStart::default)
+pub fn thread_start_verilog<const TB: usize>() -> String {
+    const { assert!(TB >= OBJECT_BITS) };
+    built_verilog(ThreadStart::<TB>::default)
 }
