@@ -24,6 +24,7 @@
 //!   the tail.
 //! - [`pixel_slots`]: whether the next pixel's slot is free (two parity tables); a finished
 //!   slot's pixel index, the pixel stream out.
+//! - [`ray_store`]: the rays in flight and their answers, a RAM per field group and reader.
 //! - [`records`]: the accumulator's three sources (opens, shadow answers settled beside the
 //!   core, threads' settles), one record a cycle.
 
@@ -35,6 +36,7 @@ pub mod id_queue;
 pub mod normalise;
 pub mod pixel_slots;
 pub mod ray_ids;
+pub mod ray_store;
 pub mod raygen;
 pub mod records;
 pub mod shader;

@@ -29,6 +29,7 @@ use hw_model::frame::{FrameConstants, FrameLimits};
 use rust_hdl::prelude::*;
 use thiserror::Error;
 
+use super::ray_store::{stored_answer, StoreError, StoredRay};
 use super::raygen::PIXEL_BITS;
 use super::shader::core::{DEPTH_BITS, MATERIAL_BITS, PC_BITS};
 use crate::harness::{built_verilog, simulate_driven, Stepped};
@@ -347,54 +348,28 @@ pub struct Returned {
 pub enum ReturnedError {
     #[error("a shadow ray runs no thread")]
     Shadow,
-    #[error("pixel {pixel} does not fit the tag's {PIXEL_BITS} bits")]
-    Pixel { pixel: u32 },
-    #[error("depth {depth} does not fit the tag's {DEPTH_BITS} bits")]
-    Depth { depth: u32 },
-    #[error("triangle {triangle}: the frame engine's triangle memory holds {capacity}")]
-    Triangle { triangle: u32, capacity: usize },
-}
-
-fn words(v: hw_model::fp32::Vec3) -> Word3 {
-    v.components().map(|x| x.bits())
+    #[error(transparent)]
+    Store(#[from] StoreError),
 }
 
 impl Returned {
-    /// A cast ray of the frame model and its answer, as the ray store of a block of `TB`
+    /// A cast ray of the frame model and its answer, as the ray store of an engine of `TB`
     /// triangle address bits holds them.
     pub fn of<const TB: usize>(
         ray: &FrameRay,
         hit: Option<&Hit>,
     ) -> Result<Returned, ReturnedError> {
-        let hw_model::frame::Load::Cast { depth, weight, .. } = ray.load else {
+        if ray.kind() == hw_model::frame::RayKind::Shadow {
             return Err(ReturnedError::Shadow);
-        };
-        if ray.pixel >= 1 << PIXEL_BITS {
-            return Err(ReturnedError::Pixel { pixel: ray.pixel });
         }
-        if depth >= 1 << DEPTH_BITS {
-            return Err(ReturnedError::Depth { depth });
-        }
-        let hit = match hit {
-            None => None,
-            Some(h) if h.triangle as usize >= triangles(TB) => {
-                return Err(ReturnedError::Triangle {
-                    triangle: h.triangle,
-                    capacity: triangles(TB),
-                })
-            }
-            Some(h) => Some((
-                h.triangle as usize,
-                [h.t, h.u, h.v].map(|x| hw_model::fp32::Fp32::new(x).bits()),
-            )),
-        };
+        let stored = StoredRay::of(ray)?;
         Ok(Returned {
-            pixel: ray.pixel,
-            depth,
-            origin: words(ray.orig),
-            direction: words(ray.dir),
-            weight: words(weight),
-            hit,
+            pixel: stored.tag.pixel,
+            depth: stored.tag.depth,
+            origin: stored.origin,
+            direction: stored.direction,
+            weight: stored.payload,
+            hit: stored_answer::<TB>(hit)?,
         })
     }
 }
@@ -426,13 +401,15 @@ pub struct StartOutput {
     pub start: Option<Started>,
 }
 
-fn lanes(w: Word3) -> Lanes {
+/// Three 32-bit words in a 96-bit signal, the first from bit 0.
+pub(crate) fn lanes(w: Word3) -> Lanes {
     Lanes::from(u64::from(w[0]))
         | (Lanes::from(u64::from(w[1])) << 32)
         | (Lanes::from(u64::from(w[2])) << 64)
 }
 
-fn of_lanes(l: Lanes) -> Word3 {
+/// A 96-bit signal's three 32-bit words.
+pub(crate) fn of_lanes(l: Lanes) -> Word3 {
     let v = l.to_u128();
     [0, 1, 2].map(|k| (v >> (32 * k)) as u32)
 }

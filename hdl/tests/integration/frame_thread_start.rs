@@ -10,6 +10,7 @@
 use std::path::Path;
 
 use crate::common::{print_synthesis_row, SYNTHESIS_COLUMNS};
+use hdl::frame::ray_store::StoreError;
 use hdl::frame::thread_start::{
     loads, simulate_thread_start, thread_start_verilog, triangles, Returned, ReturnedError,
     StartConstants, StartInput, StartLoadError, StartOutput, Started, LATENCY, OBJECTS,
@@ -378,7 +379,7 @@ fn thread_start_refuses_what_does_not_fit() {
     };
     assert_eq!(
         Returned::of::<TB>(&deep_ray, None),
-        Err(ReturnedError::Depth { depth: 16 })
+        Err(ReturnedError::Store(StoreError::Depth { depth: 16 }))
     );
     assert!(!cases.is_empty());
 }

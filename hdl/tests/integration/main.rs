@@ -20,6 +20,7 @@ mod frame_normalise;
 mod frame_pixel_slots;
 mod frame_queues;
 mod frame_ray_ids;
+mod frame_ray_store;
 mod frame_raygen;
 mod frame_records;
 mod frame_shader;
