@@ -10,10 +10,12 @@
 use std::path::Path;
 
 use crate::common::{print_synthesis_row, SYNTHESIS_COLUMNS};
+use hdl::frame::id_queue::IDS;
 use hdl::frame::ray_store::StoreError;
 use hdl::frame::thread_start::{
-    loads, simulate_thread_start, thread_start_verilog, triangles, Returned, ReturnedError,
-    StartConstants, StartInput, StartLoadError, StartOutput, Started, LATENCY, OBJECTS,
+    loads, simulate_thread_start, thread_start_verilog, triangles, Decision, Returned,
+    ReturnedError, StartConstants, StartInput, StartLoadError, StartOutput, Started, LATENCY,
+    OBJECTS,
 };
 use hw_model::frame::shade::Shaded;
 use hw_model::frame::shader::{compile, thread, Program};
@@ -148,6 +150,7 @@ fn run<const TB: usize>(
         miss_entry: k.miss_entry,
         miss_casts: k.miss_casts,
         max_depth: k.max_depth,
+        decision: Decision::GO,
         ..StartInput::default()
     };
     let mut load_words = k.loads.clone().into_iter();
@@ -175,6 +178,7 @@ fn run<const TB: usize>(
             offered = Some(rays[next]);
         }
         input.ray = offered;
+        input.id = next % IDS;
         if stalled == 0 && rng.gen_bool(traffic.stall) {
             stalled = rng.gen_range(1..=traffic.stall_len.max(1));
         }
@@ -219,6 +223,20 @@ fn run<const TB: usize>(
         }
     }
     assert_eq!(got.len(), cases.len(), "{what}: starts");
+    let started = cycles.iter().filter(|(_, o)| o.started).count();
+    assert_eq!(started, cases.len(), "{what}: every start committed once");
+    assert!(
+        cycles.iter().all(|(_, o)| !o.deferred),
+        "{what}: nothing deferred"
+    );
+    let ids: Vec<usize> = (cycles.iter())
+        .filter(|(_, o)| o.started)
+        .map(|(_, o)| o.id)
+        .collect();
+    assert!(
+        ids.iter().enumerate().all(|(k, &id)| id == k % IDS),
+        "{what}: each start's id"
+    );
     for (k, (g, c)) in got.iter().zip(&cases).enumerate() {
         assert_eq!(*g, c.want, "{what}: start {k} of {:?}", c.ray);
     }
@@ -305,6 +323,127 @@ fn thread_start_sets_past_depth_at_the_max_depth() {
             50 + max_depth as u64,
         );
     }
+}
+
+/// The start decision under random decision inputs: every start at stage B committed or
+/// deferred exactly once per arrival, as `Decision::allows` says (the schedule model's
+/// `can_start` with the ray ids' M), a deferred ray offered again later (as the waiting
+/// queue's tail gives it back), a committed start held for the core until taken whatever
+/// the inputs do; starts by the escape alone (casting programs below the reserve) happen.
+#[test]
+fn thread_start_decides_starts() {
+    let scene = frame_test_scene("glass");
+    let (c, program, mut cases) = rendered(&scene);
+    let mut rng = StdRng::seed_from_u64(61);
+    cases.truncate(300);
+    // A few pixels and depths, so the escape matches often.
+    for case in &mut cases {
+        let pixel = rng.gen_range(0..4) * 1024 + rng.gen_range(0..3);
+        case.ray.pixel = pixel;
+        case.want.pixel = pixel;
+    }
+    assert!(cases.iter().any(|k| k.want.casts) && cases.iter().any(|k| !k.want.casts));
+    let k = loads::<TB>(&c, &program).unwrap();
+    let base = StartInput {
+        miss_entry: k.miss_entry,
+        miss_casts: k.miss_casts,
+        max_depth: k.max_depth,
+        ..StartInput::default()
+    };
+    let mut load_words = k.loads.clone().into_iter();
+    let rays: Vec<Returned> = cases.iter().map(|c| c.ray).collect();
+    let n = rays.len();
+    let mut pending: std::collections::VecDeque<usize> = (0..n).collect();
+    let (mut offered, mut stalled, mut done, mut after) = (None::<usize>, 0usize, 0, 0);
+    let mut last = base.clone();
+    let cycles = simulate_thread_start::<TB>(move |shown: Option<&StartOutput>| {
+        let mut input = base.clone();
+        if let Some(w) = load_words.next() {
+            input.load = Some(w);
+            last = input.clone();
+            return Some(input);
+        }
+        if let Some(o) = shown {
+            if o.in_ready {
+                offered = None;
+            }
+            if o.deferred {
+                pending.push_back(o.id);
+            }
+            if o.offered && last.out_ready {
+                done += 1;
+            }
+        }
+        if offered.is_none() && !rng.gen_bool(0.3) {
+            offered = pending.pop_front();
+        }
+        input.ray = offered.map(|id| rays[id]);
+        input.id = offered.unwrap_or(0);
+        // Decision inputs: often the escape of the start shown the cycle before.
+        let escape = match shown.and_then(|o| o.start) {
+            Some(s) if rng.gen_bool(0.5) => Some((s.pixel as usize % 1024, Some(s.depth))),
+            _ => rng.gen_bool(0.5).then(|| {
+                (
+                    rng.gen_range(0..3),
+                    rng.gen_bool(0.8).then(|| rng.gen_range(0..4)),
+                )
+            }),
+        };
+        input.decision = Decision {
+            fits: rng.gen_bool(0.8),
+            fits_above_reserve: rng.gen_bool(0.3),
+            escape,
+        };
+        if stalled == 0 && rng.gen_bool(0.1) {
+            stalled = rng.gen_range(1..=10);
+        }
+        input.out_ready = stalled == 0;
+        stalled = stalled.saturating_sub(1);
+        last = input.clone();
+        if done == n {
+            after += 1;
+        }
+        (after <= LATENCY + 1 && after + done < 100_000).then_some(input)
+    });
+    let (mut committed, mut deferred, mut by_escape) = (false, 0, 0);
+    let mut started = vec![0; n];
+    for (cycle, (input, out)) in cycles.iter().enumerate() {
+        let Some(s) = out.start else {
+            assert!(!committed && !out.started && !out.deferred && !out.offered);
+            continue;
+        };
+        assert_eq!(
+            s, cases[out.id].want,
+            "cycle {cycle}: the start of ray {}",
+            out.id
+        );
+        if committed {
+            assert!(
+                out.offered && !out.started && !out.deferred,
+                "cycle {cycle}: held"
+            );
+        } else {
+            let d = input.decision;
+            let allowed = d.allows(s.casts, s.pixel, s.depth);
+            assert_eq!(
+                (out.started, out.deferred),
+                (allowed, !allowed),
+                "cycle {cycle}: the decision on {s:?} under {d:?}"
+            );
+            deferred += usize::from(out.deferred);
+            if out.started {
+                started[out.id] += 1;
+                by_escape += usize::from(s.casts && !d.fits_above_reserve);
+            }
+        }
+        committed = out.offered && !input.out_ready;
+    }
+    assert!(
+        started.iter().all(|&k| k == 1),
+        "every start committed once"
+    );
+    assert!(deferred > n / 4, "starts deferred: {deferred}");
+    assert!(by_escape > 0, "starts by the escape");
 }
 
 #[test]
