@@ -7,7 +7,7 @@
 //! is free and the tables were read for it, every pixel out once with its index and colour,
 //! held while not taken. Verilator's lint.
 
-use crate::common::{Traffic, FLOWING};
+use crate::common::{print_synthesis_row, Traffic, FLOWING, SYNTHESIS_COLUMNS};
 use hdl::frame::accumulate::PIXEL_SLOTS;
 use hdl::frame::pixel_slots::{pixel_slots_verilog, simulate_pixel_slots, SlotsInput};
 use rand::{rngs::StdRng, Rng, SeedableRng};
@@ -150,5 +150,19 @@ fn pixel_slots_match_the_model() {
 fn pixel_slots_pass_verilator_lint() {
     if let Err(e) = hdl::verilog::verilator_lint(&pixel_slots_verilog()) {
         panic!("pixel slots: verilator lint failed:\n{e}");
+    }
+}
+
+/// yosys figures (BENCHMARKS.md "Frame unit blocks"):
+/// `cargo test --release -p hdl --test integration -- --ignored --nocapture frame_pixel_slots::pixel_slots_synthesis`.
+#[test]
+#[ignore]
+fn pixel_slots_synthesis() {
+    use hdl::synth::{synthesize, SynthOptions};
+    println!("| block | {SYNTHESIS_COLUMNS} |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for (what, v) in [("pixel slots", pixel_slots_verilog())] {
+        let r = synthesize(&v, "top", &SynthOptions::default()).expect("yosys synth_xilinx");
+        print_synthesis_row(what, &r);
     }
 }

@@ -8,7 +8,7 @@
 
 use std::collections::VecDeque;
 
-use crate::common::Traffic;
+use crate::common::{print_synthesis_row, Traffic, SYNTHESIS_COLUMNS};
 use hdl::frame::id_queue::{id_queue_verilog, simulate_id_queue, IdQueueInput, IDS, SHOW_LATENCY};
 use hdl::frame::trace_queues::{simulate_trace_queues, trace_queues_verilog, TraceInput};
 use hdl::frame::waiting_queue::{
@@ -297,5 +297,23 @@ fn id_queues_pass_verilator_lint() {
         if let Err(e) = hdl::verilog::verilator_lint(&v) {
             panic!("{what}: verilator lint failed:\n{e}");
         }
+    }
+}
+
+/// yosys figures (BENCHMARKS.md "Frame unit blocks"):
+/// `cargo test --release -p hdl --test integration -- --ignored --nocapture frame_queues::queues_synthesis`.
+#[test]
+#[ignore]
+fn queues_synthesis() {
+    use hdl::synth::{synthesize, SynthOptions};
+    println!("| block | {SYNTHESIS_COLUMNS} |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for (what, v) in [
+        ("id queue (512)", id_queue_verilog()),
+        ("trace queues", trace_queues_verilog()),
+        ("waiting queue", waiting_queue_verilog()),
+    ] {
+        let r = synthesize(&v, "top", &SynthOptions::default()).expect("yosys synth_xilinx");
+        print_synthesis_row(what, &r);
     }
 }

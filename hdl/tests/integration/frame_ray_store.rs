@@ -10,6 +10,8 @@
 
 use std::path::Path;
 
+use crate::common::{print_synthesis_row, SYNTHESIS_COLUMNS};
+
 use hdl::frame::id_queue::IDS;
 use hdl::frame::ray_store::{
     ray_store_verilog, simulate_ray_store, stored_answer, StoreError, StoreInput, StoreOutput,
@@ -182,5 +184,19 @@ fn ray_store_refuses_what_does_not_fit() {
 fn ray_store_verilog_passes_verilator_lint() {
     if let Err(e) = hdl::verilog::verilator_lint(&ray_store_verilog::<TB>()) {
         panic!("ray store: verilator lint failed:\n{e}");
+    }
+}
+
+/// yosys figures (BENCHMARKS.md "Frame unit blocks"):
+/// `cargo test --release -p hdl --test integration -- --ignored --nocapture frame_ray_store::ray_store_synthesis`.
+#[test]
+#[ignore]
+fn ray_store_synthesis() {
+    use hdl::synth::{synthesize, SynthOptions};
+    println!("| block | {SYNTHESIS_COLUMNS} |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for (what, v) in [("ray store (512, TB = 14)", ray_store_verilog::<14>())] {
+        let r = synthesize(&v, "top", &SynthOptions::default()).expect("yosys synth_xilinx");
+        print_synthesis_row(what, &r);
     }
 }

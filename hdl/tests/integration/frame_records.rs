@@ -9,7 +9,7 @@
 use std::collections::VecDeque;
 use std::path::Path;
 
-use crate::common::{Traffic, FLOWING};
+use crate::common::{print_synthesis_row, Traffic, FLOWING, SYNTHESIS_COLUMNS};
 use hdl::frame::accumulate::{Command, Record, PIXEL_SLOTS, SETTLE_BITS};
 use hdl::frame::records::{
     records_verilog, simulate_records, RecordsInput, RecordsOutput, ShadowAnswer,
@@ -280,5 +280,19 @@ fn records_match_the_model_on_the_scenes_shadow_rays() {
 fn records_pass_verilator_lint() {
     if let Err(e) = hdl::verilog::verilator_lint(&records_verilog()) {
         panic!("records: verilator lint failed:\n{e}");
+    }
+}
+
+/// yosys figures (BENCHMARKS.md "Frame unit blocks"):
+/// `cargo test --release -p hdl --test integration -- --ignored --nocapture frame_records::records_synthesis`.
+#[test]
+#[ignore]
+fn records_synthesis() {
+    use hdl::synth::{synthesize, SynthOptions};
+    println!("| block | {SYNTHESIS_COLUMNS} |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for (what, v) in [("records", records_verilog())] {
+        let r = synthesize(&v, "top", &SynthOptions::default()).expect("yosys synth_xilinx");
+        print_synthesis_row(what, &r);
     }
 }
