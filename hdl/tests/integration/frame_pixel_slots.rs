@@ -161,8 +161,7 @@ fn pixel_slots_synthesis() {
     use hdl::synth::{synthesize, SynthOptions};
     println!("| block | {SYNTHESIS_COLUMNS} |");
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
-    for (what, v) in [("pixel slots", pixel_slots_verilog())] {
-        let r = synthesize(&v, "top", &SynthOptions::default()).expect("yosys synth_xilinx");
-        print_synthesis_row(what, &r);
-    }
+    let r = synthesize(&pixel_slots_verilog(), "top", &SynthOptions::default())
+        .expect("yosys synth_xilinx");
+    print_synthesis_row("pixel slots", &r);
 }

@@ -381,7 +381,10 @@ fn thread_start_decides_starts() {
         input.id = offered.unwrap_or(0);
         // Decision inputs: often the escape of the start shown the cycle before.
         let escape = match shown.and_then(|o| o.start) {
-            Some(s) if rng.gen_bool(0.5) => Some((s.pixel as usize % 1024, Some(s.depth))),
+            Some(s) if rng.gen_bool(0.5) => Some((
+                s.pixel as usize % 1024,
+                rng.gen_bool(0.75).then_some(s.depth),
+            )),
             _ => rng.gen_bool(0.5).then(|| {
                 (
                     rng.gen_range(0..3),
