@@ -16,14 +16,30 @@
 //! - [`ray_ids`]: the ray store's free entries (a ray's id in the traversal unit) and the
 //!   running threads' reservations of them; the spawn and escape reserves' decisions.
 //! - [`thread_start`]: a returned cast ray and its answer → the shader core's thread start
-//!   (the triangle's object and normals, the object's program), one a cycle.
+//!   (the triangle's object and normals, the object's program), one a cycle; its triangle
+//!   memory's size a parameter.
+//! - [`id_queue`]: a FIFO of ray ids, `valid` from a register: the frame engine's queues.
+//! - [`trace_queues`]: ids waiting for the traversal unit, spawned rays before primary ones.
+//! - [`waiting_queue`]: answered cast rays waiting for a thread; a deferred start back to
+//!   the tail.
+//! - [`pixel_slots`]: whether the next pixel's slot is free (two parity tables); a finished
+//!   slot's pixel index, the pixel stream out.
+//! - [`ray_store`]: the rays in flight and their answers, a RAM per field group and reader.
+//! - [`records`]: the accumulator's three sources (opens, shadow answers settled beside the
+//!   core, threads' settles), one record a cycle.
 
 pub mod accumulate;
 pub mod contribution;
 pub mod coord;
 pub mod escape;
+pub mod id_queue;
 pub mod normalise;
+pub mod pixel_slots;
 pub mod ray_ids;
+pub mod ray_store;
 pub mod raygen;
+pub mod records;
 pub mod shader;
 pub mod thread_start;
+pub mod trace_queues;
+pub mod waiting_queue;

@@ -25,40 +25,23 @@
 //!   entries below the reserve are at most C·D, held by its waiting rays, its deepest among
 //!   them).
 //!
-//! The FIFOs are popped from the block's own counts of the ids they show, not from their
-//! `empty` flags (a read driven from `empty` is a loop through the FIFO's one `always` block
-//! in Verilator's view). The caller keeps the protocol: it frees only ids it holds, pushes
+//! The free lists are [`IdQueue`]s (`valid` from their own counts of the ids they show, not
+//! from the FIFOs' `empty`). The caller keeps the protocol: it frees only ids it holds, pushes
 //! only within a running thread's reservation, settles only started threads.
 
 use rust_hdl::prelude::*;
 
-use super::raygen::QUEUE_LATENCY;
+use super::id_queue::{Count, Id, IdQueue, SHOW_LATENCY};
+pub use super::id_queue::{COUNT_BITS, IDS, ID_BITS};
 use crate::harness::{built_verilog, simulate_driven, Stepped};
 use crate::macros::{clock, dff_setup};
-use crate::mt::delay::Delay;
 
-/// Bits of a ray id: a ray-store entry's address.
-pub const ID_BITS: usize = 9;
-/// Ray-store entries (`hw_model::frame::schedule::DEFAULT_RAY_STORE`).
-pub const IDS: usize = 1 << ID_BITS;
-/// Bits of a count of ids (0 to `IDS`).
-pub const COUNT_BITS: usize = ID_BITS + 1;
 /// Bits of the reservation M (a thread pushes at most 8 rays: `accumulate::SPAWNED_BITS`).
 pub const RESERVATION_BITS: usize = super::accumulate::SPAWNED_BITS;
-/// Cycles from a free to its id counted and taken: rust-hdl's FIFO shows a word two cycles
-/// after its write.
-pub const FREE_LATENCY: usize = QUEUE_LATENCY;
-const _: () = assert!(
-    IDS == hw_model::frame::schedule::DEFAULT_RAY_STORE
-        && ID_BITS == 9
-        && COUNT_BITS == 10
-        && FREE_LATENCY == 2
-);
+/// Cycles from a free to its id counted and taken: its FIFO shows it.
+pub const FREE_LATENCY: usize = SHOW_LATENCY;
 // The kernel spells the fresh counter's top bit, `ID_BITS`, as a literal.
-
-type Id = Bits<ID_BITS>;
-type Count = Bits<COUNT_BITS>;
-type FreeQueue = SynchronousFIFO<Id, ID_BITS, COUNT_BITS, 1>;
+const _: () = assert!(ID_BITS == 9);
 
 /// Ids taken, freed and reserved; the counts' decisions.
 #[derive(LogicBlock)]
@@ -89,11 +72,7 @@ pub struct RayIds {
     pub fits_above_reserve: Signal<Out, Bit>,
     /// Fresh ids handed out (bit 9: all of them).
     fresh: DFF<Count>,
-    freed: [FreeQueue; 2],
-    /// Ids each FIFO shows.
-    shown: [DFF<Count>; 2],
-    /// A free, until its FIFO shows it.
-    arriving: [Delay<Bit>; 2],
+    freed: [IdQueue; 2],
     used: DFF<Count>,
     reserved: DFF<Count>,
     ids: Constant<Count>,
@@ -128,8 +107,6 @@ impl Default for RayIds {
             fits_above_reserve: Default::default(),
             fresh: Default::default(),
             freed: Default::default(),
-            shown: Default::default(),
-            arriving: Delay::lines(FREE_LATENCY - 1),
             used: Default::default(),
             reserved: Default::default(),
             ids: Constant::new((IDS as u64).into()),
@@ -148,8 +125,7 @@ impl Logic for RayIds {
         dff_setup!(self, clock, fresh);
         clock!(self, clock, used, reserved);
         for k in 0..2 {
-            clock!(self, clock, freed[k], arriving[k]);
-            dff_setup!(self, clock, shown[k]);
+            clock!(self, clock, freed[k]);
         }
 
         // The counts' decisions, before this cycle's events.
@@ -168,9 +144,9 @@ impl Logic for RayIds {
         self.pop[0].next = false;
         self.pop[1].next = false;
         if self.fresh.q.val().get_bit(9) {
-            self.id.next = self.freed[1].data_out.val();
-            if self.shown[0].q.val().any() {
-                self.id.next = self.freed[0].data_out.val();
+            self.id.next = self.freed[1].head.val();
+            if self.freed[0].valid.val() {
+                self.id.next = self.freed[0].head.val();
                 self.pop[0].next = self.take.val();
             } else {
                 self.pop[1].next = self.take.val();
@@ -184,23 +160,13 @@ impl Logic for RayIds {
         self.freed[0].data_in.next = self.shadow_id.val();
         self.freed[1].write.next = self.start.val();
         self.freed[1].data_in.next = self.start_id.val();
-        self.arriving[0].d.next = self.shadow_free.val();
-        self.arriving[1].d.next = self.start.val();
-        for k in 0..2 {
-            self.freed[k].read.next = self.pop[k].val();
-            if self.arriving[k].q.val() & !self.pop[k].val() {
-                self.shown[k].d.next = self.shown[k].q.val() + 1;
-            }
-            if !self.arriving[k].q.val() & self.pop[k].val() {
-                self.shown[k].d.next = self.shown[k].q.val() - 1;
-            }
-        }
         self.used_next.next = self.used.q.val();
         if self.take.val() {
             self.used_next.next = self.used_next.val() + 1;
         }
         for k in 0..2 {
-            if self.arriving[k].q.val() {
+            self.freed[k].read.next = self.pop[k].val();
+            if self.freed[k].arrived.val() {
                 self.used_next.next = self.used_next.val() - 1;
             }
         }

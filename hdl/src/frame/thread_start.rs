@@ -15,9 +15,19 @@
 //! entry point; a miss: r3..r6 = 0, material 0, the miss entry; past depth = depth + 1 >
 //! max depth. The tag (pixel, depth) passes through.
 //!
+//! **The start decision**, at stage B (docs/frame.md "Why it cannot deadlock"): a start
+//! may go if `fits` (the ray ids: M available) and either `fits_above_reserve` (M and the
+//! escape reserve), or its program pushes no reflection or refraction ray, or it is the
+//! escape (the escape pixel's slot and its deepest depth in flight): the schedule model's
+//! `can_start`, with the ray ids' M for its M − 1. Decided once: a start that may go is
+//! committed (`started`: its entry freed, M reserved, its cast ray leaves the escape count)
+//! and offered to the core until taken (the core claims a thread and loads it over several
+//! cycles, so an offer must hold); one that may not is `deferred` (its `id` back to the
+//! waiting queue's tail) and leaves stage B at once.
+//!
 //! One ray a cycle, valid/ready: a stage moves on when the one after it is free, and a
 //! stalled stage keeps its memory's address, so the word it read stays shown. `in_ready`
-//! follows `out_ready` in the same cycle (two stages, no queue).
+//! follows `out_ready` in the same cycle (two stages, no queue). The ray's id passes through.
 //!
 //! The memories are loaded through the load port between frames ([`loads`]): a triangle's
 //! word at its index, an object's at its index; the miss entry, its cast flag and the max
@@ -29,6 +39,9 @@ use hw_model::frame::{FrameConstants, FrameLimits};
 use rust_hdl::prelude::*;
 use thiserror::Error;
 
+use super::accumulate::PIXEL_SLOT_BITS;
+use super::id_queue::Id;
+use super::ray_store::{stored_answer, StoreError, StoredRay};
 use super::raygen::PIXEL_BITS;
 use super::shader::core::{DEPTH_BITS, MATERIAL_BITS, PC_BITS};
 use crate::harness::{built_verilog, simulate_driven, Stepped};
@@ -40,10 +53,6 @@ use sw_renderer::hit::Hit;
 
 type Lanes = Bits<96>;
 
-/// Address bits of the triangle memory: `FrameLimits::HW`'s triangles.
-pub const TRIANGLE_BITS: usize = 14;
-/// Triangles the memory holds.
-pub const TRIANGLES: usize = 1 << TRIANGLE_BITS;
 /// Address bits of the object table: `FrameLimits::HW`'s objects.
 pub const OBJECT_BITS: usize = 6;
 /// Objects the table holds.
@@ -53,7 +62,7 @@ const TRIANGLE_WORD_BITS: usize = 3 * 96 + OBJECT_BITS;
 /// An object's word: its program's entry point, the cast flag above it.
 const OBJECT_WORD_BITS: usize = PC_BITS + 1;
 const _: () = {
-    assert!(TRIANGLES == FrameLimits::HW.triangles && OBJECTS == FrameLimits::HW.objects);
+    assert!(OBJECTS == FrameLimits::HW.objects);
     assert!(OBJECT_BITS <= MATERIAL_BITS && 1 << PC_BITS == CODE);
     // The kernel's literal offsets and widths.
     assert!(TRIANGLE_WORD_BITS == 294 && OBJECT_WORD_BITS == 12 && PC_BITS == 11);
@@ -62,14 +71,22 @@ const _: () = {
 /// Cycles from a ray taken to its start shown, the output free.
 pub const LATENCY: usize = 2;
 
-/// Returned cast rays in, the shader core's thread starts out.
+/// Triangles a triangle memory of `bits` address bits holds.
+pub const fn triangles(bits: usize) -> usize {
+    1 << bits
+}
+
+/// Returned cast rays in, the shader core's thread starts out; a triangle memory of `TB`
+/// address bits ([`triangles`]`(TB)` triangles, at least [`OBJECTS`]: the load port's
+/// address is the triangle's), a parameter: `FrameLimits::HW`'s 16,384 (`TB` = 14) are 132
+/// RAMB36, the whole XC7Z020.
 #[derive(LogicBlock, Default)]
-pub struct ThreadStart {
+pub struct ThreadStart<const TB: usize> {
     pub clock: Signal<In, Clock>,
     // The load port, between frames: a triangle's or an object's word at `load_address`.
     pub load_triangle: Signal<In, Bit>,
     pub load_object: Signal<In, Bit>,
-    pub load_address: Signal<In, Bits<TRIANGLE_BITS>>,
+    pub load_address: Signal<In, Bits<TB>>,
     pub load_data: Signal<In, Bits<TRIANGLE_WORD_BITS>>,
     // Held while a frame runs.
     pub miss_entry: Signal<In, Bits<PC_BITS>>,
@@ -84,8 +101,20 @@ pub struct ThreadStart {
     pub in_direction: Signal<In, Lanes>,
     pub in_weight: Signal<In, Lanes>,
     pub in_hit: Signal<In, Bit>,
-    pub in_triangle: Signal<In, Bits<TRIANGLE_BITS>>,
+    pub in_triangle: Signal<In, Bits<TB>>,
     pub in_tuv: Signal<In, Lanes>,
+    pub in_id: Signal<In, Id>,
+    // The start decision's inputs: the ray ids' and the escape pixel's.
+    pub fits: Signal<In, Bit>,
+    pub fits_above_reserve: Signal<In, Bit>,
+    pub escape_valid: Signal<In, Bit>,
+    pub escape_slot: Signal<In, Bits<PIXEL_SLOT_BITS>>,
+    pub escape_in_flight: Signal<In, Bit>,
+    pub escape_deepest: Signal<In, Bits<DEPTH_BITS>>,
+    /// The start at stage B committed this cycle, or deferred (its `id` back to the tail).
+    pub started: Signal<Out, Bit>,
+    pub deferred: Signal<Out, Bit>,
+    pub id: Signal<Out, Id>,
     // Thread starts (the core's start port) and the program's cast flag.
     pub out_valid: Signal<Out, Bit>,
     pub out_ready: Signal<In, Bit>,
@@ -97,7 +126,7 @@ pub struct ThreadStart {
     pub depth: Signal<Out, Bits<DEPTH_BITS>>,
     /// The program may push reflection or refraction rays.
     pub casts: Signal<Out, Bit>,
-    triangles: RAM<Bits<TRIANGLE_WORD_BITS>, TRIANGLE_BITS>,
+    triangles: RAM<Bits<TRIANGLE_WORD_BITS>, TB>,
     objects: RAM<Bits<OBJECT_WORD_BITS>, OBJECT_BITS>,
     // Stage A.
     a_valid: DFF<Bit>,
@@ -105,8 +134,9 @@ pub struct ThreadStart {
     a_depth: DFF<Bits<DEPTH_BITS>>,
     a_ray: [DFF<Lanes>; 3],
     a_hit: DFF<Bit>,
-    a_triangle: DFF<Bits<TRIANGLE_BITS>>,
+    a_triangle: DFF<Bits<TB>>,
     a_tuv: DFF<Lanes>,
+    a_id: DFF<Id>,
     // Stage B.
     b_valid: DFF<Bit>,
     b_pixel: DFF<Bits<PIXEL_BITS>>,
@@ -114,16 +144,23 @@ pub struct ThreadStart {
     b_registers: [DFF<Lanes>; 7],
     b_hit: DFF<Bit>,
     b_object: DFF<Bits<OBJECT_BITS>>,
+    b_id: DFF<Id>,
+    /// Stage B's start is committed and offered.
+    committed: DFF<Bit>,
+    allowed: Signal<Local, Bit>,
+    undecided: Signal<Local, Bit>,
+    taken: Signal<Local, Bit>,
     accept: Signal<Local, Bit>,
     a_to_b: Signal<Local, Bit>,
     b_free: Signal<Local, Bit>,
 }
 
-impl Logic for ThreadStart {
+impl<const TB: usize> Logic for ThreadStart<TB> {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, a_valid, a_pixel, a_depth, a_hit, a_triangle, a_tuv);
         dff_setup!(self, clock, b_valid, b_pixel, b_depth, b_hit, b_object);
+        dff_setup!(self, clock, a_id, b_id, committed);
         self.triangles.read_clock.next = self.clock.val();
         self.triangles.write_clock.next = self.clock.val();
         self.objects.read_clock.next = self.clock.val();
@@ -137,8 +174,40 @@ impl Logic for ThreadStart {
         self.objects.write_address.next = self.load_address.val().get_bits::<OBJECT_BITS>(0);
         self.objects.write_data.next = self.load_data.val().get_bits::<OBJECT_WORD_BITS>(0);
 
+        // The start shown.
+        self.pixel.next = self.b_pixel.q.val();
+        self.depth.next = self.b_depth.q.val();
+        self.past_depth.next = self.b_depth.q.val() >= self.max_depth.val();
+        self.material.next = bit_cast::<MATERIAL_BITS, OBJECT_BITS>(self.b_object.q.val());
+        for k in 0..7 {
+            self.registers[k].next = self.b_registers[k].q.val();
+        }
+        self.entry.next = self.miss_entry.val();
+        self.casts.next = self.miss_casts.val();
+        if self.b_hit.q.val() {
+            self.entry.next = self.objects.read_data.val().get_bits::<PC_BITS>(0);
+            self.casts.next = self.objects.read_data.val().get_bit(11);
+        }
+
+        // The start decision.
+        self.allowed.next = self.fits.val()
+            & (self.fits_above_reserve.val()
+                | !self.casts.val()
+                | (self.escape_valid.val()
+                    & self.escape_in_flight.val()
+                    & (self.escape_slot.val()
+                        == self.b_pixel.q.val().get_bits::<PIXEL_SLOT_BITS>(0))
+                    & (self.escape_deepest.val() == self.b_depth.q.val())));
+        self.undecided.next = self.b_valid.q.val() & !self.committed.q.val();
+        self.started.next = self.undecided.val() & self.allowed.val();
+        self.deferred.next = self.undecided.val() & !self.allowed.val();
+        self.out_valid.next = self.committed.q.val() | self.started.val();
+        self.taken.next = self.out_valid.val() & self.out_ready.val();
+        self.committed.d.next = self.out_valid.val() & !self.out_ready.val();
+        self.id.next = self.b_id.q.val();
+
         // Handshakes: a stage moves on when the one after it is free.
-        self.b_free.next = !self.b_valid.q.val() | self.out_ready.val();
+        self.b_free.next = !self.b_valid.q.val() | self.taken.val() | self.deferred.val();
         self.a_to_b.next = self.a_valid.q.val() & self.b_free.val();
         self.in_ready.next = !self.a_valid.q.val() | self.a_to_b.val();
         self.accept.next = self.in_valid.val() & self.in_ready.val();
@@ -153,6 +222,7 @@ impl Logic for ThreadStart {
             self.a_hit.d.next = self.in_hit.val();
             self.a_triangle.d.next = self.in_triangle.val();
             self.a_tuv.d.next = self.in_tuv.val();
+            self.a_id.d.next = self.in_id.val();
             self.triangles.read_address.next = self.in_triangle.val();
         }
         for k in 0..3 {
@@ -165,13 +235,14 @@ impl Logic for ThreadStart {
         }
 
         // Stage B: the start; the object table reads the object (a stalled stage its own).
-        self.b_valid.d.next = self.a_to_b.val() | (self.b_valid.q.val() & !self.out_ready.val());
+        self.b_valid.d.next = self.a_to_b.val() | (self.b_valid.q.val() & !self.b_free.val());
         self.objects.read_address.next = self.b_object.q.val();
         for k in 0..7 {
             dff_setup!(self, clock, b_registers[k]);
         }
         if self.a_to_b.val() {
             self.b_pixel.d.next = self.a_pixel.q.val();
+            self.b_id.d.next = self.a_id.q.val();
             self.b_depth.d.next = self.a_depth.q.val();
             self.b_hit.d.next = self.a_hit.q.val();
             self.b_object.d.next = 0.into();
@@ -194,30 +265,14 @@ impl Logic for ThreadStart {
                 self.b_registers[k].d.next = self.a_ray[k].q.val();
             }
         }
-
-        // The start shown.
-        self.out_valid.next = self.b_valid.q.val();
-        self.pixel.next = self.b_pixel.q.val();
-        self.depth.next = self.b_depth.q.val();
-        self.past_depth.next = self.b_depth.q.val() >= self.max_depth.val();
-        self.material.next = bit_cast::<MATERIAL_BITS, OBJECT_BITS>(self.b_object.q.val());
-        for k in 0..7 {
-            self.registers[k].next = self.b_registers[k].q.val();
-        }
-        self.entry.next = self.miss_entry.val();
-        self.casts.next = self.miss_casts.val();
-        if self.b_hit.q.val() {
-            self.entry.next = self.objects.read_data.val().get_bits::<PC_BITS>(0);
-            self.casts.next = self.objects.read_data.val().get_bit(11);
-        }
     }
 }
 
 /// Constants the block cannot hold.
 #[derive(Clone, Debug, Error, PartialEq, Eq)]
 pub enum StartLoadError {
-    #[error("{count} triangles: the frame engine's triangle memory holds {TRIANGLES}")]
-    Triangles { count: usize },
+    #[error("{count} triangles: the frame engine's triangle memory holds {capacity}")]
+    Triangles { count: usize, capacity: usize },
     #[error("{count} objects: the frame engine's object table holds {OBJECTS}")]
     Objects { count: usize },
     #[error("triangle {triangle} has object {object}; the scene has {objects} objects")]
@@ -270,11 +325,16 @@ fn casts(program: &Program, entry: u16) -> bool {
     program.pushes_from(entry).cast > 0
 }
 
-/// The block's constants for frames of `c`, shaded by `program` (compiled from `c`).
-pub fn loads(c: &FrameConstants, program: &Program) -> Result<StartConstants, StartLoadError> {
-    if c.triangles.len() > TRIANGLES {
+/// The constants of a block of `TB` triangle address bits for frames of `c`, shaded by
+/// `program` (compiled from `c`).
+pub fn loads<const TB: usize>(
+    c: &FrameConstants,
+    program: &Program,
+) -> Result<StartConstants, StartLoadError> {
+    if c.triangles.len() > triangles(TB) {
         return Err(StartLoadError::Triangles {
             count: c.triangles.len(),
+            capacity: triangles(TB),
         });
     }
     if c.materials.len() > OBJECTS {
@@ -338,50 +398,54 @@ pub struct Returned {
 pub enum ReturnedError {
     #[error("a shadow ray runs no thread")]
     Shadow,
-    #[error("pixel {pixel} does not fit the tag's {PIXEL_BITS} bits")]
-    Pixel { pixel: u32 },
-    #[error("depth {depth} does not fit the tag's {DEPTH_BITS} bits")]
-    Depth { depth: u32 },
-    #[error("triangle {triangle}: the frame engine's triangle memory holds {TRIANGLES}")]
-    Triangle { triangle: u32 },
-}
-
-fn words(v: hw_model::fp32::Vec3) -> Word3 {
-    v.components().map(|x| x.bits())
+    #[error(transparent)]
+    Store(#[from] StoreError),
 }
 
 impl Returned {
-    /// A cast ray of the frame model and its answer, as the ray store holds them.
-    pub fn of(ray: &FrameRay, hit: Option<&Hit>) -> Result<Returned, ReturnedError> {
-        let hw_model::frame::Load::Cast { depth, weight, .. } = ray.load else {
+    /// A cast ray of the frame model and its answer, as the ray store of an engine of `TB`
+    /// triangle address bits holds them.
+    pub fn of<const TB: usize>(
+        ray: &FrameRay,
+        hit: Option<&Hit>,
+    ) -> Result<Returned, ReturnedError> {
+        if ray.kind() == hw_model::frame::RayKind::Shadow {
             return Err(ReturnedError::Shadow);
-        };
-        if ray.pixel >= 1 << PIXEL_BITS {
-            return Err(ReturnedError::Pixel { pixel: ray.pixel });
         }
-        if depth >= 1 << DEPTH_BITS {
-            return Err(ReturnedError::Depth { depth });
-        }
-        let hit = match hit {
-            None => None,
-            Some(h) if h.triangle as usize >= TRIANGLES => {
-                return Err(ReturnedError::Triangle {
-                    triangle: h.triangle,
-                })
-            }
-            Some(h) => Some((
-                h.triangle as usize,
-                [h.t, h.u, h.v].map(|x| hw_model::fp32::Fp32::new(x).bits()),
-            )),
-        };
+        let stored = StoredRay::of(ray)?;
         Ok(Returned {
-            pixel: ray.pixel,
-            depth,
-            origin: words(ray.orig),
-            direction: words(ray.dir),
-            weight: words(weight),
-            hit,
+            pixel: stored.tag.pixel,
+            depth: stored.tag.depth,
+            origin: stored.origin,
+            direction: stored.direction,
+            weight: stored.payload,
+            hit: stored_answer::<TB>(hit)?,
         })
+    }
+}
+
+/// The start decision's inputs in a cycle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Decision {
+    pub fits: bool,
+    pub fits_above_reserve: bool,
+    /// The escape pixel's slot and its deepest depth in flight (if any), once known.
+    pub escape: Option<(usize, Option<u32>)>,
+}
+
+impl Decision {
+    /// Every start may go.
+    pub const GO: Decision = Decision {
+        fits: true,
+        fits_above_reserve: true,
+        escape: None,
+    };
+
+    /// Whether a start of `casts`, tag (`pixel`, `depth`) may go: the hardware's rule.
+    pub fn allows(&self, casts: bool, pixel: u32, depth: u32) -> bool {
+        let escape =
+            self.escape == Some((pixel as usize % super::accumulate::PIXEL_SLOTS, Some(depth)));
+        self.fits && (self.fits_above_reserve || !casts || escape)
     }
 }
 
@@ -392,7 +456,10 @@ pub struct StartInput {
     pub miss_entry: u16,
     pub miss_casts: bool,
     pub max_depth: u32,
+    /// A returned ray and its id.
     pub ray: Option<Returned>,
+    pub id: usize,
+    pub decision: Decision,
     pub out_ready: bool,
 }
 
@@ -409,21 +476,29 @@ pub struct Started {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct StartOutput {
     pub in_ready: bool,
+    /// Stage B's start (offered, or deferred this cycle) and its id.
     pub start: Option<Started>,
+    pub id: usize,
+    /// The start offered to the core (`out_valid`).
+    pub offered: bool,
+    pub started: bool,
+    pub deferred: bool,
 }
 
-fn lanes(w: Word3) -> Lanes {
+/// Three 32-bit words in a 96-bit signal, the first from bit 0.
+pub(crate) fn lanes(w: Word3) -> Lanes {
     Lanes::from(u64::from(w[0]))
         | (Lanes::from(u64::from(w[1])) << 32)
         | (Lanes::from(u64::from(w[2])) << 64)
 }
 
-fn of_lanes(l: Lanes) -> Word3 {
+/// A 96-bit signal's three 32-bit words.
+pub(crate) fn of_lanes(l: Lanes) -> Word3 {
     let v = l.to_u128();
     [0, 1, 2].map(|k| (v >> (32 * k)) as u32)
 }
 
-impl Stepped for ThreadStart {
+impl<const TB: usize> Stepped for ThreadStart<TB> {
     type Input = StartInput;
     type Output = StartOutput;
 
@@ -486,11 +561,21 @@ impl Stepped for ThreadStart {
         let (triangle, tuv) = ray.hit.unwrap_or((0, [0; 3]));
         self.in_triangle.next = (triangle as u64).into();
         self.in_tuv.next = lanes(tuv);
+        self.in_id.next = (input.id as u64).into();
+        let d = input.decision;
+        self.fits.next = d.fits;
+        self.fits_above_reserve.next = d.fits_above_reserve;
+        self.escape_valid.next = d.escape.is_some();
+        let (slot, deepest) = d.escape.unwrap_or_default();
+        self.escape_slot.next = (slot as u64).into();
+        self.escape_in_flight.next = deepest.is_some();
+        self.escape_deepest.next = u64::from(deepest.unwrap_or(0)).into();
         self.out_ready.next = input.out_ready;
     }
 
     fn observe(&self) -> StartOutput {
-        let start = self.out_valid.val().then(|| Started {
+        let shown = self.out_valid.val() | self.deferred.val();
+        let start = shown.then(|| Started {
             input: ThreadInput {
                 entry: self.entry.val().to_u64() as u16,
                 material: self.material.val().to_u64() as u32,
@@ -504,19 +589,25 @@ impl Stepped for ThreadStart {
         StartOutput {
             in_ready: self.in_ready.val(),
             start,
+            id: self.id.val().index(),
+            offered: self.out_valid.val(),
+            started: self.started.val(),
+            deferred: self.deferred.val(),
         }
     }
 }
 
 /// Runs a freshly built block in rust-hdl's simulator, the inputs of each cycle chosen by
 /// `drive` from the outputs of the cycle before (see [`simulate_driven`]).
-pub fn simulate_thread_start(
+pub fn simulate_thread_start<const TB: usize>(
     drive: impl FnMut(Option<&StartOutput>) -> Option<StartInput> + Send + 'static,
 ) -> Vec<(StartInput, StartOutput)> {
-    simulate_driven(ThreadStart::default, drive)
+    const { assert!(TB >= OBJECT_BITS) };
+    simulate_driven(ThreadStart::<TB>::default, drive)
 }
 
 /// Verilog of the block, top module `top`.
-pub fn thread_start_verilog() -> String {
-    built_verilog(ThreadStart::default)
+pub fn thread_start_verilog<const TB: usize>() -> String {
+    const { assert!(TB >= OBJECT_BITS) };
+    built_verilog(ThreadStart::<TB>::default)
 }

@@ -10,9 +10,12 @@
 use std::path::Path;
 
 use crate::common::{print_synthesis_row, SYNTHESIS_COLUMNS};
+use hdl::frame::id_queue::IDS;
+use hdl::frame::ray_store::StoreError;
 use hdl::frame::thread_start::{
-    loads, simulate_thread_start, thread_start_verilog, Returned, ReturnedError, StartConstants,
-    StartInput, StartLoadError, StartOutput, Started, LATENCY, OBJECTS, TRIANGLES,
+    loads, simulate_thread_start, thread_start_verilog, triangles, Decision, Returned,
+    ReturnedError, StartConstants, StartInput, StartLoadError, StartOutput, Started, LATENCY,
+    OBJECTS,
 };
 use hw_model::frame::shade::Shaded;
 use hw_model::frame::shader::{compile, thread, Program};
@@ -23,6 +26,12 @@ use rand::{rngs::StdRng, Rng, SeedableRng};
 use sw_renderer::hit::Hit;
 use sw_renderer::scene::{builtin, Scene};
 use sw_renderer::trace::PreparedScene;
+
+/// The triangle memory's address bits the tests build: 4,096 triangles. Scenes with more
+/// (the built-in Utah teapot's 6,322, All materials') run at `FrameLimits::HW`'s, `TB_HW`.
+const TB: usize = 12;
+const TB_HW: usize = 14;
+const _: () = assert!(1 << TB_HW == FrameLimits::HW.triangles);
 
 fn traversal() -> TraversalEngine {
     TraversalEngine::resident(Format::FP32)
@@ -40,7 +49,7 @@ fn case(c: &FrameConstants, program: &Program, ray: &FrameRay, hit: Option<&Hit>
         unreachable!("a cast ray")
     };
     Case {
-        ray: Returned::of(ray, hit).unwrap_or_else(|e| panic!("{ray:?}: {e}")),
+        ray: Returned::of::<TB_HW>(ray, hit).unwrap_or_else(|e| panic!("{ray:?}: {e}")),
         want: Started {
             input,
             pixel: ray.pixel,
@@ -129,12 +138,19 @@ const FLOWING: Traffic = Traffic {
 
 /// Loads `k` and streams `cases` through the block: every start in order, equal to the
 /// model's, held while not taken; flowing, each `LATENCY` cycles after its ray.
-fn run(what: &str, k: &StartConstants, cases: Vec<Case>, traffic: Traffic, seed: u64) {
+fn run<const TB: usize>(
+    what: &str,
+    k: &StartConstants,
+    cases: Vec<Case>,
+    traffic: Traffic,
+    seed: u64,
+) {
     let mut rng = StdRng::seed_from_u64(seed);
     let base = StartInput {
         miss_entry: k.miss_entry,
         miss_casts: k.miss_casts,
         max_depth: k.max_depth,
+        decision: Decision::GO,
         ..StartInput::default()
     };
     let mut load_words = k.loads.clone().into_iter();
@@ -145,7 +161,7 @@ fn run(what: &str, k: &StartConstants, cases: Vec<Case>, traffic: Traffic, seed:
     let mut stalled = 0usize;
     // Starts taken, whether the cycle before was ready, cycles since the last was taken.
     let (mut taken, mut was_ready, mut after) = (0, false, 0);
-    let cycles = simulate_thread_start(move |shown: Option<&StartOutput>| {
+    let cycles = simulate_thread_start::<TB>(move |shown: Option<&StartOutput>| {
         let mut input = base.clone();
         if let Some(w) = load_words.next() {
             input.load = Some(w);
@@ -162,6 +178,7 @@ fn run(what: &str, k: &StartConstants, cases: Vec<Case>, traffic: Traffic, seed:
             offered = Some(rays[next]);
         }
         input.ray = offered;
+        input.id = next % IDS;
         if stalled == 0 && rng.gen_bool(traffic.stall) {
             stalled = rng.gen_range(1..=traffic.stall_len.max(1));
         }
@@ -206,6 +223,20 @@ fn run(what: &str, k: &StartConstants, cases: Vec<Case>, traffic: Traffic, seed:
         }
     }
     assert_eq!(got.len(), cases.len(), "{what}: starts");
+    let started = cycles.iter().filter(|(_, o)| o.started).count();
+    assert_eq!(started, cases.len(), "{what}: every start committed once");
+    assert!(
+        cycles.iter().all(|(_, o)| !o.deferred),
+        "{what}: nothing deferred"
+    );
+    let ids: Vec<usize> = (cycles.iter())
+        .filter(|(_, o)| o.started)
+        .map(|(_, o)| o.id)
+        .collect();
+    assert!(
+        ids.iter().enumerate().all(|(k, &id)| id == k % IDS),
+        "{what}: each start's id"
+    );
     for (k, (g, c)) in got.iter().zip(&cases).enumerate() {
         assert_eq!(*g, c.want, "{what}: start {k} of {:?}", c.ray);
     }
@@ -226,10 +257,16 @@ fn check_scene(what: &str, scene: &Scene, seed: u64) {
         "{what}: hits and misses"
     );
     cases.extend(random_cases(&mut rng, &c, &program, 60));
-    let k = loads(&c, &program).unwrap();
     let flowing = cases.split_off(cases.len() / 2);
-    run(what, &k, cases, NOISY, seed);
-    run(what, &k, flowing, FLOWING, seed + 1);
+    if c.triangles.len() <= triangles(TB) {
+        let k = loads::<TB>(&c, &program).unwrap();
+        run::<TB>(what, &k, cases, NOISY, seed);
+        run::<TB>(what, &k, flowing, FLOWING, seed + 1);
+    } else {
+        let k = loads::<TB_HW>(&c, &program).unwrap();
+        run::<TB_HW>(what, &k, cases, NOISY, seed);
+        run::<TB_HW>(what, &k, flowing, FLOWING, seed + 1);
+    }
 }
 
 #[test]
@@ -277,8 +314,8 @@ fn thread_start_sets_past_depth_at_the_max_depth() {
             past < cases.len() || max_depth == 0,
             "max depth {max_depth}: not past"
         );
-        let k = loads(&c, &program).unwrap();
-        run(
+        let k = loads::<TB>(&c, &program).unwrap();
+        run::<TB>(
             &format!("max depth {max_depth}"),
             &k,
             cases,
@@ -288,23 +325,157 @@ fn thread_start_sets_past_depth_at_the_max_depth() {
     }
 }
 
+/// The start decision under random decision inputs: every start at stage B committed or
+/// deferred exactly once per arrival, as `Decision::allows` says (the schedule model's
+/// `can_start` with the ray ids' M), a deferred ray offered again later (as the waiting
+/// queue's tail gives it back), a committed start held for the core until taken whatever
+/// the inputs do; starts by the escape alone (casting programs below the reserve) happen.
+#[test]
+fn thread_start_decides_starts() {
+    let scene = frame_test_scene("glass");
+    let (c, program, mut cases) = rendered(&scene);
+    let mut rng = StdRng::seed_from_u64(61);
+    cases.truncate(300);
+    // A few pixels and depths, so the escape matches often.
+    for case in &mut cases {
+        let pixel = rng.gen_range(0..4) * 1024 + rng.gen_range(0..3);
+        case.ray.pixel = pixel;
+        case.want.pixel = pixel;
+    }
+    assert!(cases.iter().any(|k| k.want.casts) && cases.iter().any(|k| !k.want.casts));
+    let k = loads::<TB>(&c, &program).unwrap();
+    let base = StartInput {
+        miss_entry: k.miss_entry,
+        miss_casts: k.miss_casts,
+        max_depth: k.max_depth,
+        ..StartInput::default()
+    };
+    let mut load_words = k.loads.clone().into_iter();
+    let rays: Vec<Returned> = cases.iter().map(|c| c.ray).collect();
+    let n = rays.len();
+    let mut pending: std::collections::VecDeque<usize> = (0..n).collect();
+    let (mut offered, mut stalled, mut done, mut after) = (None::<usize>, 0usize, 0, 0);
+    let mut last = base.clone();
+    let cycles = simulate_thread_start::<TB>(move |shown: Option<&StartOutput>| {
+        let mut input = base.clone();
+        if let Some(w) = load_words.next() {
+            input.load = Some(w);
+            last = input.clone();
+            return Some(input);
+        }
+        if let Some(o) = shown {
+            if o.in_ready {
+                offered = None;
+            }
+            if o.deferred {
+                pending.push_back(o.id);
+            }
+            if o.offered && last.out_ready {
+                done += 1;
+            }
+        }
+        if offered.is_none() && !rng.gen_bool(0.3) {
+            offered = pending.pop_front();
+        }
+        input.ray = offered.map(|id| rays[id]);
+        input.id = offered.unwrap_or(0);
+        // Decision inputs: often the escape of the start shown the cycle before.
+        let escape = match shown.and_then(|o| o.start) {
+            Some(s) if rng.gen_bool(0.5) => Some((
+                s.pixel as usize % 1024,
+                rng.gen_bool(0.75).then_some(s.depth),
+            )),
+            _ => rng.gen_bool(0.5).then(|| {
+                (
+                    rng.gen_range(0..3),
+                    rng.gen_bool(0.8).then(|| rng.gen_range(0..4)),
+                )
+            }),
+        };
+        input.decision = Decision {
+            fits: rng.gen_bool(0.8),
+            fits_above_reserve: rng.gen_bool(0.3),
+            escape,
+        };
+        if stalled == 0 && rng.gen_bool(0.1) {
+            stalled = rng.gen_range(1..=10);
+        }
+        input.out_ready = stalled == 0;
+        stalled = stalled.saturating_sub(1);
+        last = input.clone();
+        if done == n {
+            after += 1;
+        }
+        (after <= LATENCY + 1 && after + done < 100_000).then_some(input)
+    });
+    let (mut committed, mut deferred, mut by_escape) = (false, 0, 0);
+    let mut started = vec![0; n];
+    for (cycle, (input, out)) in cycles.iter().enumerate() {
+        let Some(s) = out.start else {
+            assert!(!committed && !out.started && !out.deferred && !out.offered);
+            continue;
+        };
+        assert_eq!(
+            s, cases[out.id].want,
+            "cycle {cycle}: the start of ray {}",
+            out.id
+        );
+        if committed {
+            assert!(
+                out.offered && !out.started && !out.deferred,
+                "cycle {cycle}: held"
+            );
+        } else {
+            let d = input.decision;
+            let allowed = d.allows(s.casts, s.pixel, s.depth);
+            assert_eq!(
+                (out.started, out.deferred),
+                (allowed, !allowed),
+                "cycle {cycle}: the decision on {s:?} under {d:?}"
+            );
+            deferred += usize::from(out.deferred);
+            if out.started {
+                started[out.id] += 1;
+                by_escape += usize::from(s.casts && !d.fits_above_reserve);
+            }
+        }
+        committed = out.offered && !input.out_ready;
+    }
+    assert!(
+        started.iter().all(|&k| k == 1),
+        "every start committed once"
+    );
+    assert!(deferred > n / 4, "starts deferred: {deferred}");
+    assert!(by_escape > 0, "starts by the escape");
+}
+
 #[test]
 fn thread_start_refuses_what_does_not_fit() {
     let scene = frame_test_scene("glass");
     let (c, program, cases) = rendered(&scene);
-    let mut big = c.clone();
-    big.triangles = vec![c.triangles[0]; TRIANGLES + 1];
-    let e = loads(&big, &program).unwrap_err();
+    // The Utah teapot's 6,322 triangles in a memory of 4,096.
+    let teapot = Scene::load("utah_teapot").unwrap();
+    let prepared = PreparedScene::new(&teapot).unwrap();
+    let unit = traversal();
+    let frame = Frame::new(&teapot, &prepared, &unit, 16, 9, &FrameLimits::HW).unwrap();
+    let count = frame.constants().triangles.len();
+    assert!(count > triangles(TB) && count <= triangles(TB_HW));
+    let e = loads::<TB>(frame.constants(), frame.program()).unwrap_err();
     assert_eq!(
         e,
         StartLoadError::Triangles {
-            count: TRIANGLES + 1
+            count,
+            capacity: 4096
         }
     );
-    assert!(e.to_string().contains(&TRIANGLES.to_string()), "{e}");
+    assert_eq!(
+        e.to_string(),
+        format!("{count} triangles: the frame engine's triangle memory holds 4096")
+    );
+    assert!(loads::<TB_HW>(frame.constants(), frame.program()).is_ok());
     let mut many = c.clone();
     many.materials = vec![c.materials[0]; OBJECTS + 1];
-    let e = loads(&many, &program).unwrap_err();
+    let e = loads::<TB>(&many, &program).unwrap_err();
     assert!(
         e.to_string().contains(&format!("{} objects", OBJECTS + 1)),
         "{e}"
@@ -312,11 +483,11 @@ fn thread_start_refuses_what_does_not_fit() {
     assert!(e.to_string().contains(&OBJECTS.to_string()), "{e}");
     let mut stray = c.clone();
     stray.triangles[0].object = c.materials.len() as u32;
-    let e = loads(&stray, &program).unwrap_err().to_string();
+    let e = loads::<TB>(&stray, &program).unwrap_err().to_string();
     assert!(e.contains("triangle 0 has object"), "{e}");
     let mut deep = c.clone();
     deep.max_depth = 16;
-    let e = loads(&deep, &program).unwrap_err().to_string();
+    let e = loads::<TB>(&deep, &program).unwrap_err().to_string();
     assert!(e.contains("max depth 16") && e.contains("15"), "{e}");
 
     let primary = FrameRay::primary(&c, 0, 0);
@@ -326,15 +497,20 @@ fn thread_start_refuses_what_does_not_fit() {
         },
         ..primary
     };
-    assert_eq!(Returned::of(&shadow, None), Err(ReturnedError::Shadow));
+    assert_eq!(
+        Returned::of::<TB>(&shadow, None),
+        Err(ReturnedError::Shadow)
+    );
     let far = Hit {
-        triangle: TRIANGLES as u32,
+        triangle: triangles(TB) as u32,
         t: 1.0,
         u: 0.0,
         v: 0.0,
     };
-    let e = Returned::of(&primary, Some(&far)).unwrap_err().to_string();
-    assert!(e.contains(&TRIANGLES.to_string()), "{e}");
+    let e = Returned::of::<TB>(&primary, Some(&far))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains(&triangles(TB).to_string()), "{e}");
     let deep_ray = FrameRay {
         load: Load::Cast {
             kind: RayKind::Reflection,
@@ -344,15 +520,15 @@ fn thread_start_refuses_what_does_not_fit() {
         ..primary
     };
     assert_eq!(
-        Returned::of(&deep_ray, None),
-        Err(ReturnedError::Depth { depth: 16 })
+        Returned::of::<TB>(&deep_ray, None),
+        Err(ReturnedError::Store(StoreError::Depth { depth: 16 }))
     );
     assert!(!cases.is_empty());
 }
 
 #[test]
 fn thread_start_verilog_passes_verilator_lint() {
-    if let Err(e) = hdl::verilog::verilator_lint(&thread_start_verilog()) {
+    if let Err(e) = hdl::verilog::verilator_lint(&thread_start_verilog::<TB>()) {
         panic!("thread start: verilator lint failed:\n{e}");
     }
 }
@@ -363,8 +539,12 @@ fn thread_start_verilog_passes_verilator_lint() {
 #[ignore]
 fn thread_start_synthesis() {
     use hdl::synth::{synthesize, SynthOptions};
-    let r = synthesize(&thread_start_verilog(), "top", &SynthOptions::default())
-        .expect("yosys synth_xilinx");
+    let r = synthesize(
+        &thread_start_verilog::<TB_HW>(),
+        "top",
+        &SynthOptions::default(),
+    )
+    .expect("yosys synth_xilinx");
     println!("| block | {SYNTHESIS_COLUMNS} |");
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     print_synthesis_row("thread start", &r);
