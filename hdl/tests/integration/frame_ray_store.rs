@@ -8,9 +8,7 @@
 //! reads meet writes to their entry at the same edge) and all 512. Entries that do not fit are
 //! errors naming the sizes; Verilator's lint.
 
-use std::path::Path;
-
-use crate::common::{print_synthesis_row, SYNTHESIS_COLUMNS};
+use crate::common::{frame_test_scene, print_synthesis_row, SYNTHESIS_COLUMNS};
 
 use hdl::frame::id_queue::IDS;
 use hdl::frame::ray_store::{
@@ -25,7 +23,6 @@ use hw_model::traversal::TraversalEngine;
 use hw_model::Format;
 use rand::{rngs::StdRng, seq::SliceRandom, Rng, SeedableRng};
 use sw_renderer::hit::Hit;
-use sw_renderer::scene::Scene;
 use sw_renderer::trace::PreparedScene;
 
 /// The triangle memory's address bits the test builds.
@@ -33,10 +30,7 @@ const TB: usize = 12;
 
 /// Every ray of a 16×9 render of the frame test scene `name` and its answer.
 fn rays(name: &str) -> Vec<(FrameRay, Option<Hit>)> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("model/tests/frame_scenes")
-        .join(format!("{name}.toml"));
-    let scene = Scene::load(path.to_str().unwrap()).unwrap();
+    let scene = frame_test_scene(name);
     let prepared = PreparedScene::new(&scene).unwrap();
     let unit = TraversalEngine::resident(Format::FP32);
     let frame = Frame::new(&scene, &prepared, &unit, 16, 9, &FrameLimits::HW).unwrap();

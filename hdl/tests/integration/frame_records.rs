@@ -7,9 +7,10 @@
 //! random gaps and back-pressure with long stalls, and flowing. Verilator's lint.
 
 use std::collections::VecDeque;
-use std::path::Path;
 
-use crate::common::{print_synthesis_row, Traffic, FLOWING, SYNTHESIS_COLUMNS};
+use crate::common::{
+    frame_test_scene, print_synthesis_row, Traffic, FLOWING, FRAME_TEST_SCENES, SYNTHESIS_COLUMNS,
+};
 use hdl::frame::accumulate::{Command, Record, PIXEL_SLOTS, SETTLE_BITS};
 use hdl::frame::records::{
     records_verilog, simulate_records, RecordsInput, RecordsOutput, ShadowAnswer,
@@ -246,27 +247,13 @@ const NOISY: Traffic = Traffic {
     long: 30,
 };
 
-const FRAME_TEST_SCENES: [&str; 5] = [
-    "diffuse_distant",
-    "diffuse_point",
-    "mirror",
-    "glass",
-    "phong",
-];
-
 #[test]
 fn records_match_the_model_on_the_scenes_shadow_rays() {
     let mut scenes: Vec<(String, Scene)> = (builtin::names().into_iter())
         .map(|name| (name.to_string(), Scene::load(name).unwrap()))
         .collect();
     for name in FRAME_TEST_SCENES {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("model/tests/frame_scenes")
-            .join(format!("{name}.toml"));
-        scenes.push((
-            name.to_string(),
-            Scene::load(path.to_str().unwrap()).unwrap(),
-        ));
+        scenes.push((name.to_string(), frame_test_scene(name)));
     }
     for (k, (name, scene)) in scenes.iter().enumerate() {
         let mut cases = shadow_cases(scene);

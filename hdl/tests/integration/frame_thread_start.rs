@@ -7,9 +7,7 @@
 //! order, held while not taken, and, flowing, exactly `LATENCY` cycles after its ray.
 //! Constants and rays that do not fit are errors naming the sizes; Verilator's lint.
 
-use std::path::Path;
-
-use crate::common::{print_synthesis_row, SYNTHESIS_COLUMNS};
+use crate::common::{frame_test_scene, print_synthesis_row, FRAME_TEST_SCENES, SYNTHESIS_COLUMNS};
 use hdl::frame::id_queue::IDS;
 use hdl::frame::ray_store::StoreError;
 use hdl::frame::thread_start::{
@@ -274,21 +272,6 @@ fn thread_start_matches_the_model_on_the_builtin_scenes() {
     for (n, name) in builtin::names().into_iter().enumerate() {
         check_scene(name, &Scene::load(name).unwrap(), 10 + n as u64);
     }
-}
-
-const FRAME_TEST_SCENES: [&str; 5] = [
-    "diffuse_distant",
-    "diffuse_point",
-    "mirror",
-    "glass",
-    "phong",
-];
-
-fn frame_test_scene(name: &str) -> Scene {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("model/tests/frame_scenes")
-        .join(format!("{name}.toml"));
-    Scene::load(path.to_str().unwrap()).unwrap()
 }
 
 #[test]

@@ -9,6 +9,7 @@ use hw_model::traversal::UnitRay;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use sw_renderer::math::V3;
+use sw_renderer::scene::Scene;
 use sw_renderer::world::WorldTriangle;
 
 /// `count` random triangles in a box of ±4, every other object casting shadows.
@@ -151,4 +152,22 @@ impl Traffic {
         *stalled = stalled.saturating_sub(1);
         *stalled == 0 && !rng.gen_bool(self.stall)
     }
+}
+
+/// The frame model's test scenes (`hdl/model/tests/frame_scenes/`): one a material and light
+/// kind.
+pub const FRAME_TEST_SCENES: [&str; 5] = [
+    "diffuse_distant",
+    "diffuse_point",
+    "mirror",
+    "glass",
+    "phong",
+];
+
+/// The frame test scene `name`.
+pub fn frame_test_scene(name: &str) -> Scene {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("model/tests/frame_scenes")
+        .join(format!("{name}.toml"));
+    Scene::load(path.to_str().unwrap()).unwrap()
 }
