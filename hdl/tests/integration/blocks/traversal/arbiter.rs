@@ -45,6 +45,16 @@ fn grants_follow_the_reference_on_random_requests() {
     // The unit's 32 slots: requests of a few slots too (the last slot granted, then none).
     run::<32>((0..2_000).map(|_| rng.gen_range(0..1u64 << 32) & rng.gen_range(0..1u64 << 32)));
     run::<32>((0..2_000).map(|_| 1 << rng.gen_range(0..32) | 1 << rng.gen_range(0..32)));
+    // The wide unit's 64 slots: dense, sparse, and the top slot.
+    run::<64>((0..2_000).map(|_| rng.gen::<u64>()));
+    run::<64>((0..2_000).map(|_| 1 << rng.gen_range(0..64) | 1 << rng.gen_range(0..64)));
+    run::<64>((0..200).map(|k| {
+        if k % 3 == 0 {
+            1 << 63
+        } else {
+            rng.gen::<u64>() & rng.gen::<u64>() & rng.gen::<u64>()
+        }
+    }));
 }
 
 #[test]
