@@ -34,8 +34,8 @@
 //! and `pixel_ready` falls only when [`QUEUE_DEPTH`] rays are in flight or queued: the
 //! scheme of the stream front end (`top::stream`) and the filter slots (`dual::slot`). The
 //! other scheme, a pipeline-wide enable, would need an enable port on every register of every
-//! operator and either `ray_ready` on the clock enable of the whole pipeline (5,450
-//! flip-flops and 461 SRLs at full depth: a high-fanout path from the consumer) or a skid
+//! operator and either `ray_ready` on the clock enable of the whole pipeline (3,547
+//! flip-flops and 449 SRLs at full depth: a high-fanout path from the consumer) or a skid
 //! buffer of a whole ray (117 flip-flops) to register it. The queue keeps its rays in block
 //! RAM (yosys maps it to 2) and adds only its pointers and the count to the flip-flops (about
 //! 35), so it is the cheaper in registers; and `pixel_ready` and `ray_valid` come from
