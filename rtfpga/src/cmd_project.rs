@@ -307,6 +307,7 @@ fn project_frame(a: &Args) -> Result<()> {
         threads: a.shader_threads as usize,
         pixel_slots: hdl::frame::accumulate::PIXEL_SLOTS,
         raygen_latency: hdl::frame::raygen::latency(a.depth) as u64,
+        raygen_interval: hdl::frame::raygen::INTERVAL,
         accumulate_latency: hdl::frame::accumulate::latency() as u64,
     };
     let bar = ProgressBar::new(u64::from(width) * u64::from(height));

@@ -5,6 +5,7 @@
 
 use std::path::Path;
 
+use hw_model::frame::raygen::INTERVAL;
 use hw_model::frame::schedule::{schedule_frame, FrameSchedule, FrameUnit, ScheduleError, Stage};
 use hw_model::frame::shader::ProgramKind;
 use hw_model::frame::{Frame, FrameLimits, FrameRay, RayKind, WAVEFRONT};
@@ -35,6 +36,7 @@ const UNIT: FrameUnit = FrameUnit {
     threads: 16,
     pixel_slots: 1024,
     raygen_latency: 30,
+    raygen_interval: INTERVAL,
     accumulate_latency: 4,
 };
 
@@ -79,7 +81,7 @@ fn timed(
 }
 
 #[test]
-fn a_frame_of_misses_is_bound_by_the_shader_issue_or_the_one_ray_a_cycle_stages() {
+fn a_frame_of_misses_is_bound_by_the_shader_issue_or_two_cycles_a_pixel() {
     // No triangles: every walk is empty (the ray's setup, then its answer), every ray runs
     // the 4-instruction miss program and spawns nothing.
     let mut scene = test_scene("diffuse_distant");
@@ -109,10 +111,11 @@ fn a_frame_of_misses_is_bound_by_the_shader_issue_or_the_one_ray_a_cycle_stages(
             4 * pixels
         );
         assert_eq!(s.traversal.box_busy + s.traversal.mt_busy, 0);
-        // A core issues one instruction a cycle; ray generation, the traversal unit's output
-        // and the accumulator (an open and a settle per pixel) take one a cycle.
+        // A core issues one instruction a cycle; ray generation takes a pixel every
+        // `raygen::INTERVAL` cycles, the traversal unit's output one a cycle, the
+        // accumulator one record a cycle (an open and a settle per pixel).
         let issue = 4 * pixels / cores as u64;
-        let bound = issue.max(2 * pixels);
+        let bound = issue.max(2 * pixels).max(u.raygen_interval * pixels);
         assert!(
             s.cycles >= bound && s.cycles <= bound + latency(&u),
             "{cores} cores of {threads} threads: {} cycles, bound {bound} + {}",
@@ -153,13 +156,14 @@ fn a_core_with_fewer_threads_ready_than_its_latency_leaves_issue_slots_idle() {
 #[test]
 fn the_traversal_part_alone_is_the_wavefront_schedule() {
     // A diffuse scene without lights: hits spawn nothing, so the traversal unit sees the
-    // primary rays in pixel order, one a cycle from cycle 0, as the wavefront schedule does
-    // when they all wait at its input.
+    // primary rays in pixel order, one a cycle from cycle 0 (ray generation at a ray a
+    // cycle), as the wavefront schedule does when they all wait at its input.
     let mut scene = test_scene("diffuse_distant");
     scene.lights.clear();
     let (w, h) = (24, 16);
     let u = FrameUnit {
         raygen_latency: 0,
+        raygen_interval: 1,
         ray_store: 1024,
         spawn_reserve: 0,
         shader_cores: 8,
@@ -270,6 +274,13 @@ fn impossible_units_are_errors_naming_the_sizes() {
             ..UNIT
         }),
         "0 pixel slots: the accumulator needs at least one"
+    );
+    assert_eq!(
+        msg(FrameUnit {
+            raygen_interval: 0,
+            ..UNIT
+        }),
+        "ray generation every 0 cycles: it needs at least one"
     );
     assert!(msg(FrameUnit {
         traversal: UnitTiming { slots: 0, ..TIMING },

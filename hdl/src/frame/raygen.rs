@@ -1,20 +1,29 @@
-//! Ray generation, one ray a cycle: pixel (i, j) → the primary ray through its centre,
-//! `hw_model::frame::raygen::primary` in its operation order,
+//! Ray generation, a ray every two cycles (`hw_model::frame::raygen::INTERVAL`): pixel
+//! (i, j) → the primary ray through its centre, `hw_model::frame::raygen::primary` in its
+//! operation order, each operator used twice a ray (times from the cycle the pixel is taken):
 //!
 //! ```text
-//! t_coord  = coord                    i, j in fp32 (exact)
-//! t_scaled = t_coord + mul            i·dx, j·dy
-//! t_xy     = t_scaled + add           x = i·dx + x0, y = j·dy + y0
-//! t_terms  = t_xy + mul               r0k·x, r1k·y         (k = 0, 1, 2)
-//! t_sum    = t_terms + add            r0k·x + r1k·y
-//! t_d      = t_sum + sub              d_k = (r0k·x + r1k·y) − r2k
-//! t_dir    = t_d + normalise          direction = normalise(d)
+//! t_coord      = coord                 i, then j, in fp32 (exact)       (the converter)
+//! t_scaled     = t_coord + mul         i·dx, then j·dy                  (a multiplier)
+//! t_xy         = t_scaled + add        x = i·dx + x0, then y = j·dy + y0 (an adder)
+//! t_terms      = t_xy + mul            r0k·x, then r1k·y                (multiplier k = 0..2)
+//! t_sum_issue  = t_terms + 1           r0k·x + r1k·y                    (adder k)
+//! t_d          = t_sub_issue + add     d_k = (r0k·x + r1k·y) + (−r2k)   (adder k again)
+//! t_dir        = t_d + normalise       direction = normalise(d)         (3 mul, 1 add, ...)
 //! ```
 //!
-//! with the pixel index and a valid bit carried beside the arithmetic by delay lines, so the
-//! pipeline takes a pixel every cycle (II = 1). `depth` is the pipeline registers per
-//! operator, each saturating at its own `max_stages()` (as in [`super::normalise`]). The ray's
-//! origin is the camera's: a wire from the constant inputs, not carried.
+//! A pixel is taken only in a cycle whose phase (a flip-flop toggled every cycle) is low, so
+//! each shared operator's first use falls on one parity of the cycle count and its second
+//! on the other: j is held a cycle after i, y follows x a cycle later and meets r1k in the
+//! cycle after x met r0k, r0k·x is held a cycle to meet r1k·y, and the subtraction is issued
+//! on the adder that made the sum, `t_sub_issue` = t_sum_issue + add rounded up to odd (one
+//! register later where the adder's latency is even). The subtraction is the adder with
+//! r2k's sign flipped, as fp32's `Sub` is. [`super::normalise`] shares its operators the
+//! same way. The pixel index and a valid bit ride beside the arithmetic by delay lines. 7
+//! multipliers and 5 adders where a ray a cycle took 14 and 10. `depth` is the pipeline
+//! registers per operator, each saturating at its own `max_stages()` (as in
+//! [`super::normalise`]). The ray's origin is the camera's: a wire from the constant
+//! inputs, not carried.
 //!
 //! The camera constants (`hw_model::frame::constants::CameraConstants`: dx, x0, dy, y0, the
 //! camera-to-world rows, the origin) are inputs, the registers the frame unit loads with the
@@ -25,8 +34,8 @@
 //! and `pixel_ready` falls only when [`QUEUE_DEPTH`] rays are in flight or queued: the
 //! scheme of the stream front end (`top::stream`) and the filter slots (`dual::slot`). The
 //! other scheme, a pipeline-wide enable, would need an enable port on every register of every
-//! operator and either `ray_ready` on the clock enable of the whole pipeline (5,450
-//! flip-flops and 461 SRLs at full depth: a high-fanout path from the consumer) or a skid
+//! operator and either `ray_ready` on the clock enable of the whole pipeline (3,547
+//! flip-flops and 449 SRLs at full depth: a high-fanout path from the consumer) or a skid
 //! buffer of a whole ray (117 flip-flops) to register it. The queue keeps its rays in block
 //! RAM (yosys maps it to 2) and adds only its pointers and the count to the flip-flops (about
 //! 35), so it is the cheaper in registers; and `pixel_ready` and `ray_valid` come from
@@ -36,12 +45,13 @@
 //! zeros, and a frame ends with every ray taken.
 
 use hw_model::frame::constants::CameraConstants;
+pub use hw_model::frame::raygen::INTERVAL;
 use hw_model::frame::FrameLimits;
 use rust_hdl::prelude::*;
 
 use super::coord::{CoordToFp32, COORD_BITS};
-use super::normalise::{self, Normalise};
-use crate::formats::fp32::{self, Add, Mul, Sub};
+use super::normalise::{self, odd, Normalise};
+use crate::formats::fp32::{self, Add, Mul};
 use crate::harness::{built_verilog, simulate_driven, Stepped};
 use crate::macros::clock;
 use crate::mt::delay::Delay;
@@ -57,7 +67,8 @@ const _: () =
 /// Address bits of the ray queue.
 pub const QUEUE_ADDR_BITS: usize = 7;
 /// Rays the block holds in its pipeline and its queue together: more than the pipeline's
-/// latency at full depth, so a consumer that is always ready sees a ray every cycle.
+/// latency at full depth, so a consumer that is always ready sees every ray the pipeline
+/// makes.
 pub const QUEUE_DEPTH: usize = 1 << QUEUE_ADDR_BITS;
 /// Width of the credit count (0 to `QUEUE_DEPTH`).
 const PENDING_BITS: usize = QUEUE_ADDR_BITS + 1;
@@ -70,23 +81,30 @@ const _: () = assert!(QUEUED_BITS == 117 && PENDING_BITS == 8);
 /// in the same cycle).
 pub const QUEUE_LATENCY: usize = 2;
 
+/// The phase flip-flop alternates: a pixel every two cycles.
+const _: () = assert!(INTERVAL == 2);
+
 /// The ray queue (rust-hdl's FIFO: `data_out` shows the head while not `empty`).
 type RayQueue = SynchronousFIFO<Bits<QUEUED_BITS>, QUEUE_ADDR_BITS, PENDING_BITS, 1>;
 
-/// When each value of ray generation is ready, from the operators' latencies at a depth.
+/// When each value of ray generation is ready, from the operators' latencies at a depth,
+/// counted from the cycle its pixel is taken (j's, y's and r1k·y's a cycle after i's, x's
+/// and r0k·x's).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RayGenSchedule {
     pub ops: OpLatencies,
-    /// i and j in fp32.
+    /// i in fp32.
     pub t_coord: usize,
-    /// i·dx, j·dy.
+    /// i·dx.
     pub t_scaled: usize,
-    /// x, y.
+    /// x.
     pub t_xy: usize,
-    /// r0k·x, r1k·y.
+    /// r0k·x.
     pub t_terms: usize,
-    /// r0k·x + r1k·y.
-    pub t_sum: usize,
+    /// r0k·x + r1k·y issued (r1k·y ready).
+    pub t_sum_issue: usize,
+    /// d issued on the same adder (the other parity).
+    pub t_sub_issue: usize,
     /// d (the unnormalised direction).
     pub t_d: usize,
     /// The direction, written into the queue.
@@ -102,8 +120,9 @@ impl RayGenSchedule {
         let t_scaled = t_coord + ops.mul;
         let t_xy = t_scaled + ops.add;
         let t_terms = t_xy + ops.mul;
-        let t_sum = t_terms + ops.add;
-        let t_d = t_sum + ops.sub;
+        let t_sum_issue = t_terms + 1;
+        let t_sub_issue = t_sum_issue + odd(ops.add);
+        let t_d = t_sub_issue + ops.add;
         let t_dir = t_d + normalise::latency(depth);
         RayGenSchedule {
             ops,
@@ -111,7 +130,8 @@ impl RayGenSchedule {
             t_scaled,
             t_xy,
             t_terms,
-            t_sum,
+            t_sum_issue,
+            t_sub_issue,
             t_d,
             t_dir,
             latency: t_dir + QUEUE_LATENCY,
@@ -136,8 +156,9 @@ pub fn full_depth() -> usize {
         .unwrap_or(0)
 }
 
-/// Pixels (i, j and the index carried beside them) in when `pixel_valid` and `pixel_ready`,
-/// primary rays out in the same order, each shown from `ray_valid` until `ray_ready` takes it.
+/// Pixels (i, j and the index carried beside them) in when `pixel_valid` and `pixel_ready`
+/// (every other cycle at most), primary rays out in the same order, each shown from
+/// `ray_valid` until `ray_ready` takes it.
 #[derive(LogicBlock)]
 pub struct RayGen {
     pub clock: Signal<In, Clock>,
@@ -163,16 +184,29 @@ pub struct RayGen {
     pub origin: [Signal<Out, Word>; 3],
     pub direction: [Signal<Out, Word>; 3],
     pub ray_pixel: Signal<Out, Bits<PIXEL_BITS>>,
-    coord: [CoordToFp32; 2],
-    scaled: [Mul; 2],
-    xy: [Add; 2],
-    x_term: [Mul; 3],
-    y_term: [Mul; 3],
+    /// Low in the cycles a pixel may be taken.
+    phase: DFF<Bit>,
+    /// j, for the cycle after its pixel's.
+    j_held: DFF<Bits<COORD_BITS>>,
+    coord: CoordToFp32,
+    scaled: Mul,
+    xy: Add,
+    term: [Mul; 3],
+    /// r0k·x, for the cycle r1k·y is ready.
+    x_term: [DFF<Word>; 3],
+    /// r0k·x + r1k·y, then d_k.
     sum: [Add; 3],
-    d: [Sub; 3],
+    sum_at_sub: [Delay<Word>; 3],
     dir: Normalise,
     valid_at_dir: Delay<Bit>,
     pixel_at_dir: Delay<Bits<PIXEL_BITS>>,
+    // The parities of the shared operators' first uses.
+    scaled_odd: Constant<Bit>,
+    xy_odd: Constant<Bit>,
+    terms_odd: Constant<Bit>,
+    sum_odd: Constant<Bit>,
+    d_odd: Constant<Bit>,
+    sign: Constant<Word>,
     queue: RayQueue,
     pending: DFF<Bits<PENDING_BITS>>,
     /// The credit count while it is updated.
@@ -187,7 +221,7 @@ impl RayGen {
         assert!(
             s.latency < QUEUE_DEPTH,
             "ray generation's latency {} at depth {depth} needs a deeper queue than {QUEUE_DEPTH} \
-             for a ray a cycle",
+             for every ray it makes",
             s.latency
         );
         Self {
@@ -210,16 +244,24 @@ impl RayGen {
             origin: Default::default(),
             direction: Default::default(),
             ray_pixel: Default::default(),
-            coord: std::array::from_fn(|_| CoordToFp32::new(s.t_coord)),
-            scaled: std::array::from_fn(|_| Mul::new(s.ops.mul)),
-            xy: std::array::from_fn(|_| Add::new(s.ops.add)),
-            x_term: std::array::from_fn(|_| Mul::new(s.ops.mul)),
-            y_term: std::array::from_fn(|_| Mul::new(s.ops.mul)),
+            phase: Default::default(),
+            j_held: Default::default(),
+            coord: CoordToFp32::new(s.t_coord),
+            scaled: Mul::new(s.ops.mul),
+            xy: Add::new(s.ops.add),
+            term: std::array::from_fn(|_| Mul::new(s.ops.mul)),
+            x_term: Default::default(),
             sum: std::array::from_fn(|_| Add::new(s.ops.add)),
-            d: std::array::from_fn(|_| Sub::new(s.ops.sub)),
+            sum_at_sub: Delay::lines(s.t_sub_issue - s.t_sum_issue - s.ops.add),
             dir: Normalise::new(depth),
             valid_at_dir: Delay::new(s.t_dir),
             pixel_at_dir: Delay::new(s.t_dir),
+            scaled_odd: Constant::new(s.t_coord % 2 == 1),
+            xy_odd: Constant::new(s.t_scaled % 2 == 1),
+            terms_odd: Constant::new(s.t_xy % 2 == 1),
+            sum_odd: Constant::new(s.t_sum_issue % 2 == 1),
+            d_odd: Constant::new(s.t_d % 2 == 1),
+            sign: Constant::new(Word::from(1u64 << 31)),
             queue: Default::default(),
             pending: Default::default(),
             count: Default::default(),
@@ -232,35 +274,47 @@ impl RayGen {
 impl Logic for RayGen {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, coord[0], coord[1], scaled[0], scaled[1], xy[0], xy[1]);
-        self.pixel_ready.next = !self.pending.q.val().get_bit(7);
+        clock!(self, clock, phase, j_held, coord, scaled, xy, dir);
+        self.phase.d.next = !self.phase.q.val();
+        self.pixel_ready.next = !self.phase.q.val() & !self.pending.q.val().get_bit(7);
         self.accept.next = self.pixel_valid.val() & self.pixel_ready.val();
 
-        // x = i·dx + x0, y = j·dy + y0.
-        self.coord[0].a.next = self.i.val();
-        self.coord[1].a.next = self.j.val();
-        self.scaled[0].a.next = self.coord[0].y.val();
-        self.scaled[0].b.next = self.dx.val();
-        self.scaled[1].a.next = self.coord[1].y.val();
-        self.scaled[1].b.next = self.dy.val();
-        self.xy[0].a.next = self.scaled[0].y.val();
-        self.xy[0].b.next = self.x0.val();
-        self.xy[1].a.next = self.scaled[1].y.val();
-        self.xy[1].b.next = self.y0.val();
+        // x = i·dx + x0, then y = j·dy + y0 a cycle later.
+        self.j_held.d.next = self.j.val();
+        self.coord.a.next = self.i.val();
+        if self.phase.q.val() {
+            self.coord.a.next = self.j_held.q.val();
+        }
+        self.scaled.a.next = self.coord.y.val();
+        self.scaled.b.next = self.dx.val();
+        if self.phase.q.val() ^ self.scaled_odd.val() {
+            self.scaled.b.next = self.dy.val();
+        }
+        self.xy.a.next = self.scaled.y.val();
+        self.xy.b.next = self.x0.val();
+        if self.phase.q.val() ^ self.xy_odd.val() {
+            self.xy.b.next = self.y0.val();
+        }
 
-        // d = (row0·x + row1·y) − row2, then its normalisation.
-        clock!(self, clock, dir);
+        // d = (row0·x + row1·y) + (−row2), then its normalisation.
+        self.dir.phase.next = self.phase.q.val() ^ self.d_odd.val();
         for k in 0..3 {
-            clock!(self, clock, x_term[k], y_term[k], sum[k], d[k]);
-            self.x_term[k].a.next = self.row0[k].val();
-            self.x_term[k].b.next = self.xy[0].y.val();
-            self.y_term[k].a.next = self.row1[k].val();
-            self.y_term[k].b.next = self.xy[1].y.val();
-            self.sum[k].a.next = self.x_term[k].y.val();
-            self.sum[k].b.next = self.y_term[k].y.val();
-            self.d[k].a.next = self.sum[k].y.val();
-            self.d[k].b.next = self.row2[k].val();
-            self.dir.v[k].next = self.d[k].y.val();
+            clock!(self, clock, term[k], x_term[k], sum[k], sum_at_sub[k]);
+            self.term[k].a.next = self.row0[k].val();
+            if self.phase.q.val() ^ self.terms_odd.val() {
+                self.term[k].a.next = self.row1[k].val();
+            }
+            self.term[k].b.next = self.xy.y.val();
+            self.x_term[k].d.next = self.term[k].y.val();
+            self.sum_at_sub[k].d.next = self.sum[k].y.val();
+            if self.phase.q.val() ^ self.sum_odd.val() {
+                self.sum[k].a.next = self.sum_at_sub[k].q.val();
+                self.sum[k].b.next = self.row2[k].val() ^ self.sign.val();
+            } else {
+                self.sum[k].a.next = self.x_term[k].q.val();
+                self.sum[k].b.next = self.term[k].y.val();
+            }
+            self.dir.v[k].next = self.sum[k].y.val();
         }
 
         // The pixel's valid and index beside the arithmetic; the ray into its reserved slot.

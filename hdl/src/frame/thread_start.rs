@@ -5,10 +5,21 @@
 //!
 //! ```text
 //! stage A   the ray and its answer; the triangle memory reads the hit triangle's word
-//!           (its object and three vertex normals)
+//!           (its object and its three vertex normals' codes), each code converted to its
+//!           fp32 value on the way to stage B
 //! stage B   the start: the object table reads the object's word (its program's entry
 //!           point and cast flag); a miss takes the miss entry and zeros
 //! ```
+//!
+//! **The normals' codes.** The triangle memory holds each vertex-normal component as its
+//! code on the grid of `hw_model::frame::constants::NORMAL_BITS` (`normal_code`), where fp32
+//! words would take twice the block RAM (docs/frame.md "The frame on a Zynq: the budget").
+//! Nine `FixedToF32` conversions without registers (the fixed-point format of the codes:
+//! `NORMAL_BITS` bits, all but the sign fraction) give each component's `normal_value`
+//! exactly (at most `NORMAL_BITS` − 1 significant bits, and 0 as +0) between the memory's
+//! read and stage B's registers, so a start still takes a cycle and the latency is
+//! unchanged. Nine, not three time-shared: the core reads r4..r6 over several cycles, but
+//! the start's registers are ports shown together while it is offered.
 //!
 //! The start, as `thread::input` makes it: r0..r2 = origin, direction, weight; a hit: r3 =
 //! (t, u, v), r4..r6 = the triangle's vertex normals, material = its object, the object's
@@ -34,6 +45,7 @@
 //! depth are inputs held while a frame runs. No reset: the stages start empty from the
 //! flip-flops' power-on zeros.
 
+use hw_model::frame::constants::{normal_code, normal_value, NORMAL_BITS};
 use hw_model::frame::shader::Program;
 use hw_model::frame::{FrameConstants, FrameLimits};
 use rust_hdl::prelude::*;
@@ -44,9 +56,11 @@ use super::id_queue::Id;
 use super::ray_store::{stored_answer, StoreError, StoredRay};
 use super::raygen::PIXEL_BITS;
 use super::shader::core::{DEPTH_BITS, MATERIAL_BITS, PC_BITS};
+use crate::fixed::FixedToF32;
 use crate::harness::{built_verilog, simulate_driven, Stepped};
-use crate::macros::dff_setup;
-use hw_model::frame::shader::isa::{Word3, CODE};
+use crate::macros::{clock, dff_setup};
+use crate::widths::FixedWidths;
+use hw_model::frame::shader::isa::{self, Word3};
 use hw_model::frame::shader::ThreadInput;
 use hw_model::frame::FrameRay;
 use sw_renderer::hit::Hit;
@@ -57,16 +71,60 @@ type Lanes = Bits<96>;
 pub const OBJECT_BITS: usize = 6;
 /// Objects the table holds.
 pub const OBJECTS: usize = 1 << OBJECT_BITS;
-/// A triangle's word: its three vertex normals (96 bits each, from bit 0), its object above.
-const TRIANGLE_WORD_BITS: usize = 3 * 96 + OBJECT_BITS;
+/// A normal component's code in the triangle memory: a fixed-point number of `NORMAL_BITS`
+/// bits, one of them the sign (`normal_value`: code·2^−(NORMAL_BITS−1)).
+const CODE: FixedWidths = FixedWidths::of(NORMAL_BITS as usize, 1);
+/// A vertex normal's three codes (x from bit 0).
+const NORMAL_WORD_BITS: usize = 3 * CODE.word;
+/// A triangle's word: its three vertex normals' codes (corner 0's from bit 0), its object
+/// above: 150 bits at 16-bit codes.
+pub const TRIANGLE_WORD_BITS: usize = 3 * NORMAL_WORD_BITS + OBJECT_BITS;
 /// An object's word: its program's entry point, the cast flag above it.
 const OBJECT_WORD_BITS: usize = PC_BITS + 1;
 const _: () = {
     assert!(OBJECTS == FrameLimits::HW.objects);
-    assert!(OBJECT_BITS <= MATERIAL_BITS && 1 << PC_BITS == CODE);
+    assert!(OBJECT_BITS <= MATERIAL_BITS && 1 << PC_BITS == isa::CODE);
     // The kernel's literal offsets and widths.
-    assert!(TRIANGLE_WORD_BITS == 294 && OBJECT_WORD_BITS == 12 && PC_BITS == 11);
+    assert!(CODE.word == 16 && NORMAL_WORD_BITS == 48 && TRIANGLE_WORD_BITS == 150);
+    assert!(OBJECT_WORD_BITS == 12 && PC_BITS == 11);
 };
+
+/// A code → its fp32 value, exactly, without registers.
+type CodeToF32 = FixedToF32<{ CODE.word }, { CODE.frac }, { CODE.to_f32_normalized }>;
+
+/// A vertex normal's three codes → its three fp32 components (x from bit 0), exactly, in the
+/// cycle.
+#[derive(LogicBlock)]
+struct NormalToF32 {
+    pub clock: Signal<In, Clock>,
+    pub codes: Signal<In, Bits<NORMAL_WORD_BITS>>,
+    pub y: Signal<Out, Lanes>,
+    convert: [CodeToF32; 3],
+}
+
+impl Default for NormalToF32 {
+    fn default() -> Self {
+        Self {
+            clock: Default::default(),
+            codes: Default::default(),
+            y: Default::default(),
+            convert: std::array::from_fn(|_| CodeToF32::new(0)),
+        }
+    }
+}
+
+impl Logic for NormalToF32 {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(self, clock, convert[0], convert[1], convert[2]);
+        self.convert[0].a.next = self.codes.val().get_bits::<16>(0);
+        self.convert[1].a.next = self.codes.val().get_bits::<16>(16);
+        self.convert[2].a.next = self.codes.val().get_bits::<16>(32);
+        self.y.next = bit_cast::<96, 32>(self.convert[0].y.val())
+            | (bit_cast::<96, 32>(self.convert[1].y.val()) << 32)
+            | (bit_cast::<96, 32>(self.convert[2].y.val()) << 64);
+    }
+}
 
 /// Cycles from a ray taken to its start shown, the output free.
 pub const LATENCY: usize = 2;
@@ -127,6 +185,8 @@ pub struct ThreadStart<const TB: usize> {
     /// The program may push reflection or refraction rays.
     pub casts: Signal<Out, Bit>,
     triangles: RAM<Bits<TRIANGLE_WORD_BITS>, TB>,
+    /// The read triangle's normals in fp32.
+    normals: [NormalToF32; 3],
     objects: RAM<Bits<OBJECT_WORD_BITS>, OBJECT_BITS>,
     // Stage A.
     a_valid: DFF<Bit>,
@@ -234,6 +294,12 @@ impl<const TB: usize> Logic for ThreadStart<TB> {
             self.a_ray[2].d.next = self.in_weight.val();
         }
 
+        // The read triangle's normals, converted.
+        clock!(self, clock, normals[0], normals[1], normals[2]);
+        self.normals[0].codes.next = self.triangles.read_data.val().get_bits::<48>(0);
+        self.normals[1].codes.next = self.triangles.read_data.val().get_bits::<48>(48);
+        self.normals[2].codes.next = self.triangles.read_data.val().get_bits::<48>(96);
+
         // Stage B: the start; the object table reads the object (a stalled stage its own).
         self.b_valid.d.next = self.a_to_b.val() | (self.b_valid.q.val() & !self.b_free.val());
         self.objects.read_address.next = self.b_object.q.val();
@@ -251,14 +317,14 @@ impl<const TB: usize> Logic for ThreadStart<TB> {
             self.b_registers[5].d.next = 0.into();
             self.b_registers[6].d.next = 0.into();
             if self.a_hit.q.val() {
-                self.b_object.d.next = self.triangles.read_data.val().get_bits::<OBJECT_BITS>(288);
+                self.b_object.d.next = self.triangles.read_data.val().get_bits::<OBJECT_BITS>(144);
                 self.b_registers[3].d.next = self.a_tuv.q.val();
-                self.b_registers[4].d.next = self.triangles.read_data.val().get_bits::<96>(0);
-                self.b_registers[5].d.next = self.triangles.read_data.val().get_bits::<96>(96);
-                self.b_registers[6].d.next = self.triangles.read_data.val().get_bits::<96>(192);
+                self.b_registers[4].d.next = self.normals[0].y.val();
+                self.b_registers[5].d.next = self.normals[1].y.val();
+                self.b_registers[6].d.next = self.normals[2].y.val();
             }
             self.objects.read_address.next =
-                self.triangles.read_data.val().get_bits::<OBJECT_BITS>(288);
+                self.triangles.read_data.val().get_bits::<OBJECT_BITS>(144);
         }
         for k in 0..3 {
             if self.a_to_b.val() {
@@ -283,25 +349,72 @@ pub enum StartLoadError {
     },
     #[error("{count} material entry points for {objects} objects")]
     Entries { count: usize, objects: usize },
-    #[error("entry point {entry}: the program memory holds {CODE} instructions")]
+    #[error(
+        "entry point {entry}: the program memory holds {} instructions",
+        isa::CODE
+    )]
     Entry { entry: u16 },
     #[error("max depth {depth}: the thread start holds depths up to {}", (1 << DEPTH_BITS) - 1)]
     MaxDepth { depth: u32 },
+    #[error(
+        "triangle {triangle} corner {corner} normal component {axis} is {:e} ({bits:#010x}), \
+         not on the {NORMAL_BITS}-bit grid the triangle memory stores",
+        f32::from_bits(*bits)
+    )]
+    NormalOffGrid {
+        triangle: usize,
+        corner: usize,
+        axis: usize,
+        bits: u32,
+    },
 }
 
 /// One word through the load port.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum StartLoad {
+    /// A triangle's object and its corners' normals as codes (`normal_code`).
     Triangle {
         index: usize,
         object: u32,
-        normals: [Word3; 3],
+        codes: [[i32; 3]; 3],
     },
     Object {
         index: usize,
         entry: u16,
         casts: bool,
     },
+}
+
+impl StartLoad {
+    /// The load port's address and data for this word: a triangle's codes (two's
+    /// complement, `NORMAL_BITS` each, corner by corner, x first) with its object above; an
+    /// object's entry point with its cast flag above.
+    pub fn port(&self) -> (usize, Bits<TRIANGLE_WORD_BITS>) {
+        match *self {
+            StartLoad::Triangle {
+                index,
+                object,
+                codes,
+            } => {
+                let mut data = Bits::<TRIANGLE_WORD_BITS>::from(u64::from(object))
+                    << (3 * NORMAL_WORD_BITS) as u64;
+                for (k, &code) in codes.iter().flatten().enumerate() {
+                    let field = (code as u64) & ((1 << CODE.word) - 1);
+                    data =
+                        data | (Bits::<TRIANGLE_WORD_BITS>::from(field) << (k * CODE.word) as u64);
+                }
+                (index, data)
+            }
+            StartLoad::Object {
+                index,
+                entry,
+                casts,
+            } => (
+                index,
+                Bits::from(u64::from(entry) | u64::from(casts) << PC_BITS),
+            ),
+        }
+    }
 }
 
 /// What the block holds for a frame: the load port's words and the held inputs.
@@ -314,7 +427,7 @@ pub struct StartConstants {
 }
 
 fn entry_point(entry: u16) -> Result<u16, StartLoadError> {
-    if entry as usize >= CODE {
+    if entry as usize >= isa::CODE {
         return Err(StartLoadError::Entry { entry });
     }
     Ok(entry)
@@ -360,10 +473,24 @@ pub fn loads<const TB: usize>(
                 objects: c.materials.len(),
             });
         }
+        let mut codes = [[0; 3]; 3];
+        for (corner, (code, n)) in codes.iter_mut().zip(&t.normals).enumerate() {
+            for (axis, (k, x)) in code.iter_mut().zip(n.components()).enumerate() {
+                *k = normal_code(x);
+                if normal_value(*k).bits() != x.bits() {
+                    return Err(StartLoadError::NormalOffGrid {
+                        triangle: index,
+                        corner,
+                        axis,
+                        bits: x.bits(),
+                    });
+                }
+            }
+        }
         loads.push(StartLoad::Triangle {
             index,
             object: t.object,
-            normals: t.normals.map(|n| n.components().map(|x| x.bits())),
+            codes,
         });
     }
     for (index, &entry) in program.material_entry.iter().enumerate() {
@@ -513,31 +640,7 @@ impl<const TB: usize> Stepped for ThreadStart<TB> {
     fn apply(&mut self, input: &StartInput) {
         self.load_triangle.next = matches!(input.load, Some(StartLoad::Triangle { .. }));
         self.load_object.next = matches!(input.load, Some(StartLoad::Object { .. }));
-        let (address, data) = match input.load {
-            Some(StartLoad::Triangle {
-                index,
-                object,
-                normals,
-            }) => {
-                let mut data =
-                    Bits::<TRIANGLE_WORD_BITS>::from(u64::from(object)) << Bits::<9>::from(288);
-                for (k, n) in normals.iter().enumerate() {
-                    data = data
-                        | (bit_cast::<TRIANGLE_WORD_BITS, 96>(lanes(*n))
-                            << Bits::<9>::from(96 * k as u64));
-                }
-                (index, data)
-            }
-            Some(StartLoad::Object {
-                index,
-                entry,
-                casts,
-            }) => (
-                index,
-                Bits::from(u64::from(entry) | u64::from(casts) << PC_BITS),
-            ),
-            None => (0, Bits::default()),
-        };
+        let (address, data) = input.load.map_or((0, Bits::default()), |l| l.port());
         self.load_address.next = (address as u64).into();
         self.load_data.next = data;
         self.miss_entry.next = u64::from(input.miss_entry).into();

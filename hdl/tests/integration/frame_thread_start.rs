@@ -4,7 +4,8 @@
 //! (hits and misses, every depth the scene reaches), and random rays under random depths
 //! and max depths (past depth either side of its edge) on random triangles with raw words;
 //! under random gaps and random back-pressure with long stalls: every start exactly once, in
-//! order, held while not taken, and, flowing, exactly `LATENCY` cycles after its ray.
+//! order, held while not taken, and, flowing, exactly `LATENCY` cycles after its ray; the
+//! normals' codes at the grid's edges converted to exactly their `normal_value`s.
 //! Constants and rays that do not fit are errors naming the sizes; Verilator's lint.
 
 use crate::common::{frame_test_scene, print_synthesis_row, FRAME_TEST_SCENES, SYNTHESIS_COLUMNS};
@@ -15,6 +16,8 @@ use hdl::frame::thread_start::{
     ReturnedError, StartConstants, StartInput, StartLoadError, StartOutput, Started, LATENCY,
     OBJECTS,
 };
+use hw_model::fp32::{Fp32, Vec3};
+use hw_model::frame::constants::{normal_code, normal_value, NORMAL_BITS};
 use hw_model::frame::shade::Shaded;
 use hw_model::frame::shader::{compile, thread, Program};
 use hw_model::frame::{Frame, FrameConstants, FrameLimits, FrameRay, Load, RayKind};
@@ -432,6 +435,79 @@ fn thread_start_decides_starts() {
     assert!(by_escape > 0, "starts by the escape");
 }
 
+/// Normal components at the grid's edges, snapped as `FrameConstants::load` snaps them, through
+/// the triangle memory's codes and their conversion: every start's r4..r6 the exact
+/// `normal_value` of the component's code, the model's start bit for bit. ±1 and beyond
+/// clamp to the top code; −0 and values nearer 0 than half a step are code 0, +0 (the
+/// model's snap); half a step rounds away from 0 to ±1 code.
+#[test]
+fn thread_start_converts_normal_codes_at_the_grid_edges() {
+    let scene = frame_test_scene("glass");
+    let (mut c, program, _) = rendered(&scene);
+    let top = (1 << (NORMAL_BITS - 1)) - 1;
+    let step = normal_value(1).f32();
+    let edges = [
+        1.0,
+        -1.0,
+        1.5,
+        -7.0,
+        1.0 - step,
+        -(1.0 - step),
+        1.0 - 2.5 * step,
+        0.0,
+        -0.0,
+        step,
+        -step,
+        step / 2.0,
+        -step / 2.0,
+        step * 0.49,
+        -1e-30,
+        0.5,
+        -0.5 - step,
+        0.707_106_77,
+    ];
+    let component =
+        |t: usize, corner: usize, axis: usize| edges[(9 * t + 3 * corner + axis) % edges.len()];
+    let snap = |x: f32| normal_value(normal_code(Fp32::new(x)));
+    for (t, tri) in c.triangles.iter_mut().enumerate() {
+        for (corner, n) in tri.normals.iter_mut().enumerate() {
+            let [x, y, z] = [0, 1, 2].map(|axis| snap(component(t, corner, axis)));
+            *n = Vec3::new(x, y, z);
+        }
+    }
+    let count = c.triangles.len().min(edges.len() * 2);
+    assert!(9 * count >= edges.len(), "every edge on some triangle");
+    let codes: Vec<i32> = edges.iter().map(|&x| normal_code(Fp32::new(x))).collect();
+    for want in [top, -top, 0, 1, -1, top - 1] {
+        assert!(codes.contains(&want), "code {want} tested");
+    }
+    let primary = FrameRay::primary(&c, 0, 0);
+    let cases: Vec<Case> = (0..count)
+        .map(|t| {
+            let hit = Hit {
+                triangle: t as u32,
+                t: 2.0,
+                u: 0.25,
+                v: 0.5,
+            };
+            let k = case(&c, &program, &primary, Some(&hit));
+            for corner in 0..3 {
+                let want = [0, 1, 2].map(|axis| {
+                    normal_value(normal_code(Fp32::new(component(t, corner, axis)))).bits()
+                });
+                assert_eq!(k.want.input.registers[4 + corner], want, "triangle {t}");
+            }
+            k
+        })
+        .collect();
+    let plus_zero = cases
+        .iter()
+        .flat_map(|k| k.want.input.registers[4..].iter().flatten());
+    assert!(plus_zero.clone().any(|&w| w == 0) && plus_zero.clone().all(|&w| w != 1 << 31));
+    let k = loads::<TB>(&c, &program).unwrap();
+    run::<TB>("normal codes", &k, cases, NOISY, 70);
+}
+
 #[test]
 fn thread_start_refuses_what_does_not_fit() {
     let scene = frame_test_scene("glass");
@@ -468,6 +544,25 @@ fn thread_start_refuses_what_does_not_fit() {
     stray.triangles[0].object = c.materials.len() as u32;
     let e = loads::<TB>(&stray, &program).unwrap_err().to_string();
     assert!(e.contains("triangle 0 has object"), "{e}");
+    for bits in [0.1f32.to_bits(), (-0.0f32).to_bits()] {
+        let mut off = c.clone();
+        off.triangles[1].normals[2] = Vec3::new(Fp32::ZERO, Fp32::ZERO, Fp32::from_bits(bits));
+        let e = loads::<TB>(&off, &program).unwrap_err();
+        assert_eq!(
+            e,
+            StartLoadError::NormalOffGrid {
+                triangle: 1,
+                corner: 2,
+                axis: 2,
+                bits
+            }
+        );
+        let e = e.to_string();
+        assert!(
+            e.contains("triangle 1 corner 2") && e.contains("16-bit grid"),
+            "{e}"
+        );
+    }
     let mut deep = c.clone();
     deep.max_depth = 16;
     let e = loads::<TB>(&deep, &program).unwrap_err().to_string();
@@ -516,19 +611,26 @@ fn thread_start_verilog_passes_verilator_lint() {
     }
 }
 
-/// yosys figures (BENCHMARKS.md "Frame unit blocks"):
+/// yosys figures (BENCHMARKS.md "Frame unit blocks") at the XC7Z020's 4,096 triangles
+/// (`TB`) and `FrameLimits::HW`'s 16,384 (`TB_HW`):
 /// `cargo test --release -p hdl --test integration -- --ignored --nocapture frame_thread_start::thread_start_synthesis`.
 #[test]
 #[ignore]
 fn thread_start_synthesis() {
     use hdl::synth::{synthesize, SynthOptions};
-    let r = synthesize(
-        &thread_start_verilog::<TB_HW>(),
-        "top",
-        &SynthOptions::default(),
-    )
-    .expect("yosys synth_xilinx");
     println!("| block | {SYNTHESIS_COLUMNS} |");
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
-    print_synthesis_row("thread start", &r);
+    for (verilog, what) in [
+        (
+            thread_start_verilog::<TB>(),
+            "thread start (4,096 triangles)",
+        ),
+        (
+            thread_start_verilog::<TB_HW>(),
+            "thread start (16,384 triangles)",
+        ),
+    ] {
+        let r = synthesize(&verilog, "top", &SynthOptions::default()).expect("yosys synth_xilinx");
+        print_synthesis_row(what, &r);
+    }
 }

@@ -56,9 +56,9 @@ pub struct MaterialConstants {
 
 /// Bits of each vertex-normal component in the triangle memory. The host snaps a normalised
 /// component to the grid k·2^−(NORMAL_BITS−1), |k| < 2^(NORMAL_BITS−1) ([`normal_code`]);
-/// the hardware is to store k and convert it back exactly ([`normal_value`]), 150 bits a
-/// triangle where fp32 normals take 294 (the thread start still holds the snapped values as
-/// fp32 words). At 320×180 against the software renderer the worst thesis
+/// the hardware stores k and converts it back exactly ([`normal_value`]; the frame engine's
+/// thread start), 150 bits a triangle where fp32 normals would take 294. At 320×180 against
+/// the software renderer the worst thesis
 /// scene is Glass pen at 75.1 dB with 16 bits, 65.6 dB with 12 and 49.5 dB with 10 (docs/frame.md,
 /// "Against the software renderer").
 pub const NORMAL_BITS: u32 = 16;

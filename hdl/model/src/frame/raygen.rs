@@ -14,6 +14,11 @@
 use super::constants::CameraConstants;
 use crate::fp32::{Fp32, Vec3};
 
+/// Cycles between two primary rays of the frame unit's ray generation (`hdl::frame::raygen`:
+/// its operators time-shared by two, a pixel taken every other cycle); the frame schedule
+/// model's ray generation takes the same.
+pub const INTERVAL: u64 = 2;
+
 /// The primary ray through pixel (i, j): origin and normalised direction.
 pub fn primary(camera: &CameraConstants, i: u32, j: u32) -> (Vec3, Vec3) {
     let x = Fp32::of_int(i) * camera.dx + camera.x0;

@@ -4,7 +4,9 @@
 //! shader core's interpreter, so the schedule only adds time; the image is the frame model's.
 //!
 //! The planned unit, cycle by cycle:
-//! - **ray generation**: one primary ray a cycle in pixel order, when the pixel's accumulator
+//! - **ray generation**: one primary ray every `raygen_interval` cycles (the hardware's
+//!   [`super::raygen::INTERVAL`]: its operators time-shared) in pixel order, when the pixel's
+//!   accumulator
 //!   slot is free (slot = pixel mod `pixel_slots`: pixel p opens after pixel p − slots has
 //!   finished) and the ray store keeps `spawn_reserve` entries free after it; the ray reaches
 //!   the traversal unit's input `raygen_latency` cycles later; its *open* record goes to the
@@ -86,6 +88,8 @@ pub struct FrameUnit {
     pub pixel_slots: usize,
     /// Pixel accepted → its ray at the traversal unit's input.
     pub raygen_latency: u64,
+    /// Cycles from one pixel accepted to the next (the hardware's `raygen::INTERVAL`).
+    pub raygen_interval: u64,
     /// Record → finished pixel.
     pub accumulate_latency: u64,
 }
@@ -145,7 +149,7 @@ impl FrameSchedule {
     pub fn utilisation(&self, stage: Stage) -> f64 {
         let t = &self.unit.traversal;
         let (busy, width) = match stage {
-            Stage::RayGen => (self.pixels, 1),
+            Stage::RayGen => (self.pixels * self.unit.raygen_interval, 1),
             Stage::BoxPort => (self.traversal.box_busy, t.box_ports),
             Stage::Lanes => (self.traversal.mt_busy, t.lanes),
             Stage::ShaderIssue => (self.instructions(), self.unit.shader_cores),
@@ -183,6 +187,8 @@ pub enum ScheduleError {
     Threads(usize),
     #[error("{0} pixel slots: the accumulator needs at least one")]
     PixelSlots(usize),
+    #[error("ray generation every {0} cycles: it needs at least one")]
+    RaygenInterval(u64),
     #[error("a spawn reserve of {reserve} entries: this scene's threads push up to {pushes} rays, {cast} of them reflection or refraction rays, {depth} deep, so it needs at least {needed} ({cast}·{depth} + {pushes})")]
     SpawnReserve {
         reserve: usize,
@@ -271,6 +277,8 @@ struct Run<'a> {
     /// When each pixel slot is free again (`None`: its pixel is in flight).
     slot_free_at: Vec<Option<u64>>,
     next_pixel: u64,
+    /// The first cycle ray generation can take the next pixel.
+    raygen_free_at: u64,
     finished: u64,
     shaded: Shaded,
     counters: UnitCounters,
@@ -295,6 +303,9 @@ pub fn schedule_frame(
     }
     if unit.pixel_slots == 0 {
         return Err(ScheduleError::PixelSlots(unit.pixel_slots));
+    }
+    if unit.raygen_interval == 0 {
+        return Err(ScheduleError::RaygenInterval(unit.raygen_interval));
     }
     let entries = std::iter::once(program.miss_entry).chain(program.material_entry.iter().copied());
     let pushes: Vec<Pushes> = entries.map(|e| program.pushes_from(e)).collect();
@@ -343,6 +354,7 @@ pub fn schedule_frame(
         acc: Accumulator::new(unit.pixel_slots),
         slot_free_at: vec![Some(0); unit.pixel_slots],
         next_pixel: 0,
+        raygen_free_at: 0,
         finished: 0,
         shaded: Shaded::default(),
         counters: UnitCounters::default(),
@@ -421,7 +433,10 @@ impl Run<'_> {
 
     /// Ray generation: the next pixel's primary ray, if its slot and the store allow.
     fn generate(&mut self, now: u64) {
-        if self.next_pixel == self.out.pixels || self.available() < self.u.spawn_reserve + 1 {
+        if self.next_pixel == self.out.pixels
+            || now < self.raygen_free_at
+            || self.available() < self.u.spawn_reserve + 1
+        {
             return;
         }
         let slot = (self.next_pixel % self.u.pixel_slots as u64) as usize;
@@ -438,6 +453,7 @@ impl Run<'_> {
         self.records.push_back(Record::Open(slot));
         self.primaries.push_back((now + self.u.raygen_latency, id));
         self.next_pixel += 1;
+        self.raygen_free_at = now + self.u.raygen_interval;
     }
 
     /// A free entry holding `ray` (its id).
@@ -655,7 +671,7 @@ impl Run<'_> {
         let pixel = (self.next_pixel < self.out.pixels && self.available() > self.u.spawn_reserve)
             .then(|| self.slot_free_at[(self.next_pixel % self.u.pixel_slots as u64) as usize])
             .flatten()
-            .map(|t| t.max(now));
+            .map(|t| t.max(now).max(self.raygen_free_at));
         let threads = (self.cores.iter().flat_map(|c| &c.threads)).map(|t| t.ready_at.max(now));
         [primary, pixel, self.traversal.next_ready()]
             .into_iter()
