@@ -58,7 +58,7 @@ pub const OBJECT_BITS: usize = 6;
 /// Objects the table holds.
 pub const OBJECTS: usize = 1 << OBJECT_BITS;
 /// A triangle's word: its three vertex normals (96 bits each, from bit 0), its object above.
-const TRIANGLE_WORD_BITS: usize = 3 * 96 + OBJECT_BITS;
+pub const TRIANGLE_WORD_BITS: usize = 3 * 96 + OBJECT_BITS;
 /// An object's word: its program's entry point, the cast flag above it.
 const OBJECT_WORD_BITS: usize = PC_BITS + 1;
 const _: () = {
