@@ -6,6 +6,7 @@ pub mod axil_master;
 pub mod cosim_error;
 pub mod dual_pair;
 pub mod error;
+pub mod frame_unit;
 pub mod hw_intersector;
 pub mod projection;
 pub mod sim_clock;

@@ -27,10 +27,13 @@
 //! - [`ray_store`]: the rays in flight and their answers, a RAM per field group and reader.
 //! - [`records`]: the accumulator's three sources (opens, shadow answers settled beside the
 //!   core, threads' settles), one record a cycle.
+//! - [`engine`]: the frame engine, every block above wired around the traversal unit's ray
+//!   and hit streams: pixels in order to an 8-bit pixel stream.
 
 pub mod accumulate;
 pub mod contribution;
 pub mod coord;
+pub mod engine;
 pub mod escape;
 pub mod id_queue;
 pub mod normalise;

@@ -15,6 +15,7 @@ mod float_ops;
 mod float_sqrt;
 mod frame_accumulate;
 mod frame_contribution;
+mod frame_engine;
 mod frame_escape;
 mod frame_normalise;
 mod frame_pixel_slots;

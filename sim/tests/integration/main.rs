@@ -9,6 +9,7 @@ mod cosim_bus;
 mod cosim_equivalence;
 mod cosim_scenes;
 mod dual_pair_verilator;
+mod frame_engine_verilator;
 mod fuzz_regressions;
 mod mt_lane_verilator;
 mod operators_verilator;
