@@ -84,6 +84,7 @@ fn check(scene: &Scene, w: u32, h: u32, store: Option<usize>, traffic: Traffic) 
         threads: core::threads(DEPTH),
         pixel_slots: accumulate::PIXEL_SLOTS,
         raygen_latency: raygen::latency(DEPTH) as u64,
+        raygen_interval: raygen::INTERVAL,
         accumulate_latency: accumulate::latency() as u64,
     };
     let modelled = schedule_frame(
