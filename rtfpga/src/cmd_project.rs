@@ -8,7 +8,7 @@ use std::time::Instant;
 use anyhow::{bail, Context, Result};
 use clap::{Args as ClapArgs, ValueEnum};
 use hw_model::dual::FormatChoice;
-use hw_model::frame::schedule::{self, schedule_frame, FrameUnit, Stage};
+use hw_model::frame::schedule::{self, schedule_frame, Stage};
 use hw_model::frame::{Frame, FrameLimits};
 use hw_model::traversal::scene_image::SceneImage;
 use hw_model::traversal::{TraversalEngine, TraversalModel};
@@ -299,17 +299,14 @@ fn project_frame(a: &Args) -> Result<()> {
     )
     .with_nodes(engine.nodes)?;
     let ray_store = a.ray_store as usize;
-    let unit = FrameUnit {
-        traversal: timing,
+    let unit = hdl::frame::schedule_unit(
+        timing,
+        a.depth,
         ray_store,
-        spawn_reserve: a.spawn_reserve.map_or(ray_store / 4, |r| r as usize),
-        shader_cores: a.shader_cores as usize,
-        threads: a.shader_threads as usize,
-        pixel_slots: hdl::frame::accumulate::PIXEL_SLOTS,
-        raygen_latency: hdl::frame::raygen::latency(a.depth) as u64,
-        raygen_interval: hdl::frame::raygen::INTERVAL,
-        accumulate_latency: hdl::frame::accumulate::latency() as u64,
-    };
+        a.spawn_reserve.map_or(ray_store / 4, |r| r as usize),
+        a.shader_cores as usize,
+        a.shader_threads as usize,
+    );
     let bar = ProgressBar::new(u64::from(width) * u64::from(height));
     if let Ok(style) =
         ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} pixels {elapsed}/{eta}")

@@ -46,3 +46,30 @@ pub mod shader;
 pub mod thread_start;
 pub mod trace_queues;
 pub mod waiting_queue;
+
+use hw_model::frame::schedule::FrameUnit;
+use hw_model::traversal::schedule::UnitTiming;
+
+/// The frame schedule model's unit for these blocks with their operators at `depth`: their
+/// latencies, ray generation's interval and the accumulator's slots, beside a traversal unit
+/// timed `traversal`; the sizes a frame unit is configured with.
+pub fn schedule_unit(
+    traversal: UnitTiming,
+    depth: usize,
+    ray_store: usize,
+    spawn_reserve: usize,
+    shader_cores: usize,
+    threads: usize,
+) -> FrameUnit {
+    FrameUnit {
+        traversal,
+        ray_store,
+        spawn_reserve,
+        shader_cores,
+        threads,
+        pixel_slots: accumulate::PIXEL_SLOTS,
+        raygen_latency: raygen::latency(depth) as u64,
+        raygen_interval: raygen::INTERVAL,
+        accumulate_latency: accumulate::latency() as u64,
+    }
+}

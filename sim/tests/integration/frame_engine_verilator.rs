@@ -4,9 +4,9 @@
 //! back-pressure on the ray and pixel streams; the engine's cycles beside the frame schedule
 //! model's (`hw_model::frame::schedule`) for the same frame.
 
-use hdl::frame::{accumulate, raygen, shader::core};
+use hdl::frame::{schedule_unit, shader::core};
 use hdl::traversal::config::UnitConfig;
-use hw_model::frame::schedule::{schedule_frame, FrameUnit};
+use hw_model::frame::schedule::schedule_frame;
 use hw_model::frame::{Frame, FrameLimits, WAVEFRONT};
 use hw_model::traversal::scene_image::SceneImage;
 use hw_model::traversal::{TraversalEngine, TraversalModel};
@@ -76,17 +76,14 @@ fn check(scene: &Scene, w: u32, h: u32, store: Option<usize>, traffic: Traffic) 
     let traversal = TraversalModel::new(unit.format, unit.stack_depth, SceneImage::new(&prepared))
         .with_nodes(unit.nodes)
         .unwrap();
-    let schedule = FrameUnit {
-        traversal: UnitConfig::new(HwFormat::FP32, DEPTH, 1).timing(),
-        ray_store: store.unwrap_or(512),
-        spawn_reserve: 128.min(store.unwrap_or(512) - 1),
-        shader_cores: 1,
-        threads: core::threads(DEPTH),
-        pixel_slots: accumulate::PIXEL_SLOTS,
-        raygen_latency: raygen::latency(DEPTH) as u64,
-        raygen_interval: raygen::INTERVAL,
-        accumulate_latency: accumulate::latency() as u64,
-    };
+    let schedule = schedule_unit(
+        UnitConfig::new(HwFormat::FP32, DEPTH, 1).timing(),
+        DEPTH,
+        store.unwrap_or(512),
+        128.min(store.unwrap_or(512) - 1),
+        1,
+        core::threads(DEPTH),
+    );
     let modelled = schedule_frame(
         frame.constants(),
         frame.program(),
