@@ -43,7 +43,10 @@ pub const TOP_VERILATOR_WAIVERS: &[&str] = &["-Wno-VARHIDDEN", "-Wno-SYMRSVDWORD
 ///   delay lines, so Verilator sees a loop between always blocks where every real path
 ///   crosses a register (the rust-hdl simulation settles every cycle, and the Verilated unit
 ///   equals the model). The shader core (`frame::shader::core`) is waived for the same
-///   reason: its kernel reads the write-back delay lines' outputs and drives their inputs.
+///   reason: its kernel reads the write-back delay lines' outputs and drives their inputs;
+///   so are ray generation and its normalisation (`frame::raygen`, `frame::normalise`: a
+///   shared operator's input multiplexer reads a register its own result feeds) and the
+///   frame engine (`frame::engine`), which holds all three.
 pub const UNIT_VERILATOR_WAIVERS: &[&str] = &["-Wno-UNOPTFLAT"];
 
 /// `verilator --lint-only -Wall` with [`VERILATOR_WAIVERS`] on a generated block whose top
