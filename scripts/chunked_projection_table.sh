@@ -8,6 +8,7 @@
 # TILE (default 256) the tile size where a row names none.
 set -euo pipefail
 rtfpga=${RTFPGA:-target/release/rtfpga}
+here=$(dirname "$0")
 scene=$1
 shift
 rows=${ROWS:-1280x720:unbounded 1280x720:4096,5120 1280x720:3072,4096 1280x720:2048,2560 1280x720:3072,4096:32 1920x1080:unbounded 1920x1080:3072,4096}
@@ -18,17 +19,10 @@ for row in $rows; do
   memory=$capacity
   [ "$capacity" = unbounded ] && memory=16384,16384
   "$rtfpga" project --scene "$scene" --width "${size%x*}" --height "${size#*x}" --design traversal \
-    --tile-size "${tile:-${TILE:-256}}" --scene-memory "$memory" "$@" 2>/dev/null | python3 -c '
+    --tile-size "${tile:-${TILE:-256}}" --scene-memory "$memory" "$@" 2>/dev/null | PYTHONPATH="$here" python3 -c '
 import sys
-kv, terms = {}, {}
-for line in sys.stdin:
-    cells = [c.strip() for c in line.strip().strip("|").split("|")]
-    if len(cells) == 2 and cells[0] in ("ARM", "accelerator"):
-        terms[cells[0]] = cells[1]
-    for tok in line.split():
-        if "=" in tok:
-            k, v = tok.split("=", 1)
-            kv.setdefault(k, v)
+from rtfpga_output import parse
+kv = parse(sys.stdin)
 rays = int(kv["rays"])
 # Chunks: passes per wavefront, rounded up (a wavefront takes at most a pass per chunk).
 chunks = -(-int(kv["passes"]) // int(kv["wavefronts"]))
@@ -36,6 +30,6 @@ print("| %s | %s | %s | %d | {:,} | %.2f | {:,} | %s | %s | %s | %s | **%s** |".
     int(kv["passes"]), int(kv["loaded_bytes"])) % (
     sys.argv[1], sys.argv[2], sys.argv[3], chunks,
     int(kv["ray_passes"]) / rays, kv["cycles_per_ray"], kv["load_cycles_per_ray"],
-    terms["ARM"], terms["accelerator"], kv["total_s"]))
+    kv["term_ARM"], kv["term_accelerator"], kv["total_s"]))
 ' "$size" "$capacity" "${tile:-${TILE:-256}}"
 done

@@ -10,6 +10,7 @@
 # 320x180), SCENES (default all 7).
 set -euo pipefail
 rtfpga=${RTFPGA:-target/release/rtfpga}
+here=$(dirname "$0")
 dir=${1:-${RTFPGA_THESIS_SCENES:-../shared/scenes/thesis}}
 shift || true
 size=${SIZE:-320x180}
@@ -26,35 +27,29 @@ else
 fi
 for scene in "${scenes[@]}"; do
   {
-    echo "k1 $(project --design frame "$@" --shader-cores 1 | tr '\n' ' ')"
-    echo "k2 $(project --design frame "$@" --shader-cores 2 | tr '\n' ' ')"
+    echo "== k1"; project --design frame "$@" --shader-cores 1
+    echo "== k2"; project --design frame "$@" --shader-cores 2
     if [ "$size" = 320x180 ]; then
-      echo "t8 $(project --design frame "$@" --shader-cores 1 --shader-threads 8 | tr '\n' ' ')"
-      echo "t32 $(project --design frame "$@" --shader-cores 1 --shader-threads 32 | tr '\n' ' ')"
+      echo "== t8"; project --design frame "$@" --shader-cores 1 --shader-threads 8
+      echo "== t32"; project --design frame "$@" --shader-cores 1 --shader-threads 32
     else
-      echo "arm $(project --design traversal "$@" --scene-memory 16384,16384 | tr '\n' ' ')"
+      echo "== arm"; project --design traversal "$@" --scene-memory 16384,16384
     fi
-  } | python3 -c '
+  } | PYTHONPATH="$here" python3 -c '
 import sys
-names = {"Simple_plane_scene": "Simple plane", "Simple_plane2_scene": "Simple plane 2",
-         "Glasses_scene": "Glasses", "Glasses_point_scene": "Glasses point",
-         "Glass_pen_scene": "Glass pen", "Utah_teapot_scene": "Utah teapot",
-         "All_materials_scene": "All materials"}
-runs = {}
+from rtfpga_output import parse, scene_name
+runs, run = {}, None
 for line in sys.stdin:
-    run, *toks = line.split()
-    runs[run] = kv = {}
-    if "accelerator" in toks:
-        kv["unit_s"] = toks[toks.index("accelerator") + 2]
-    for t in toks:
-        if "=" in t:
-            k, v = t.split("=", 1)
-            kv.setdefault(k, v)
+    if line.startswith("== "):
+        run = runs[line.split()[1]] = []
+    else:
+        run.append(line)
+runs = {name: parse(lines) for name, lines in runs.items()}
 k1, k2 = runs["k1"], runs["k2"]
 cycles = lambda r: int(r["frame_cycles"])
 pct = lambda x: "%.0f %%" % (100 * float(x))
 bound = lambda r: r["bound"].replace("_", " ")
-name = names.get(sys.argv[1], sys.argv[1])
+name = scene_name(sys.argv[1])
 if "t8" in runs:
     print("| %s | {:,} | {:,} | {:,} | %s | %s | %s | %s | {:,} | %s | %s | %s | %s | %.3f / %.3f | %s |".format(
         int(k1["rays"]), int(k1["instructions"]), cycles(k1), cycles(k2)) % (
@@ -66,6 +61,6 @@ else:
     s1, s2, total = cycles(k1) / 1e8, cycles(k2) / 1e8, float(arm["total_s"])
     print("| %s | {:,} | %.4f | %s | %s | %.4f | %s | %s | %.4f (%.4f) | %.2f× / %.2f× |".format(int(k1["rays"])) % (
         name, s1, k1["fps_at_100mhz"], bound(k1), s2, k2["fps_at_100mhz"], bound(k2),
-        total, float(arm["unit_s"]), total / s1, total / s2))
+        total, float(arm["term_accelerator"]), total / s1, total / s2))
 ' "$scene"
 done

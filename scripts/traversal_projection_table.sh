@@ -9,6 +9,7 @@
 # "1280x720 1920x1080"), SCENES (default all 7).
 set -euo pipefail
 rtfpga=${RTFPGA:-target/release/rtfpga}
+here=$(dirname "$0")
 dir=${1:-${RTFPGA_THESIS_SCENES:-../shared/scenes/thesis}}
 shift || true
 read -r -a scenes <<< "${SCENES:-Simple_plane_scene Simple_plane2_scene Glasses_scene Glasses_point_scene Glass_pen_scene Utah_teapot_scene All_materials_scene}"
@@ -17,25 +18,14 @@ echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"
 for scene in "${scenes[@]}"; do
   for size in ${SIZES:-1280x720 1920x1080}; do
     "$rtfpga" project --scene "$dir/$scene" --width "${size%x*}" --height "${size#*x}" \
-      --design traversal --scene-memory 16384,16384 "$@" 2>/dev/null | python3 -c '
+      --design traversal --scene-memory 16384,16384 "$@" 2>/dev/null | PYTHONPATH="$here" python3 -c '
 import sys
-names = {"Simple_plane_scene": "Simple plane", "Simple_plane2_scene": "Simple plane 2",
-         "Glasses_scene": "Glasses", "Glasses_point_scene": "Glasses point",
-         "Glass_pen_scene": "Glass pen", "Utah_teapot_scene": "Utah teapot",
-         "All_materials_scene": "All materials"}
-kv, terms = {}, {}
-for line in sys.stdin:
-    cells = [c.strip() for c in line.strip().strip("|").split("|")]
-    if len(cells) == 2 and cells[0] in ("ARM", "accelerator"):
-        terms[cells[0]] = cells[1]
-    for tok in line.split():
-        if "=" in tok:
-            k, v = tok.split("=", 1)
-            kv.setdefault(k, v)
+from rtfpga_output import parse, scene_name
+kv = parse(sys.stdin)
 print("| %s | %s | %s | %s | **%s** | %s | %s | %s× | %s | %s× |" % (
-    names.get(sys.argv[1], sys.argv[1]), sys.argv[2], terms["ARM"], terms["accelerator"],
-    kv["total_s"], kv["cycles_per_ray"], kv["arm_software_s"], kv["speedup_vs_arm"],
-    kv["arm_bvh_walk_s"], kv["speedup_vs_arm_bvh_walk"]))
+    scene_name(sys.argv[1]), sys.argv[2], kv["term_ARM"], kv["term_accelerator"], kv["total_s"],
+    kv["cycles_per_ray"], kv["arm_software_s"], kv["speedup_vs_arm"], kv["arm_bvh_walk_s"],
+    kv["speedup_vs_arm_bvh_walk"]))
 ' "$scene" "$size"
   done
 done
